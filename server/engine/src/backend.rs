@@ -1,0 +1,74 @@
+//! What every backend (CPU now, GPU next) offers the rest of Floe.
+
+use crate::guard::Halted;
+use serde::{Deserialize, Serialize};
+
+/// A per-particle quantity a frame or export can carry besides position.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Channel {
+    /// Velocity (m/s), 3 components.
+    Velocity,
+    /// Density (kg/m^3).
+    Density,
+    /// Pressure (Pa).
+    Pressure,
+}
+
+impl Channel {
+    /// Every channel of the fluid module.
+    pub const FLUID: &'static [Channel] = &[Channel::Velocity, Channel::Density, Channel::Pressure];
+
+    /// Name as used in exports (`density`) and components (`vx`, `vy`, `vz`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Channel::Velocity => "velocity",
+            Channel::Density => "density",
+            Channel::Pressure => "pressure",
+        }
+    }
+}
+
+/// A copy of particle state for output, in identity order (index = particle id).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Particles {
+    /// Positions (m).
+    pub positions: Vec<[f32; 3]>,
+    /// Velocities (m/s), when asked for.
+    pub velocities: Option<Vec<[f32; 3]>>,
+    /// Densities (kg/m^3), when asked for.
+    pub densities: Option<Vec<f32>>,
+    /// Pressures (Pa), when asked for.
+    pub pressures: Option<Vec<f32>>,
+}
+
+/// What one step did.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepReport {
+    /// Time step taken (s).
+    pub dt: f32,
+    /// Largest speed (m/s).
+    pub max_speed: f32,
+    /// Largest compression `(rho - rho0)/rho0`.
+    pub max_compression: f32,
+    /// Mean compression over particles (surface deficits count as 0).
+    pub mean_compression: f32,
+}
+
+/// A simulation backend: owns the physics state and steps it.
+pub trait Backend: Send {
+    /// Short name (`cpu`, `gpu`).
+    fn name(&self) -> &'static str;
+    /// Advances one step.
+    fn step(&mut self) -> Result<StepReport, Halted>;
+    /// Simulated time (s).
+    fn time(&self) -> f64;
+    /// Steps taken.
+    fn steps(&self) -> u64;
+    /// Steps taken beyond one per fixed interval (fixed time-step mode).
+    fn substeps(&self) -> u64;
+    /// Number of fluid particles.
+    fn particle_count(&self) -> usize;
+    /// Copies out positions and the requested channels.
+    fn read(&self, channels: &[Channel]) -> Particles;
+}

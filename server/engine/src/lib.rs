@@ -1,0 +1,47 @@
+//! # floe-engine
+//!
+//! Floe's simulation core, usable without any network code: offline runs,
+//! tests and benchmarks link only this crate.
+//!
+//! How a scene flows through it:
+//! ```text
+//! scene (TOML/JSON/preset + overrides) ──scene::load──► Scene (validated)
+//!     ──Model::build──► Model (mass, kernel, c, particles, walls)
+//!     ──CpuBackend::new──► Backend ──Simulation::step──► StepReport | Halted
+//!     ──Simulation::read──► Particles ──export──► VTK / CSV
+//! ```
+//!
+//! Modules:
+//! - [`scene`]: the scene spec (one serde definition, JSON Schema), presets,
+//!   loading with overrides, validation with field paths.
+//! - [`model`]: a scene resolved into the numbers a backend steps.
+//! - [`math`], [`kernel`], [`neighbors`]: numeric types, SPH kernels, the uniform grid.
+//! - [`eos`], [`viscosity`], [`boundary`], [`sampling`]: the physics pieces of
+//!   the fluid module (each names its paper and equation).
+//! - [`timestep`], [`guard`]: adaptive dt and the stability guard.
+//! - [`backend`], [`cpu`]: the backend trait and the rayon CPU backend.
+//! - [`simulation`], [`summary`]: a running scene and its run summary.
+//! - [`export`]: VTK and CSV writers.
+//! - [`validation`]: reference solutions and error measures.
+
+pub mod backend;
+pub mod boundary;
+pub mod cpu;
+pub mod eos;
+pub mod export;
+pub mod guard;
+pub mod kernel;
+pub mod math;
+pub mod model;
+pub mod neighbors;
+pub mod sampling;
+pub mod scene;
+pub mod simulation;
+pub mod summary;
+pub mod timestep;
+pub mod validation;
+pub mod viscosity;
+
+pub use backend::{Backend, Channel, Particles, StepReport};
+pub use guard::Halted;
+pub use simulation::Simulation;

@@ -1,0 +1,129 @@
+//! Turning scene geometry into particles: fluid blocks on a cubic lattice, and
+//! walls as layers of boundary particles (Akinci et al. 2012, section 3).
+
+use crate::math::{Real, Vec3};
+use crate::scene::{Boundary, Face, FluidBlock};
+
+/// Particle centres filling `block` on a lattice of `spacing`, the first one
+/// half a spacing inside the lower corner.
+pub fn fill_block(block: &FluidBlock, spacing: Real) -> Vec<Vec3> {
+    let min = Vec3::from(block.min);
+    let counts = ((Vec3::from(block.max) - min) / spacing + 1e-3).floor();
+    let [nx, ny, nz] = [counts.x as u32, counts.y as u32, counts.z as u32];
+    let mut out = Vec::with_capacity((nx * ny * nz) as usize);
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                out.push(min + (Vec3::new(i as Real, j as Real, k as Real) + 0.5) * spacing);
+            }
+        }
+    }
+    out
+}
+
+/// Lattice coordinates along one axis of a box: `layers` outside below, the
+/// interior (spacing stretched to fit the extent exactly), `layers` outside above.
+/// Returns the coordinates and, for each, -1 / 0 / +1 for below / inside / above.
+fn axis_coords(lo: Real, hi: Real, spacing: Real, layers: u32) -> Vec<(Real, i8)> {
+    let n = ((hi - lo) / spacing).round().max(1.0) as u32;
+    let d = (hi - lo) / n as Real;
+    let mut out = Vec::new();
+    for l in (0..layers).rev() {
+        out.push((lo - (l as Real + 0.5) * d, -1));
+    }
+    for i in 0..n {
+        out.push((lo + (i as Real + 0.5) * d, 0));
+    }
+    for l in 0..layers {
+        out.push((hi + (l as Real + 0.5) * d, 1));
+    }
+    out
+}
+
+/// Boundary particle positions for one wall.
+pub fn sample_boundary(boundary: &Boundary, spacing: Real) -> Vec<Vec3> {
+    match boundary {
+        Boundary::Box { min, max, open, layers } => {
+            let axes: Vec<Vec<(Real, i8)>> = (0..3).map(|a| axis_coords(min[a], max[a], spacing, *layers)).collect();
+            let is_open = |axis: usize, side: i8| {
+                open.iter().any(|f| {
+                    matches!(
+                        (f, axis, side),
+                        (Face::MinusX, 0, -1)
+                            | (Face::PlusX, 0, 1)
+                            | (Face::MinusY, 1, -1)
+                            | (Face::PlusY, 1, 1)
+                            | (Face::MinusZ, 2, -1)
+                            | (Face::PlusZ, 2, 1)
+                    )
+                })
+            };
+            let mut out = Vec::new();
+            for &(z, sz) in &axes[2] {
+                for &(y, sy) in &axes[1] {
+                    for &(x, sx) in &axes[0] {
+                        let sides = [sx, sy, sz];
+                        let in_shell = sides.iter().any(|&s| s != 0);
+                        let on_open = sides.iter().enumerate().any(|(a, &s)| s != 0 && is_open(a, s));
+                        if in_shell && !on_open {
+                            out.push(Vec3::new(x, y, z));
+                        }
+                    }
+                }
+            }
+            out
+        }
+        Boundary::Plane { center, normal, size, layers } => {
+            let n = Vec3::from(*normal).normalize();
+            let t1 = n.any_orthonormal_vector();
+            let t2 = n.cross(t1);
+            let (nu, nv) = ((size[0] / spacing).round().max(1.0) as u32, (size[1] / spacing).round().max(1.0) as u32);
+            let (du, dv) = (size[0] / nu as Real, size[1] / nv as Real);
+            let c = Vec3::from(*center);
+            let mut out = Vec::new();
+            for l in 0..*layers {
+                for j in 0..nv {
+                    for i in 0..nu {
+                        let u = (i as Real + 0.5) * du - 0.5 * size[0];
+                        let v = (j as Real + 0.5) * dv - 0.5 * size[1];
+                        out.push(c + t1 * u + t2 * v - n * ((l as Real + 0.5) * spacing));
+                    }
+                }
+            }
+            out
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn blocks_fill_on_the_lattice() {
+        let b = FluidBlock { min: [0.0; 3], max: [1.0, 2.0, 0.5], velocity: [0.0; 3] };
+        let p = fill_block(&b, 0.1);
+        assert_eq!(p.len(), 10 * 20 * 5);
+        assert!((p[0] - Vec3::splat(0.05)).length() < 1e-6);
+    }
+
+    #[test]
+    fn box_walls_form_a_closed_shell() {
+        let b = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![], layers: 1 };
+        let p = sample_boundary(&b, 0.1);
+        assert_eq!(p.len(), 12 * 12 * 12 - 10 * 10 * 10);
+        assert!(p.iter().all(|q| q.min_element() < 0.0 || q.max_element() > 1.0));
+        let open = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![Face::PlusY], layers: 2 };
+        let p = sample_boundary(&open, 0.1);
+        assert!(p.iter().all(|q| q.y < 1.0));
+        assert_eq!(p.len(), 14 * 12 * 14 - 10 * 10 * 10);
+    }
+
+    #[test]
+    fn planes_sit_behind_their_normal() {
+        let b = Boundary::Plane { center: [0.0; 3], normal: [0.0, 2.0, 0.0], size: [1.0, 0.5], layers: 2 };
+        let p = sample_boundary(&b, 0.1);
+        assert_eq!(p.len(), 2 * 10 * 5);
+        assert!(p.iter().all(|q| q.y < 0.0 && q.y > -0.2));
+    }
+}

@@ -1,0 +1,259 @@
+//! Reading scenes: TOML or JSON text, presets, and `key=value` overrides.
+//!
+//! Every source is first turned into a JSON value, overrides are applied to that
+//! value, and only then is it deserialised into [`Scene`] (with the path of any
+//! bad field) and validated. One pipeline, so a field is named the same way
+//! whether it came from a file, a preset or `--set`.
+
+use super::{Scene, presets, validate};
+use serde_json::Value;
+use std::path::Path;
+
+/// Why a scene could not be loaded. Each message names what was wrong.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The scene file could not be read.
+    #[error("cannot read scene file {path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The text is not valid TOML or JSON.
+    #[error("{format} syntax error: {message}")]
+    Syntax {
+        /// "TOML" or "JSON".
+        format: &'static str,
+        /// The parser's message, with line and column.
+        message: String,
+    },
+    /// A field has the wrong type or name, or is missing.
+    #[error("{path}: {message}")]
+    Field {
+        /// Path of the field, e.g. `fluids[0].rest_density`.
+        path: String,
+        /// What was wrong.
+        message: String,
+    },
+    /// One or more fields failed validation (one line each).
+    #[error("{}", .0.join("\n"))]
+    Invalid(Vec<String>),
+    /// No preset has this name.
+    #[error("unknown preset '{name}'; presets are: {}", presets::NAMES.join(", "))]
+    UnknownPreset {
+        /// The name asked for.
+        name: String,
+    },
+    /// An override is not `key=value` or names a path that cannot exist.
+    #[error("override '{text}': {message}")]
+    Override {
+        /// The override as given.
+        text: String,
+        /// What was wrong.
+        message: String,
+    },
+}
+
+/// Format of a scene document.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// TOML.
+    Toml,
+    /// JSON.
+    Json,
+}
+
+/// Parses scene text into a JSON value (no schema check yet).
+pub fn parse_document(text: &str, format: Format) -> Result<Value, SceneError> {
+    match format {
+        Format::Json => {
+            serde_json::from_str(text).map_err(|e| SceneError::Syntax { format: "JSON", message: e.to_string() })
+        }
+        Format::Toml => {
+            let table: toml::Table = toml::from_str(text)
+                .map_err(|e| SceneError::Syntax { format: "TOML", message: e.to_string().trim().to_owned() })?;
+            Ok(serde_json::to_value(table).expect("TOML values are representable in JSON"))
+        }
+    }
+}
+
+/// Turns a document value into a validated scene.
+pub fn from_value(value: Value) -> Result<Scene, SceneError> {
+    let scene: Scene = serde_path_to_error::deserialize(value).map_err(|e| {
+        let path = e.path().to_string();
+        SceneError::Field { path: if path == "." { "scene".into() } else { path }, message: e.into_inner().to_string() }
+    })?;
+    validate::validate(&scene).map_err(SceneError::Invalid)?;
+    Ok(scene)
+}
+
+/// Parses and validates scene text.
+pub fn from_str(text: &str, format: Format, overrides: &[String]) -> Result<Scene, SceneError> {
+    let mut value = parse_document(text, format)?;
+    apply_overrides(&mut value, overrides)?;
+    from_value(value)
+}
+
+/// Loads a scene file (`.toml` or `.json`), applies overrides and validates.
+pub fn from_file(path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
+    let text =
+        std::fs::read_to_string(path).map_err(|source| SceneError::Io { path: path.display().to_string(), source })?;
+    let format = match path.extension().and_then(|e| e.to_str()) {
+        Some("json") => Format::Json,
+        _ => Format::Toml,
+    };
+    from_str(&text, format, overrides)
+}
+
+/// A preset by name with overrides applied, validated.
+pub fn from_preset(name: &str, overrides: &[String]) -> Result<Scene, SceneError> {
+    let scene = presets::get(name).ok_or_else(|| SceneError::UnknownPreset { name: name.into() })?;
+    let mut value = serde_json::to_value(&scene).expect("scenes serialise");
+    apply_overrides(&mut value, overrides)?;
+    from_value(value)
+}
+
+/// Loads `source`: a preset name if one has that name, otherwise a file path.
+pub fn resolve(source: &str, overrides: &[String]) -> Result<Scene, SceneError> {
+    if presets::NAMES.contains(&source) {
+        from_preset(source, overrides)
+    } else if Path::new(source).exists() {
+        from_file(Path::new(source), overrides)
+    } else {
+        Err(SceneError::UnknownPreset { name: source.into() })
+    }
+}
+
+/// Applies `key.path[i].leaf=value` overrides. The value is read as JSON when it
+/// parses as JSON (numbers, arrays, booleans, quoted strings), else as a bare string.
+pub fn apply_overrides(doc: &mut Value, overrides: &[String]) -> Result<(), SceneError> {
+    for text in overrides {
+        let err = |message: String| SceneError::Override { text: text.clone(), message };
+        let (key, raw) = text.split_once('=').ok_or_else(|| err("expected key=value".into()))?;
+        let value = serde_json::from_str(raw.trim()).unwrap_or_else(|_| Value::String(raw.trim().into()));
+        let segments = parse_path(key.trim()).map_err(err)?;
+        set_path(doc, &segments, value).map_err(err)?;
+    }
+    Ok(())
+}
+
+#[derive(Debug, PartialEq)]
+enum Segment {
+    Key(String),
+    Index(usize),
+}
+
+fn parse_path(key: &str) -> Result<Vec<Segment>, String> {
+    let mut out = Vec::new();
+    for part in key.split('.') {
+        let (name, mut rest) = part.split_at(part.find('[').unwrap_or(part.len()));
+        if name.is_empty() && out.is_empty() {
+            return Err(format!("empty key in '{key}'"));
+        }
+        if !name.is_empty() {
+            out.push(Segment::Key(name.into()));
+        }
+        while let Some(inner) = rest.strip_prefix('[') {
+            let close = inner.find(']').ok_or_else(|| format!("unclosed '[' in '{key}'"))?;
+            let index = inner[..close].parse().map_err(|_| format!("bad index '{}' in '{key}'", &inner[..close]))?;
+            out.push(Segment::Index(index));
+            rest = &inner[close + 1..];
+        }
+        if !rest.is_empty() {
+            return Err(format!("unexpected '{rest}' in '{key}'"));
+        }
+    }
+    Ok(out)
+}
+
+fn set_path(doc: &mut Value, path: &[Segment], value: Value) -> Result<(), String> {
+    let mut node = doc;
+    let mut walked = String::new();
+    for segment in path {
+        node = match segment {
+            Segment::Key(k) => {
+                walked += &if walked.is_empty() { k.clone() } else { format!(".{k}") };
+                if node.is_null() {
+                    *node = Value::Object(Default::default());
+                }
+                let map = node.as_object_mut().ok_or_else(|| format!("{walked}: parent is not a table"))?;
+                map.entry(k.clone()).or_insert(Value::Null)
+            }
+            Segment::Index(i) => {
+                let list = node.as_array_mut().ok_or_else(|| format!("{walked}: is not a list"))?;
+                let len = list.len();
+                walked += &format!("[{i}]");
+                list.get_mut(*i).ok_or_else(|| format!("{walked}: index out of range (the list has {len} items)"))?
+            }
+        };
+    }
+    *node = value;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paths_parse() {
+        assert_eq!(
+            parse_path("fluids[0].viscosity.nu").unwrap(),
+            vec![
+                Segment::Key("fluids".into()),
+                Segment::Index(0),
+                Segment::Key("viscosity".into()),
+                Segment::Key("nu".into())
+            ]
+        );
+        assert!(parse_path("a[x]").is_err());
+        assert!(parse_path("a[1").is_err());
+    }
+
+    #[test]
+    fn overrides_set_numbers_strings_and_lists() {
+        let scene = from_preset(
+            "dam_break",
+            &["particle_spacing=0.05".into(), "solver.kernel=cubic_spline".into(), "gravity=[0,-1,0]".into()],
+        )
+        .unwrap();
+        assert_eq!(scene.particle_spacing, 0.05);
+        assert_eq!(scene.solver.kernel, crate::kernel::KernelKind::CubicSpline);
+        assert_eq!(scene.gravity, [0.0, -1.0, 0.0]);
+    }
+
+    #[test]
+    fn bad_values_name_the_field() {
+        let e = from_preset("dam_break", &["fluids[0].rest_density=-3".into()]).unwrap_err();
+        assert_eq!(e.to_string(), "fluids[0].rest_density: must be > 0, got -3");
+        let e = from_preset("dam_break", &["fluids[0].rest_density=\"heavy\"".into()]).unwrap_err();
+        assert!(e.to_string().starts_with("fluids[0].rest_density: invalid type"), "{e}");
+        let e = from_preset("dam_break", &["solver.colour=red".into()]).unwrap_err();
+        assert!(e.to_string().starts_with("solver.colour: unknown field `colour`, expected one of"), "{e}");
+        let e = from_preset("dam_break", &["fluids[4].xsph=0.1".into()]).unwrap_err();
+        assert!(e.to_string().contains("fluids[4]: index out of range"), "{e}");
+        assert!(matches!(from_preset("nope", &[]), Err(SceneError::UnknownPreset { .. })));
+    }
+
+    #[test]
+    fn toml_and_json_documents_load() {
+        let toml = r#"
+            particle_spacing = 0.05
+            [[fluids]]
+            blocks = [{ min = [0, 0, 0], max = [0.5, 0.5, 0.5] }]
+            [[boundaries]]
+            kind = "box"
+            min = [0, 0, 0]
+            max = [1, 1, 1]
+        "#;
+        let a = from_str(toml, Format::Toml, &[]).unwrap();
+        let json = serde_json::to_string(&a).unwrap();
+        let b = from_str(&json, Format::Json, &[]).unwrap();
+        assert_eq!(a, b);
+        let e = from_str("particle_spacing = ", Format::Toml, &[]).unwrap_err();
+        assert!(e.to_string().starts_with("TOML syntax error"), "{e}");
+        let e = from_str(&toml.replace("min = [0, 0, 0], max", "min = [0, 0], max"), Format::Toml, &[]).unwrap_err();
+        assert!(e.to_string().starts_with("fluids[0].blocks[0].min: invalid length 2"), "{e}");
+    }
+}

@@ -1,0 +1,382 @@
+//! The scene model: one serde definition of everything a scene holds.
+//!
+//! A scene is written in TOML or JSON (see [`load`]), or taken from a built-in
+//! preset ([`presets`]) and adjusted with `key=value` overrides. The JSON Schema
+//! printed by `floe schema` is derived from these types, so the schema, the
+//! parser and the docs cannot disagree. [`validate`] checks every field once and
+//! names the offending one by its path (`fluids[0].rest_density: must be > 0, got -3`).
+//!
+//! Units are SI throughout: metres, seconds, kilograms, pascals.
+
+pub mod load;
+pub mod presets;
+pub mod validate;
+
+use crate::kernel::KernelKind;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// A complete scene: what is simulated, where, and how.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Human-readable name.
+    #[serde(default = "default_name")]
+    pub name: String,
+    /// Physics modules this scene uses. The engine builds only the buffers and
+    /// passes of the modules listed here.
+    #[serde(default = "default_modules")]
+    pub modules: Vec<ModuleKind>,
+    /// Distance between neighbouring particles when blocks are filled (m). Sets
+    /// the resolution: particle mass is `rest_density * spacing^3`.
+    pub particle_spacing: f32,
+    /// Gravitational acceleration (m/s^2).
+    #[serde(default = "default_gravity")]
+    pub gravity: [f32; 3],
+    /// Fluid phases (the `fluid` module). One phase is supported at present.
+    #[serde(default)]
+    pub fluids: Vec<Fluid>,
+    /// Static walls, sampled with boundary particles (Akinci et al. 2012).
+    #[serde(default)]
+    pub boundaries: Vec<Boundary>,
+    /// Simulation domain. Particles that leave it halt the scene. Default: the
+    /// bounding box of all fluid blocks and boundaries, grown by one kernel support.
+    #[serde(default)]
+    pub domain: Option<BoxRegion>,
+    /// Solver settings.
+    #[serde(default)]
+    pub solver: Solver,
+    /// Bounds beyond which the scene halts instead of producing garbage.
+    #[serde(default)]
+    pub guard: Guard,
+}
+
+fn default_name() -> String {
+    "scene".into()
+}
+fn default_modules() -> Vec<ModuleKind> {
+    vec![ModuleKind::Fluid]
+}
+fn default_gravity() -> [f32; 3] {
+    [0.0, -9.81, 0.0]
+}
+
+/// A physics module.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ModuleKind {
+    /// Weakly compressible SPH fluid (`fluids`).
+    Fluid,
+}
+
+/// An axis-aligned box (m).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BoxRegion {
+    /// Lower corner (m).
+    pub min: [f32; 3],
+    /// Upper corner (m).
+    pub max: [f32; 3],
+}
+
+/// One fluid phase: its material and where it starts.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Fluid {
+    /// Name of the phase.
+    #[serde(default = "default_fluid_name")]
+    pub name: String,
+    /// Rest density rho0 (kg/m^3). Water: 1000.
+    #[serde(default = "default_rest_density")]
+    pub rest_density: f32,
+    /// Equation of state relating density to pressure.
+    #[serde(default)]
+    pub eos: EquationOfState,
+    /// Viscosity model.
+    #[serde(default)]
+    pub viscosity: Viscosity,
+    /// XSPH velocity correction factor epsilon (Monaghan 1989), 0 to 1; 0 disables it.
+    #[serde(default)]
+    pub xsph: f32,
+    /// Boxes filled with particles on a cubic lattice of `particle_spacing`.
+    pub blocks: Vec<FluidBlock>,
+}
+
+fn default_fluid_name() -> String {
+    "water".into()
+}
+fn default_rest_density() -> f32 {
+    1000.0
+}
+
+/// A box of fluid particles.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FluidBlock {
+    /// Lower corner (m); the first particle centre sits half a spacing inside.
+    pub min: [f32; 3],
+    /// Upper corner (m).
+    pub max: [f32; 3],
+    /// Initial velocity (m/s).
+    #[serde(default)]
+    pub velocity: [f32; 3],
+}
+
+/// Equation of state p(rho). Pressure is clamped at zero (no tension), which
+/// avoids the tensile instability at free surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum EquationOfState {
+    /// Tait: `p = B ((rho/rho0)^gamma - 1)`, `B = rho0 c^2 / gamma`
+    /// (Monaghan 1994, J. Comput. Phys. 110, eq. 3.4; Becker & Teschner 2007, eq. 7).
+    Tait {
+        /// Exponent gamma (7 for water).
+        #[serde(default = "default_gamma")]
+        gamma: f32,
+    },
+    /// Linear "ideal gas" model `p = k (rho - rho0)` (Müller et al. 2003, eq. 12,
+    /// with the rest density offset of Desbrun & Gascuel). Default `k = c^2`.
+    Linear {
+        /// Stiffness k (m^2/s^2 = Pa m^3/kg). Default: the squared speed of sound.
+        #[serde(default)]
+        stiffness: Option<f32>,
+    },
+}
+
+fn default_gamma() -> f32 {
+    7.0
+}
+
+impl Default for EquationOfState {
+    fn default() -> Self {
+        Self::Tait { gamma: default_gamma() }
+    }
+}
+
+/// Viscosity model.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Viscosity {
+    /// No explicit viscosity.
+    None,
+    /// Physical viscosity through a kernel Laplacian (Müller et al. 2003, eq. 14;
+    /// with the cubic kernel, Morris et al. 1997, eq. 8). Momentum conserving.
+    Laplacian {
+        /// Kinematic viscosity nu (m^2/s). Water: 1e-6.
+        nu: f32,
+    },
+    /// Monaghan's artificial viscosity (Monaghan 1992, eq. 4.1), acting only on
+    /// approaching pairs; `nu_eff ~ alpha c h / 10`.
+    Artificial {
+        /// Dimensionless alpha, typically 0.01 to 0.1.
+        alpha: f32,
+    },
+}
+
+impl Default for Viscosity {
+    fn default() -> Self {
+        Self::Artificial { alpha: 0.02 }
+    }
+}
+
+/// A static wall sampled with boundary particles.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Boundary {
+    /// The inside of a box is free; its six faces are walls. `min`/`max` are the
+    /// wall surfaces fluid touches; particles sit half a spacing outside them.
+    Box {
+        /// Lower corner of the free interior (m).
+        min: [f32; 3],
+        /// Upper corner of the free interior (m).
+        max: [f32; 3],
+        /// Faces to leave open, from `-x +x -y +y -z +z`.
+        #[serde(default)]
+        open: Vec<Face>,
+        /// Layers of boundary particles (1 to 4).
+        #[serde(default = "default_layers")]
+        layers: u32,
+    },
+    /// A rectangle: fluid stays on the side its `normal` points to.
+    Plane {
+        /// Centre of the rectangle (m).
+        center: [f32; 3],
+        /// Normal pointing into the fluid (normalised on load).
+        normal: [f32; 3],
+        /// Edge lengths (m) along two tangents chosen from the normal.
+        size: [f32; 2],
+        /// Layers of boundary particles (1 to 4).
+        #[serde(default = "default_layers")]
+        layers: u32,
+    },
+}
+
+fn default_layers() -> u32 {
+    1
+}
+
+/// A face of a box.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+pub enum Face {
+    /// Lower x face.
+    #[serde(rename = "-x")]
+    MinusX,
+    /// Upper x face.
+    #[serde(rename = "+x")]
+    PlusX,
+    /// Lower y face.
+    #[serde(rename = "-y")]
+    MinusY,
+    /// Upper y face.
+    #[serde(rename = "+y")]
+    PlusY,
+    /// Lower z face.
+    #[serde(rename = "-z")]
+    MinusZ,
+    /// Upper z face.
+    #[serde(rename = "+z")]
+    PlusZ,
+}
+
+/// Solver settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Solver {
+    /// Kernel family.
+    #[serde(default)]
+    pub kernel: KernelKind,
+    /// Kernel support radius as a multiple of `particle_spacing`. 2 gives about
+    /// 30 neighbours in 3D, the usual choice.
+    #[serde(default = "default_support_factor")]
+    pub support_factor: f32,
+    /// Time integrator.
+    #[serde(default)]
+    pub integrator: Integrator,
+    /// Speed of sound c (m/s). Default: `mach_factor * expected_max_speed`.
+    #[serde(default)]
+    pub speed_of_sound: Option<f32>,
+    /// Ratio c / v_max (10 keeps density fluctuations near 1 %, Monaghan 1994).
+    #[serde(default = "default_mach_factor")]
+    pub mach_factor: f32,
+    /// Expected maximum flow speed (m/s). Default: `sqrt(2 g H)` with H the fluid's
+    /// height along gravity, or the fastest initial block velocity, whichever is larger.
+    #[serde(default)]
+    pub expected_max_speed: Option<f32>,
+    /// Time step control.
+    #[serde(default)]
+    pub time_step: TimeStep,
+    /// Velocity damping rate (1/s) applied while `t < damping_until`, to let a
+    /// scene settle before it is measured (hydrostatic tests). 0 disables it.
+    #[serde(default)]
+    pub damping: f32,
+    /// Simulated time (s) at which damping stops.
+    #[serde(default)]
+    pub damping_until: f32,
+}
+
+fn default_support_factor() -> f32 {
+    2.0
+}
+fn default_mach_factor() -> f32 {
+    10.0
+}
+
+impl Default for Solver {
+    fn default() -> Self {
+        Self {
+            kernel: KernelKind::default(),
+            support_factor: default_support_factor(),
+            integrator: Integrator::default(),
+            speed_of_sound: None,
+            mach_factor: default_mach_factor(),
+            expected_max_speed: None,
+            time_step: TimeStep::default(),
+            damping: 0.0,
+            damping_until: 0.0,
+        }
+    }
+}
+
+/// Time integrator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Integrator {
+    /// Symplectic (semi-implicit) Euler: `v += dt a; x += dt v`.
+    #[default]
+    SymplecticEuler,
+    /// Leap-frog, kick-drift-kick (velocity Verlet), second order.
+    Leapfrog,
+}
+
+/// How the time step is chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "mode", rename_all = "snake_case", deny_unknown_fields)]
+pub enum TimeStep {
+    /// The largest stable step from the CFL, viscous and force limits
+    /// (Monaghan 1992; Morris et al. 1997, eqs. 19-20), clamped to `[min, max]`.
+    /// A stable step below `min` halts the scene.
+    Adaptive {
+        /// CFL number lambda in `dt <= lambda h / (c + v_max)`, h the support radius.
+        #[serde(default = "default_cfl")]
+        cfl: f32,
+        /// Smallest step allowed (s).
+        #[serde(default = "default_dt_min")]
+        min: f32,
+        /// Largest step allowed (s).
+        #[serde(default = "default_dt_max")]
+        max: f32,
+    },
+    /// Advance in intervals of `dt` (s). When `dt` exceeds the stable limit the
+    /// interval is sub-stepped at the limit (counted in the run's statistics).
+    Fixed {
+        /// Interval (s).
+        dt: f32,
+        /// CFL number used for the stable limit.
+        #[serde(default = "default_cfl")]
+        cfl: f32,
+    },
+}
+
+fn default_cfl() -> f32 {
+    0.25
+}
+fn default_dt_min() -> f32 {
+    1e-7
+}
+fn default_dt_max() -> f32 {
+    5e-3
+}
+
+impl Default for TimeStep {
+    fn default() -> Self {
+        Self::Adaptive { cfl: default_cfl(), min: default_dt_min(), max: default_dt_max() }
+    }
+}
+
+/// Stability guard bounds: crossing one halts the scene with a reason.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Guard {
+    /// Largest compression `(rho - rho0) / rho0` allowed.
+    #[serde(default = "default_max_compression")]
+    pub max_compression: f32,
+    /// Largest particle speed allowed (m/s). Default: the speed of sound, since a
+    /// weakly compressible fluid faster than sound is no longer meaningful.
+    #[serde(default)]
+    pub max_speed: Option<f32>,
+}
+
+fn default_max_compression() -> f32 {
+    0.5
+}
+
+impl Default for Guard {
+    fn default() -> Self {
+        Self { max_compression: default_max_compression(), max_speed: None }
+    }
+}
+
+/// The JSON Schema of a scene document, as printed by `floe schema`.
+pub fn json_schema() -> serde_json::Value {
+    serde_json::to_value(schemars::schema_for!(Scene)).expect("a schema is plain JSON")
+}

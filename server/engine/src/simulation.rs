@@ -1,0 +1,148 @@
+//! A scene being simulated: a backend plus the run's statistics and halt state.
+
+use crate::backend::{Backend, Channel, Particles, StepReport};
+use crate::cpu::CpuBackend;
+use crate::guard::Halted;
+use crate::model::{BuildError, Model};
+use crate::scene::Scene;
+use serde::Serialize;
+
+/// Statistics over every step taken so far.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct RunStats {
+    /// Smallest dt (s).
+    pub dt_min: f64,
+    /// Mean dt (s).
+    pub dt_mean: f64,
+    /// Largest dt (s).
+    pub dt_max: f64,
+    /// Largest compression `(rho - rho0)/rho0` seen at any step.
+    pub max_density_deviation: f64,
+    /// Mean over steps of the per-step mean compression.
+    pub mean_density_deviation: f64,
+    /// Largest speed seen (m/s).
+    pub max_speed: f64,
+}
+
+/// A running scene.
+pub struct Simulation {
+    scene: Scene,
+    backend: Box<dyn Backend>,
+    stats: RunStats,
+    dt_sum: f64,
+    compression_sum: f64,
+    halted: Option<Halted>,
+}
+
+impl std::fmt::Debug for Simulation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Simulation")
+            .field("scene", &self.scene.name)
+            .field("backend", &self.backend.name())
+            .field("time", &self.backend.time())
+            .field("halted", &self.halted)
+            .finish()
+    }
+}
+
+impl Simulation {
+    /// Builds a scene on the CPU backend.
+    pub fn new_cpu(scene: Scene) -> Result<Self, BuildError> {
+        let model = Model::build(&scene)?;
+        Ok(Self::with_backend(scene, Box::new(CpuBackend::new(model))))
+    }
+
+    /// Wraps an already built backend.
+    pub fn with_backend(scene: Scene, backend: Box<dyn Backend>) -> Self {
+        Self { scene, backend, stats: RunStats::default(), dt_sum: 0.0, compression_sum: 0.0, halted: None }
+    }
+
+    /// The scene as given.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The backend's name.
+    pub fn backend_name(&self) -> &'static str {
+        self.backend.name()
+    }
+
+    /// Simulated time (s).
+    pub fn time(&self) -> f64 {
+        self.backend.time()
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.backend.steps()
+    }
+
+    /// Sub-steps taken by fixed time-step mode.
+    pub fn substeps(&self) -> u64 {
+        self.backend.substeps()
+    }
+
+    /// Number of fluid particles.
+    pub fn particle_count(&self) -> usize {
+        self.backend.particle_count()
+    }
+
+    /// Why the scene stopped, if it did.
+    pub fn halted(&self) -> Option<&Halted> {
+        self.halted.as_ref()
+    }
+
+    /// Run statistics so far.
+    pub fn stats(&self) -> &RunStats {
+        &self.stats
+    }
+
+    /// Copies out positions and the requested channels, in identity order.
+    pub fn read(&self, channels: &[Channel]) -> Particles {
+        self.backend.read(channels)
+    }
+
+    /// One step. After a halt every call returns the same [`Halted`].
+    pub fn step(&mut self) -> Result<StepReport, Halted> {
+        if let Some(h) = &self.halted {
+            return Err(h.clone());
+        }
+        match self.backend.step() {
+            Ok(r) => {
+                self.record(&r);
+                Ok(r)
+            }
+            Err(h) => {
+                self.halted = Some(h.clone());
+                Err(h)
+            }
+        }
+    }
+
+    /// Steps until simulated time reaches `t_end` (s), calling `each` after every step.
+    pub fn run_until(&mut self, t_end: f64, mut each: impl FnMut(&Simulation, &StepReport)) -> Result<(), Halted> {
+        while self.time() < t_end {
+            let r = self.step()?;
+            each(self, &r);
+        }
+        Ok(())
+    }
+
+    fn record(&mut self, r: &StepReport) {
+        let n = self.backend.steps() as f64;
+        let s = &mut self.stats;
+        let dt = r.dt as f64;
+        if n == 1.0 {
+            s.dt_min = dt;
+            s.dt_max = dt;
+        }
+        s.dt_min = s.dt_min.min(dt);
+        s.dt_max = s.dt_max.max(dt);
+        self.dt_sum += dt;
+        s.dt_mean = self.dt_sum / n;
+        s.max_density_deviation = s.max_density_deviation.max(r.max_compression as f64);
+        self.compression_sum += r.mean_compression as f64;
+        s.mean_density_deviation = self.compression_sum / n;
+        s.max_speed = s.max_speed.max(r.max_speed as f64);
+    }
+}

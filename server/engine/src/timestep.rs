@@ -1,0 +1,145 @@
+//! Time step control.
+//!
+//! The stable limit is the smallest of (Monaghan 1992, section 10; Morris, Fox &
+//! Zhu 1997, eqs. 19-20; with h the kernel support radius):
+//! - CFL: `lambda h / (c + v_max)`;
+//! - viscous: `0.125 h^2 / nu`;
+//! - force: `0.25 sqrt(h / |a|_max)`.
+//!
+//! Adaptive mode steps at that limit clamped to `[min, max]`; a limit below
+//! `min` halts the scene (the run would otherwise crawl or blow up). Fixed mode
+//! advances in intervals of `dt` and sub-steps an interval at the limit when
+//! `dt` is larger, rather than stepping unstably.
+
+use crate::math::Real;
+use crate::scene::TimeStep;
+
+/// Inputs of the stable limit, measured on the current state.
+#[derive(Debug, Clone, Copy)]
+pub struct Limits {
+    /// Kernel support radius (m).
+    pub h: Real,
+    /// Speed of sound (m/s).
+    pub c: Real,
+    /// Largest particle speed (m/s).
+    pub v_max: Real,
+    /// Largest acceleration (m/s^2).
+    pub a_max: Real,
+    /// (Effective) kinematic viscosity (m^2/s).
+    pub nu: Real,
+}
+
+impl Limits {
+    /// The stable limit (s) for CFL number `cfl`.
+    pub fn stable_dt(&self, cfl: Real) -> Real {
+        let mut dt = cfl * self.h / (self.c + self.v_max);
+        if self.nu > 0.0 {
+            dt = dt.min(0.125 * self.h * self.h / self.nu);
+        }
+        if self.a_max > 0.0 {
+            dt = dt.min(0.25 * (self.h / self.a_max).sqrt());
+        }
+        dt
+    }
+}
+
+/// Chooses each step's dt and remembers where a fixed interval stands.
+#[derive(Debug, Clone)]
+pub struct StepControl {
+    mode: TimeStep,
+    /// Time left in the current fixed interval (s); 0 when a new one starts.
+    remaining: Real,
+    /// Steps taken beyond one per fixed interval.
+    pub substeps: u64,
+}
+
+impl StepControl {
+    /// Control for a scene's time-step settings.
+    pub fn new(mode: TimeStep) -> Self {
+        Self { mode, remaining: 0.0, substeps: 0 }
+    }
+
+    /// The next step's dt, or the reason the scene must halt.
+    pub fn next_dt(&mut self, limits: &Limits) -> Result<Real, String> {
+        match self.mode {
+            TimeStep::Adaptive { cfl, min, max } => {
+                let stable = limits.stable_dt(cfl);
+                if stable.is_nan() || stable < min {
+                    return Err(format!(
+                        "stable time step {stable:.3e} s fell below solver.time_step.min = {min:.3e} s \
+                         (max speed {:.3} m/s, max acceleration {:.3e} m/s^2)",
+                        limits.v_max, limits.a_max
+                    ));
+                }
+                Ok(stable.min(max))
+            }
+            TimeStep::Fixed { dt, cfl } => {
+                if self.remaining <= 0.0 {
+                    self.remaining = dt;
+                } else {
+                    self.substeps += 1;
+                }
+                let stable = limits.stable_dt(cfl);
+                if stable.is_nan() || stable <= dt * 1e-4 {
+                    return Err(format!(
+                        "fixed step {dt:.3e} s would need more than 10000 sub-steps (stable limit {stable:.3e} s, \
+                         max speed {:.3} m/s, max acceleration {:.3e} m/s^2)",
+                        limits.v_max, limits.a_max
+                    ));
+                }
+                let step = self.remaining.min(stable);
+                self.remaining -= step;
+                // Do not leave a sliver of an interval for a separate tiny step.
+                if self.remaining < 1e-6 * dt {
+                    self.remaining = 0.0;
+                }
+                Ok(step)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn limits(v_max: Real) -> Limits {
+        Limits { h: 0.02, c: 40.0, v_max, a_max: 10.0, nu: 1e-6 }
+    }
+
+    #[test]
+    fn stable_dt_takes_the_smallest_limit() {
+        let l = limits(0.0);
+        assert!((l.stable_dt(0.25) - 0.25 * 0.02 / 40.0).abs() < 1e-9);
+        let viscous = Limits { nu: 1.0, ..l };
+        assert!((viscous.stable_dt(0.25) - 0.125 * 0.02 * 0.02).abs() < 1e-9);
+        let forced = Limits { a_max: 1e6, ..l };
+        assert!((forced.stable_dt(0.25) - 0.25 * (0.02f32 / 1e6).sqrt()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn adaptive_clamps_and_halts_below_min() {
+        let mut c = StepControl::new(TimeStep::Adaptive { cfl: 0.25, min: 1e-5, max: 1e-4 });
+        assert_eq!(c.next_dt(&limits(0.0)).unwrap(), 1e-4);
+        let err = c.next_dt(&Limits { c: 1e4, ..limits(0.0) }).unwrap_err();
+        assert!(err.contains("fell below solver.time_step.min"), "{err}");
+    }
+
+    #[test]
+    fn fixed_steps_are_substepped_when_too_large() {
+        let mut c = StepControl::new(TimeStep::Fixed { dt: 1e-3, cfl: 0.25 });
+        let l = limits(0.0); // stable limit 1.25e-4 s
+        let mut total = 0.0;
+        let mut n = 0;
+        loop {
+            total += c.next_dt(&l).unwrap();
+            n += 1;
+            if c.remaining == 0.0 {
+                break;
+            }
+        }
+        assert!((total - 1e-3).abs() < 1e-9);
+        assert_eq!(n, 8);
+        assert_eq!(c.substeps, 7);
+    }
+}

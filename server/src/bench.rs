@@ -1,0 +1,98 @@
+//! `floe bench`: fluid particle-steps per second on the dam break, peak memory,
+//! and time to solution with the surge-front error.
+
+use crate::cli::BenchArgs;
+use anyhow::Context;
+use floe_engine::Simulation;
+use floe_engine::scene::presets::{self, DAM_BREAK_A};
+use floe_engine::validation::dam_break;
+use std::time::Instant;
+
+/// The dam break scaled to about `particles` fluid particles (the column holds
+/// n^3 particles for spacing a/n).
+fn dam_break(particles: usize) -> anyhow::Result<Simulation> {
+    let mut scene = presets::dam_break();
+    scene.particle_spacing = DAM_BREAK_A / (particles as f32).cbrt().round();
+    floe_engine::scene::validate::validate(&scene).map_err(|e| anyhow::anyhow!(e.join("\n")))?;
+    Ok(Simulation::new_cpu(scene)?)
+}
+
+/// Peak resident set size of this process (bytes), from /proc.
+fn peak_rss() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse::<u64>().ok().map(|kb| kb * 1024)
+}
+
+/// Runs the benchmark and prints a table.
+pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
+    if let Some(seconds) = args.solve {
+        return solve(args.particles[0], seconds);
+    }
+    let threads = rayon::current_num_threads();
+    println!("dam break, CPU backend, {threads} threads, {} timed steps per size", args.steps);
+    println!("| fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle |");
+    println!("|---:|---:|---:|---:|---:|---:|");
+    for &n in &args.particles {
+        let mut sim = dam_break(n)?;
+        for _ in 0..5 {
+            sim.step().context("warm-up")?;
+        }
+        let t0 = Instant::now();
+        for _ in 0..args.steps {
+            sim.step().context("timed step")?;
+        }
+        let wall = t0.elapsed().as_secs_f64();
+        let p = sim.particle_count();
+        let mem = if args.memory { peak_rss().map(|b| format!("{:.0}", b as f64 / p as f64)) } else { None };
+        println!(
+            "| {p} | {} | {wall:.2} | {:.2} | {:.2} | {} |",
+            args.steps,
+            wall * 1e3 / args.steps as f64,
+            p as f64 * args.steps as f64 / wall / 1e6,
+            mem.unwrap_or_else(|| "-".into())
+        );
+    }
+    Ok(())
+}
+
+/// Time to solution: simulate `seconds` of the dam break and compare the front.
+fn solve(particles: usize, seconds: f64) -> anyhow::Result<()> {
+    let mut sim = dam_break(particles)?;
+    let a = DAM_BREAK_A as f64;
+    let d = sim.scene().particle_spacing as f64;
+    let g = 9.81;
+    let t_scale = (2.0 * g / a).sqrt();
+    let mut history = vec![(0.0, dam_break::front(&sim.read(&[]).positions, 0.0, d, a))];
+    let mut next = 0.01;
+    let mut wall = 0.0;
+    while sim.time() < seconds {
+        let t0 = Instant::now();
+        sim.step()?;
+        wall += t0.elapsed().as_secs_f64();
+        if sim.time() >= next {
+            history.push((sim.time() * t_scale, dam_break::front(&sim.read(&[]).positions, 0.0, d, a)));
+            next += 0.01;
+        }
+    }
+    let reference = dam_break::reference(dam_break::KOSHIZUKA_OKA);
+    let err = dam_break::compare(&history, &reference, 3.0);
+    let at = |t: f64| history.iter().find(|h| h.0 >= t).map_or(f64::NAN, |h| h.1);
+    println!(
+        "| fluid particles | simulated s | steps | dt mean s | wall s | M particle-steps/s | front RMS (T<=3) | front max | front bias | Z(T=2) |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| {} | {:.3} | {} | {:.2e} | {wall:.2} | {:.2} | {:.3} | {:.3} | {:+.3} | {:.3} |",
+        sim.particle_count(),
+        sim.time(),
+        sim.steps(),
+        sim.stats().dt_mean,
+        sim.particle_count() as f64 * sim.steps() as f64 / wall / 1e6,
+        err.rms,
+        err.max,
+        err.bias,
+        at(2.0)
+    );
+    Ok(())
+}

@@ -1,0 +1,106 @@
+//! The `floe` command as a user drives it: scene files, presets, overrides,
+//! exports, summaries and the errors bad input gets.
+
+use clap::Parser;
+use floe_server::cli::Cli;
+
+fn floe(args: &[&str]) -> anyhow::Result<()> {
+    let mut argv = vec!["floe"];
+    argv.extend_from_slice(args);
+    floe_server::execute(Cli::try_parse_from(argv).expect("valid command line"))
+}
+
+#[test]
+fn a_bad_scene_file_is_rejected_naming_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.toml");
+    std::fs::write(
+        &path,
+        "particle_spacing = 0.05\n[[fluids]]\nrest_density = -3\nblocks = [{ min = [0,0,0], max = [1,1,1] }]\n",
+    )
+    .unwrap();
+    let err = floe(&["run", path.to_str().unwrap(), "--until", "0.01", "--quiet"]).unwrap_err();
+    assert_eq!(format!("{err:#}"), "fluids[0].rest_density: must be > 0, got -3");
+
+    std::fs::write(&path, "particle_spacing = 0.05\nfluids = 3\n").unwrap();
+    let err = floe(&["run", path.to_str().unwrap(), "--until", "0.01"]).unwrap_err();
+    assert!(format!("{err:#}").starts_with("fluids: invalid type: integer `3`, expected a sequence"), "{err:#}");
+
+    let err = floe(&["run", "no_such_preset", "--until", "0.01"]).unwrap_err();
+    assert!(format!("{err:#}").contains("presets are: dam_break, hydrostatic"), "{err:#}");
+
+    let err = floe(&["run", "dam_break", "--until", "-1"]).unwrap_err();
+    assert!(format!("{err:#}").contains("--until must be a positive number"), "{err:#}");
+}
+
+#[test]
+fn run_exports_frames_and_a_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("frames");
+    let summary = dir.path().join("summary.json");
+    floe(&[
+        "run",
+        "dam_break",
+        "--set",
+        "particle_spacing=0.05",
+        "--until",
+        "0.02",
+        "--export",
+        out.to_str().unwrap(),
+        "--every",
+        "0.01",
+        "--format",
+        "csv",
+        "--summary",
+        summary.to_str().unwrap(),
+        "--quiet",
+    ])
+    .unwrap();
+    let frames: Vec<_> = std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(frames.len(), 3, "{frames:?}"); // t = 0, 0.01, 0.02
+    let csv = std::fs::read_to_string(out.join("frame_00002.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("id,x,y,z,vx,vy,vz,density,pressure"));
+    assert_eq!(lines.count(), 1000); // 10 x 20 x 5 particles at a/10
+    let s: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
+    assert_eq!(s["particles"], 1000);
+    assert!(s["simulated_seconds"].as_f64().unwrap() >= 0.02);
+    for key in ["steps", "wall_seconds", "particle_steps_per_second", "dt_min", "dt_mean", "dt_max"] {
+        assert!(s[key].as_f64().unwrap() > 0.0, "{key}: {}", s[key]);
+    }
+    assert!(s["max_density_deviation"].as_f64().is_some() && s["mean_density_deviation"].as_f64().is_some());
+    assert!(s["halted"].is_null());
+}
+
+#[test]
+fn a_halted_run_reports_why_and_still_writes_its_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let summary = dir.path().join("summary.json");
+    let err = floe(&[
+        "run",
+        "dam_break",
+        "--set",
+        "particle_spacing=0.05",
+        "--set",
+        "solver.speed_of_sound=0.5",
+        "--until",
+        "1",
+        "--summary",
+        summary.to_str().unwrap(),
+        "--quiet",
+    ])
+    .unwrap_err();
+    let msg = format!("{err:#}");
+    assert!(msg.starts_with("scene 'dam_break' halted at step"), "{msg}");
+    let s: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
+    assert!(s["halted"].as_str().unwrap().contains("exceeds guard."), "{}", s["halted"]);
+}
+
+#[test]
+fn the_schema_describes_scene_files() {
+    let schema = floe_engine::scene::json_schema();
+    assert_eq!(schema["title"], "Scene");
+    assert!(schema["required"].as_array().unwrap().iter().any(|r| r == "particle_spacing"));
+    assert!(schema["properties"]["fluids"].is_object());
+    floe(&["schema"]).unwrap();
+}
