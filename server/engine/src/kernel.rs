@@ -77,14 +77,14 @@ impl Kernel {
         }
     }
 
+    /// Both branches are computed and one selected: inside the support the
+    /// `q <= 0.5` test is a coin flip per neighbour, and a select beats a mispredict.
     #[inline(always)]
     fn cubic(&self, q: Real) -> Real {
-        if q <= 0.5 {
-            self.w_norm * (6.0 * q * q * (q - 1.0) + 1.0)
-        } else {
-            let t = 1.0 - q;
-            self.w_norm * 2.0 * t * t * t
-        }
+        let inner = 6.0 * q * q * (q - 1.0) + 1.0;
+        let t = 1.0 - q;
+        let outer = 2.0 * t * t * t;
+        self.w_norm * if q <= 0.5 { inner } else { outer }
     }
 
     /// `dW/dr` at distance `r` (m), which is <= 0. For the Müller family this is the
@@ -101,12 +101,10 @@ impl Kernel {
             }
             KernelKind::CubicSpline => {
                 let q = r * self.inv_h;
-                if q <= 0.5 {
-                    self.g_norm * q * (3.0 * q - 2.0)
-                } else {
-                    let t = 1.0 - q;
-                    -self.g_norm * t * t
-                }
+                let inner = q * (3.0 * q - 2.0);
+                let t = 1.0 - q;
+                let outer = -t * t;
+                self.g_norm * if q <= 0.5 { inner } else { outer }
             }
         }
     }

@@ -48,11 +48,9 @@ impl ViscosityModel {
             ViscosityModel::None => Vec3::ZERO,
             ViscosityModel::Laplacian { mu } => -v_ij * (mu * m_j / (rho_i * rho_j) * kernel.laplacian(r)),
             ViscosityModel::Artificial { alpha_c_h, eps_h2 } => {
-                let vx = v_ij.dot(x_ij);
-                if vx >= 0.0 {
-                    return Vec3::ZERO;
-                }
-                let mu_ij = vx / (r * r + eps_h2);
+                // Receding pairs (v_ij . x_ij >= 0) get mu_ij = 0, without a branch:
+                // approaching and receding neighbours are equally likely.
+                let mu_ij = v_ij.dot(x_ij).min(0.0) / (r * r + eps_h2);
                 let pi_ij = -alpha_c_h * mu_ij * 2.0 / (rho_i + rho_j);
                 -grad * (m_j * pi_ij)
             }

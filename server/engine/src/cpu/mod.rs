@@ -31,6 +31,8 @@ pub struct CpuBackend {
     /// XSPH corrections; allocated only when the fluid uses XSPH.
     xsph: Option<Vec<Vec3>>,
     grid: Grid,
+    /// Neighbour lists of the current step, per chunk of particles.
+    neighbors: Vec<passes::ChunkNeighbors>,
     cells: Vec<u32>,
     order: Vec<u32>,
     scratch_v: Vec<Vec3>,
@@ -63,6 +65,7 @@ impl CpuBackend {
             ids: (0..n as u32).collect(),
             xsph,
             grid,
+            neighbors: Vec::new(),
             cells: Vec::new(),
             order: Vec::new(),
             scratch_v: Vec::new(),
@@ -80,11 +83,11 @@ impl CpuBackend {
         permute(&mut self.pos, &mut self.scratch_v, &self.order);
         permute(&mut self.vel, &mut self.scratch_v, &self.order);
         permute(&mut self.ids, &mut self.scratch_u, &self.order);
-        passes::density(&self.model, &self.grid, &self.pos, &mut self.rho, &mut self.pterm);
+        passes::density(&self.model, &self.grid, &self.pos, &mut self.neighbors, &mut self.rho, &mut self.pterm);
         passes::wall_pressure(&self.model, &self.grid, &self.pos, &self.rho, &self.pterm, &mut self.wall_p);
         passes::forces(
             &self.model,
-            &self.grid,
+            &self.neighbors,
             &self.pos,
             &self.vel,
             &self.rho,
