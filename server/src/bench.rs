@@ -4,17 +4,17 @@
 use crate::cli::BenchArgs;
 use anyhow::Context;
 use floe_engine::Simulation;
-use floe_engine::scene::presets::{self, DAM_BREAK_A};
+use floe_engine::scene::load;
+use floe_engine::scene::presets::DAM_BREAK_A;
 use floe_engine::validation::dam_break;
 use std::time::Instant;
 
 /// The dam break scaled to about `particles` fluid particles (the column holds
 /// n^3 particles for spacing a/n).
-fn dam_break(particles: usize) -> anyhow::Result<Simulation> {
-    let mut scene = presets::dam_break();
-    scene.particle_spacing = DAM_BREAK_A / (particles as f32).cbrt().round();
-    floe_engine::scene::validate::validate(&scene).map_err(|e| anyhow::anyhow!(e.join("\n")))?;
-    Ok(Simulation::new_cpu(scene)?)
+fn dam_break(particles: usize, overrides: &[String]) -> anyhow::Result<Simulation> {
+    let spacing = format!("particle_spacing={}", DAM_BREAK_A / (particles as f32).cbrt().round());
+    let all: Vec<String> = std::iter::once(spacing).chain(overrides.iter().cloned()).collect();
+    Ok(Simulation::new_cpu(load::from_preset("dam_break", &all)?)?)
 }
 
 /// Peak resident set size of this process (bytes), from /proc.
@@ -27,14 +27,14 @@ fn peak_rss() -> Option<u64> {
 /// Runs the benchmark and prints a table.
 pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     if let Some(seconds) = args.solve {
-        return solve(args.particles[0], seconds);
+        return solve(args.particles[0], &args.overrides, seconds);
     }
     let threads = rayon::current_num_threads();
     println!("dam break, CPU backend, {threads} threads, {} timed steps per size", args.steps);
     println!("| fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle |");
     println!("|---:|---:|---:|---:|---:|---:|");
     for &n in &args.particles {
-        let mut sim = dam_break(n)?;
+        let mut sim = dam_break(n, &args.overrides)?;
         for _ in 0..5 {
             sim.step().context("warm-up")?;
         }
@@ -57,8 +57,8 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
 }
 
 /// Time to solution: simulate `seconds` of the dam break and compare the front.
-fn solve(particles: usize, seconds: f64) -> anyhow::Result<()> {
-    let mut sim = dam_break(particles)?;
+fn solve(particles: usize, overrides: &[String], seconds: f64) -> anyhow::Result<()> {
+    let mut sim = dam_break(particles, overrides)?;
     let a = DAM_BREAK_A as f64;
     let d = sim.scene().particle_spacing as f64;
     let g = 9.81;

@@ -79,6 +79,9 @@ pub struct BenchArgs {
     /// Fluid particle counts to measure (approximate: the dam break is scaled to them).
     #[arg(long, value_delimiter = ',', default_value = "30000,120000")]
     pub particles: Vec<usize>,
+    /// Override a field of the dam break scene (repeatable), as in `floe run`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub overrides: Vec<String>,
     /// Steps to time at each size (after warm-up steps).
     #[arg(long, default_value = "100")]
     pub steps: u64,
