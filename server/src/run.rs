@@ -67,11 +67,10 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     progress.finish();
     let summary = Summary::new(&sim, stepping);
     tracing::info!(
-        steps = summary.steps,
-        wall_s = format!("{:.2}", summary.wall_seconds),
-        mps = format!("{:.2}", summary.particle_steps_per_second / 1e6),
-        "done: {} M particle-steps/s, dt mean {:.2e} s, max density deviation {:.2} %",
-        format!("{:.2}", summary.particle_steps_per_second / 1e6),
+        "done: {} steps, {:.2} s wall, {:.2} M particle-steps/s, dt mean {:.2e} s, max density deviation {:.2} %",
+        summary.steps,
+        summary.wall_seconds,
+        summary.particle_steps_per_second / 1e6,
         summary.dt_mean,
         summary.max_density_deviation * 100.0
     );

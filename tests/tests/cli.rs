@@ -104,3 +104,16 @@ fn the_schema_describes_scene_files() {
     assert!(schema["properties"]["fluids"].is_object());
     floe(&["schema"]).unwrap();
 }
+
+#[test]
+fn the_example_scenes_run() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
+    let mut ran = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        floe(&["run", path.to_str().unwrap(), "--until", "0.01", "--quiet"])
+            .unwrap_or_else(|e| panic!("{}: {e:#}", path.display()));
+        ran += 1;
+    }
+    assert!(ran > 0, "no example scenes in {}", dir.display());
+}
