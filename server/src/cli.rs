@@ -19,6 +19,8 @@ pub enum Command {
     Run(RunArgs),
     /// Measure fluid particle-steps per second on the dam break.
     Bench(BenchArgs),
+    /// Run the validation cases and the stability battery; write a report.
+    Validate(ValidateArgs),
     /// Print the JSON Schema of scene files.
     Schema,
     /// List the built-in presets.
@@ -96,4 +98,25 @@ pub struct BenchArgs {
     /// at the first particle count and report wall time and surge-front error.
     #[arg(long, value_name = "SECONDS")]
     pub solve: Option<f64>,
+}
+
+/// `floe validate`.
+#[derive(Debug, Args)]
+pub struct ValidateArgs {
+    /// Coarse resolutions and short stability runs (a few minutes on 2 cores; the default).
+    #[arg(long, conflicts_with = "full")]
+    pub quick: bool,
+    /// Finer resolutions and longer stability runs (the figures kept in docs/validation/).
+    #[arg(long)]
+    pub full: bool,
+    /// Backend.
+    #[arg(long, value_enum, default_value = "cpu")]
+    pub backend: BackendChoice,
+    /// Run only these cases (repeatable): hydrostatic, dam_break, stability, or one
+    /// stability case by name.
+    #[arg(long = "case", value_name = "NAME")]
+    pub cases: Vec<String>,
+    /// Directory for report.md, report.json and the SVG plots.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
 }

@@ -7,17 +7,20 @@
 //! - [`run`]: `floe run`, an offline simulation with progress, exports and a summary.
 //! - [`bench`]: `floe bench`, throughput, memory and time to solution.
 //! - [`progress`]: the progress display.
+//! - [`validate`]: `floe validate`, the validation report and stability battery.
 
 pub mod bench;
 pub mod cli;
 pub mod progress;
 pub mod run;
+pub mod validate;
 
 /// Carries out a parsed command line.
 pub fn execute(cli: cli::Cli) -> anyhow::Result<()> {
     match cli.command {
         cli::Command::Run(args) => run::run(args),
         cli::Command::Bench(args) => bench::bench(args),
+        cli::Command::Validate(args) => validate::validate(args),
         cli::Command::Schema => {
             println!("{}", serde_json::to_string_pretty(&floe_engine::scene::json_schema())?);
             Ok(())

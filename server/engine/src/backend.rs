@@ -69,6 +69,8 @@ pub trait Backend: Send {
     fn substeps(&self) -> u64;
     /// Number of fluid particles.
     fn particle_count(&self) -> usize;
+    /// Mass of one fluid particle (kg).
+    fn particle_mass(&self) -> f32;
     /// Copies out positions and the requested channels.
     fn read(&self, channels: &[Channel]) -> Particles;
 }

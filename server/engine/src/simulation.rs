@@ -87,6 +87,11 @@ impl Simulation {
         self.backend.particle_count()
     }
 
+    /// Mass of one fluid particle (kg).
+    pub fn particle_mass(&self) -> f32 {
+        self.backend.particle_mass()
+    }
+
     /// Why the scene stopped, if it did.
     pub fn halted(&self) -> Option<&Halted> {
         self.halted.as_ref()

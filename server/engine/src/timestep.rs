@@ -1,7 +1,7 @@
 //! Time step control.
 //!
 //! The stable limit is the smallest of (Monaghan 1992, section 10; Morris, Fox &
-//! Zhu 1997, eqs. 19-20; with h the kernel support radius):
+//! Zhu 1997, eqs. 19-20; with h the smoothing length, half the kernel support):
 //! - CFL: `lambda h / (c + v_max)`;
 //! - viscous: `0.125 h^2 / nu`;
 //! - force: `0.25 sqrt(h / |a|_max)`.
@@ -17,7 +17,7 @@ use crate::scene::TimeStep;
 /// Inputs of the stable limit, measured on the current state.
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {
-    /// Kernel support radius (m).
+    /// Smoothing length (m): half the kernel support radius.
     pub h: Real,
     /// Speed of sound (m/s).
     pub c: Real,

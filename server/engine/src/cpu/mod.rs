@@ -111,7 +111,7 @@ impl CpuBackend {
     fn dt(&mut self, m: &Measures) -> Result<Real, Halted> {
         let f = &self.model.fluid;
         let limits = Limits {
-            h: self.model.kernel.support(),
+            h: 0.5 * self.model.kernel.support(),
             c: f.sound_speed,
             v_max: m.max_speed2.0.sqrt(),
             a_max: m.max_accel2.sqrt(),
@@ -197,6 +197,10 @@ impl Backend for CpuBackend {
 
     fn particle_count(&self) -> usize {
         self.pos.len()
+    }
+
+    fn particle_mass(&self) -> f32 {
+        self.model.fluid.mass
     }
 
     fn read(&self, channels: &[Channel]) -> Particles {

@@ -316,7 +316,9 @@ pub enum TimeStep {
     /// (Monaghan 1992; Morris et al. 1997, eqs. 19-20), clamped to `[min, max]`.
     /// A stable step below `min` halts the scene.
     Adaptive {
-        /// CFL number lambda in `dt <= lambda h / (c + v_max)`, h the support radius.
+        /// CFL number lambda in `dt <= lambda h / (c + v_max)`, h the smoothing
+        /// length (half the support). 0.5 with the default support of two spacings
+        /// moves sound half a particle spacing per step.
         #[serde(default = "default_cfl")]
         cfl: f32,
         /// Smallest step allowed (s).
@@ -338,7 +340,7 @@ pub enum TimeStep {
 }
 
 fn default_cfl() -> f32 {
-    0.25
+    0.5
 }
 fn default_dt_min() -> f32 {
     1e-7

@@ -169,7 +169,7 @@ fn check_solver(c: &mut Checker, scene: &Scene) {
     c.non_negative("solver.damping_until", s.damping_until);
     match s.time_step {
         TimeStep::Adaptive { cfl, min, max } => {
-            c.within("solver.time_step.cfl", cfl, 1e-3, 1.0);
+            c.within("solver.time_step.cfl", cfl, 1e-3, 2.0);
             c.positive("solver.time_step.min", min);
             c.positive("solver.time_step.max", max);
             if max < min {
@@ -178,7 +178,7 @@ fn check_solver(c: &mut Checker, scene: &Scene) {
         }
         TimeStep::Fixed { dt, cfl } => {
             c.positive("solver.time_step.dt", dt);
-            c.within("solver.time_step.cfl", cfl, 1e-3, 1.0);
+            c.within("solver.time_step.cfl", cfl, 1e-3, 2.0);
         }
     }
 }

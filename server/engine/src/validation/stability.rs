@@ -1,0 +1,215 @@
+//! The stability battery (VALIDATION.md, last section): stiff and extreme
+//! scenes that must either run to the end staying finite and physical, or stop
+//! with a clear error. A scene that goes non-finite without halting is a failure.
+//!
+//! For each case the largest stable time step is found by bisection on the
+//! CFL number of the step control (`solver.time_step.cfl`, up to 2, the
+//! largest a scene accepts).
+
+use super::{energy, run_probed};
+use crate::scene::load::{SceneError, from_preset};
+use crate::scene::presets::DAM_BREAK_A;
+use crate::{Channel, Simulation};
+use serde::Serialize;
+
+/// What a case must do to pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Expect {
+    /// Run to the end.
+    Finish,
+    /// Run to the end, or halt with a reason (an impossible start state).
+    FinishOrHalt,
+}
+
+/// One stiff or extreme scene: the dam break preset with overrides.
+#[derive(Debug, Clone, Serialize)]
+pub struct StabilityCase {
+    /// Short name.
+    pub name: &'static str,
+    /// What is extreme about it.
+    pub what: &'static str,
+    /// Overrides on the dam break preset.
+    pub overrides: &'static [&'static str],
+    /// Simulated seconds in quick and full mode.
+    pub until: (f64, f64),
+    /// What passing means.
+    pub expect: Expect,
+}
+
+/// The battery.
+pub const CASES: &[StabilityCase] = &[
+    StabilityCase {
+        name: "stiff_pressure_10x",
+        what: "speed of sound 10x the usual choice (mach_factor 100)",
+        overrides: &["solver.mach_factor=100"],
+        until: (0.03, 0.2),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "stiff_pressure_100x",
+        what: "speed of sound 100x the usual choice (mach_factor 1000)",
+        overrides: &["solver.mach_factor=1000"],
+        until: (0.003, 0.02),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "fixed_dt_far_above_cfl",
+        what: "fixed dt = 10 ms, about 20x the stable limit (must be sub-stepped)",
+        overrides: &["solver.time_step={\"mode\":\"fixed\",\"dt\":0.01}"],
+        until: (0.1, 0.5),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "stiff_viscosity",
+        what: "Laplacian viscosity nu = 5 m^2/s (viscous step limit dominates)",
+        overrides: &["fluids[0].viscosity={\"model\":\"laplacian\",\"nu\":5}"],
+        until: (0.02, 0.1),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "overlapping_start",
+        what: "two fluid blocks overlapping at the start (density 2x rest where they overlap)",
+        overrides: &[
+            "fluids[0].blocks=[{\"min\":[0,0,0],\"max\":[0.5,1,0.25]},{\"min\":[0.25,0.5,0],\"max\":[0.75,1.1,0.25]}]",
+        ],
+        until: (0.1, 0.5),
+        expect: Expect::FinishOrHalt,
+    },
+    StabilityCase {
+        name: "high_speed_drop",
+        what: "a block thrown down at 20 m/s onto the floor",
+        overrides: &["fluids[0].blocks=[{\"min\":[0.5,0.5,0],\"max\":[1,1,0.25],\"velocity\":[0,-20,0]}]"],
+        until: (0.05, 0.3),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "near_zero_gravity",
+        what: "gravity 1e-4 m/s^2 (speed of sound derived from a tiny fall speed)",
+        overrides: &["gravity=[0,-1e-4,0]"],
+        until: (0.2, 1.0),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "large_gravity_100g",
+        what: "gravity 100 g = 981 m/s^2",
+        overrides: &["gravity=[0,-981,0]"],
+        until: (0.01, 0.05),
+        expect: Expect::Finish,
+    },
+];
+
+/// One run of a stability case.
+#[derive(Debug, Clone, Serialize)]
+pub struct Trial {
+    /// Whether it reached its end time.
+    pub finished: bool,
+    /// The error the user saw, if it halted.
+    pub halted: Option<String>,
+    /// Non-finite state without a halt: the failure the battery exists to catch.
+    pub silent_explosion: bool,
+    /// Largest compression seen.
+    pub max_density_deviation: f64,
+    /// `(max_t E(t) - E(0)) / |E(0)|`, mechanical energy (see [`energy`]).
+    pub energy_growth: f64,
+    /// Steps and sub-steps taken.
+    pub steps: u64,
+    /// Sub-steps forced by a fixed dt above the limit.
+    pub substeps: u64,
+    /// Mean dt (s).
+    pub dt_mean: f64,
+    /// Wall seconds stepping.
+    pub wall_seconds: f64,
+    /// Fluid particles.
+    pub particles: usize,
+}
+
+/// A case's result: the run at default settings and the bisection.
+#[derive(Debug, Clone, Serialize)]
+pub struct StabilityOutcome {
+    /// The case.
+    pub case: StabilityCase,
+    /// The run at the scene's own settings.
+    pub trial: Trial,
+    /// Largest CFL number that ran stably (2.0 means the whole range was stable).
+    pub largest_stable_cfl: Option<f64>,
+    /// Mean dt (s) of the run at that CFL number.
+    pub largest_stable_dt: Option<f64>,
+    /// Whether the case met its expectation.
+    pub passed: bool,
+}
+
+/// Runs one trial of `case` with `extra` overrides.
+pub fn trial(case: &StabilityCase, full: bool, extra: &[String]) -> Result<Trial, SceneError> {
+    let spacing = DAM_BREAK_A as f64 / if full { 16.0 } else { 10.0 };
+    let mut overrides = vec![format!("particle_spacing={spacing}")];
+    overrides.extend(case.overrides.iter().map(|s| s.to_string()));
+    overrides.extend_from_slice(extra);
+    let scene = from_preset("dam_break", &overrides)?;
+    let g = scene.gravity;
+    let mut sim = Simulation::new_cpu(scene).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;
+    let mass = sim.particle_mass() as f64;
+    let mut energies = Vec::new();
+    let until = if full { case.until.1 } else { case.until.0 };
+    let (wall, halted) = run_probed(&mut sim, until, until / 50.0, |s| {
+        energies.push(energy::mechanical(&s.read(&[Channel::Velocity]), mass, g));
+    });
+    let last = sim.read(&[Channel::Velocity, Channel::Density]);
+    let finite =
+        last.positions.iter().flatten().chain(last.velocities.iter().flatten().flatten()).all(|v| v.is_finite())
+            && last.densities.iter().flatten().all(|v| v.is_finite());
+    let e0 = energies.first().copied().unwrap_or(0.0);
+    let e_max = energies.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    Ok(Trial {
+        finished: halted.is_none(),
+        silent_explosion: halted.is_none() && !finite,
+        halted: halted.map(|h| h.to_string()),
+        max_density_deviation: sim.stats().max_density_deviation,
+        energy_growth: if e0.abs() > 0.0 { (e_max - e0) / e0.abs() } else { e_max - e0 },
+        steps: sim.steps(),
+        substeps: sim.substeps(),
+        dt_mean: sim.stats().dt_mean,
+        wall_seconds: wall,
+        particles: sim.particle_count(),
+    })
+}
+
+/// Runs `case` at its own settings, then bisects the CFL number (`iterations`
+/// halvings between the default 0.5 and 2) for the largest stable step.
+pub fn run(case: &StabilityCase, full: bool, iterations: u32) -> Result<StabilityOutcome, SceneError> {
+    let base = trial(case, full, &[])?;
+    let stable = |t: &Trial| t.finished && !t.silent_explosion;
+    let at = |cfl: f64| trial(case, full, &[format!("solver.time_step.cfl={cfl}")]);
+    let mut best: Option<(f64, f64)> = None;
+    if stable(&base) {
+        let top = at(2.0)?;
+        if stable(&top) {
+            best = Some((2.0, top.dt_mean));
+        } else {
+            let (mut lo, mut hi) = (0.5, 2.0);
+            best = Some((lo, base.dt_mean));
+            for _ in 0..iterations {
+                let mid = 0.5 * (lo + hi);
+                let t = at(mid)?;
+                if stable(&t) {
+                    lo = mid;
+                    best = Some((mid, t.dt_mean));
+                } else {
+                    hi = mid;
+                }
+            }
+        }
+    }
+    let passed = !base.silent_explosion
+        && match case.expect {
+            Expect::Finish => base.finished,
+            Expect::FinishOrHalt => base.finished || base.halted.is_some(),
+        };
+    Ok(StabilityOutcome {
+        case: case.clone(),
+        largest_stable_cfl: best.map(|b| b.0),
+        largest_stable_dt: best.map(|b| b.1),
+        trial: base,
+        passed,
+    })
+}

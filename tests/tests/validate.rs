@@ -1,0 +1,39 @@
+//! `floe validate --quick`: every supported case and the stability battery run,
+//! their stated bounds hold, and the report is written.
+
+use clap::Parser;
+use floe_server::cli::Cli;
+
+#[test]
+fn quick_validation_meets_every_stated_bound() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let cli = Cli::try_parse_from(["floe", "validate", "--quick", "--out", out]).unwrap();
+    let result = floe_server::execute(cli);
+    let report = std::fs::read_to_string(dir.path().join("report.md")).expect("report.md written");
+    result.unwrap_or_else(|e| panic!("{e:#}\n\n{report}"));
+    assert!(report.contains("**All stated bounds met.**"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("report.json")).unwrap()).unwrap();
+    // 2 cases x 4 variants x 3 resolutions, and every battery case.
+    assert_eq!(json["runs"].as_array().unwrap().len(), 24);
+    assert_eq!(json["stability"].as_array().unwrap().len(), floe_engine::validation::stability::CASES.len());
+    for case in ["hydrostatic", "dam_break"] {
+        for plot in ["work_precision", "convergence"] {
+            let svg = std::fs::read_to_string(dir.path().join(format!("{case}_{plot}.svg"))).unwrap();
+            assert!(svg.starts_with("<svg") && svg.contains("<polyline"), "{case}_{plot}.svg has no lines");
+        }
+    }
+}
+
+#[test]
+fn unknown_cases_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let cli = Cli::try_parse_from(["floe", "validate", "--case", "poiseuille", "--out", dir.path().to_str().unwrap()])
+        .unwrap();
+    let err = floe_server::execute(cli).unwrap_err();
+    assert!(
+        format!("{err}").starts_with("unknown case 'poiseuille'; cases are: hydrostatic, dam_break, stability"),
+        "{err}"
+    );
+}
