@@ -1,5 +1,5 @@
 //! `floe bench`: fluid particle-steps per second on the dam break, peak memory,
-//! and time to solution with the surge-front error.
+//! time to solution with the surge-front error, and (`--codec`) the frame codec.
 
 use crate::cli::BenchArgs;
 use anyhow::Context;
@@ -26,6 +26,9 @@ fn peak_rss() -> Option<u64> {
 
 /// Runs the benchmark and prints a table.
 pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
+    if let Some(frames) = args.codec {
+        return crate::codec_bench::codec_bench(args.particles[0], frames);
+    }
     if let Some(seconds) = args.solve {
         return solve(args.particles[0], &args.overrides, seconds);
     }

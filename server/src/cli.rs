@@ -19,6 +19,8 @@ pub enum Command {
     Run(RunArgs),
     /// Measure fluid particle-steps per second on the dam break.
     Bench(BenchArgs),
+    /// Run the simulation server.
+    Serve(ServeArgs),
     /// Run the validation cases and the stability battery; write a report.
     Validate(ValidateArgs),
     /// Print the JSON Schema of scene files.
@@ -94,6 +96,10 @@ pub struct BenchArgs {
     /// for a clean figure).
     #[arg(long)]
     pub memory: bool,
+    /// Frame codec instead: bytes per particle and encode/decode throughput on
+    /// this many dam-break frames at the first particle count.
+    #[arg(long, value_name = "FRAMES", conflicts_with = "solve")]
+    pub codec: Option<usize>,
     /// Time to solution instead: simulate this many seconds of the dam break
     /// at the first particle count and report wall time and surge-front error.
     #[arg(long, value_name = "SECONDS")]
@@ -119,4 +125,15 @@ pub struct ValidateArgs {
     /// Directory for report.md, report.json and the SVG plots.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
+}
+
+/// `floe serve`.
+#[derive(Debug, Args)]
+pub struct ServeArgs {
+    /// Address for gRPC (loopback unless told otherwise).
+    #[arg(long, env = "FLOE_GRPC_ADDR", default_value = "127.0.0.1:50051")]
+    pub grpc: String,
+    /// Preset to create at start-up, or `none`.
+    #[arg(long, default_value = "dam_break")]
+    pub scene: String,
 }

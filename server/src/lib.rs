@@ -1,18 +1,27 @@
 //! # floe-server
 //!
-//! The `floe` command: offline runs, benchmarks and the scene schema today; the
-//! gRPC/WebSocket simulation server builds on the same engine next.
+//! The `floe` command: the simulation server (`floe serve`, gRPC), offline runs,
+//! benchmarks, validation and the scene schema.
 //!
 //! - [`cli`]: the command line (clap).
 //! - [`run`]: `floe run`, an offline simulation with progress, exports and a summary.
 //! - [`bench`]: `floe bench`, throughput, memory and time to solution.
+//! - [`codec_bench`]: `floe bench --codec`, frame size and codec throughput.
 //! - [`progress`]: the progress display.
 //! - [`validate`]: `floe validate`, the validation report and stability battery.
+//! - [`serve`]: `floe serve`, the server: listeners, health, reflection, shutdown.
+//! - [`service`]: the in-process service API (scenes, workers, frame subscriptions).
+//! - [`grpc`], [`convert`]: the gRPC adapter and where generated types meet the service.
 
 pub mod bench;
 pub mod cli;
+pub mod codec_bench;
+pub mod convert;
+pub mod grpc;
 pub mod progress;
 pub mod run;
+pub mod serve;
+pub mod service;
 pub mod validate;
 
 /// Carries out a parsed command line.
@@ -21,6 +30,7 @@ pub fn execute(cli: cli::Cli) -> anyhow::Result<()> {
         cli::Command::Run(args) => run::run(args),
         cli::Command::Bench(args) => bench::bench(args),
         cli::Command::Validate(args) => validate::validate(args),
+        cli::Command::Serve(args) => serve::serve(args),
         cli::Command::Schema => {
             println!("{}", serde_json::to_string_pretty(&floe_engine::scene::json_schema())?);
             Ok(())

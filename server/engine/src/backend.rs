@@ -71,6 +71,8 @@ pub trait Backend: Send {
     fn particle_count(&self) -> usize;
     /// Mass of one fluid particle (kg).
     fn particle_mass(&self) -> f32;
+    /// The simulation domain (m): particles leaving it halt the scene.
+    fn domain(&self) -> crate::math::Aabb;
     /// Copies out positions and the requested channels.
     fn read(&self, channels: &[Channel]) -> Particles;
 }

@@ -92,6 +92,11 @@ impl Simulation {
         self.backend.particle_mass()
     }
 
+    /// The simulation domain (m).
+    pub fn domain(&self) -> crate::math::Aabb {
+        self.backend.domain()
+    }
+
     /// Why the scene stopped, if it did.
     pub fn halted(&self) -> Option<&Halted> {
         self.halted.as_ref()

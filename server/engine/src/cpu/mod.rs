@@ -203,6 +203,10 @@ impl Backend for CpuBackend {
         self.model.fluid.mass
     }
 
+    fn domain(&self) -> crate::math::Aabb {
+        self.model.domain
+    }
+
     fn read(&self, channels: &[Channel]) -> Particles {
         fn by_id<T: Copy + Default, U>(ids: &[u32], src: &[T], f: impl Fn(T) -> U) -> Vec<U>
         where

@@ -1,0 +1,120 @@
+//! Writing and reading one component's codes as a stream, through its predictor.
+
+use crate::error::DecodeError;
+use crate::header::Predictor;
+use crate::reader::Reader;
+use crate::shuffle::{apply_residual, join_planes_u16, zigzag_residual};
+use crate::stream;
+
+/// Scratch buffers reused from frame to frame.
+#[derive(Debug, Default)]
+pub(crate) struct Scratch {
+    pub(crate) values: Vec<u16>,
+    pub(crate) planes: Vec<u8>,
+}
+
+/// Where a component's codes are predicted from.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Reference<'a> {
+    /// Nothing: [`Predictor::None`].
+    Nothing,
+    /// The previous particle in stream order, particles taken in `order` when given:
+    /// [`Predictor::Previous`].
+    Previous(Option<&'a [u32]>),
+    /// The same particle in the base frame: [`Predictor::Base`].
+    Base(&'a [u16]),
+    /// The same particle extrapolated from the base frame and the one before it:
+    /// [`Predictor::Linear`].
+    Linear(&'a [u16], &'a [u16]),
+}
+
+impl Reference<'_> {
+    pub(crate) fn predictor(&self) -> Predictor {
+        match self {
+            Reference::Nothing => Predictor::None,
+            Reference::Previous(_) => Predictor::Previous,
+            Reference::Base(_) => Predictor::Base,
+            Reference::Linear(..) => Predictor::Linear,
+        }
+    }
+}
+
+/// Appends the stream of one component's `codes` (`bits` bits each), predicted from `reference`.
+pub(crate) fn write(out: &mut Vec<u8>, codes: &[u16], bits: u8, reference: Reference<'_>, s: &mut Scratch) {
+    let v = &mut s.values;
+    v.clear();
+    match reference {
+        Reference::Nothing => v.extend_from_slice(codes),
+        Reference::Previous(None) => {
+            let mut prev = 0;
+            v.extend(codes.iter().map(|&c| {
+                let r = zigzag_residual(c, prev, bits);
+                prev = c;
+                r
+            }));
+        }
+        Reference::Previous(Some(order)) => {
+            let mut prev = 0;
+            v.extend(order.iter().map(|&i| {
+                let c = codes[i as usize];
+                let r = zigzag_residual(c, prev, bits);
+                prev = c;
+                r
+            }));
+        }
+        Reference::Base(base) => v.extend(codes.iter().zip(base).map(|(&c, &b)| zigzag_residual(c, b, bits))),
+        Reference::Linear(base, before) => v.extend(
+            codes.iter().zip(base).zip(before).map(|((&c, &b), &a)| zigzag_residual(c, extrapolate(b, a), bits)),
+        ),
+    }
+    let max = v.iter().copied().max().unwrap_or(0);
+    stream::write(out, v, u64::from(max), &mut s.planes);
+}
+
+/// `2 base - before`; [`zigzag_residual`] and [`apply_residual`] reduce it modulo `2^bits`.
+#[inline]
+fn extrapolate(base: u16, before: u16) -> u16 {
+    base.wrapping_mul(2).wrapping_sub(before)
+}
+
+/// Reads the stream of one component of `n` codes of `bits` bits predicted by `predictor`
+/// (`base` holds the base frame's codes for [`Predictor::Base`], and `before` the codes of the
+/// frame before it as well for [`Predictor::Linear`]).
+pub(crate) fn read(
+    r: &mut Reader<'_>,
+    n: usize,
+    bits: u8,
+    predictor: Predictor,
+    (base, before): (Option<&[u16]>, Option<&[u16]>),
+    planes: &mut Vec<u8>,
+) -> Result<Vec<u16>, DecodeError> {
+    let width = stream::read(r, n, usize::from(bits).div_ceil(8), planes)?;
+    let mut codes = vec![0u16; n];
+    join_planes_u16(planes, width, &mut codes);
+    let top = ((1u32 << bits) - 1) as u16;
+    if codes.iter().any(|&c| c > top) {
+        return Err(DecodeError::malformed(format!("a stored value exceeds {bits} bits")));
+    }
+    match (predictor, base, before) {
+        (Predictor::None, ..) => {}
+        (Predictor::Previous, ..) => {
+            let mut prev = 0;
+            for c in &mut codes {
+                prev = apply_residual(*c, prev, bits);
+                *c = prev;
+            }
+        }
+        (Predictor::Base, Some(base), _) if base.len() == n => {
+            for (c, &b) in codes.iter_mut().zip(base) {
+                *c = apply_residual(*c, b, bits);
+            }
+        }
+        (Predictor::Linear, Some(base), Some(before)) if base.len() == n && before.len() == n => {
+            for ((c, &b), &a) in codes.iter_mut().zip(base).zip(before) {
+                *c = apply_residual(*c, extrapolate(b, a), bits);
+            }
+        }
+        (p, ..) => return Err(DecodeError::malformed(format!("predictor {p:?} cannot apply to this channel"))),
+    }
+    Ok(codes)
+}

@@ -1,0 +1,266 @@
+//! Golden frames: encoded frames committed in `proto/testdata/` with JSON sidecars of
+//! their header fields and decoded values, so the format cannot change unnoticed and a
+//! decoder in another language can be tested against the same files.
+//!
+//! Regenerate (only when the format changes on purpose, with a version bump):
+//! `FLOE_REGEN_GOLDEN=1 cargo test -p floe-proto --test golden`.
+
+mod common;
+
+use common::{Particles, Rng, tolerance};
+use floe_proto::{
+    Bounds, ChannelInfo, ChannelKind, Decoder, Encoder, EncoderConfig, Frame, Header, Limits, Mode, Predictor,
+};
+use serde_json::{Value, json};
+use std::path::PathBuf;
+
+/// One golden file: its name, what it shows, and the files to decode before it.
+struct Golden {
+    name: &'static str,
+    description: &'static str,
+    decode_after: &'static [&'static str],
+}
+
+const GOLDEN: [Golden; 5] = [
+    Golden {
+        name: "unordered_positions",
+        description: "Unordered, 200 particles, 16-bit positions only (Morton predictor).",
+        decode_after: &[],
+    },
+    Golden {
+        name: "unordered_channels",
+        description: "Unordered, 300 particles, 12-bit positions, velocity (10 bits), density (12), pressure (8), \
+                      temperature (16) and phase; the other channels use the previous-particle predictor.",
+        decode_after: &[],
+    },
+    Golden {
+        name: "identity_keyframe",
+        description: "Identity-ordered keyframe, 256 particles, 16-bit positions, velocity (10 bits) and phase.",
+        decode_after: &[],
+    },
+    Golden {
+        name: "identity_delta",
+        description: "Identity-ordered delta frame after identity_keyframe: positions and phase use the base \
+                      predictor, velocity (new per-frame range) none.",
+        decode_after: &["identity_keyframe"],
+    },
+    Golden {
+        name: "identity_linear",
+        description: "Identity-ordered delta frame after identity_delta: positions use the linear predictor.",
+        decode_after: &["identity_keyframe", "identity_delta"],
+    },
+];
+
+fn path(name: &str, ext: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("testdata").join(format!("{name}.{ext}"))
+}
+
+/// Encodes the golden inputs, in the order of [`GOLDEN`], with the inputs they came from.
+fn encode_all() -> Vec<(Vec<u8>, Particles)> {
+    let bounds = Bounds { min: [0.0, 0.0, 0.0], max: [2.0, 1.2, 0.25] }.with_margin(0.05);
+    let mut rng = Rng::new(2024);
+    let mut out = Vec::new();
+
+    let p = Particles::random(&mut rng, 200, &bounds, 0.0);
+    let mut enc = Encoder::new(EncoderConfig::new(Mode::Unordered, 1, bounds)).unwrap();
+    out.push((enc.encode(120, 0.5, &p.input()).unwrap(), p));
+
+    let p = Particles::random(&mut rng, 300, &bounds, 1.0);
+    let mut config = EncoderConfig::new(Mode::Unordered, 2, bounds);
+    (config.position_bits, config.velocity_bits, config.density_bits) = (12, 10, 12);
+    (config.pressure_bits, config.temperature_bits) = (8, 16);
+    let mut enc = Encoder::new(config).unwrap();
+    out.push((enc.encode(7, 0.125, &p.input()).unwrap(), p));
+
+    let mut p = Particles::random(&mut rng, 256, &bounds, 0.0);
+    p.velocities = Some((0..256).map(|_| std::array::from_fn(|_| rng.range(-2.0, 2.0))).collect());
+    p.phases = Some((0..256).map(|i| (i % 3) as u8).collect());
+    let mut enc = Encoder::new(EncoderConfig::new(Mode::IdentityOrdered, 3, bounds)).unwrap();
+    for f in 0..3u64 {
+        out.push((enc.encode(60 + 10 * f, 1.0 + f as f64 / 64.0, &p.input()).unwrap(), p.clone()));
+        p.advance(&mut rng, &bounds, 0.004);
+    }
+    out
+}
+
+fn mode_name(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Unordered => "unordered",
+        Mode::IdentityOrdered => "identity_ordered",
+    }
+}
+
+fn predictor_name(p: Predictor) -> &'static str {
+    match p {
+        Predictor::None => "none",
+        Predictor::Previous => "previous",
+        Predictor::Base => "base",
+        Predictor::Morton => "morton",
+        Predictor::Linear => "linear",
+    }
+}
+
+fn channel_json(c: &ChannelInfo) -> Value {
+    json!({
+        "kind": c.kind().map_or("unknown", ChannelKind::name),
+        "tag": c.tag,
+        "components": c.components,
+        "bits": c.bits,
+        "predictor": predictor_name(c.predictor),
+        "predictor_tag": c.predictor as u8,
+        "payload_len": c.payload_len,
+        "ranges": c.ranges.iter().map(|r| json!({"min": r.min, "max": r.max, "max_error": r.max_error})).collect::<Vec<_>>(),
+    })
+}
+
+fn header_json(h: &Header) -> Value {
+    json!({
+        "version": h.version,
+        "mode": mode_name(h.mode),
+        "keyframe": h.keyframe,
+        "frame_len": h.frame_len,
+        "particle_count": h.particle_count,
+        "scene_id": h.scene_id,
+        "sequence": h.sequence,
+        "base_sequence": h.base_sequence,
+        "step": h.step,
+        "time": h.time,
+        "channels": h.channels.iter().map(channel_json).collect::<Vec<_>>(),
+    })
+}
+
+/// The sidecar: header fields and every decoded value (f32 values written exactly).
+fn sidecar(g: &Golden, frame: &Frame) -> Value {
+    let mut v = json!({
+        "description": g.description,
+        "decode_after": g.decode_after.iter().map(|n| format!("{n}.bin")).collect::<Vec<_>>(),
+        "header": header_json(&frame.header),
+        "positions": frame.positions,
+    });
+    let o = v.as_object_mut().expect("an object");
+    if let Some(x) = &frame.velocities {
+        o.insert("velocities".into(), json!(x));
+    }
+    for (key, x) in
+        [("densities", &frame.densities), ("pressures", &frame.pressures), ("temperatures", &frame.temperatures)]
+    {
+        if let Some(x) = x {
+            o.insert(key.into(), json!(x));
+        }
+    }
+    if let Some(x) = &frame.phases {
+        o.insert("phases".into(), json!(x));
+    }
+    v
+}
+
+fn decode_golden(g: &Golden, bytes: &[u8]) -> Frame {
+    let mut decoder = Decoder::new(Limits::default());
+    for before in g.decode_after {
+        decoder.decode(&std::fs::read(path(before, "bin")).unwrap()).unwrap();
+    }
+    decoder.decode(bytes).unwrap_or_else(|e| panic!("{}: {e}", g.name))
+}
+
+/// The sidecar as text: the header indented, each particle's values on one line.
+fn render(sidecar: &Value) -> String {
+    let fields: Vec<String> = sidecar
+        .as_object()
+        .expect("an object")
+        .iter()
+        .map(|(key, v)| {
+            let value = match v.as_array() {
+                Some(items) if key != "decode_after" => {
+                    let lines: Vec<String> = items.iter().map(|x| format!("    {x}")).collect();
+                    format!("[\n{}\n  ]", lines.join(",\n"))
+                }
+                _ => serde_json::to_string_pretty(v).unwrap().replace('\n', "\n  "),
+            };
+            format!("  {}: {value}", Value::from(key.as_str()))
+        })
+        .collect();
+    format!("{{\n{}\n}}\n", fields.join(",\n"))
+}
+
+/// Writes the golden frames and their sidecars, after checking that identity-ordered
+/// positions decode within their stated error (the round-trip tests cover the rest).
+fn regenerate() {
+    for (g, (bytes, input)) in GOLDEN.iter().zip(encode_all()) {
+        std::fs::write(path(g.name, "bin"), &bytes).unwrap();
+        let frame = decode_golden(g, &bytes);
+        if frame.header.mode == Mode::IdentityOrdered {
+            for (got, want) in frame.positions.iter().zip(&input.positions) {
+                for c in 0..3 {
+                    assert!((got[c] - want[c]).abs() <= tolerance(&frame.header.channels[0], c), "{}", g.name);
+                }
+            }
+        }
+        std::fs::write(path(g.name, "json"), render(&sidecar(g, &frame))).unwrap();
+    }
+}
+
+/// Where `got` and `want` first differ, as a JSON path with both values.
+fn first_difference(path: &str, got: &Value, want: &Value) -> Option<String> {
+    match (got, want) {
+        (Value::Object(g), Value::Object(w)) => {
+            let keys: std::collections::BTreeSet<&String> = g.keys().chain(w.keys()).collect();
+            keys.into_iter().find_map(|k| {
+                let (a, b) = (g.get(k).unwrap_or(&Value::Null), w.get(k).unwrap_or(&Value::Null));
+                first_difference(&format!("{path}.{k}"), a, b)
+            })
+        }
+        (Value::Array(g), Value::Array(w)) if g.len() == w.len() => {
+            g.iter().zip(w).enumerate().find_map(|(i, (a, b))| first_difference(&format!("{path}[{i}]"), a, b))
+        }
+        _ => (got != want).then(|| format!("{path}: decoded {got}, sidecar {want}")),
+    }
+}
+
+/// Regenerates the golden files once per test run, when asked to.
+fn regenerate_if_asked() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    if std::env::var_os("FLOE_REGEN_GOLDEN").is_some_and(|v| v == "1") {
+        ONCE.call_once(regenerate);
+    }
+}
+
+fn read_sidecar(g: &Golden) -> Value {
+    let text = std::fs::read_to_string(path(g.name, "json")).unwrap_or_else(|e| panic!("{}.json: {e}", g.name));
+    serde_json::from_str(&text).unwrap()
+}
+
+#[test]
+fn golden_frames_decode_to_their_sidecars() {
+    regenerate_if_asked();
+    for g in &GOLDEN {
+        let bytes = std::fs::read(path(g.name, "bin")).unwrap_or_else(|e| panic!("{}.bin: {e}", g.name));
+        let frame = decode_golden(g, &bytes);
+        assert_eq!(frame.header.frame_len as usize, bytes.len(), "{}", g.name);
+        // Exact comparison: f32 values are written as the f64 of the same value, which
+        // reads back exactly, so any change in the format or its arithmetic shows.
+        if let Some(d) = first_difference(g.name, &sidecar(g, &frame), &read_sidecar(g)) {
+            panic!("golden frame differs: {d}");
+        }
+    }
+}
+
+#[test]
+fn todays_encoder_reproduces_the_golden_values() {
+    regenerate_if_asked();
+    let mut unordered = Decoder::new(Limits::default());
+    let mut identity = Decoder::new(Limits::default());
+    for (g, (bytes, _)) in GOLDEN.iter().zip(encode_all()) {
+        let want = read_sidecar(g);
+        let decoder = if g.name.starts_with("identity") { &mut identity } else { &mut unordered };
+        let mut frame = decoder.decode(&bytes).unwrap();
+        // Compressed sizes may change with the LZ4 version; header fields, quantisation
+        // and values may not.
+        for (c, w) in frame.header.channels.iter_mut().zip(want["header"]["channels"].as_array().unwrap()) {
+            c.payload_len = w["payload_len"].as_u64().unwrap() as u32;
+        }
+        frame.header.frame_len = want["header"]["frame_len"].as_u64().unwrap() as u32;
+        if let Some(d) = first_difference(g.name, &sidecar(g, &frame), &want) {
+            panic!("today's encoder differs from the golden frame: {d}");
+        }
+    }
+}

@@ -1,0 +1,181 @@
+//! decode(encode(x)) equals x within each channel's stated maximum error, over many
+//! random frames of both modes.
+
+mod common;
+
+use common::{Particles, Rng, channel, random_bounds, tolerance};
+use floe_proto::quantize::Quantizer;
+use floe_proto::{ChannelKind, Decoder, Encoder, EncoderConfig, Frame, Limits, Mode};
+
+fn random_config(rng: &mut Rng, mode: Mode) -> EncoderConfig {
+    let mut c = EncoderConfig::new(mode, rng.next_u64(), random_bounds(rng));
+    c.position_bits = rng.int(8, 16) as u8;
+    c.velocity_bits = rng.int(1, 16) as u8;
+    c.density_bits = rng.int(1, 16) as u8;
+    c.pressure_bits = rng.int(1, 16) as u8;
+    c.keyframe_interval = rng.int(1, 6) as u32;
+    c
+}
+
+fn random_count(rng: &mut Rng) -> usize {
+    match rng.int(0, 9) {
+        0 => rng.int(0, 2) as usize,
+        _ => rng.int(3, 2000) as usize,
+    }
+}
+
+/// Asserts that `got[i]` is within the channel's tolerance of `want[i]`, component by component.
+fn assert_close<const C: usize>(frame: &Frame, kind: ChannelKind, want: &[[f32; C]], got: &[[f32; C]], map: &[usize]) {
+    let info = channel(frame, kind.tag());
+    assert_eq!(want.len(), got.len(), "{kind}: particle count");
+    for (i, g) in got.iter().enumerate() {
+        let w = want[map[i]];
+        for k in 0..C {
+            let err = (g[k] - w[k]).abs();
+            assert!(err <= tolerance(info, k), "{kind} particle {i} component {k}: {} vs {}, error {err}", g[k], w[k]);
+        }
+    }
+}
+
+fn scalars(v: &Option<Vec<f32>>) -> Option<Vec<[f32; 1]>> {
+    v.as_ref().map(|v| v.iter().map(|&x| [x]).collect())
+}
+
+/// Checks every channel of `frame` against `p`; `map[i]` is the input index of decoded particle `i`.
+fn assert_frame_matches(frame: &Frame, p: &Particles, map: &[usize]) {
+    assert_close(frame, ChannelKind::Position, &p.positions, &frame.positions, map);
+    match (&p.velocities, &frame.velocities) {
+        (Some(want), Some(got)) => assert_close(frame, ChannelKind::Velocity, want, got, map),
+        (want, got) => assert_eq!(want.is_some(), got.is_some(), "velocity presence"),
+    }
+    for (kind, want, got) in [
+        (ChannelKind::Density, &p.densities, &frame.densities),
+        (ChannelKind::Pressure, &p.pressures, &frame.pressures),
+        (ChannelKind::Temperature, &p.temperatures, &frame.temperatures),
+    ] {
+        match (scalars(want), scalars(got)) {
+            (Some(w), Some(g)) => assert_close(frame, kind, &w, &g, map),
+            (w, g) => assert_eq!(w.is_some(), g.is_some(), "{kind} presence"),
+        }
+    }
+    match (&p.phases, &frame.phases) {
+        (Some(want), Some(got)) => {
+            assert!(got.iter().enumerate().all(|(i, &g)| g == want[map[i]]), "phases are exact");
+        }
+        (want, got) => assert_eq!(want.is_some(), got.is_some(), "phase presence"),
+    }
+}
+
+#[test]
+fn identity_ordered_streams_round_trip_within_max_error() {
+    for seed in 0..60 {
+        let mut rng = Rng::new(seed);
+        let config = random_config(&mut rng, Mode::IdentityOrdered);
+        let bounds = config.bounds;
+        let interval = config.keyframe_interval as u64;
+        let mut encoder = Encoder::new(config.clone()).unwrap();
+        let mut decoder = Decoder::new(Limits::default());
+        let mut p = {
+            let n = random_count(&mut rng);
+            Particles::random(&mut rng, n, &bounds, 0.6)
+        };
+        let identity: Vec<usize> = (0..p.positions.len()).collect();
+        let motion = rng.range(0.0, 0.05);
+        for f in 0..8u64 {
+            let bytes = encoder.encode(100 + f, f as f64 / 60.0, &p.input()).unwrap();
+            let frame = decoder.decode(&bytes).unwrap_or_else(|e| panic!("seed {seed} frame {f}: {e}"));
+            let h = &frame.header;
+            assert_eq!((h.sequence, h.step, h.time), (f, 100 + f, f as f64 / 60.0));
+            assert_eq!(h.scene_id, config.scene_id);
+            assert_eq!(h.keyframe, f % interval == 0, "seed {seed} frame {f}: keyframe every {interval}");
+            assert_eq!(h.frame_len as usize, bytes.len());
+            assert_frame_matches(&frame, &p, &identity);
+            p.advance(&mut rng, &bounds, motion);
+        }
+    }
+}
+
+#[test]
+fn unordered_frames_round_trip_within_max_error() {
+    for seed in 100..180 {
+        let mut rng = Rng::new(seed);
+        let mut config = random_config(&mut rng, Mode::Unordered);
+        // The particle index travels in the temperature channel (16 bits over [0, n - 1],
+        // so it rounds back exactly) to match decoded particles with their inputs.
+        config.temperature_bits = 16;
+        let bounds = config.bounds;
+        let mut encoder = Encoder::new(config).unwrap();
+        let mut decoder = Decoder::new(Limits::default());
+        let mut p = {
+            let n = random_count(&mut rng);
+            Particles::random(&mut rng, n, &bounds, 0.6)
+        };
+        let index: Vec<f32> = (0..p.positions.len()).map(|i| i as f32).collect();
+        for f in 0..3 {
+            p.temperatures = Some(index.clone());
+            let bytes = encoder.encode(f, 0.5, &p.input()).unwrap();
+            let frame = decoder.decode(&bytes).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+            assert!(frame.header.keyframe);
+            let map: Vec<usize> = frame.temperatures.as_ref().unwrap().iter().map(|&t| t.round() as usize).collect();
+            let mut seen = vec![false; map.len()];
+            for &i in &map {
+                assert!(!std::mem::replace(&mut seen[i], true), "seed {seed}: particle {i} twice");
+            }
+            assert_frame_matches(&frame, &p, &map);
+            p.advance(&mut rng, &bounds, 0.1);
+        }
+    }
+}
+
+#[test]
+fn unordered_positions_are_the_quantised_inputs_in_another_order() {
+    for seed in 200..230 {
+        let mut rng = Rng::new(seed);
+        let config = random_config(&mut rng, Mode::Unordered);
+        let p = {
+            let n = random_count(&mut rng);
+            Particles::random(&mut rng, n, &config.bounds, 0.0)
+        };
+        let bytes = Encoder::new(config.clone()).unwrap().encode(0, 0.0, &p.input()).unwrap();
+        let frame = Decoder::new(Limits::default()).decode(&bytes).unwrap();
+        let q: [Quantizer; 3] = std::array::from_fn(|k| Quantizer {
+            min: config.bounds.min[k],
+            max: config.bounds.max[k],
+            bits: config.position_bits,
+        });
+        let key = |v: &[f32; 3]| v.map(f32::to_bits);
+        let mut want: Vec<[u32; 3]> = p
+            .positions
+            .iter()
+            .map(|v| {
+                key(&std::array::from_fn(|k| {
+                    let mut code = Vec::new();
+                    q[k].encode_into(std::iter::once(v[k]), &mut code);
+                    q[k].decode(code[0])
+                }))
+            })
+            .collect();
+        let mut got: Vec<[u32; 3]> = frame.positions.iter().map(key).collect();
+        want.sort_unstable();
+        got.sort_unstable();
+        assert_eq!(got, want, "seed {seed}");
+    }
+}
+
+#[test]
+fn stated_errors_are_half_a_step() {
+    let mut rng = Rng::new(7);
+    let config = random_config(&mut rng, Mode::Unordered);
+    let p = Particles::random(&mut rng, 500, &config.bounds, 1.0);
+    let bytes = Encoder::new(config.clone()).unwrap().encode(0, 0.0, &p.input()).unwrap();
+    let frame = Decoder::new(Limits::default()).decode(&bytes).unwrap();
+    let pos = &frame.header.channels[0];
+    assert_eq!(pos.bits, config.position_bits);
+    for k in 0..3 {
+        let span = config.bounds.max[k] - config.bounds.min[k];
+        let half_step = span / ((1u32 << config.position_bits) - 1) as f32 / 2.0;
+        assert_eq!(pos.ranges[k].max_error, half_step);
+    }
+    let phase = channel(&frame, ChannelKind::Phase.tag());
+    assert_eq!((phase.bits, phase.ranges[0].max_error), (8, 0.0));
+}

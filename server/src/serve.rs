@@ -1,0 +1,80 @@
+//! `floe serve`: the simulation server. Listeners are bound by the caller (so
+//! tests can bind port 0), shutdown is a future (SIGINT/SIGTERM in the binary,
+//! a channel in tests), and every scene worker is stopped before `run` returns.
+
+use crate::grpc::Grpc;
+use crate::service::{Registry, SceneSource};
+use floe_proto::pb::scene_service_server::SceneServiceServer;
+use std::future::Future;
+use std::sync::Arc;
+use tokio::net::TcpListener;
+use tokio_stream::wrappers::TcpListenerStream;
+
+/// Largest gRPC request accepted (bytes): room for large scene documents, far
+/// below what could hurt the server. Bigger requests get OUT_OF_RANGE.
+pub const MAX_REQUEST_BYTES: usize = 8 << 20;
+
+/// Serves gRPC on `grpc` until `shutdown` resolves. Then every scene is deleted
+/// first, which ends its frame and event streams, so the graceful shutdown of
+/// the transport does not wait on streams that would never end.
+pub async fn run(grpc: TcpListener, registry: Arc<Registry>, shutdown: impl Future<Output = ()>) -> anyhow::Result<()> {
+    let (health_reporter, health) = tonic_health::server::health_reporter();
+    health_reporter.set_serving::<SceneServiceServer<Grpc>>().await;
+    let reflection = tonic_reflection::server::Builder::configure()
+        .register_encoded_file_descriptor_set(floe_proto::pb::FILE_DESCRIPTOR_SET)
+        .build_v1()?;
+    let scenes = SceneServiceServer::new(Grpc::new(registry.clone())).max_decoding_message_size(MAX_REQUEST_BYTES);
+    let stop_scenes = async move {
+        shutdown.await;
+        let _ = tokio::task::spawn_blocking(move || registry.shutdown()).await;
+    };
+    tonic::transport::Server::builder()
+        .add_service(health)
+        .add_service(reflection)
+        .add_service(scenes)
+        .serve_with_incoming_shutdown(TcpListenerStream::new(grpc), stop_scenes)
+        .await?;
+    Ok(())
+}
+
+/// Resolves on SIGINT (Ctrl-C) or SIGTERM.
+pub async fn signal() {
+    let ctrl_c = async {
+        let _ = tokio::signal::ctrl_c().await;
+    };
+    #[cfg(unix)]
+    let term = async {
+        match tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()) {
+            Ok(mut s) => {
+                s.recv().await;
+            }
+            Err(_) => std::future::pending().await,
+        }
+    };
+    #[cfg(not(unix))]
+    let term = std::future::pending::<()>();
+    tokio::select! {
+        _ = ctrl_c => {},
+        _ = term => {},
+    }
+    tracing::info!("shutting down");
+}
+
+/// `floe serve` from the command line.
+pub fn serve(args: crate::cli::ServeArgs) -> anyhow::Result<()> {
+    let runtime = tokio::runtime::Runtime::new()?;
+    runtime.block_on(async {
+        let grpc = TcpListener::bind(&args.grpc)
+            .await
+            .map_err(|e| anyhow::anyhow!("cannot listen for gRPC on {}: {e}", args.grpc))?;
+        let registry = Arc::new(Registry::new(Default::default()));
+        if args.scene != "none" {
+            let r = registry.clone();
+            let preset = args.scene.clone();
+            let handle = tokio::task::spawn_blocking(move || r.create(SceneSource::Preset(preset), &[])).await??;
+            tracing::info!("default scene '{}' is scene {}", args.scene, handle.shared.id);
+        }
+        tracing::info!("gRPC (floe.v1.SceneService, health, reflection) on {}", grpc.local_addr()?);
+        run(grpc, registry, signal()).await
+    })
+}

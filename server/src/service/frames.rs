@@ -1,0 +1,186 @@
+//! Frame subscriptions: turn a scene's latest snapshots into encoded frames at a
+//! subscriber's rate and options, with latest-frame semantics.
+//!
+//! A subscriber that reads slowly only ever waits for the newest snapshot (a
+//! `watch` channel holds one), so the solver never waits and memory never grows;
+//! the snapshots it missed are counted as dropped. Unordered frames with the same
+//! options are encoded once per snapshot and shared by every subscriber; an
+//! identity-ordered stream predicts from the frames its own subscriber received,
+//! so it has an encoder of its own.
+
+use super::scene::{SceneHandle, Shared, Snapshot, State};
+use floe_engine::Channel;
+use floe_proto::{Bounds, EncodeError, Encoder, EncoderConfig, FrameInput, Mode};
+use std::sync::atomic::Ordering;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+use tokio::sync::watch;
+
+/// What a subscriber asked for.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameOptions {
+    /// Channels besides positions.
+    pub channels: Vec<Channel>,
+    /// Most frames per second.
+    pub max_fps: f64,
+    /// Bits per position axis (8 to 16).
+    pub position_bits: u8,
+    /// Unordered or identity-ordered.
+    pub mode: Mode,
+}
+
+/// One frame for one subscriber.
+#[derive(Debug, Clone)]
+pub struct EncodedFrame {
+    /// The encoded bytes (shared between subscribers with the same options).
+    pub data: Arc<Vec<u8>>,
+    /// Snapshot sequence number.
+    pub sequence: u64,
+    /// Snapshots skipped since this subscriber's previous frame.
+    pub skipped: u64,
+}
+
+/// Shared unordered encoders of one scene, one per distinct option set.
+#[derive(Debug, Default)]
+pub struct FrameCache {
+    entries: Mutex<Vec<CacheEntry>>,
+}
+
+#[derive(Debug)]
+struct CacheEntry {
+    options: FrameOptions,
+    encoder: Encoder,
+    last: Option<(u64, Arc<Vec<u8>>)>,
+}
+
+fn config(shared: &Shared, o: &FrameOptions) -> EncoderConfig {
+    let bounds = Bounds { min: shared.bounds.0, max: shared.bounds.1 };
+    let mut c = EncoderConfig::new(o.mode, shared.id, bounds);
+    c.position_bits = o.position_bits;
+    c
+}
+
+fn input<'a>(s: &'a Snapshot, channels: &[Channel]) -> FrameInput<'a> {
+    let p = &s.particles;
+    let want = |c| channels.contains(&c);
+    FrameInput {
+        positions: &p.positions,
+        velocities: p.velocities.as_deref().filter(|_| want(Channel::Velocity)),
+        densities: p.densities.as_deref().filter(|_| want(Channel::Density)),
+        pressures: p.pressures.as_deref().filter(|_| want(Channel::Pressure)),
+        ..FrameInput::default()
+    }
+}
+
+impl FrameCache {
+    /// The unordered frame of `snapshot` for `options`, encoding it on first request.
+    fn unordered(&self, shared: &Shared, options: &FrameOptions, s: &Snapshot) -> Result<Arc<Vec<u8>>, EncodeError> {
+        let mut entries = self.entries.lock().expect("lock");
+        let k = match entries.iter().position(|e| &e.options == options) {
+            Some(k) => k,
+            None => {
+                entries.push(CacheEntry {
+                    options: options.clone(),
+                    encoder: Encoder::new(config(shared, options))?,
+                    last: None,
+                });
+                entries.len() - 1
+            }
+        };
+        let e = &mut entries[k];
+        if let Some((seq, data)) = &e.last
+            && *seq == s.sequence
+        {
+            return Ok(data.clone());
+        }
+        let data = Arc::new(e.encoder.encode(s.step, s.time, &input(s, &options.channels))?);
+        e.last = Some((s.sequence, data.clone()));
+        Ok(data)
+    }
+}
+
+/// A subscriber's stream of frames. Dropping it unsubscribes.
+#[derive(Debug)]
+pub struct Subscription {
+    scene: Arc<SceneHandle>,
+    cache: Arc<FrameCache>,
+    rx: watch::Receiver<Option<Arc<Snapshot>>>,
+    options: FrameOptions,
+    own: Option<Encoder>,
+    last_sequence: Option<u64>,
+    last_sent: Option<Instant>,
+}
+
+impl Subscription {
+    /// Subscribes to `scene`'s frames.
+    pub fn new(scene: Arc<SceneHandle>, cache: Arc<FrameCache>, options: FrameOptions) -> Result<Self, EncodeError> {
+        let own = match options.mode {
+            Mode::IdentityOrdered => Some(Encoder::new(config(&scene.shared, &options))?),
+            Mode::Unordered => {
+                // Checks the options now rather than at the first frame.
+                Encoder::new(config(&scene.shared, &options))?;
+                None
+            }
+        };
+        let rx = scene.shared.snapshots.subscribe();
+        scene.subscribe(&options.channels);
+        Ok(Self { scene, cache, rx, options, own, last_sequence: None, last_sent: None })
+    }
+
+    /// The next frame; `None` once the scene is gone.
+    pub async fn next(&mut self) -> Option<Result<EncodedFrame, EncodeError>> {
+        if let Some(t) = self.last_sent {
+            let gap = Duration::from_secs_f64(1.0 / self.options.max_fps);
+            tokio::time::sleep_until((t + gap).into()).await;
+        }
+        loop {
+            if self.scene.shared.status().state == State::Deleted {
+                return None;
+            }
+            let fresh = self.rx.borrow_and_update().clone();
+            match fresh {
+                Some(s) if self.last_sequence.is_none_or(|l| s.sequence > l) => return Some(self.encode(s).await),
+                _ => {
+                    if self.rx.changed().await.is_err() {
+                        return None;
+                    }
+                }
+            }
+        }
+    }
+
+    async fn encode(&mut self, s: Arc<Snapshot>) -> Result<EncodedFrame, EncodeError> {
+        let skipped = self.last_sequence.map_or(0, |l| s.sequence - l - 1);
+        self.scene.shared.dropped_frames.fetch_add(skipped, Ordering::Relaxed);
+        self.last_sequence = Some(s.sequence);
+        self.last_sent = Some(Instant::now());
+        let sequence = s.sequence;
+        // Encoding a large frame takes milliseconds: keep it off the async workers.
+        let data = match self.own.take() {
+            Some(mut enc) => {
+                let channels = self.options.channels.clone();
+                let (enc, data) = tokio::task::spawn_blocking(move || {
+                    let data = enc.encode(s.step, s.time, &input(&s, &channels));
+                    (enc, data)
+                })
+                .await
+                .expect("encoder task");
+                self.own = Some(enc);
+                Arc::new(data?)
+            }
+            None => {
+                let (cache, scene, options) = (self.cache.clone(), self.scene.clone(), self.options.clone());
+                tokio::task::spawn_blocking(move || cache.unordered(&scene.shared, &options, &s))
+                    .await
+                    .expect("encoder task")?
+            }
+        };
+        Ok(EncodedFrame { data, sequence, skipped })
+    }
+}
+
+impl Drop for Subscription {
+    fn drop(&mut self) {
+        self.scene.shared.unsubscribe(&self.options.channels);
+    }
+}

@@ -1,0 +1,420 @@
+//! One scene on the server: its simulation lives on a worker thread of its own,
+//! so stepping never blocks the async runtime, and talks to the rest of the
+//! server through a command channel, a latest-snapshot watch and an event
+//! broadcast.
+
+use floe_engine::{Channel, Particles, Simulation};
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
+use std::sync::mpsc;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+use tokio::sync::{broadcast, oneshot, watch};
+
+/// Whether a scene is stepping.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum State {
+    /// Waiting for commands.
+    Paused,
+    /// Stepping continuously.
+    Running,
+    /// Stopped by the stability guard.
+    Halted,
+    /// Deleted; its worker has ended.
+    Deleted,
+}
+
+/// What a scene is doing, updated by its worker after every step.
+#[derive(Debug, Clone)]
+pub struct Status {
+    /// Running state.
+    pub state: State,
+    /// Simulated time (s).
+    pub time: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// The last dt (s).
+    pub dt: f64,
+    /// Steps per wall second over the last second of stepping.
+    pub steps_per_second: f64,
+    /// The halt message, when halted.
+    pub halt_reason: Option<String>,
+}
+
+/// Particle state published for frame subscribers, in identity order.
+#[derive(Debug)]
+pub struct Snapshot {
+    /// Counts up by one per published snapshot.
+    pub sequence: u64,
+    /// Step it was taken at.
+    pub step: u64,
+    /// Simulated time (s).
+    pub time: f64,
+    /// Positions and the channels subscribers asked for.
+    pub particles: Particles,
+}
+
+/// Something that happened to a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    /// The stability guard stopped it.
+    Halted(floe_engine::Halted),
+    /// It was deleted.
+    Deleted,
+}
+
+/// Why a command was refused.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CommandError {
+    /// The scene was halted by the guard and cannot step.
+    #[error("scene is halted: {0}")]
+    Halted(String),
+    /// The scene is running; pause it first.
+    #[error("scene is running; pause it before stepping it by hand")]
+    Running,
+    /// The worker is gone (the scene was deleted).
+    #[error("scene was deleted")]
+    Gone,
+}
+
+/// A request to a scene's worker.
+enum Command {
+    Step {
+        steps: u64,
+        until: Option<f64>,
+        reply: oneshot::Sender<Result<Status, CommandError>>,
+    },
+    Run {
+        real_time_factor: f64,
+        reply: oneshot::Sender<Result<Status, CommandError>>,
+    },
+    Pause {
+        reply: oneshot::Sender<Status>,
+    },
+    /// A subscriber joined: publish a fresh snapshot even if paused.
+    Publish,
+    Delete,
+}
+
+/// State shared between a scene's worker and the server's tasks.
+#[derive(Debug)]
+pub struct Shared {
+    /// Scene id.
+    pub id: u64,
+    /// Scene name.
+    pub name: String,
+    /// The resolved scene as JSON.
+    pub scene_json: String,
+    /// Fluid particles.
+    pub particles: usize,
+    /// Domain (m): frames quantise positions over it.
+    pub bounds: ([f32; 3], [f32; 3]),
+    /// Latest status.
+    pub status: Mutex<Status>,
+    /// Latest snapshot (latest-frame semantics: a receiver sees only the newest).
+    pub snapshots: watch::Sender<Option<Arc<Snapshot>>>,
+    /// Events.
+    pub events: broadcast::Sender<Event>,
+    /// Open frame streams, and per channel how many of them asked for it.
+    pub subscribers: AtomicU32,
+    wanted: Mutex<Vec<(Channel, u32)>>,
+    /// Frames skipped by slow subscribers.
+    pub dropped_frames: AtomicU64,
+    /// Snapshots published.
+    pub published: AtomicU64,
+    /// Set on delete, so a long hand-step ends at the next step.
+    cancel: std::sync::atomic::AtomicBool,
+}
+
+impl Shared {
+    /// Registers a subscriber wanting `channels`; undone by [`Shared::unsubscribe`].
+    pub fn subscribe(&self, channels: &[Channel]) {
+        self.subscribers.fetch_add(1, Ordering::Relaxed);
+        let mut wanted = self.wanted.lock().expect("lock");
+        for &c in channels {
+            match wanted.iter_mut().find(|w| w.0 == c) {
+                Some(w) => w.1 += 1,
+                None => wanted.push((c, 1)),
+            }
+        }
+    }
+
+    /// Removes a subscriber registered with `channels`.
+    pub fn unsubscribe(&self, channels: &[Channel]) {
+        self.subscribers.fetch_sub(1, Ordering::Relaxed);
+        let mut wanted = self.wanted.lock().expect("lock");
+        for &c in channels {
+            if let Some(w) = wanted.iter_mut().find(|w| w.0 == c) {
+                w.1 -= 1;
+            }
+        }
+        wanted.retain(|w| w.1 > 0);
+    }
+
+    /// The union of the channels subscribers want: the only ones read back.
+    fn wanted(&self) -> Vec<Channel> {
+        self.wanted.lock().expect("lock").iter().map(|w| w.0).collect()
+    }
+
+    /// A copy of the latest status.
+    pub fn status(&self) -> Status {
+        self.status.lock().expect("lock").clone()
+    }
+}
+
+/// The server's handle on a scene.
+#[derive(Debug)]
+pub struct SceneHandle {
+    /// Shared state.
+    pub shared: Arc<Shared>,
+    commands: Mutex<mpsc::Sender<Command>>,
+    worker: Mutex<Option<std::thread::JoinHandle<()>>>,
+}
+
+/// Most steps one `step` request may ask for.
+pub const MAX_STEPS_PER_REQUEST: u64 = 1_000_000;
+
+/// Snapshots are published at most this often while stepping (s of wall time).
+const PUBLISH_INTERVAL: Duration = Duration::from_millis(16);
+
+impl SceneHandle {
+    /// Starts the worker of a built simulation.
+    pub fn spawn(id: u64, sim: Simulation) -> Self {
+        let domain = sim.domain();
+        let (snapshots, _) = watch::channel(None);
+        let (events, _) = broadcast::channel(16);
+        let shared = Arc::new(Shared {
+            id,
+            name: sim.scene().name.clone(),
+            scene_json: serde_json::to_string(sim.scene()).expect("scenes serialise"),
+            particles: sim.particle_count(),
+            bounds: (domain.min.to_array(), domain.max.to_array()),
+            status: Mutex::new(Status {
+                state: State::Paused,
+                time: 0.0,
+                steps: 0,
+                dt: 0.0,
+                steps_per_second: 0.0,
+                halt_reason: None,
+            }),
+            snapshots,
+            events,
+            subscribers: AtomicU32::new(0),
+            wanted: Mutex::new(Vec::new()),
+            dropped_frames: AtomicU64::new(0),
+            published: AtomicU64::new(0),
+            cancel: std::sync::atomic::AtomicBool::new(false),
+        });
+        let (tx, rx) = mpsc::channel();
+        let worker_shared = shared.clone();
+        let worker = std::thread::Builder::new()
+            .name(format!("scene-{id}"))
+            .spawn(move || Worker::new(sim, worker_shared).run(rx))
+            .expect("spawn scene worker");
+        Self { shared, commands: Mutex::new(tx), worker: Mutex::new(Some(worker)) }
+    }
+
+    fn send(&self, c: Command) -> Result<(), CommandError> {
+        self.commands.lock().expect("lock").send(c).map_err(|_| CommandError::Gone)
+    }
+
+    /// Steps a paused scene `steps` times, or until simulated time `until` (s).
+    pub async fn step(&self, steps: u64, until: Option<f64>) -> Result<Status, CommandError> {
+        let (reply, rx) = oneshot::channel();
+        self.send(Command::Step { steps, until, reply })?;
+        rx.await.map_err(|_| CommandError::Gone)?
+    }
+
+    /// Runs continuously at `real_time_factor` (0: as fast as possible).
+    pub async fn run(&self, real_time_factor: f64) -> Result<Status, CommandError> {
+        let (reply, rx) = oneshot::channel();
+        self.send(Command::Run { real_time_factor, reply })?;
+        rx.await.map_err(|_| CommandError::Gone)?
+    }
+
+    /// Pauses after the current step.
+    pub async fn pause(&self) -> Result<Status, CommandError> {
+        let (reply, rx) = oneshot::channel();
+        self.send(Command::Pause { reply })?;
+        rx.await.map_err(|_| CommandError::Gone)
+    }
+
+    /// Registers a frame subscriber wanting `channels` and has the worker publish
+    /// a fresh snapshot for it. Undo with [`Shared::unsubscribe`].
+    pub fn subscribe(&self, channels: &[Channel]) {
+        self.shared.subscribe(channels);
+        let _ = self.send(Command::Publish);
+    }
+
+    /// Stops the worker and waits for it; streams see a Deleted event.
+    pub fn delete(&self) {
+        self.shared.cancel.store(true, Ordering::Relaxed);
+        let _ = self.send(Command::Delete);
+        if let Some(w) = self.worker.lock().expect("lock").take() {
+            let _ = w.join();
+        }
+    }
+}
+
+/// The worker thread's state.
+struct Worker {
+    sim: Simulation,
+    shared: Arc<Shared>,
+    running: Option<f64>,
+    last_publish: Option<Instant>,
+    sequence: u64,
+    rate: (Instant, u64),
+}
+
+impl Worker {
+    fn new(sim: Simulation, shared: Arc<Shared>) -> Self {
+        Self { sim, shared, running: None, last_publish: None, sequence: 0, rate: (Instant::now(), 0) }
+    }
+
+    fn run(mut self, rx: mpsc::Receiver<Command>) {
+        self.publish();
+        let mut run_start = (Instant::now(), 0.0);
+        loop {
+            let command = if self.running.is_some() {
+                match rx.try_recv() {
+                    Ok(c) => Some(c),
+                    Err(mpsc::TryRecvError::Empty) => None,
+                    Err(mpsc::TryRecvError::Disconnected) => break,
+                }
+            } else {
+                match rx.recv() {
+                    Ok(c) => Some(c),
+                    Err(_) => break,
+                }
+            };
+            match command {
+                Some(Command::Delete) => break,
+                Some(Command::Publish) => self.publish(),
+                Some(Command::Pause { reply }) => {
+                    self.running = None;
+                    self.set_state(State::Paused);
+                    self.publish();
+                    let _ = reply.send(self.shared.status());
+                }
+                Some(Command::Run { real_time_factor, reply }) => {
+                    let r = self.refuse_if_halted();
+                    if r.is_ok() {
+                        self.running = Some(real_time_factor);
+                        run_start = (Instant::now(), self.sim.time());
+                        self.set_state(State::Running);
+                    }
+                    let _ = reply.send(r.map(|_| self.shared.status()));
+                }
+                Some(Command::Step { steps, until, reply }) => {
+                    let r = if self.running.is_some() {
+                        Err(CommandError::Running)
+                    } else {
+                        self.refuse_if_halted().map(|_| {
+                            self.step_by_hand(steps, until);
+                            self.shared.status()
+                        })
+                    };
+                    let _ = reply.send(r);
+                }
+                None => {}
+            }
+            if let Some(rtf) = self.running {
+                if rtf > 0.0 {
+                    // Pace: sleep while simulated time is ahead of wall time * factor.
+                    let ahead = (self.sim.time() - run_start.1) / rtf - run_start.0.elapsed().as_secs_f64();
+                    if ahead > 0.0 {
+                        std::thread::sleep(Duration::from_secs_f64(ahead.min(0.01)));
+                        continue;
+                    }
+                }
+                if !self.step_once() {
+                    self.running = None;
+                }
+                self.publish_if_due();
+            }
+        }
+        self.set_state(State::Deleted);
+        let _ = self.shared.events.send(Event::Deleted);
+        // Wakes frame subscribers waiting for a snapshot, so they see the deletion.
+        self.shared.snapshots.send_replace(None);
+    }
+
+    fn refuse_if_halted(&self) -> Result<(), CommandError> {
+        match self.sim.halted() {
+            Some(h) => Err(CommandError::Halted(h.to_string())),
+            None => Ok(()),
+        }
+    }
+
+    fn step_by_hand(&mut self, steps: u64, until: Option<f64>) {
+        let mut taken = 0;
+        loop {
+            let done = match until {
+                Some(t) => self.sim.time() >= t,
+                None => taken >= steps,
+            };
+            if done || self.shared.cancel.load(Ordering::Relaxed) || !self.step_once() {
+                break;
+            }
+            taken += 1;
+            self.publish_if_due();
+        }
+        self.publish();
+    }
+
+    /// One step; on a halt, records it and tells subscribers. Returns whether it stepped.
+    fn step_once(&mut self) -> bool {
+        match self.sim.step() {
+            Ok(r) => {
+                self.rate.1 += 1;
+                let elapsed = self.rate.0.elapsed().as_secs_f64();
+                let mut s = self.shared.status.lock().expect("lock");
+                if elapsed >= 1.0 {
+                    s.steps_per_second = self.rate.1 as f64 / elapsed;
+                    self.rate = (Instant::now(), 0);
+                }
+                s.time = self.sim.time();
+                s.steps = self.sim.steps();
+                s.dt = r.dt as f64;
+                true
+            }
+            Err(h) => {
+                {
+                    let mut s = self.shared.status.lock().expect("lock");
+                    s.state = State::Halted;
+                    s.halt_reason = Some(h.to_string());
+                }
+                tracing::warn!(scene = self.shared.id, "{h}");
+                let _ = self.shared.events.send(Event::Halted(h));
+                self.publish();
+                false
+            }
+        }
+    }
+
+    fn set_state(&self, state: State) {
+        let mut s = self.shared.status.lock().expect("lock");
+        if s.state != State::Halted || state == State::Deleted {
+            s.state = state;
+        }
+    }
+
+    fn publish_if_due(&mut self) {
+        if self.last_publish.is_none_or(|t| t.elapsed() >= PUBLISH_INTERVAL) {
+            self.publish();
+        }
+    }
+
+    /// Publishes a snapshot of positions and the channels subscribers want; none
+    /// is read back while nobody subscribes.
+    fn publish(&mut self) {
+        self.last_publish = Some(Instant::now());
+        if self.shared.subscribers.load(Ordering::Relaxed) == 0 && self.sequence > 0 {
+            return;
+        }
+        let particles = self.sim.read(&self.shared.wanted());
+        let snapshot = Snapshot { sequence: self.sequence, step: self.sim.steps(), time: self.sim.time(), particles };
+        self.sequence += 1;
+        self.shared.published.fetch_add(1, Ordering::Relaxed);
+        self.shared.snapshots.send_replace(Some(Arc::new(snapshot)));
+    }
+}

@@ -1,0 +1,193 @@
+//! The gRPC service end to end: a real server on 127.0.0.1:0, a real tonic
+//! client, frames decoded with floe-proto.
+
+use floe_proto::pb::scene_service_client::SceneServiceClient;
+use floe_proto::pb::{self, create_scene_request::Source};
+use floe_proto::{Decoder, Limits};
+use floe_server::service::Registry;
+use std::sync::Arc;
+use tokio::sync::oneshot;
+use tonic::Code;
+use tonic::transport::Channel;
+
+struct Server {
+    client: SceneServiceClient<Channel>,
+    stop: Option<oneshot::Sender<()>>,
+    task: tokio::task::JoinHandle<anyhow::Result<()>>,
+}
+
+async fn start() -> Server {
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let addr = listener.local_addr().unwrap();
+    let (stop, stopped) = oneshot::channel::<()>();
+    let registry = Arc::new(Registry::new(Default::default()));
+    let task = tokio::spawn(floe_server::serve::run(listener, registry, async {
+        let _ = stopped.await;
+    }));
+    let channel = tonic::transport::Endpoint::from_shared(format!("http://{addr}")).unwrap().connect().await.unwrap();
+    Server { client: SceneServiceClient::new(channel), stop: Some(stop), task }
+}
+
+impl Server {
+    async fn shutdown(mut self) {
+        self.stop.take().unwrap().send(()).unwrap();
+        self.task.await.unwrap().unwrap();
+    }
+}
+
+fn preset(name: &str, overrides: &[&str]) -> pb::CreateSceneRequest {
+    pb::CreateSceneRequest {
+        source: Some(Source::Preset(name.into())),
+        document_format: String::new(),
+        overrides: overrides.iter().map(|s| s.to_string()).collect(),
+    }
+}
+
+#[tokio::test]
+async fn create_step_and_stream_a_dam_break() {
+    let mut s = start().await;
+    let info = s.client.create_scene(preset("dam_break", &["particle_spacing=0.05"])).await.unwrap().into_inner();
+    assert_eq!(info.particles, 1000);
+    assert_eq!(info.state, pb::SceneState::Paused as i32);
+    let id = info.scene_id;
+    let stepped =
+        s.client.step(pb::StepRequest { scene_id: id, steps: 20, until_time: 0.0 }).await.unwrap().into_inner();
+    assert_eq!(stepped.steps, 20);
+    assert!(stepped.sim_time > 0.0);
+
+    let request = pb::StreamFramesRequest {
+        scene_id: id,
+        channels: vec![pb::Channel::Velocity as i32],
+        max_fps: 60.0,
+        position_bits: 16,
+        mode: pb::FrameMode::Unordered as i32,
+    };
+    let mut frames = s.client.stream_frames(request).await.unwrap().into_inner();
+    let frame = frames.message().await.unwrap().expect("a frame");
+    let decoded = Decoder::new(Limits::default()).decode(&frame.data).unwrap();
+    assert_eq!(decoded.positions.len(), 1000);
+    assert_eq!(decoded.header.step, 20);
+    assert!(decoded.velocities.is_some() && decoded.densities.is_none());
+    let (lo, hi) = (&info.bounds_min, &info.bounds_max);
+    for p in &decoded.positions {
+        for k in 0..3 {
+            assert!(p[k] >= lo[k] - 1e-3 && p[k] <= hi[k] + 1e-3, "{p:?} outside {lo:?}..{hi:?}");
+        }
+    }
+
+    // Identity-ordered frames of a running scene decode in sequence with one decoder.
+    let request = pb::StreamFramesRequest {
+        scene_id: id,
+        channels: vec![],
+        max_fps: 120.0,
+        position_bits: 16,
+        mode: pb::FrameMode::Identity as i32,
+    };
+    let mut frames = s.client.stream_frames(request).await.unwrap().into_inner();
+    s.client.run(pb::RunRequest { scene_id: id, real_time_factor: 0.0 }).await.unwrap();
+    let mut decoder = Decoder::new(Limits::default());
+    let mut last_step = 0;
+    for _ in 0..4 {
+        let f = frames.message().await.unwrap().expect("a frame");
+        let d = decoder.decode(&f.data).unwrap();
+        assert_eq!(d.positions.len(), 1000);
+        assert!(d.header.step >= last_step);
+        last_step = d.header.step;
+    }
+    let paused = s.client.pause(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
+    assert_eq!(paused.state, pb::SceneState::Paused as i32);
+    assert!(paused.steps > 20);
+    let stats = s.client.get_stats(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
+    assert_eq!(stats.subscribers, 2);
+    assert!(stats.frames_published >= 5);
+
+    let listed = s.client.list_scenes(pb::ListScenesRequest {}).await.unwrap().into_inner();
+    assert_eq!(listed.scenes.len(), 1);
+    s.client.delete_scene(pb::SceneRef { scene_id: id }).await.unwrap();
+    // The frame stream ends with the scene.
+    while frames.message().await.unwrap().is_some() {}
+    s.shutdown().await;
+}
+
+#[tokio::test]
+async fn bad_requests_get_clear_errors() {
+    let mut s = start().await;
+    let e = s.client.get_scene(pb::SceneRef { scene_id: 99 }).await.unwrap_err();
+    assert_eq!(e.code(), Code::NotFound);
+    assert_eq!(e.message(), "no scene with id 99");
+
+    let e = s.client.create_scene(preset("dam_break", &["fluids[0].rest_density=-3"])).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert_eq!(e.message(), "fluids[0].rest_density: must be > 0, got -3");
+
+    let doc = pb::CreateSceneRequest {
+        source: Some(Source::Document("particle_spacing = \"wide\"".into())),
+        document_format: "toml".into(),
+        overrides: vec![],
+    };
+    let e = s.client.create_scene(doc).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert!(e.message().starts_with("particle_spacing: invalid type"), "{}", e.message());
+
+    // A request larger than the server accepts is refused, and the server lives on.
+    let huge = pb::CreateSceneRequest {
+        source: Some(Source::Document("#".repeat(9 << 20))),
+        document_format: "toml".into(),
+        overrides: vec![],
+    };
+    let e = s.client.create_scene(huge).await.unwrap_err();
+    assert_eq!(e.code(), Code::OutOfRange, "{e:?}");
+
+    let info = s.client.create_scene(preset("dam_break", &["particle_spacing=0.05"])).await.unwrap().into_inner();
+    let e = s.client.step(pb::StepRequest { scene_id: info.scene_id, steps: 0, until_time: 0.0 }).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert!(e.message().starts_with("steps: must be between 1 and"), "{}", e.message());
+    s.shutdown().await;
+}
+
+#[tokio::test]
+async fn an_unstable_scene_halts_with_an_event_and_the_server_lives_on() {
+    let mut s = start().await;
+    let info = s
+        .client
+        .create_scene(preset("dam_break", &["particle_spacing=0.05", "solver.speed_of_sound=0.5"]))
+        .await
+        .unwrap()
+        .into_inner();
+    let id = info.scene_id;
+    let mut events = s.client.stream_events(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
+    let after =
+        s.client.step(pb::StepRequest { scene_id: id, steps: 100_000, until_time: 0.0 }).await.unwrap().into_inner();
+    assert_eq!(after.state, pb::SceneState::Halted as i32);
+    assert!(after.halt_reason.contains("exceeds guard."), "{}", after.halt_reason);
+    let event = events.message().await.unwrap().expect("an event");
+    match event.kind {
+        Some(pb::scene_event::Kind::Halted(h)) => {
+            assert_eq!(format!("halted at step {}", h.step), after.halt_reason.split(',').next().unwrap())
+        }
+        other => panic!("expected a halt, got {other:?}"),
+    }
+    let e = s.client.step(pb::StepRequest { scene_id: id, steps: 1, until_time: 0.0 }).await.unwrap_err();
+    assert_eq!(e.code(), Code::FailedPrecondition);
+    // Another scene still works.
+    let other = s.client.create_scene(preset("hydrostatic", &["particle_spacing=0.05"])).await.unwrap().into_inner();
+    s.client.step(pb::StepRequest { scene_id: other.scene_id, steps: 5, until_time: 0.0 }).await.unwrap();
+    s.shutdown().await;
+}
+
+#[tokio::test]
+async fn shutdown_while_streaming_ends_cleanly() {
+    let mut s = start().await;
+    let info = s.client.create_scene(preset("dam_break", &["particle_spacing=0.05"])).await.unwrap().into_inner();
+    s.client.run(pb::RunRequest { scene_id: info.scene_id, real_time_factor: 1.0 }).await.unwrap();
+    let request = pb::StreamFramesRequest { scene_id: info.scene_id, max_fps: 30.0, ..Default::default() };
+    let mut frames = s.client.stream_frames(request).await.unwrap().into_inner();
+    frames.message().await.unwrap().expect("a frame");
+    s.shutdown().await;
+    // The stream ends (cleanly or with a transport error), it does not hang.
+    let end = tokio::time::timeout(std::time::Duration::from_secs(5), async {
+        while let Ok(Some(_)) = frames.message().await {}
+    })
+    .await;
+    assert!(end.is_ok(), "the frame stream did not end after shutdown");
+}
