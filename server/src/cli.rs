@@ -133,6 +133,12 @@ pub struct ServeArgs {
     /// Address for gRPC (loopback unless told otherwise).
     #[arg(long, env = "FLOE_GRPC_ADDR", default_value = "127.0.0.1:50051")]
     pub grpc: String,
+    /// Address for HTTP: the viewer, REST and WebSocket (loopback unless told otherwise).
+    #[arg(long, env = "FLOE_HTTP_ADDR", default_value = "127.0.0.1:8080")]
+    pub http: String,
+    /// Directory of the viewer's files (default: `web/` of the source tree).
+    #[arg(long, value_name = "DIR")]
+    pub web: Option<PathBuf>,
     /// Preset to create at start-up, or `none`.
     #[arg(long, default_value = "dam_break")]
     pub scene: String,

@@ -12,17 +12,20 @@
 //! - [`serve`]: `floe serve`, the server: listeners, health, reflection, shutdown.
 //! - [`service`]: the in-process service API (scenes, workers, frame subscriptions).
 //! - [`grpc`], [`convert`]: the gRPC adapter and where generated types meet the service.
+//! - [`http`], [`ws`]: the viewer's files, the REST mirror and the per-scene WebSocket.
 
 pub mod bench;
 pub mod cli;
 pub mod codec_bench;
 pub mod convert;
 pub mod grpc;
+pub mod http;
 pub mod progress;
 pub mod run;
 pub mod serve;
 pub mod service;
 pub mod validate;
+pub mod ws;
 
 /// Carries out a parsed command line.
 pub fn execute(cli: cli::Cli) -> anyhow::Result<()> {

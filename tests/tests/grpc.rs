@@ -17,11 +17,13 @@ struct Server {
 }
 
 async fn start() -> Server {
-    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let addr = listener.local_addr().unwrap();
+    let grpc = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let http = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let addr = grpc.local_addr().unwrap();
     let (stop, stopped) = oneshot::channel::<()>();
     let registry = Arc::new(Registry::new(Default::default()));
-    let task = tokio::spawn(floe_server::serve::run(listener, registry, async {
+    let listeners = floe_server::serve::Listeners { grpc, http };
+    let task = tokio::spawn(floe_server::serve::run(listeners, registry, "../web".into(), async {
         let _ = stopped.await;
     }));
     let channel = tonic::transport::Endpoint::from_shared(format!("http://{addr}")).unwrap().connect().await.unwrap();

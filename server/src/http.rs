@@ -1,0 +1,266 @@
+//! The HTTP adapter: the viewer's static files at `/`, a REST + JSON mirror of
+//! the control calls under `/api/v1`, and a WebSocket per scene ([`crate::ws`]).
+//!
+//! | method | path | does |
+//! |---|---|---|
+//! | GET | `/api/v1/presets` | preset names |
+//! | GET, POST | `/api/v1/scenes` | list; create (`{"preset": "dam_break", "overrides": [...]}` or `{"document": "...", "document_format": "toml"}`) |
+//! | GET, DELETE | `/api/v1/scenes/{id}` | get; delete |
+//! | POST | `/api/v1/scenes/{id}/step` | `{"steps": 10}` or `{"until_time": 0.5}` |
+//! | POST | `/api/v1/scenes/{id}/run`, `/pause` | `{"real_time_factor": 1.0}` (0 = as fast as possible) |
+//! | GET | `/api/v1/scenes/{id}/stats` | throughput and streaming statistics |
+//! | GET | `/api/v1/scenes/{id}/ws` | WebSocket: binary frames, JSON control and events |
+//!
+//! Errors are `{"error": "..."}` with 400 (bad request, naming the field), 404
+//! (unknown scene), 409 (wrong state), 413 (body too large) or 429 (server full).
+
+use crate::service::scene::{MAX_STEPS_PER_REQUEST, Shared, State};
+use crate::service::{Registry, SceneSource, ServiceError};
+use axum::extract::{DefaultBodyLimit, Path, State as AxState};
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{Json, Router};
+use floe_engine::scene::load::Format;
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+use std::sync::atomic::Ordering;
+
+/// Largest request body (bytes), as for gRPC.
+pub const MAX_BODY_BYTES: usize = crate::serve::MAX_REQUEST_BYTES;
+
+/// The router: API plus the viewer's files from `web_root`.
+pub fn router(registry: Arc<Registry>, web_root: std::path::PathBuf) -> Router {
+    let api = Router::new()
+        .route("/presets", get(presets))
+        .route("/scenes", get(list).post(create))
+        .route("/scenes/{id}", get(scene).delete(delete))
+        .route("/scenes/{id}/step", post(step))
+        .route("/scenes/{id}/run", post(run))
+        .route("/scenes/{id}/pause", post(pause))
+        .route("/scenes/{id}/stats", get(stats))
+        .route("/scenes/{id}/ws", get(crate::ws::upgrade))
+        .fallback(|| async { ApiError(StatusCode::NOT_FOUND, "no such API route".into()) })
+        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
+        .with_state(registry);
+    Router::new().nest("/api/v1", api).fallback_service(tower_http::services::ServeDir::new(web_root))
+}
+
+/// An error response: a status and a message naming what was wrong.
+#[derive(Debug)]
+pub struct ApiError(pub StatusCode, pub String);
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        (self.0, Json(serde_json::json!({ "error": self.1 }))).into_response()
+    }
+}
+
+impl From<ServiceError> for ApiError {
+    fn from(e: ServiceError) -> Self {
+        let code = match e {
+            ServiceError::NotFound(_) => StatusCode::NOT_FOUND,
+            ServiceError::InvalidArgument(_) => StatusCode::BAD_REQUEST,
+            ServiceError::FailedPrecondition(_) => StatusCode::CONFLICT,
+            ServiceError::ResourceExhausted(_) => StatusCode::TOO_MANY_REQUESTS,
+        };
+        ApiError(code, e.to_string())
+    }
+}
+
+type ApiResult<T> = Result<Json<T>, ApiError>;
+
+/// A scene as JSON.
+#[derive(Debug, Serialize)]
+pub struct SceneView {
+    /// Scene id.
+    pub scene_id: u64,
+    /// Name.
+    pub name: String,
+    /// `paused`, `running`, `halted` or `deleted`.
+    pub state: &'static str,
+    /// Simulated time (s).
+    pub sim_time: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Fluid particles.
+    pub particles: usize,
+    /// Domain (m).
+    pub bounds_min: [f32; 3],
+    /// Domain (m).
+    pub bounds_max: [f32; 3],
+    /// Why it halted, if it did.
+    pub halt_reason: Option<String>,
+    /// Steps per wall second.
+    pub steps_per_second: f64,
+    /// The last dt (s).
+    pub dt: f64,
+    /// Open frame streams.
+    pub subscribers: u32,
+    /// Frames skipped by slow subscribers.
+    pub dropped_frames: u64,
+    /// Snapshots published.
+    pub frames_published: u64,
+}
+
+/// Name of a state in JSON.
+pub fn state_name(s: State) -> &'static str {
+    match s {
+        State::Paused => "paused",
+        State::Running => "running",
+        State::Halted => "halted",
+        State::Deleted => "deleted",
+    }
+}
+
+impl SceneView {
+    /// The view of a scene now.
+    pub fn of(shared: &Shared) -> Self {
+        let s = shared.status();
+        Self {
+            scene_id: shared.id,
+            name: shared.name.clone(),
+            state: state_name(s.state),
+            sim_time: s.time,
+            steps: s.steps,
+            particles: shared.particles,
+            bounds_min: shared.bounds.0,
+            bounds_max: shared.bounds.1,
+            halt_reason: s.halt_reason,
+            steps_per_second: s.steps_per_second,
+            dt: s.dt,
+            subscribers: shared.subscribers.load(Ordering::Relaxed),
+            dropped_frames: shared.dropped_frames.load(Ordering::Relaxed),
+            frames_published: shared.published.load(Ordering::Relaxed),
+        }
+    }
+}
+
+async fn presets() -> Json<&'static [&'static str]> {
+    Json(floe_engine::scene::presets::NAMES)
+}
+
+async fn list(AxState(r): AxState<Arc<Registry>>) -> Json<Vec<SceneView>> {
+    Json(r.list().iter().map(|h| SceneView::of(&h.shared)).collect())
+}
+
+/// `POST /scenes` body.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CreateBody {
+    preset: Option<String>,
+    document: Option<String>,
+    #[serde(default)]
+    document_format: Option<String>,
+    #[serde(default)]
+    overrides: Vec<String>,
+}
+
+async fn create(
+    AxState(r): AxState<Arc<Registry>>,
+    body: Result<Json<CreateBody>, axum::extract::rejection::JsonRejection>,
+) -> Result<(StatusCode, Json<SceneView>), ApiError> {
+    let Json(b) = body.map_err(|e| ApiError(e.status(), e.body_text()))?;
+    let source = match (b.preset, b.document) {
+        (Some(p), None) => SceneSource::Preset(p),
+        (None, Some(text)) => {
+            let format = match b.document_format.as_deref() {
+                None | Some("toml") => Format::Toml,
+                Some("json") => Format::Json,
+                Some(other) => {
+                    return Err(ApiError(
+                        StatusCode::BAD_REQUEST,
+                        format!("document_format: must be \"toml\" or \"json\", got {other:?}"),
+                    ));
+                }
+            };
+            SceneSource::Document { text, format }
+        }
+        _ => return Err(ApiError(StatusCode::BAD_REQUEST, "give exactly one of \"preset\" and \"document\"".into())),
+    };
+    let handle = tokio::task::spawn_blocking(move || r.create(source, &b.overrides))
+        .await
+        .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, e.to_string()))??;
+    Ok((StatusCode::CREATED, Json(SceneView::of(&handle.shared))))
+}
+
+async fn scene(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> ApiResult<SceneView> {
+    Ok(Json(SceneView::of(&r.get(id)?.shared)))
+}
+
+async fn stats(state: AxState<Arc<Registry>>, id: Path<u64>) -> ApiResult<SceneView> {
+    scene(state, id).await
+}
+
+async fn delete(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> ApiResult<SceneView> {
+    let handle = tokio::task::spawn_blocking(move || r.delete(id))
+        .await
+        .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, e.to_string()))??;
+    Ok(Json(SceneView::of(&handle.shared)))
+}
+
+/// `POST /scenes/{id}/step` body.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepBody {
+    /// Steps to take.
+    #[serde(default)]
+    pub steps: u64,
+    /// Or: simulated time to reach (s).
+    #[serde(default)]
+    pub until_time: Option<f64>,
+}
+
+impl StepBody {
+    /// Checks the body: (steps, until).
+    pub fn checked(&self) -> Result<(u64, Option<f64>), String> {
+        match self.until_time {
+            Some(t) if !(t.is_finite() && t >= 0.0) => Err(format!("until_time: must be a time >= 0 s, got {t}")),
+            Some(t) => Ok((0, Some(t))),
+            None if self.steps == 0 || self.steps > MAX_STEPS_PER_REQUEST => {
+                Err(format!("steps: must be between 1 and {MAX_STEPS_PER_REQUEST}, got {}", self.steps))
+            }
+            None => Ok((self.steps, None)),
+        }
+    }
+}
+
+async fn step(
+    AxState(r): AxState<Arc<Registry>>,
+    Path(id): Path<u64>,
+    Json(b): Json<StepBody>,
+) -> ApiResult<SceneView> {
+    let (steps, until) = b.checked().map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))?;
+    let h = r.get(id)?;
+    h.step(steps, until).await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
+    Ok(Json(SceneView::of(&h.shared)))
+}
+
+/// `POST /scenes/{id}/run` body.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunBody {
+    /// Simulated seconds per wall second; 0 = as fast as possible.
+    #[serde(default)]
+    pub real_time_factor: f64,
+}
+
+async fn run(
+    AxState(r): AxState<Arc<Registry>>,
+    Path(id): Path<u64>,
+    body: Option<Json<RunBody>>,
+) -> ApiResult<SceneView> {
+    let rtf = body.map(|b| b.0.real_time_factor).unwrap_or(0.0);
+    if !(rtf.is_finite() && rtf >= 0.0) {
+        return Err(ApiError(StatusCode::BAD_REQUEST, format!("real_time_factor: must be >= 0, got {rtf}")));
+    }
+    let h = r.get(id)?;
+    h.run(rtf).await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
+    Ok(Json(SceneView::of(&h.shared)))
+}
+
+async fn pause(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> ApiResult<SceneView> {
+    let h = r.get(id)?;
+    h.pause().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
+    Ok(Json(SceneView::of(&h.shared)))
+}

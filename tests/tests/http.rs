@@ -1,0 +1,147 @@
+//! The HTTP side: the REST mirror (through the router, as a request would go)
+//! and the per-scene WebSocket against a real server on 127.0.0.1:0.
+
+use axum::body::Body;
+use axum::http::{Request, StatusCode};
+use floe_proto::{Decoder, Limits};
+use floe_server::service::Registry;
+use futures_util::{SinkExt, StreamExt};
+use http_body_util::BodyExt;
+use std::sync::Arc;
+use tokio_tungstenite::tungstenite::Message;
+use tower::ServiceExt;
+
+async fn call(app: &axum::Router, method: &str, uri: &str, body: Option<String>) -> (StatusCode, serde_json::Value) {
+    let req = Request::builder()
+        .method(method)
+        .uri(uri)
+        .header("content-type", "application/json")
+        .body(body.map(Body::from).unwrap_or_else(Body::empty))
+        .unwrap();
+    let res = app.clone().oneshot(req).await.unwrap();
+    let status = res.status();
+    let bytes = res.into_body().collect().await.unwrap().to_bytes();
+    (status, serde_json::from_slice(&bytes).unwrap_or(serde_json::Value::Null))
+}
+
+#[tokio::test]
+async fn rest_mirrors_the_control_calls() {
+    let registry = Arc::new(Registry::new(Default::default()));
+    let app = floe_server::http::router(registry.clone(), "../web".into());
+    let (s, v) = call(&app, "GET", "/api/v1/presets", None).await;
+    assert_eq!((s, v), (StatusCode::OK, serde_json::json!(["dam_break", "hydrostatic"])));
+
+    let body = r#"{"preset": "dam_break", "overrides": ["particle_spacing=0.05"]}"#;
+    let (s, v) = call(&app, "POST", "/api/v1/scenes", Some(body.into())).await;
+    assert_eq!(s, StatusCode::CREATED, "{v}");
+    assert_eq!(v["particles"], 1000);
+    assert_eq!(v["state"], "paused");
+    let id = v["scene_id"].as_u64().unwrap();
+
+    let (s, v) = call(&app, "POST", &format!("/api/v1/scenes/{id}/step"), Some(r#"{"steps": 5}"#.into())).await;
+    assert_eq!((s, v["steps"].as_u64()), (StatusCode::OK, Some(5)));
+    let (s, v) = call(&app, "POST", &format!("/api/v1/scenes/{id}/step"), Some(r#"{"steps": 0}"#.into())).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert!(v["error"].as_str().unwrap().starts_with("steps: must be between 1 and"), "{v}");
+
+    let (s, v) = call(&app, "GET", "/api/v1/scenes/99", None).await;
+    assert_eq!((s, v["error"].as_str()), (StatusCode::NOT_FOUND, Some("no scene with id 99")));
+
+    let bad = r#"{"preset": "dam_break", "overrides": ["fluids[0].rest_density=-3"]}"#;
+    let (s, v) = call(&app, "POST", "/api/v1/scenes", Some(bad.into())).await;
+    assert_eq!(
+        (s, v["error"].as_str()),
+        (StatusCode::BAD_REQUEST, Some("fluids[0].rest_density: must be > 0, got -3"))
+    );
+
+    let huge = format!(r#"{{"document": "{}"}}"#, "#".repeat(9 << 20));
+    let (s, _) = call(&app, "POST", "/api/v1/scenes", Some(huge)).await;
+    assert_eq!(s, StatusCode::PAYLOAD_TOO_LARGE);
+
+    let (s, v) = call(&app, "GET", "/api/v1/scenes", None).await;
+    assert_eq!((s, v.as_array().map(Vec::len)), (StatusCode::OK, Some(1)));
+    let (s, v) = call(&app, "DELETE", &format!("/api/v1/scenes/{id}"), None).await;
+    assert_eq!((s, v["state"].as_str()), (StatusCode::OK, Some("deleted")));
+    let (s, _) = call(&app, "GET", &format!("/api/v1/scenes/{id}"), None).await;
+    assert_eq!(s, StatusCode::NOT_FOUND);
+    registry.shutdown();
+}
+
+#[tokio::test]
+async fn websocket_streams_frames_and_survives_garbage() {
+    let grpc = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let http = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let addr = http.local_addr().unwrap();
+    let registry = Arc::new(Registry::new(Default::default()));
+    let scene = registry
+        .create(floe_server::service::SceneSource::Preset("dam_break".into()), &["particle_spacing=0.05".into()])
+        .unwrap();
+    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
+    let server = tokio::spawn(floe_server::serve::run(
+        floe_server::serve::Listeners { grpc, http },
+        registry,
+        "../web".into(),
+        async {
+            let _ = stopped.await;
+        },
+    ));
+    let url = format!("ws://{addr}/api/v1/scenes/{}/ws?channels=velocity&max_fps=60", scene.shared.id);
+    let (mut ws, _) = tokio_tungstenite::connect_async(url).await.unwrap();
+
+    let mut decoder = Decoder::new(Limits::default());
+    let mut texts = Vec::new();
+    let mut frames = 0;
+    // The greeting status and a first frame.
+    while frames == 0 || texts.is_empty() {
+        match ws.next().await.unwrap().unwrap() {
+            Message::Binary(b) => {
+                let f = decoder.decode(&b).unwrap();
+                assert_eq!(f.positions.len(), 1000);
+                assert!(f.velocities.is_some());
+                frames += 1;
+            }
+            Message::Text(t) => texts.push(serde_json::from_str::<serde_json::Value>(&t).unwrap()),
+            _ => {}
+        }
+    }
+    assert_eq!(texts[0]["type"], "status");
+
+    // Garbage gets an error message; the connection stays usable.
+    for garbage in [Message::Text("hello".into()), Message::Binary(vec![1u8, 2, 3].into())] {
+        ws.send(garbage).await.unwrap();
+        let reply = next_text(&mut ws).await;
+        assert_eq!(reply["type"], "error", "{reply}");
+    }
+    ws.send(Message::Text(r#"{"op": "step", "steps": 3}"#.into())).await.unwrap();
+    let reply = next_text(&mut ws).await;
+    assert_eq!((reply["type"].as_str(), reply["scene"]["steps"].as_u64()), (Some("status"), Some(3)), "{reply}");
+    ws.send(Message::Text(r#"{"op": "run", "real_time_factor": 0}"#.into())).await.unwrap();
+    let mut more = 0;
+    while more < 3 {
+        if let Message::Binary(b) = ws.next().await.unwrap().unwrap() {
+            decoder.decode(&b).unwrap();
+            more += 1;
+        }
+    }
+    stop.send(()).unwrap();
+    // Shutdown deletes the scene: the socket hears about it and closes.
+    let mut saw_deleted = false;
+    while let Some(Ok(m)) = ws.next().await {
+        if let Message::Text(t) = m {
+            saw_deleted |= t.contains(r#""event":"deleted""#);
+        }
+    }
+    assert!(saw_deleted);
+    server.await.unwrap().unwrap();
+}
+
+/// The next text message, skipping frames.
+async fn next_text(
+    ws: &mut tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<tokio::net::TcpStream>>,
+) -> serde_json::Value {
+    loop {
+        if let Message::Text(t) = ws.next().await.unwrap().unwrap() {
+            return serde_json::from_str(&t).unwrap();
+        }
+    }
+}
