@@ -85,6 +85,8 @@ pub struct SceneView {
     pub steps: u64,
     /// Fluid particles.
     pub particles: usize,
+    /// Particle spacing (m), for drawing particles at their size.
+    pub particle_spacing: f32,
     /// Domain (m).
     pub bounds_min: [f32; 3],
     /// Domain (m).
@@ -124,6 +126,7 @@ impl SceneView {
             sim_time: s.time,
             steps: s.steps,
             particles: shared.particles,
+            particle_spacing: shared.particle_spacing,
             bounds_min: shared.bounds.0,
             bounds_max: shared.bounds.1,
             halt_reason: s.halt_reason,

@@ -106,6 +106,8 @@ pub struct Shared {
     pub scene_json: String,
     /// Fluid particles.
     pub particles: usize,
+    /// Particle spacing (m).
+    pub particle_spacing: f32,
     /// Domain (m): frames quantise positions over it.
     pub bounds: ([f32; 3], [f32; 3]),
     /// Latest status.
@@ -187,6 +189,7 @@ impl SceneHandle {
             name: sim.scene().name.clone(),
             scene_json: serde_json::to_string(sim.scene()).expect("scenes serialise"),
             particles: sim.particle_count(),
+            particle_spacing: sim.scene().particle_spacing,
             bounds: (domain.min.to_array(), domain.max.to_array()),
             status: Mutex::new(Status {
                 state: State::Paused,

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# System packages the tests need, installed only when missing: Chromium (the
+# viewer test; Debian's build, no browser download) and Node.js with npm (the
+# JavaScript tests). The Rust build needs none: protoc comes vendored.
+set -euo pipefail
+need=()
+command -v chromium >/dev/null || need+=(chromium)
+command -v node >/dev/null || need+=(nodejs)
+command -v npm >/dev/null || need+=(npm)
+if [ ${#need[@]} -gt 0 ]; then
+  if [ "$(id -u)" != 0 ] || ! command -v apt-get >/dev/null; then
+    echo "missing: ${need[*]}; install them (Debian: apt-get install ${need[*]})" >&2
+    exit 1
+  fi
+  echo "installing ${need[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
+fi

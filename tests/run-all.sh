@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# All of Floe's tests: Rust (unit, physics, validation, service end to end), the
+# JavaScript frame decoder against the golden frames, and the viewer in headless
+# Chromium. Installs missing system packages first (scripts/install-deps.sh).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+echo "== Rust tests"
+cargo test --workspace
+echo "== JavaScript decoder against the golden frames"
+node --test web/test/
+echo "== viewer in headless Chromium"
+cargo build -q -p floe-server
+(cd tests/browser && npm ci --no-audit --no-fund --silent)
+node --test tests/browser/

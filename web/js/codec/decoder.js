@@ -1,0 +1,189 @@
+/**
+ * The frame decoder (mirrors `proto/src/decoder.rs`): checks a frame completely before
+ * trusting it, and keeps the last identity-ordered frame's codes to apply delta frames to.
+ * @module
+ */
+
+import { MalformedError, NeedKeyframeError } from './errors.js';
+import { ChannelKind, DEFAULT_LIMITS, KIND_NAMES, Mode, readHeader } from './header.js';
+import { Predictor, readCodes } from './predict.js';
+import { dequantiseInto, sameQuantizer } from './quantize.js';
+import { Reader } from './reader.js';
+import { Scratch } from './stream.js';
+import { readMortonPositions } from './unordered.js';
+
+/** Output field of each kind tag. */
+const FIELDS = ['positions', 'velocities', 'densities', 'pressures', 'temperatures', 'phases'];
+
+/**
+ * @typedef {object} Frame
+ * @property {import('./header.js').Header} header the header and channel table
+ * @property {Float32Array} positions `3 n` values (m), x, y, z interleaved
+ * @property {Float32Array} [velocities] `3 n` values (m/s), interleaved, if sent
+ * @property {Float32Array} [densities] `n` values (kg/m^3), if sent
+ * @property {Float32Array} [pressures] `n` values (Pa), if sent
+ * @property {Float32Array} [temperatures] `n` values (K), if sent
+ * @property {Uint8Array} [phases] `n` phase or material indices, if sent
+ */
+
+/**
+ * Bytes of `input` as a `Uint8Array` view (no copy).
+ * @param {ArrayBuffer|ArrayBufferView} input
+ * @returns {Uint8Array}
+ */
+function bytesOf(input) {
+  if (input instanceof Uint8Array) return input;
+  if (input instanceof ArrayBuffer) return new Uint8Array(input);
+  if (ArrayBuffer.isView(input)) return new Uint8Array(input.buffer, input.byteOffset, input.byteLength);
+  if (typeof SharedArrayBuffer !== 'undefined' && input instanceof SharedArrayBuffer) return new Uint8Array(input);
+  throw new TypeError('Decoder.decode expects an ArrayBuffer or a Uint8Array');
+}
+
+/** Whether the held channel `held` was quantised exactly as `info` says (Rust `same_quantisation`). */
+function sameQuantisation(held, info) {
+  return (
+    held.tag === info.tag &&
+    held.ranges.length === info.ranges.length &&
+    held.ranges.every((r, k) => sameQuantizer(r, held.bits, info.ranges[k], info.bits))
+  );
+}
+
+/**
+ * Decodes a stream of frames from one encoder. Like Rust's `Decoder`: every frame is checked
+ * against the caller's limits before anything is allocated for it, any invalid input throws a
+ * {@link import('./errors.js').DecodeError} subclass, and a refused frame leaves the state as
+ * it was.
+ */
+export class Decoder {
+  #limits;
+  /** @type {bigint|null} */
+  #lastSequence = null;
+  /** @type {{sceneId: bigint, sequence: bigint, channels: object[], before: Uint16Array[]|null}|null} */
+  #base = null;
+  #scratch = new Scratch();
+
+  /**
+   * @param {{maxParticles?: number, maxFrameBytes?: number}} [limits] most particles and bytes
+   *   per frame (default 16 Mi particles and 1 GiB, as Rust's `Limits::default()`)
+   */
+  constructor(limits = {}) {
+    this.#limits = Object.freeze({ ...DEFAULT_LIMITS, ...limits });
+  }
+
+  /** @returns {{maxParticles: number, maxFrameBytes: number}} the limits in force */
+  get limits() {
+    return this.#limits;
+  }
+
+  /** @returns {bigint|null} sequence number of the last frame decoded, of either mode */
+  get lastSequence() {
+    return this.#lastSequence;
+  }
+
+  /** @returns {bigint|null} sequence number of the identity-ordered frame delta frames can apply to */
+  get heldSequence() {
+    return this.#base === null ? null : this.#base.sequence;
+  }
+
+  /** Forgets the held frame, so only a keyframe decodes next. */
+  reset() {
+    this.#base = null;
+    this.#lastSequence = null;
+  }
+
+  /**
+   * Decodes the frame at the start of `input` (bytes after its frame length are not read).
+   * @param {ArrayBuffer|Uint8Array|ArrayBufferView} input
+   * @returns {Frame}
+   * @throws {import('./errors.js').DecodeError} IncompleteError, MalformedError,
+   *   UnsupportedVersionError, NeedKeyframeError or TooLargeError
+   */
+  decode(input) {
+    const bytes = bytesOf(input);
+    const header = readHeader(bytes, this.#limits);
+    const frame = bytes.subarray(0, header.frameLen);
+    const n = header.particleCount;
+    const identity = header.modeTag === Mode.IDENTITY_ORDERED;
+    let base = null;
+    if (identity && !header.keyframe) {
+      const held = this.#base;
+      if (held === null || held.sequence !== header.baseSequence || held.sceneId !== header.sceneId) {
+        throw new NeedKeyframeError(header.sequence, header.baseSequence, held === null ? null : held.sequence);
+      }
+      base = held;
+    }
+    const r = new Reader(frame, 'channel payloads');
+    r.skip(header.headerLen);
+    const out = { header, positions: new Float32Array(0) };
+    const kept = [];
+    header.channels.forEach((info, i) => {
+      const payload = r.take(info.payloadLen);
+      if (info.tag >= KIND_NAMES.length) return; // a kind this decoder does not know
+      const p = new Reader(payload, 'channel payload');
+      const inChannel = (e) =>
+        e instanceof MalformedError ? new MalformedError(`channel ${i} (${info.kind}): ${e.what}`) : e;
+      if (info.predictorTag === Predictor.MORTON) {
+        try {
+          out.positions = readMortonPositions(p, n, info.ranges, info.bits, this.#scratch);
+        } catch (e) {
+          throw inChannel(e);
+        }
+      } else {
+        const [prev, before] = references(header, info, i, base);
+        const codes = [];
+        try {
+          for (let k = 0; k < info.ranges.length; k++) {
+            const refK = prev !== null && k < prev.codes.length ? prev.codes[k] : null;
+            const beforeK = before !== null && k < before.length ? before[k] : null;
+            codes.push(readCodes(p, n, info.bits, info.predictorTag, refK, beforeK, this.#scratch));
+          }
+        } catch (e) {
+          throw inChannel(e);
+        }
+        store(out, info, codes, n);
+        if (identity) kept.push({ tag: info.tag, bits: info.bits, ranges: info.ranges, codes });
+      }
+      if (p.remaining() !== 0) throw inChannel(new MalformedError(`${p.remaining()} bytes left over`));
+    });
+    if (identity) {
+      const before = base !== null && base.channels.length > 0 ? base.channels[0].codes : null;
+      this.#base = { sceneId: header.sceneId, sequence: header.sequence, channels: kept, before };
+    }
+    this.#lastSequence = header.sequence;
+    return out;
+  }
+}
+
+/**
+ * The base frame's codes of this channel and, for positions, of the frame before the base;
+ * refuses temporal predictors the held frames cannot serve (Rust `Decoder::decode`).
+ */
+function references(header, info, i, base) {
+  const prev = base === null ? null : (base.channels.find((c) => c.tag === info.tag) ?? null);
+  const before = base !== null && info.tag === ChannelKind.POSITION ? base.before : null;
+  const temporal = info.predictorTag === Predictor.BASE || info.predictorTag === Predictor.LINEAR;
+  if (temporal && !(prev !== null && sameQuantisation(prev, info))) {
+    throw new MalformedError(
+      `channel ${i} (${info.kind}) predicts from frame ${header.baseSequence}, which quantised it differently or lacks it`,
+    );
+  }
+  if (info.predictorTag === Predictor.LINEAR && before === null) {
+    throw new MalformedError(
+      `channel ${i} (${info.kind}) extrapolates from frame ${header.baseSequence} and the one before, but that was a keyframe`,
+    );
+  }
+  return [prev, before];
+}
+
+/** De-quantises a channel's codes into the frame's field for its kind (Rust `codes::store`). */
+function store(out, info, codes, n) {
+  const field = FIELDS[info.tag];
+  if (info.tag === ChannelKind.PHASE) {
+    out[field] = Uint8Array.from(codes[0]);
+    return;
+  }
+  const c = codes.length;
+  const values = new Float32Array(c * n);
+  for (let k = 0; k < c; k++) dequantiseInto(codes[k], info.ranges[k], info.bits, values, k, c);
+  out[field] = values;
+}

@@ -1,0 +1,29 @@
+/**
+ * Floe frame codec for the browser viewer: a JavaScript decoder mirroring the Rust reference
+ * (`proto/src/decoder.rs`), plain ES modules with no dependencies, usable on a page, in a Web
+ * Worker (`worker.js`) and in Node 20.
+ *
+ * ```js
+ * import { Decoder } from './codec/index.js';
+ * const decoder = new Decoder({ maxParticles: 1 << 22 });
+ * const frame = decoder.decode(arrayBuffer); // frame.header, frame.positions (Float32Array x,y,z), ...
+ * ```
+ * @module
+ */
+
+export { Decoder } from './decoder.js';
+export {
+  DecodeError, IncompleteError, MalformedError, NeedKeyframeError, TooLargeError, UnsupportedVersionError,
+} from './errors.js';
+export {
+  ChannelKind, DEFAULT_LIMITS, FIXED_HEADER_LEN, KIND_COMPONENTS, KIND_NAMES, MAGIC, MAX_CHANNELS, MAX_COMPONENTS,
+  Mode, VERSION, readHeader,
+} from './header.js';
+export { Lz4Error, decompressBlockInto } from './lz4.js';
+export { decodeKey, encodeKey } from './morton.js';
+export { PREDICTOR_NAMES, Predictor, extrapolate, readCodes } from './predict.js';
+export { checkRange, dequantise, maxErrorOf, stepOf } from './quantize.js';
+export { Reader } from './reader.js';
+export { applyResidual, joinPlanesU16, joinPlanesU48, unzigzag, widthOf, zigzagResidual } from './shuffle.js';
+export { Scratch, readStream } from './stream.js';
+export { readMortonPositions } from './unordered.js';
