@@ -93,6 +93,8 @@ export class Decoder {
 
   /**
    * Decodes the frame at the start of `input` (bytes after its frame length are not read).
+   * The u64 header fields `sceneId`, `sequence`, `baseSequence` and `step` are BigInts (they
+   * may exceed 2^53); `time` and the counts and lengths (u32) are numbers.
    * @param {ArrayBuffer|Uint8Array|ArrayBufferView} input
    * @returns {Frame}
    * @throws {import('./errors.js').DecodeError} IncompleteError, MalformedError,
