@@ -4,7 +4,7 @@
 
 use crate::convert::{self, status};
 use crate::service::frames::FrameOptions;
-use crate::service::scene::{Event, MAX_STEPS_PER_REQUEST};
+use crate::service::scene::{CommandError, Event, MAX_STEPS_PER_REQUEST};
 use crate::service::{Registry, SceneSource, ServiceError};
 use floe_proto::pb::scene_service_server::SceneService;
 use floe_proto::pb::{self, create_scene_request::Source};
@@ -117,6 +117,23 @@ impl SceneService for Grpc {
     async fn get_stats(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneStats>, Status> {
         let handle = self.registry.get(request.into_inner().scene_id).map_err(status)?;
         Ok(Response::new(convert::scene_stats(&handle.shared)))
+    }
+
+    async fn snapshot(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneSnapshot>, Status> {
+        let id = request.into_inner().scene_id;
+        let handle = self.registry.get(id).map_err(status)?;
+        let state = handle.save().await.map_err(|e| status(ServiceError::FailedPrecondition(e.to_string())))?;
+        Ok(Response::new(pb::SceneSnapshot { scene_id: id, state }))
+    }
+
+    async fn restore(&self, request: Request<pb::RestoreRequest>) -> Result<Response<pb::SceneInfo>, Status> {
+        let r = request.into_inner();
+        let handle = self.registry.get(r.scene_id).map_err(status)?;
+        handle.restore(r.state).await.map_err(|e| match e {
+            CommandError::BadSnapshot(_) => status(ServiceError::InvalidArgument(e.to_string())),
+            _ => status(ServiceError::FailedPrecondition(e.to_string())),
+        })?;
+        Ok(Response::new(convert::scene_info(&handle.shared)))
     }
 
     type StreamFramesStream = Streamed<pb::Frame>;

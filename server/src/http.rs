@@ -9,6 +9,7 @@
 //! | POST | `/api/v1/scenes/{id}/step` | `{"steps": 10}` or `{"until_time": 0.5}` |
 //! | POST | `/api/v1/scenes/{id}/run`, `/pause` | `{"real_time_factor": 1.0}` (0 = as fast as possible) |
 //! | GET | `/api/v1/scenes/{id}/stats` | throughput and streaming statistics |
+//! | GET, PUT | `/api/v1/scenes/{id}/snapshot` | the full state as bytes; restore a paused scene from them |
 //! | GET | `/api/v1/scenes/{id}/ws` | WebSocket: binary frames, JSON control and events |
 //!
 //! Errors are `{"error": "..."}` with 400 (bad request, naming the field), 404
@@ -39,6 +40,7 @@ pub fn router(registry: Arc<Registry>, web_root: std::path::PathBuf) -> Router {
         .route("/scenes/{id}/run", post(run))
         .route("/scenes/{id}/pause", post(pause))
         .route("/scenes/{id}/stats", get(stats))
+        .route("/scenes/{id}/snapshot", get(snapshot).put(restore))
         .route("/scenes/{id}/ws", get(crate::ws::upgrade))
         .fallback(|| async { ApiError(StatusCode::NOT_FOUND, "no such API route".into()) })
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
@@ -265,5 +267,23 @@ async fn run(
 async fn pause(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> ApiResult<SceneView> {
     let h = r.get(id)?;
     h.pause().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
+    Ok(Json(SceneView::of(&h.shared)))
+}
+
+async fn snapshot(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> Result<Response, ApiError> {
+    let state = r.get(id)?.save().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
+    Ok(([(axum::http::header::CONTENT_TYPE, "application/octet-stream")], state).into_response())
+}
+
+async fn restore(
+    AxState(r): AxState<Arc<Registry>>,
+    Path(id): Path<u64>,
+    body: axum::body::Bytes,
+) -> ApiResult<SceneView> {
+    let h = r.get(id)?;
+    h.restore(body.to_vec()).await.map_err(|e| match e {
+        crate::service::scene::CommandError::BadSnapshot(_) => ApiError(StatusCode::BAD_REQUEST, e.to_string()),
+        _ => ApiError(StatusCode::CONFLICT, e.to_string()),
+    })?;
     Ok(Json(SceneView::of(&h.shared)))
 }

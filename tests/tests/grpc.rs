@@ -193,3 +193,32 @@ async fn shutdown_while_streaming_ends_cleanly() {
     .await;
     assert!(end.is_ok(), "the frame stream did not end after shutdown");
 }
+
+#[tokio::test]
+async fn snapshot_then_restore_reproduces_the_state_bit_for_bit() {
+    let mut s = start().await;
+    let info = s.client.create_scene(preset("dam_break", &["particle_spacing=0.05"])).await.unwrap().into_inner();
+    let id = info.scene_id;
+    let step = |n| pb::StepRequest { scene_id: id, steps: n, until_time: 0.0 };
+    s.client.step(step(25)).await.unwrap();
+    let saved = s.client.snapshot(pb::SceneRef { scene_id: id }).await.unwrap().into_inner().state;
+    s.client.step(step(15)).await.unwrap();
+    let after = s.client.snapshot(pb::SceneRef { scene_id: id }).await.unwrap().into_inner().state;
+    let restored =
+        s.client.restore(pb::RestoreRequest { scene_id: id, state: saved.clone() }).await.unwrap().into_inner();
+    assert_eq!(restored.steps, 25);
+    s.client.step(step(15)).await.unwrap();
+    let again = s.client.snapshot(pb::SceneRef { scene_id: id }).await.unwrap().into_inner().state;
+    assert!(again == after, "the state after restoring and stepping differs");
+
+    // A damaged snapshot, or one of another scene, is refused and the scene is unchanged.
+    let e = s.client.restore(pb::RestoreRequest { scene_id: id, state: saved[..100].to_vec() }).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert!(e.message().starts_with("state: snapshot is malformed"), "{}", e.message());
+    let other = s.client.create_scene(preset("hydrostatic", &["particle_spacing=0.05"])).await.unwrap().into_inner();
+    let e = s.client.restore(pb::RestoreRequest { scene_id: other.scene_id, state: saved }).await.unwrap_err();
+    assert_eq!((e.code(), e.message()), (Code::InvalidArgument, "state: the snapshot is of a different scene"));
+    let unchanged = s.client.get_scene(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
+    assert_eq!(unchanged.steps, 40);
+    s.shutdown().await;
+}

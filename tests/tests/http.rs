@@ -58,6 +58,23 @@ async fn rest_mirrors_the_control_calls() {
     let (s, _) = call(&app, "POST", "/api/v1/scenes", Some(huge)).await;
     assert_eq!(s, StatusCode::PAYLOAD_TOO_LARGE);
 
+    // Snapshot and restore: the bytes come back and restore the step count.
+    let req = Request::builder().uri(format!("/api/v1/scenes/{id}/snapshot")).body(Body::empty()).unwrap();
+    let res = app.clone().oneshot(req).await.unwrap();
+    assert_eq!(res.status(), StatusCode::OK);
+    let state = res.into_body().collect().await.unwrap().to_bytes();
+    assert!(state.starts_with(b"FLOESNAP"));
+    call(&app, "POST", &format!("/api/v1/scenes/{id}/step"), Some(r#"{"steps": 3}"#.into())).await;
+    let req =
+        Request::builder().method("PUT").uri(format!("/api/v1/scenes/{id}/snapshot")).body(Body::from(state)).unwrap();
+    let res = app.clone().oneshot(req).await.unwrap();
+    assert_eq!(res.status(), StatusCode::OK);
+    let (_, v) = call(&app, "GET", &format!("/api/v1/scenes/{id}"), None).await;
+    assert_eq!(v["steps"], 5);
+    let req =
+        Request::builder().method("PUT").uri(format!("/api/v1/scenes/{id}/snapshot")).body(Body::from("junk")).unwrap();
+    assert_eq!(app.clone().oneshot(req).await.unwrap().status(), StatusCode::BAD_REQUEST);
+
     let (s, v) = call(&app, "GET", "/api/v1/scenes", None).await;
     assert_eq!((s, v.as_array().map(Vec::len)), (StatusCode::OK, Some(1)));
     let (s, v) = call(&app, "DELETE", &format!("/api/v1/scenes/{id}"), None).await;

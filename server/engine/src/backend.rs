@@ -75,4 +75,8 @@ pub trait Backend: Send {
     fn domain(&self) -> crate::math::Aabb;
     /// Copies out positions and the requested channels.
     fn read(&self, channels: &[Channel]) -> Particles;
+    /// Writes the complete stepping state (see [`crate::snapshot`]).
+    fn save(&self, out: &mut crate::snapshot::Writer);
+    /// Loads a state written by [`Backend::save`] for the same scene.
+    fn load(&mut self, r: &mut crate::snapshot::Reader<'_>) -> Result<(), crate::snapshot::SnapshotError>;
 }

@@ -1,10 +1,10 @@
 //! The stability guard: a scene that goes non-finite, over-compressed, too fast
 //! or out of its domain halts with a reason instead of producing garbage.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Why and where a scene stopped.
-#[derive(Debug, Clone, PartialEq, Serialize, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, thiserror::Error)]
 #[error("halted at step {step}, t = {time:.6} s: {reason}{}", particle.map(|p| format!(" (particle {p})")).unwrap_or_default())]
 pub struct Halted {
     /// Step number at which the check failed.

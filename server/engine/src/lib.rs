@@ -21,6 +21,7 @@
 //! - [`timestep`], [`guard`]: adaptive dt and the stability guard.
 //! - [`backend`], [`cpu`]: the backend trait and the rayon CPU backend.
 //! - [`simulation`], [`summary`]: a running scene and its run summary.
+//! - [`snapshot`]: a scene's full state as bytes, restored bit for bit.
 //! - [`export`]: VTK and CSV writers.
 //! - [`validation`]: reference solutions and error measures.
 
@@ -37,6 +38,7 @@ pub mod neighbors;
 pub mod sampling;
 pub mod scene;
 pub mod simulation;
+pub mod snapshot;
 pub mod summary;
 pub mod timestep;
 pub mod validation;

@@ -5,6 +5,7 @@ use crate::cpu::CpuBackend;
 use crate::guard::Halted;
 use crate::model::{BuildError, Model};
 use crate::scene::Scene;
+use crate::snapshot::{MAGIC, Reader, SnapshotError, VERSION, Writer};
 use serde::Serialize;
 
 /// Statistics over every step taken so far.
@@ -136,6 +137,58 @@ impl Simulation {
             each(self, &r);
         }
         Ok(())
+    }
+
+    /// The complete state as bytes (see [`crate::snapshot`]).
+    pub fn snapshot(&self) -> Vec<u8> {
+        let mut w = Writer(Vec::new());
+        w.0.extend_from_slice(MAGIC);
+        w.u32(VERSION);
+        w.bytes(serde_json::to_string(&self.scene).expect("scenes serialise").as_bytes());
+        let s = &self.stats;
+        for v in [s.dt_min, s.dt_mean, s.dt_max, s.max_density_deviation, s.mean_density_deviation, s.max_speed] {
+            w.f64(v);
+        }
+        w.f64(self.dt_sum);
+        w.f64(self.compression_sum);
+        w.bytes(serde_json::to_string(&self.halted).expect("halts serialise").as_bytes());
+        self.backend.save(&mut w);
+        w.0
+    }
+
+    /// Rebuilds a scene from a snapshot, on the CPU backend.
+    pub fn restore(bytes: &[u8]) -> Result<Self, SnapshotError> {
+        let bad = |m: String| SnapshotError::Malformed(m);
+        if bytes.len() < MAGIC.len() || &bytes[..MAGIC.len()] != MAGIC {
+            return Err(bad("it does not start with FLOESNAP".into()));
+        }
+        let mut r = Reader::new(&bytes[MAGIC.len()..]);
+        let version = r.u32("version")?;
+        if version != VERSION {
+            return Err(SnapshotError::UnsupportedVersion(version));
+        }
+        let scene_json = r.bytes("scene")?;
+        let value: serde_json::Value = serde_json::from_slice(scene_json).map_err(|e| bad(format!("scene: {e}")))?;
+        let scene = crate::scene::load::from_value(value).map_err(|e| bad(format!("scene: {e}")))?;
+        let mut sim = Self::new_cpu(scene).map_err(|e| bad(format!("scene: {e}")))?;
+        let mut f = [0.0; 6];
+        for v in &mut f {
+            *v = r.f64("statistics")?;
+        }
+        sim.stats = RunStats {
+            dt_min: f[0],
+            dt_mean: f[1],
+            dt_max: f[2],
+            max_density_deviation: f[3],
+            mean_density_deviation: f[4],
+            max_speed: f[5],
+        };
+        sim.dt_sum = r.f64("statistics")?;
+        sim.compression_sum = r.f64("statistics")?;
+        sim.halted = serde_json::from_slice(r.bytes("halt")?).map_err(|e| bad(format!("halt: {e}")))?;
+        sim.backend.load(&mut r)?;
+        r.finish()?;
+        Ok(sim)
     }
 
     fn record(&mut self, r: &StepReport) {

@@ -54,6 +54,17 @@ pub struct StepControl {
 }
 
 impl StepControl {
+    /// Time left in the current fixed interval (s), for snapshots.
+    pub fn remaining(&self) -> Real {
+        self.remaining
+    }
+
+    /// Restores the state a snapshot recorded.
+    pub fn restore(&mut self, remaining: Real, substeps: u64) {
+        self.remaining = remaining;
+        self.substeps = substeps;
+    }
+
     /// Control for a scene's time-step settings.
     pub fn new(mode: TimeStep) -> Self {
         Self { mode, remaining: 0.0, substeps: 0 }

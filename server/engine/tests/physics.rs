@@ -124,3 +124,34 @@ fn fixed_steps_above_the_limit_are_substepped() {
     // Intervals end exactly on multiples of dt; run_until stops within one sub-step of its end.
     assert!(sim.time() >= 0.05 && sim.time() < 0.05 + sim.stats().dt_max + 1e-6, "t = {}", sim.time());
 }
+
+#[test]
+fn a_restored_snapshot_steps_on_bit_for_bit() {
+    for integrator in ["symplectic_euler", "leapfrog"] {
+        let mut sim = preset("dam_break", &["particle_spacing=0.05", &format!("solver.integrator={integrator}")]);
+        for _ in 0..30 {
+            sim.step().unwrap();
+        }
+        let saved = sim.snapshot();
+        for _ in 0..20 {
+            sim.step().unwrap();
+        }
+        let mut restored = Simulation::restore(&saved).unwrap();
+        assert_eq!(restored.steps(), 30);
+        for _ in 0..20 {
+            restored.step().unwrap();
+        }
+        assert_eq!(restored.snapshot(), sim.snapshot(), "{integrator}");
+        let all = [Channel::Velocity, Channel::Density, Channel::Pressure];
+        assert_eq!(restored.read(&all), sim.read(&all), "{integrator}");
+    }
+    // Damaged snapshots are refused with a reason, never a panic.
+    let saved = preset("dam_break", &["particle_spacing=0.05"]).snapshot();
+    for cut in [0, 7, 12, saved.len() / 2, saved.len() - 1] {
+        let e = Simulation::restore(&saved[..cut]).unwrap_err();
+        assert!(e.to_string().starts_with("snapshot is malformed"), "{e}");
+    }
+    let mut other = saved.clone();
+    other[8] = 9;
+    assert!(Simulation::restore(&other).unwrap_err().to_string().contains("version 9 is not supported"));
+}

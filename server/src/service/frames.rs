@@ -122,9 +122,12 @@ impl Subscription {
                 None
             }
         };
-        let rx = scene.shared.snapshots.subscribe();
+        let mut rx = scene.shared.snapshots.subscribe();
+        // The snapshot held now may be stale (nobody was subscribed while the scene
+        // stepped): treat it as seen, and have the worker publish a fresh one.
+        let last_sequence = rx.borrow_and_update().as_ref().map(|s| s.sequence);
         scene.subscribe(&options.channels);
-        Ok(Self { scene, cache, rx, options, own, last_sequence: None, last_sent: None })
+        Ok(Self { scene, cache, rx, options, own, last_sequence, last_sent: None })
     }
 
     /// The next frame; `None` once the scene is gone.
@@ -151,6 +154,8 @@ impl Subscription {
 
     async fn encode(&mut self, s: Arc<Snapshot>) -> Result<EncodedFrame, EncodeError> {
         let skipped = self.last_sequence.map_or(0, |l| s.sequence - l - 1);
+        // The first frame's predecessor was never sent to this subscriber.
+        let skipped = if self.last_sent.is_none() { 0 } else { skipped };
         self.scene.shared.dropped_frames.fetch_add(skipped, Ordering::Relaxed);
         self.last_sequence = Some(s.sequence);
         self.last_sent = Some(Instant::now());

@@ -74,6 +74,9 @@ pub enum CommandError {
     /// The worker is gone (the scene was deleted).
     #[error("scene was deleted")]
     Gone,
+    /// A snapshot could not be restored into this scene.
+    #[error("state: {0}")]
+    BadSnapshot(String),
 }
 
 /// A request to a scene's worker.
@@ -92,6 +95,13 @@ enum Command {
     },
     /// A subscriber joined: publish a fresh snapshot even if paused.
     Publish,
+    Save {
+        reply: oneshot::Sender<Vec<u8>>,
+    },
+    Restore {
+        state: Vec<u8>,
+        reply: oneshot::Sender<Result<Status, CommandError>>,
+    },
     Delete,
 }
 
@@ -241,6 +251,20 @@ impl SceneHandle {
         rx.await.map_err(|_| CommandError::Gone)
     }
 
+    /// The scene's complete state (see `floe_engine::snapshot`).
+    pub async fn save(&self) -> Result<Vec<u8>, CommandError> {
+        let (reply, rx) = oneshot::channel();
+        self.send(Command::Save { reply })?;
+        rx.await.map_err(|_| CommandError::Gone)
+    }
+
+    /// Replaces a paused scene's state with a snapshot of the same scene.
+    pub async fn restore(&self, state: Vec<u8>) -> Result<Status, CommandError> {
+        let (reply, rx) = oneshot::channel();
+        self.send(Command::Restore { state, reply })?;
+        rx.await.map_err(|_| CommandError::Gone)?
+    }
+
     /// Registers a frame subscriber wanting `channels` and has the worker publish
     /// a fresh snapshot for it. Undo with [`Shared::unsubscribe`].
     pub fn subscribe(&self, channels: &[Channel]) {
@@ -292,6 +316,13 @@ impl Worker {
             match command {
                 Some(Command::Delete) => break,
                 Some(Command::Publish) => self.publish(),
+                Some(Command::Save { reply }) => {
+                    let _ = reply.send(self.sim.snapshot());
+                }
+                Some(Command::Restore { state, reply }) => {
+                    let r = if self.running.is_some() { Err(CommandError::Running) } else { self.restore(&state) };
+                    let _ = reply.send(r);
+                }
                 Some(Command::Pause { reply }) => {
                     self.running = None;
                     self.set_state(State::Paused);
@@ -339,6 +370,23 @@ impl Worker {
         let _ = self.shared.events.send(Event::Deleted);
         // Wakes frame subscribers waiting for a snapshot, so they see the deletion.
         self.shared.snapshots.send_replace(None);
+    }
+
+    fn restore(&mut self, state: &[u8]) -> Result<Status, CommandError> {
+        let sim = Simulation::restore(state).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
+        if sim.scene() != self.sim.scene() {
+            return Err(CommandError::BadSnapshot("the snapshot is of a different scene".into()));
+        }
+        self.sim = sim;
+        {
+            let mut s = self.shared.status.lock().expect("lock");
+            s.time = self.sim.time();
+            s.steps = self.sim.steps();
+            s.halt_reason = self.sim.halted().map(|h| h.to_string());
+            s.state = if s.halt_reason.is_some() { State::Halted } else { State::Paused };
+        }
+        self.publish();
+        Ok(self.shared.status())
     }
 
     fn refuse_if_halted(&self) -> Result<(), CommandError> {

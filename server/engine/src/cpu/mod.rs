@@ -13,6 +13,7 @@ use crate::math::{Real, Vec3};
 use crate::model::Model;
 use crate::neighbors::{Grid, permute};
 use crate::scene::Integrator;
+use crate::snapshot::{Reader, SnapshotError, Writer};
 use crate::timestep::{Limits, StepControl};
 use rayon::prelude::*;
 
@@ -77,13 +78,20 @@ impl CpuBackend {
         }
     }
 
-    /// Sorts by cell, then computes density, pressure, accelerations and measures.
-    fn evaluate(&mut self) -> Result<Measures, Halted> {
+    /// Sorts by cell (a stable sort: sorting sorted particles changes nothing) and
+    /// computes density and pressure.
+    fn sort_and_density(&mut self) {
         self.grid.sort(&self.pos, &mut self.cells, &mut self.order);
         permute(&mut self.pos, &mut self.scratch_v, &self.order);
         permute(&mut self.vel, &mut self.scratch_v, &self.order);
+        permute(&mut self.acc, &mut self.scratch_v, &self.order);
         permute(&mut self.ids, &mut self.scratch_u, &self.order);
         passes::density(&self.model, &self.grid, &self.pos, &mut self.neighbors, &mut self.rho, &mut self.pterm);
+    }
+
+    /// Sorts, then computes density, pressure, accelerations and measures.
+    fn evaluate(&mut self) -> Result<Measures, Halted> {
+        self.sort_and_density();
         passes::wall_pressure(&self.model, &self.grid, &self.pos, &self.rho, &self.pterm, &mut self.wall_p);
         passes::forces(
             &self.model,
@@ -205,6 +213,70 @@ impl Backend for CpuBackend {
 
     fn domain(&self) -> crate::math::Aabb {
         self.model.domain
+    }
+
+    fn save(&self, out: &mut Writer) {
+        out.f64(self.time);
+        out.u64(self.steps);
+        out.f32(self.control.remaining());
+        out.u64(self.control.substeps);
+        out.u64(self.pos.len() as u64);
+        for v in [&self.pos, &self.vel, &self.acc] {
+            out.f32s(v.iter().flat_map(|x| x.to_array()).collect::<Vec<_>>().into_iter());
+        }
+        out.f32s(self.ids.iter().map(|&i| f32::from_bits(i)).collect::<Vec<_>>().into_iter());
+        match &self.measures {
+            None => out.u32(0),
+            Some(m) => {
+                out.u32(1);
+                out.f32(m.max_speed2.0);
+                out.u32(m.max_speed2.1);
+                out.f32(m.max_accel2);
+                out.f32(m.max_compression.0);
+                out.u32(m.max_compression.1);
+                out.f64(m.sum_compression);
+            }
+        }
+    }
+
+    fn load(&mut self, r: &mut Reader<'_>) -> Result<(), SnapshotError> {
+        let time = r.f64("time")?;
+        let steps = r.u64("steps")?;
+        let (remaining, substeps) = (r.f32("time step control")?, r.u64("time step control")?);
+        let n = r.u64("particle count")?;
+        if n != self.pos.len() as u64 {
+            return Err(SnapshotError::Malformed(format!("{n} particles, the scene has {}", self.pos.len())));
+        }
+        let n = n as usize;
+        let vecs = |v: Vec<f32>| v.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])).collect::<Vec<_>>();
+        let pos = vecs(r.f32s(3 * n, "positions")?);
+        let vel = vecs(r.f32s(3 * n, "velocities")?);
+        let acc = vecs(r.f32s(3 * n, "accelerations")?);
+        let ids: Vec<u32> = r.f32s(n, "ids")?.into_iter().map(f32::to_bits).collect();
+        let mut seen = vec![false; n];
+        for &i in &ids {
+            if i as usize >= n || std::mem::replace(&mut seen[i as usize], true) {
+                return Err(SnapshotError::Malformed(format!("particle ids are not a permutation (id {i})")));
+            }
+        }
+        let measures = match r.u32("measures flag")? {
+            0 => None,
+            1 => Some(Measures {
+                max_speed2: (r.f32("measures")?, r.u32("measures")?),
+                max_accel2: r.f32("measures")?,
+                max_compression: (r.f32("measures")?, r.u32("measures")?),
+                sum_compression: r.f64("measures")?,
+                non_finite: None,
+                outside: None,
+            }),
+            f => return Err(SnapshotError::Malformed(format!("measures flag {f}"))),
+        };
+        (self.time, self.steps, self.pos, self.vel, self.acc, self.ids, self.measures) =
+            (time, steps, pos, vel, acc, ids, measures);
+        self.control.restore(remaining, substeps);
+        // Densities for output right away; the next step recomputes them identically.
+        self.sort_and_density();
+        Ok(())
     }
 
     fn read(&self, channels: &[Channel]) -> Particles {
