@@ -1,0 +1,198 @@
+//! # floe-client
+//!
+//! A typed async client for a Floe server over gRPC (`floe.v1.SceneService`),
+//! with frames decoded into position arrays.
+//!
+//! ```no_run
+//! # async fn demo() -> Result<(), floe_client::ClientError> {
+//! let mut floe = floe_client::Client::connect("http://127.0.0.1:50051").await?;
+//! let scene = floe.create_preset("dam_break", &["particle_spacing=0.025"]).await?;
+//! floe.step(scene.scene_id, 100).await?;
+//! let mut frames = floe.frames(scene.scene_id, floe_client::FrameRequest::default()).await?;
+//! if let Some(frame) = frames.next().await? {
+//!     println!("t = {} s, {} particles", frame.header.time, frame.positions.len());
+//! }
+//! # Ok(()) }
+//! ```
+//!
+//! - [`Client`]: the calls. [`Frames`]: a decoded frame stream. [`recording`]: frames to and from files.
+
+pub mod recording;
+
+use floe_proto::pb::scene_service_client::SceneServiceClient;
+use floe_proto::pb::{self, create_scene_request::Source};
+use floe_proto::{Decoder, Frame, Limits};
+use tonic::transport::Channel;
+
+pub use floe_proto::pb::{SceneInfo, SceneStats};
+
+/// What went wrong talking to a server.
+#[derive(Debug, thiserror::Error)]
+pub enum ClientError {
+    /// Could not connect.
+    #[error("cannot connect to {address}: {source}")]
+    Connect {
+        /// The address.
+        address: String,
+        /// The cause.
+        source: tonic::transport::Error,
+    },
+    /// The server refused the call; the message names what was wrong.
+    #[error("{} ({:?})", .0.message(), .0.code())]
+    Status(#[from] tonic::Status),
+    /// A frame could not be decoded.
+    #[error("frame: {0}")]
+    Decode(#[from] floe_proto::DecodeError),
+}
+
+/// Options of a frame stream.
+#[derive(Debug, Clone)]
+pub struct FrameRequest {
+    /// Extra channels: velocity, density, pressure.
+    pub channels: Vec<pb::Channel>,
+    /// Most frames per second.
+    pub max_fps: f64,
+    /// Bits per position axis, 8 to 16.
+    pub position_bits: u32,
+    /// Identity-ordered (particle i stays i) rather than unordered.
+    pub identity: bool,
+}
+
+impl Default for FrameRequest {
+    fn default() -> Self {
+        Self { channels: Vec::new(), max_fps: 30.0, position_bits: 16, identity: true }
+    }
+}
+
+/// A connection to a Floe server.
+#[derive(Debug, Clone)]
+pub struct Client {
+    inner: SceneServiceClient<Channel>,
+}
+
+/// Largest message the client accepts (bytes): snapshots of large scenes.
+const MAX_MESSAGE_BYTES: usize = 512 << 20;
+
+impl Client {
+    /// Connects to `address`, e.g. `http://127.0.0.1:50051`.
+    pub async fn connect(address: &str) -> Result<Self, ClientError> {
+        let err = |source| ClientError::Connect { address: address.into(), source };
+        let channel =
+            tonic::transport::Endpoint::from_shared(address.to_owned()).map_err(err)?.connect().await.map_err(err)?;
+        Ok(Self { inner: SceneServiceClient::new(channel).max_decoding_message_size(MAX_MESSAGE_BYTES) })
+    }
+
+    /// Creates a scene from a preset with `key=value` overrides.
+    pub async fn create_preset(&mut self, preset: &str, overrides: &[&str]) -> Result<SceneInfo, ClientError> {
+        self.create(Source::Preset(preset.into()), "", overrides).await
+    }
+
+    /// Creates a scene from a document (`format`: "toml" or "json").
+    pub async fn create_document(
+        &mut self,
+        text: &str,
+        format: &str,
+        overrides: &[&str],
+    ) -> Result<SceneInfo, ClientError> {
+        self.create(Source::Document(text.into()), format, overrides).await
+    }
+
+    async fn create(&mut self, source: Source, format: &str, overrides: &[&str]) -> Result<SceneInfo, ClientError> {
+        let req = pb::CreateSceneRequest {
+            source: Some(source),
+            document_format: format.into(),
+            overrides: overrides.iter().map(|s| s.to_string()).collect(),
+        };
+        Ok(self.inner.create_scene(req).await?.into_inner())
+    }
+
+    /// One scene.
+    pub async fn get(&mut self, scene_id: u64) -> Result<SceneInfo, ClientError> {
+        Ok(self.inner.get_scene(pb::SceneRef { scene_id }).await?.into_inner())
+    }
+
+    /// Every scene.
+    pub async fn list(&mut self) -> Result<Vec<SceneInfo>, ClientError> {
+        Ok(self.inner.list_scenes(pb::ListScenesRequest {}).await?.into_inner().scenes)
+    }
+
+    /// Deletes a scene.
+    pub async fn delete(&mut self, scene_id: u64) -> Result<SceneInfo, ClientError> {
+        Ok(self.inner.delete_scene(pb::SceneRef { scene_id }).await?.into_inner())
+    }
+
+    /// Steps a paused scene `steps` times.
+    pub async fn step(&mut self, scene_id: u64, steps: u64) -> Result<SceneInfo, ClientError> {
+        Ok(self.inner.step(pb::StepRequest { scene_id, steps, until_time: 0.0 }).await?.into_inner())
+    }
+
+    /// Steps a paused scene until simulated time `t` (s).
+    pub async fn step_until(&mut self, scene_id: u64, t: f64) -> Result<SceneInfo, ClientError> {
+        Ok(self.inner.step(pb::StepRequest { scene_id, steps: 0, until_time: t }).await?.into_inner())
+    }
+
+    /// Runs continuously at `real_time_factor` (0: as fast as possible).
+    pub async fn run(&mut self, scene_id: u64, real_time_factor: f64) -> Result<SceneInfo, ClientError> {
+        Ok(self.inner.run(pb::RunRequest { scene_id, real_time_factor }).await?.into_inner())
+    }
+
+    /// Pauses.
+    pub async fn pause(&mut self, scene_id: u64) -> Result<SceneInfo, ClientError> {
+        Ok(self.inner.pause(pb::SceneRef { scene_id }).await?.into_inner())
+    }
+
+    /// Throughput and streaming statistics.
+    pub async fn stats(&mut self, scene_id: u64) -> Result<SceneStats, ClientError> {
+        Ok(self.inner.get_stats(pb::SceneRef { scene_id }).await?.into_inner())
+    }
+
+    /// The full state as bytes.
+    pub async fn snapshot(&mut self, scene_id: u64) -> Result<Vec<u8>, ClientError> {
+        Ok(self.inner.snapshot(pb::SceneRef { scene_id }).await?.into_inner().state)
+    }
+
+    /// Restores a paused scene from [`Client::snapshot`] bytes.
+    pub async fn restore(&mut self, scene_id: u64, state: Vec<u8>) -> Result<SceneInfo, ClientError> {
+        Ok(self.inner.restore(pb::RestoreRequest { scene_id, state }).await?.into_inner())
+    }
+
+    /// A stream of decoded frames.
+    pub async fn frames(&mut self, scene_id: u64, r: FrameRequest) -> Result<Frames, ClientError> {
+        let req = pb::StreamFramesRequest {
+            scene_id,
+            channels: r.channels.iter().map(|&c| c as i32).collect(),
+            max_fps: r.max_fps,
+            position_bits: r.position_bits,
+            mode: if r.identity { pb::FrameMode::Identity } else { pb::FrameMode::Unordered } as i32,
+        };
+        let stream = self.inner.stream_frames(req).await?.into_inner();
+        Ok(Frames { stream, decoder: Decoder::new(Limits::default()) })
+    }
+
+    /// The scene's events (halted, deleted).
+    pub async fn events(&mut self, scene_id: u64) -> Result<tonic::Streaming<pb::SceneEvent>, ClientError> {
+        Ok(self.inner.stream_events(pb::SceneRef { scene_id }).await?.into_inner())
+    }
+}
+
+/// Decoded frames of one scene, in order.
+#[derive(Debug)]
+pub struct Frames {
+    stream: tonic::Streaming<pb::Frame>,
+    decoder: Decoder,
+}
+
+impl Frames {
+    /// The next frame, decoded; `None` when the stream ends (scene deleted, server stopped).
+    pub async fn next(&mut self) -> Result<Option<Frame>, ClientError> {
+        Ok(match self.next_raw().await? {
+            Some(bytes) => Some(self.decoder.decode(&bytes)?),
+            None => None,
+        })
+    }
+
+    /// The next frame as the server encoded it (for recording).
+    pub async fn next_raw(&mut self) -> Result<Option<Vec<u8>>, ClientError> {
+        Ok(self.stream.message().await?.map(|f| f.data))
+    }
+}
