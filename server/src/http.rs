@@ -135,7 +135,7 @@ impl SceneView {
             steps_per_second: s.steps_per_second,
             dt: s.dt,
             subscribers: shared.subscribers.load(Ordering::Relaxed),
-            dropped_frames: shared.dropped_frames.load(Ordering::Relaxed),
+            dropped_frames: shared.dropped_frames(),
             frames_published: shared.published.load(Ordering::Relaxed),
         }
     }

@@ -108,6 +108,8 @@ pub struct Subscription {
     options: FrameOptions,
     own: Option<Encoder>,
     last_sequence: Option<u64>,
+    /// `last_sequence` shared with the scene's dropped-frame count.
+    delivered: Arc<std::sync::atomic::AtomicU64>,
     last_sent: Option<Instant>,
 }
 
@@ -126,8 +128,11 @@ impl Subscription {
         // The snapshot held now may be stale (nobody was subscribed while the scene
         // stepped): treat it as seen, and have the worker publish a fresh one.
         let last_sequence = rx.borrow_and_update().as_ref().map(|s| s.sequence);
+        // The fresh snapshot the worker publishes next is this subscriber's first.
+        let delivered = Arc::new(std::sync::atomic::AtomicU64::new(last_sequence.unwrap_or(0)));
+        scene.shared.track(&delivered);
         scene.subscribe(&options.channels);
-        Ok(Self { scene, cache, rx, options, own, last_sequence, last_sent: None })
+        Ok(Self { scene, cache, rx, options, own, last_sequence, delivered, last_sent: None })
     }
 
     /// The next frame; `None` once the scene is gone.
@@ -156,8 +161,9 @@ impl Subscription {
         let skipped = self.last_sequence.map_or(0, |l| s.sequence - l - 1);
         // The first frame's predecessor was never sent to this subscriber.
         let skipped = if self.last_sent.is_none() { 0 } else { skipped };
-        self.scene.shared.dropped_frames.fetch_add(skipped, Ordering::Relaxed);
+        self.scene.shared.add_dropped(skipped);
         self.last_sequence = Some(s.sequence);
+        self.delivered.store(s.sequence, Ordering::Relaxed);
         self.last_sent = Some(Instant::now());
         let sequence = s.sequence;
         // Encoding a large frame takes milliseconds: keep it off the async workers.

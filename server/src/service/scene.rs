@@ -129,8 +129,12 @@ pub struct Shared {
     /// Open frame streams, and per channel how many of them asked for it.
     pub subscribers: AtomicU32,
     wanted: Mutex<Vec<(Channel, u32)>>,
-    /// Frames skipped by slow subscribers.
-    pub dropped_frames: AtomicU64,
+    /// Frames skipped by subscribers that went on to a later frame.
+    dropped_frames: AtomicU64,
+    /// Per live subscription, the sequence of the last snapshot it received (or
+    /// the one it started at), so frames a blocked subscriber is missing count
+    /// as dropped while it is blocked, not only once it reads again.
+    delivered: Mutex<Vec<std::sync::Weak<AtomicU64>>>,
     /// Snapshots published.
     pub published: AtomicU64,
     /// Set on delete, so a long hand-step ends at the next step.
@@ -160,6 +164,33 @@ impl Shared {
             }
         }
         wanted.retain(|w| w.1 > 0);
+    }
+
+    /// Tracks a subscription's last received sequence (see [`Shared::dropped_frames`]).
+    pub fn track(&self, last: &Arc<AtomicU64>) {
+        let mut d = self.delivered.lock().expect("lock");
+        d.retain(|w| w.strong_count() > 0);
+        d.push(Arc::downgrade(last));
+    }
+
+    /// Records `n` frames a subscriber skipped.
+    pub fn add_dropped(&self, n: u64) {
+        self.dropped_frames.fetch_add(n, Ordering::Relaxed);
+    }
+
+    /// Frames skipped by subscribers so far: those skipped before a frame they
+    /// received, plus those a subscriber is missing right now.
+    pub fn dropped_frames(&self) -> u64 {
+        let latest = self.snapshots.borrow().as_ref().map_or(0, |s| s.sequence);
+        let pending: u64 = self
+            .delivered
+            .lock()
+            .expect("lock")
+            .iter()
+            .filter_map(|w| w.upgrade())
+            .map(|last| latest.saturating_sub(last.load(Ordering::Relaxed)).saturating_sub(1))
+            .sum();
+        self.dropped_frames.load(Ordering::Relaxed) + pending
     }
 
     /// The union of the channels subscribers want: the only ones read back.
@@ -214,6 +245,7 @@ impl SceneHandle {
             subscribers: AtomicU32::new(0),
             wanted: Mutex::new(Vec::new()),
             dropped_frames: AtomicU64::new(0),
+            delivered: Mutex::new(Vec::new()),
             published: AtomicU64::new(0),
             cancel: std::sync::atomic::AtomicBool::new(false),
         });
