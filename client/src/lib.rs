@@ -146,6 +146,12 @@ impl Client {
         Ok(self.inner.get_stats(pb::SceneRef { scene_id }).await?.into_inner())
     }
 
+    /// Changes tunable settings (`key=value` overrides, e.g. `gravity=[0,-1,0]`).
+    pub async fn set_parameters(&mut self, scene_id: u64, overrides: &[&str]) -> Result<SceneInfo, ClientError> {
+        let overrides = overrides.iter().map(|s| s.to_string()).collect();
+        Ok(self.inner.set_parameters(pb::SetParametersRequest { scene_id, overrides }).await?.into_inner())
+    }
+
     /// The full state as bytes.
     pub async fn snapshot(&mut self, scene_id: u64) -> Result<Vec<u8>, ClientError> {
         Ok(self.inner.snapshot(pb::SceneRef { scene_id }).await?.into_inner().state)

@@ -112,6 +112,9 @@ pub fn scene_event(scene_id: u64, e: Event) -> pb::SceneEvent {
             reason: h.reason,
             particle: h.particle,
         }),
+        Event::ParameterChanged(overrides) => {
+            pb::scene_event::Kind::ParameterChanged(pb::ParameterChanged { overrides })
+        }
         Event::Deleted => pb::scene_event::Kind::Deleted(pb::Deleted {}),
     };
     pb::SceneEvent { scene_id, kind: Some(kind) }

@@ -119,6 +119,19 @@ impl SceneService for Grpc {
         Ok(Response::new(convert::scene_stats(&handle.shared)))
     }
 
+    async fn set_parameters(
+        &self,
+        request: Request<pb::SetParametersRequest>,
+    ) -> Result<Response<pb::SceneInfo>, Status> {
+        let r = request.into_inner();
+        let handle = self.registry.get(r.scene_id).map_err(status)?;
+        handle.set_parameters(r.overrides).await.map_err(|e| match e {
+            CommandError::BadParameter(m) => status(ServiceError::InvalidArgument(m)),
+            _ => status(ServiceError::FailedPrecondition(e.to_string())),
+        })?;
+        Ok(Response::new(convert::scene_info(&handle.shared)))
+    }
+
     async fn snapshot(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneSnapshot>, Status> {
         let id = request.into_inner().scene_id;
         let handle = self.registry.get(id).map_err(status)?;

@@ -9,6 +9,7 @@
 //! | POST | `/api/v1/scenes/{id}/step` | `{"steps": 10}` or `{"until_time": 0.5}` |
 //! | POST | `/api/v1/scenes/{id}/run`, `/pause` | `{"real_time_factor": 1.0}` (0 = as fast as possible) |
 //! | GET | `/api/v1/scenes/{id}/stats` | throughput and streaming statistics |
+//! | POST | `/api/v1/scenes/{id}/parameters` | `{"overrides": ["gravity=[0,-1,0]"]}`: change tunable settings |
 //! | GET, PUT | `/api/v1/scenes/{id}/snapshot` | the full state as bytes; restore a paused scene from them |
 //! | GET | `/api/v1/scenes/{id}/ws` | WebSocket: binary frames, JSON control and events |
 //!
@@ -41,6 +42,7 @@ pub fn router(registry: Arc<Registry>, web_root: std::path::PathBuf) -> Router {
         .route("/scenes/{id}/pause", post(pause))
         .route("/scenes/{id}/stats", get(stats))
         .route("/scenes/{id}/snapshot", get(snapshot).put(restore))
+        .route("/scenes/{id}/parameters", post(parameters))
         .route("/scenes/{id}/ws", get(crate::ws::upgrade))
         .fallback(|| async { ApiError(StatusCode::NOT_FOUND, "no such API route".into()) })
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
@@ -283,6 +285,26 @@ async fn restore(
     let h = r.get(id)?;
     h.restore(body.to_vec()).await.map_err(|e| match e {
         crate::service::scene::CommandError::BadSnapshot(_) => ApiError(StatusCode::BAD_REQUEST, e.to_string()),
+        _ => ApiError(StatusCode::CONFLICT, e.to_string()),
+    })?;
+    Ok(Json(SceneView::of(&h.shared)))
+}
+
+/// `POST /scenes/{id}/parameters` body.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ParametersBody {
+    overrides: Vec<String>,
+}
+
+async fn parameters(
+    AxState(r): AxState<Arc<Registry>>,
+    Path(id): Path<u64>,
+    Json(b): Json<ParametersBody>,
+) -> ApiResult<SceneView> {
+    let h = r.get(id)?;
+    h.set_parameters(b.overrides).await.map_err(|e| match e {
+        crate::service::scene::CommandError::BadParameter(m) => ApiError(StatusCode::BAD_REQUEST, m),
         _ => ApiError(StatusCode::CONFLICT, e.to_string()),
     })?;
     Ok(Json(SceneView::of(&h.shared)))

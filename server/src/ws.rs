@@ -3,7 +3,8 @@
 //! text messages are JSON both ways.
 //!
 //! Client to server: `{"op": "run", "real_time_factor": 1}`, `{"op": "pause"}`,
-//! `{"op": "step", "steps": 1}` (or `"until_time"`), `{"op": "status"}`.
+//! `{"op": "step", "steps": 1}` (or `"until_time"`), `{"op": "set", "overrides": ["gravity=[0,-1,0]"]}`,
+//! `{"op": "status"}`.
 //! Server to client: `{"type": "status", "scene": {...}}` after each op,
 //! `{"type": "event", "event": "halted", "reason": "...", "step": n, "sim_time": t}`,
 //! `{"type": "event", "event": "deleted"}` (then the socket closes), and
@@ -104,6 +105,9 @@ fn event_message(e: &Event) -> Message {
             "type": "event", "event": "halted", "reason": h.to_string(), "step": h.step, "sim_time": h.time,
             "particle": h.particle,
         })),
+        Event::ParameterChanged(o) => {
+            json(serde_json::json!({ "type": "event", "event": "parameter_changed", "overrides": o }))
+        }
         Event::Deleted => json(serde_json::json!({ "type": "event", "event": "deleted" })),
     }
 }
@@ -122,6 +126,9 @@ enum Control {
         steps: u64,
         #[serde(default)]
         until_time: Option<f64>,
+    },
+    Set {
+        overrides: Vec<String>,
     },
     Status,
 }
@@ -145,6 +152,7 @@ async fn control(handle: &SceneHandle, text: &str) -> Message {
             Ok((n, until)) => handle.step(n, until).await.map(|_| ()).map_err(|e| e.to_string()),
             Err(m) => Err(m),
         },
+        Control::Set { overrides } => handle.set_parameters(overrides).await.map(|_| ()).map_err(|e| e.to_string()),
         Control::Status => Ok(()),
     };
     match result {

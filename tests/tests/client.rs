@@ -56,6 +56,27 @@ async fn the_client_drives_a_scene_and_records_it() {
     floe.step(id, 3).await.unwrap();
     assert_eq!(floe.restore(id, state).await.unwrap().steps, steps);
 
+    let mut events = floe.events(id).await.unwrap();
+    floe.set_parameters(id, &["gravity=[0,-1.62,0]"]).await.unwrap();
+    let event = events.message().await.unwrap().expect("an event");
+    match event.kind {
+        Some(floe_proto::pb::scene_event::Kind::ParameterChanged(p)) => {
+            assert_eq!(p.overrides, ["gravity=[0,-1.62,0]"])
+        }
+        other => panic!("expected a parameter change, got {other:?}"),
+    }
+    match floe.set_parameters(id, &["particle_spacing=0.01"]).await {
+        Err(ClientError::Status(s)) => {
+            assert_eq!(s.code(), tonic::Code::InvalidArgument);
+            assert!(
+                s.message().starts_with("particle_spacing: cannot change while the scene exists"),
+                "{}",
+                s.message()
+            );
+        }
+        other => panic!("expected InvalidArgument, got {other:?}"),
+    }
+
     match floe.get(404).await {
         Err(ClientError::Status(s)) => assert_eq!(s.code(), tonic::Code::NotFound),
         other => panic!("expected NotFound, got {other:?}"),

@@ -99,6 +99,9 @@ function onText(msg) {
   } else if (msg.type === 'event' && msg.event === 'halted') {
     state.running = false;
     banner(`Halted: ${msg.reason}`);
+  } else if (msg.type === 'event' && msg.event === 'parameter_changed') {
+    $('param').value = '';
+    $('param').placeholder = `applied: ${msg.overrides.join(' ')}`;
   } else if (msg.type === 'event' && msg.event === 'deleted') {
     refreshScenes();
   } else if (msg.type === 'error') {
@@ -139,6 +142,10 @@ $('step').onclick = () => send({ op: 'step', steps: 1 });
 $('rtf').oninput = () => { const v = rtf(); if (state.running) send({ op: 'run', real_time_factor: v }); };
 $('colour').onchange = () => { if (state.scene) open(state.scene); };
 $('scenes').onchange = () => refreshScenes(Number($('scenes').value));
+$('apply').onclick = () => {
+  const text = $('param').value.trim();
+  if (text) send({ op: 'set', overrides: text.split(/\s+/) });
+};
 $('delete').onclick = async () => {
   if (!state.scene) return;
   close();
@@ -162,7 +169,7 @@ $('create-doc').onclick = () => {
 };
 $('file').onchange = async () => { $('document').value = await $('file').files[0].text(); };
 addEventListener('keydown', (e) => {
-  if (e.target.tagName === 'TEXTAREA') return;
+  if (e.target.tagName === 'TEXTAREA' || (e.target.tagName === 'INPUT' && e.target.type === 'text')) return;
   if (e.key === ' ') { e.preventDefault(); send(state.running ? { op: 'pause' } : { op: 'run', real_time_factor: rtf() }); }
   if (e.key === 's') send({ op: 'step', steps: 1 });
 });

@@ -61,6 +61,14 @@ enum Command {
         /// Scene id.
         id: u64,
     },
+    /// Change tunable settings of a scene, e.g. `floectl set 2 gravity=[0,-1,0]`.
+    Set {
+        /// Scene id.
+        id: u64,
+        /// `key=value` overrides.
+        #[arg(required = true, value_name = "KEY=VALUE")]
+        overrides: Vec<String>,
+    },
     /// Print a live statistics line every second.
     Watch {
         /// Scene id.
@@ -176,6 +184,10 @@ async fn execute(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Run { id, rtf } => println!("{}", line(&floe.run(id, rtf).await?)),
         Command::Pause { id } => println!("{}", line(&floe.pause(id).await?)),
+        Command::Set { id, overrides } => {
+            let o: Vec<&str> = overrides.iter().map(String::as_str).collect();
+            println!("{}", line(&floe.set_parameters(id, &o).await?));
+        }
         Command::Delete { id } => println!("{}", line(&floe.delete(id).await?)),
         Command::Watch { id, count } => {
             let mut n = 0;

@@ -75,6 +75,8 @@ pub trait Backend: Send {
     fn domain(&self) -> crate::math::Aabb;
     /// Copies out positions and the requested channels.
     fn read(&self, channels: &[Channel]) -> Particles;
+    /// Takes new tunable settings (see [`crate::scene::tunable`]) from `scene`.
+    fn retune(&mut self, scene: &crate::scene::Scene);
     /// Writes the complete stepping state (see [`crate::snapshot`]).
     fn save(&self, out: &mut crate::snapshot::Writer);
     /// Loads a state written by [`Backend::save`] for the same scene.

@@ -9,7 +9,7 @@ use crate::eos::Eos;
 use crate::kernel::Kernel;
 use crate::math::{Aabb, Real, Vec3};
 use crate::sampling::{fill_block, sample_boundary};
-use crate::scene::{Boundary, Integrator, Scene, TimeStep, Viscosity};
+use crate::scene::{Boundary, Integrator, Scene, TimeStep};
 use crate::viscosity::ViscosityModel;
 
 /// Why a valid scene still cannot be built.
@@ -125,15 +125,7 @@ impl Model {
             }
         };
         let rho0 = fluid_spec.rest_density;
-        let smoothing_length = 0.5 * kernel.support();
-        let viscosity = match fluid_spec.viscosity {
-            Viscosity::None => ViscosityModel::None,
-            Viscosity::Laplacian { nu } => ViscosityModel::Laplacian { mu: nu * rho0 },
-            Viscosity::Artificial { alpha } => ViscosityModel::Artificial {
-                alpha_c_h: alpha * c * smoothing_length,
-                eps_h2: 0.01 * smoothing_length * smoothing_length,
-            },
-        };
+        let viscosity = ViscosityModel::new(fluid_spec.viscosity, rho0, c, 0.5 * kernel.support());
         let layers = scene.boundaries.iter().map(|b| match b {
             Boundary::Box { layers, .. } | Boundary::Plane { layers, .. } => *layers,
         });
@@ -162,6 +154,20 @@ impl Model {
             boundary,
             walls: scene.boundaries.iter().map(|b| WallConstraint::new(b, d)).collect(),
         })
+    }
+
+    /// Takes the tunable settings of `scene` (see [`crate::scene::tunable`]):
+    /// gravity, viscosity, XSPH, time step control, damping and guard bounds.
+    pub fn retune(&mut self, scene: &Scene) {
+        let f = &scene.fluids[0];
+        self.gravity = scene.gravity.into();
+        self.fluid.viscosity =
+            ViscosityModel::new(f.viscosity, self.fluid.rho0, self.fluid.sound_speed, 0.5 * self.kernel.support());
+        self.fluid.xsph = f.xsph;
+        self.time_step = scene.solver.time_step;
+        self.damping = (scene.solver.damping, scene.solver.damping_until as f64);
+        self.max_compression = scene.guard.max_compression;
+        self.max_speed = scene.guard.max_speed.unwrap_or(self.fluid.sound_speed);
     }
 
     /// Number of fluid particles.

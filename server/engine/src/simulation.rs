@@ -139,6 +139,15 @@ impl Simulation {
         Ok(())
     }
 
+    /// Changes tunable settings with `key=value` overrides (see
+    /// [`crate::scene::tunable`]); takes effect from the next step.
+    pub fn set_parameters(&mut self, overrides: &[String]) -> Result<(), crate::scene::load::SceneError> {
+        let next = crate::scene::tunable::apply(&self.scene, overrides)?;
+        self.backend.retune(&next);
+        self.scene = next;
+        Ok(())
+    }
+
     /// The complete state as bytes (see [`crate::snapshot`]).
     pub fn snapshot(&self) -> Vec<u8> {
         let mut w = Writer(Vec::new());

@@ -54,6 +54,11 @@ pub struct StepControl {
 }
 
 impl StepControl {
+    /// The time-step settings.
+    pub fn mode(&self) -> &TimeStep {
+        &self.mode
+    }
+
     /// Time left in the current fixed interval (s), for snapshots.
     pub fn remaining(&self) -> Real {
         self.remaining

@@ -29,6 +29,19 @@ pub enum ViscosityModel {
 }
 
 impl ViscosityModel {
+    /// Resolves a scene's viscosity for rest density `rho0` (kg/m^3), speed of sound
+    /// `c` (m/s) and smoothing length `h` (m).
+    pub fn new(spec: crate::scene::Viscosity, rho0: Real, c: Real, h: Real) -> Self {
+        use crate::scene::Viscosity;
+        match spec {
+            Viscosity::None => ViscosityModel::None,
+            Viscosity::Laplacian { nu } => ViscosityModel::Laplacian { mu: nu * rho0 },
+            Viscosity::Artificial { alpha } => {
+                ViscosityModel::Artificial { alpha_c_h: alpha * c * h, eps_h2: 0.01 * h * h }
+            }
+        }
+    }
+
     /// Acceleration on i from neighbour j (or from a wall particle with `v_j = 0`,
     /// `m_j` its pseudo-mass and `rho_j = rho0`). `x_ij = x_i - x_j`, `r = |x_ij|`.
     #[allow(clippy::too_many_arguments)]

@@ -155,3 +155,21 @@ fn a_restored_snapshot_steps_on_bit_for_bit() {
     other[8] = 9;
     assert!(Simulation::restore(&other).unwrap_err().to_string().contains("version 9 is not supported"));
 }
+
+#[test]
+fn gravity_changed_on_a_running_scene_takes_effect() {
+    let mut sim = preset("dam_break", &["particle_spacing=0.05"]);
+    for _ in 0..10 {
+        sim.step().unwrap();
+    }
+    // Gravity turned upwards: the water leaves the floor.
+    sim.set_parameters(&["gravity=[0,9.81,0]".into(), "fluids[0].xsph=0.1".into()]).unwrap();
+    for _ in 0..100 {
+        sim.step().unwrap();
+    }
+    let v = sim.read(&[Channel::Velocity]).velocities.unwrap();
+    let mean_vy = v.iter().map(|v| v[1] as f64).sum::<f64>() / v.len() as f64;
+    assert!(mean_vy > 0.1, "mean vertical velocity {mean_vy}");
+    assert_eq!(sim.scene().gravity, [0.0, 9.81, 0.0]);
+    assert!(sim.set_parameters(&["solver.kernel=mueller".into()]).is_err());
+}

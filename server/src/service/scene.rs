@@ -58,6 +58,8 @@ pub struct Snapshot {
 pub enum Event {
     /// The stability guard stopped it.
     Halted(floe_engine::Halted),
+    /// Tunable settings changed (the overrides applied).
+    ParameterChanged(Vec<String>),
     /// It was deleted.
     Deleted,
 }
@@ -77,6 +79,9 @@ pub enum CommandError {
     /// A snapshot could not be restored into this scene.
     #[error("state: {0}")]
     BadSnapshot(String),
+    /// A parameter change was refused; the message names the field.
+    #[error("{0}")]
+    BadParameter(String),
 }
 
 /// A request to a scene's worker.
@@ -95,6 +100,10 @@ enum Command {
     },
     /// A subscriber joined: publish a fresh snapshot even if paused.
     Publish,
+    Set {
+        overrides: Vec<String>,
+        reply: oneshot::Sender<Result<Status, CommandError>>,
+    },
     Save {
         reply: oneshot::Sender<Vec<u8>>,
     },
@@ -283,6 +292,13 @@ impl SceneHandle {
         rx.await.map_err(|_| CommandError::Gone)
     }
 
+    /// Changes tunable settings (`key=value` overrides) from the next step on.
+    pub async fn set_parameters(&self, overrides: Vec<String>) -> Result<Status, CommandError> {
+        let (reply, rx) = oneshot::channel();
+        self.send(Command::Set { overrides, reply })?;
+        rx.await.map_err(|_| CommandError::Gone)?
+    }
+
     /// The scene's complete state (see `floe_engine::snapshot`).
     pub async fn save(&self) -> Result<Vec<u8>, CommandError> {
         let (reply, rx) = oneshot::channel();
@@ -348,6 +364,17 @@ impl Worker {
             match command {
                 Some(Command::Delete) => break,
                 Some(Command::Publish) => self.publish(),
+                Some(Command::Set { overrides, reply }) => {
+                    let r = match self.sim.set_parameters(&overrides) {
+                        Ok(()) => {
+                            tracing::info!(scene = self.shared.id, "parameters changed: {}", overrides.join(" "));
+                            let _ = self.shared.events.send(Event::ParameterChanged(overrides));
+                            Ok(self.shared.status())
+                        }
+                        Err(e) => Err(CommandError::BadParameter(e.to_string())),
+                    };
+                    let _ = reply.send(r);
+                }
                 Some(Command::Save { reply }) => {
                     let _ = reply.send(self.sim.snapshot());
                 }

@@ -215,6 +215,18 @@ impl Backend for CpuBackend {
         self.model.domain
     }
 
+    fn retune(&mut self, scene: &crate::scene::Scene) {
+        self.model.retune(scene);
+        if self.model.time_step != *self.control.mode() {
+            self.control = StepControl::new(self.model.time_step);
+        }
+        if self.model.fluid.xsph > 0.0 && self.xsph.is_none() {
+            self.xsph = Some(vec![Vec3::ZERO; self.pos.len()]);
+        } else if self.model.fluid.xsph == 0.0 {
+            self.xsph = None;
+        }
+    }
+
     fn save(&self, out: &mut Writer) {
         out.f64(self.time);
         out.u64(self.steps);

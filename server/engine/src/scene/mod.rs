@@ -10,6 +10,7 @@
 
 pub mod load;
 pub mod presets;
+pub mod tunable;
 pub mod validate;
 
 use crate::kernel::KernelKind;
