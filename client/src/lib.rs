@@ -56,11 +56,13 @@ pub struct FrameRequest {
     pub position_bits: u32,
     /// Identity-ordered (particle i stays i) rather than unordered.
     pub identity: bool,
+    /// Send every n-th particle; 1 sends all.
+    pub decimation: u32,
 }
 
 impl Default for FrameRequest {
     fn default() -> Self {
-        Self { channels: Vec::new(), max_fps: 30.0, position_bits: 16, identity: true }
+        Self { channels: Vec::new(), max_fps: 30.0, position_bits: 16, identity: true, decimation: 1 }
     }
 }
 
@@ -170,6 +172,7 @@ impl Client {
             max_fps: r.max_fps,
             position_bits: r.position_bits,
             mode: if r.identity { pb::FrameMode::Identity } else { pb::FrameMode::Unordered } as i32,
+            decimation: r.decimation,
         };
         let stream = self.inner.stream_frames(req).await?.into_inner();
         Ok(Frames { stream, decoder: Decoder::new(Limits::default()) })

@@ -100,7 +100,10 @@ pub fn frame_options(r: &pb::StreamFramesRequest) -> Result<FrameOptions, Status
         Ok(pb::FrameMode::Identity) => Mode::IdentityOrdered,
         Err(_) => return Err(Status::invalid_argument(format!("mode: unknown frame mode {}", r.mode))),
     };
-    Ok(FrameOptions { channels, max_fps, position_bits: position_bits as u8, mode })
+    if r.decimation > 1000 {
+        return Err(Status::invalid_argument(format!("decimation: must be 0 to 1000, got {}", r.decimation)));
+    }
+    Ok(FrameOptions { channels, max_fps, position_bits: position_bits as u8, mode, decimation: r.decimation.max(1) })
 }
 
 /// A scene event as a message.

@@ -1,4 +1,4 @@
-//! The WebSocket of a scene (`/api/v1/scenes/{id}/ws?channels=velocity&max_fps=30&bits=16&mode=unordered`):
+//! The WebSocket of a scene (`/api/v1/scenes/{id}/ws?channels=velocity&max_fps=30&bits=16&mode=unordered&decimation=1`):
 //! binary messages carry encoded frames (latest-frame semantics, as over gRPC);
 //! text messages are JSON both ways.
 //!
@@ -38,6 +38,8 @@ pub struct WsQuery {
     bits: Option<u8>,
     /// `unordered` (default) or `identity`.
     mode: Option<String>,
+    /// Send every n-th particle (default 1: all).
+    decimation: Option<u32>,
 }
 
 impl WsQuery {
@@ -67,7 +69,11 @@ impl WsQuery {
             Some("identity") => Mode::IdentityOrdered,
             Some(other) => return Err(format!("mode: must be \"unordered\" or \"identity\", got {other:?}")),
         };
-        Ok(FrameOptions { channels, max_fps, position_bits: bits, mode })
+        let decimation = self.decimation.unwrap_or(1);
+        if !(1..=1000).contains(&decimation) {
+            return Err(format!("decimation: must be 1 to 1000, got {decimation}"));
+        }
+        Ok(FrameOptions { channels, max_fps, position_bits: bits, mode, decimation })
     }
 }
 

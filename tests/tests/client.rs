@@ -35,6 +35,12 @@ async fn the_client_drives_a_scene_and_records_it() {
     let mut frames = floe.frames(id, FrameRequest::default()).await.unwrap();
     let first = frames.next().await.unwrap().expect("a frame");
     assert_eq!(first.positions.len(), 1000);
+    let request = FrameRequest { decimation: 10, ..FrameRequest::default() };
+    let mut tenth = floe.frames(id, request).await.unwrap();
+    let decimated = tenth.next().await.unwrap().expect("a frame");
+    assert_eq!(decimated.positions.len(), 100);
+    assert_eq!(decimated.positions[3], first.positions[30]);
+    drop(tenth);
     drop(frames);
     // A recording starts on a fresh stream, whose first frame is a keyframe.
     let mut frames = floe.frames(id, FrameRequest::default()).await.unwrap();

@@ -63,6 +63,7 @@ async fn create_step_and_stream_a_dam_break() {
         max_fps: 60.0,
         position_bits: 16,
         mode: pb::FrameMode::Unordered as i32,
+        decimation: 1,
     };
     let mut frames = s.client.stream_frames(request).await.unwrap().into_inner();
     let frame = frames.message().await.unwrap().expect("a frame");
@@ -84,6 +85,7 @@ async fn create_step_and_stream_a_dam_break() {
         max_fps: 120.0,
         position_bits: 16,
         mode: pb::FrameMode::Identity as i32,
+        decimation: 1,
     };
     let mut frames = s.client.stream_frames(request).await.unwrap().into_inner();
     s.client.run(pb::RunRequest { scene_id: id, real_time_factor: 0.0 }).await.unwrap();

@@ -63,6 +63,7 @@ async fn a_subscriber_that_never_reads_does_not_slow_stepping() {
         max_fps: 240.0,
         position_bits: 16,
         mode: pb::FrameMode::Identity as i32,
+        decimation: 1,
     };
     let never_read = other.stream_frames(request).await.unwrap().into_inner();
     // Until the transport's flow-control windows fill (about 1 MiB), frames still

@@ -9,7 +9,7 @@
 //! so it has an encoder of its own.
 
 use super::scene::{SceneHandle, Shared, Snapshot, State};
-use floe_engine::Channel;
+use floe_engine::{Channel, Particles};
 use floe_proto::{Bounds, EncodeError, Encoder, EncoderConfig, FrameInput, Mode};
 use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};
@@ -27,6 +27,8 @@ pub struct FrameOptions {
     pub position_bits: u8,
     /// Unordered or identity-ordered.
     pub mode: Mode,
+    /// Send every n-th particle (particles 0, n, 2n, ...); 1 sends all.
+    pub decimation: u32,
 }
 
 /// One frame for one subscriber.
@@ -60,8 +62,7 @@ fn config(shared: &Shared, o: &FrameOptions) -> EncoderConfig {
     c
 }
 
-fn input<'a>(s: &'a Snapshot, channels: &[Channel]) -> FrameInput<'a> {
-    let p = &s.particles;
+fn input<'a>(p: &'a Particles, channels: &[Channel]) -> FrameInput<'a> {
     let want = |c| channels.contains(&c);
     FrameInput {
         positions: &p.positions,
@@ -69,6 +70,29 @@ fn input<'a>(s: &'a Snapshot, channels: &[Channel]) -> FrameInput<'a> {
         densities: p.densities.as_deref().filter(|_| want(Channel::Density)),
         pressures: p.pressures.as_deref().filter(|_| want(Channel::Pressure)),
         ..FrameInput::default()
+    }
+}
+
+/// Every `k`-th particle (0, k, 2k, ...): the same particles in every frame, so
+/// identity-ordered streams of a decimated scene stay consistent.
+fn decimate(p: &Particles, k: usize) -> Particles {
+    fn every<T: Copy>(v: &[T], k: usize) -> Vec<T> {
+        v.iter().step_by(k).copied().collect()
+    }
+    Particles {
+        positions: every(&p.positions, k),
+        velocities: p.velocities.as_deref().map(|v| every(v, k)),
+        densities: p.densities.as_deref().map(|v| every(v, k)),
+        pressures: p.pressures.as_deref().map(|v| every(v, k)),
+    }
+}
+
+/// Encodes snapshot `s` with `o`'s channels and decimation.
+fn encode(encoder: &mut Encoder, s: &Snapshot, o: &FrameOptions) -> Result<Vec<u8>, EncodeError> {
+    if o.decimation > 1 {
+        encoder.encode(s.step, s.time, &input(&decimate(&s.particles, o.decimation as usize), &o.channels))
+    } else {
+        encoder.encode(s.step, s.time, &input(&s.particles, &o.channels))
     }
 }
 
@@ -93,7 +117,7 @@ impl FrameCache {
         {
             return Ok(data.clone());
         }
-        let data = Arc::new(e.encoder.encode(s.step, s.time, &input(s, &options.channels))?);
+        let data = Arc::new(encode(&mut e.encoder, s, options)?);
         e.last = Some((s.sequence, data.clone()));
         Ok(data)
     }
@@ -169,9 +193,9 @@ impl Subscription {
         // Encoding a large frame takes milliseconds: keep it off the async workers.
         let data = match self.own.take() {
             Some(mut enc) => {
-                let channels = self.options.channels.clone();
+                let options = self.options.clone();
                 let (enc, data) = tokio::task::spawn_blocking(move || {
-                    let data = enc.encode(s.step, s.time, &input(&s, &channels));
+                    let data = encode(&mut enc, &s, &options);
                     (enc, data)
                 })
                 .await
