@@ -143,6 +143,11 @@ impl Client {
         Ok(self.inner.pause(pb::SceneRef { scene_id }).await?.into_inner())
     }
 
+    /// Puts a paused or halted scene back at t = 0 with its current settings.
+    pub async fn reset(&mut self, scene_id: u64) -> Result<SceneInfo, ClientError> {
+        Ok(self.inner.reset(pb::SceneRef { scene_id }).await?.into_inner())
+    }
+
     /// Throughput and streaming statistics.
     pub async fn stats(&mut self, scene_id: u64) -> Result<SceneStats, ClientError> {
         Ok(self.inner.get_stats(pb::SceneRef { scene_id }).await?.into_inner())

@@ -52,7 +52,7 @@ pub fn scene_info(shared: &Shared) -> pb::SceneInfo {
         bounds_min: shared.bounds.0.to_vec(),
         bounds_max: shared.bounds.1.to_vec(),
         halt_reason: s.halt_reason.unwrap_or_default(),
-        scene_json: shared.scene_json.clone(),
+        scene_json: shared.scene_json(),
     }
 }
 

@@ -114,6 +114,12 @@ impl SceneService for Grpc {
         Ok(Response::new(convert::scene_info(&handle.shared)))
     }
 
+    async fn reset(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneInfo>, Status> {
+        let handle = self.registry.get(request.into_inner().scene_id).map_err(status)?;
+        handle.reset().await.map_err(|e| status(ServiceError::FailedPrecondition(e.to_string())))?;
+        Ok(Response::new(convert::scene_info(&handle.shared)))
+    }
+
     async fn get_stats(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneStats>, Status> {
         let handle = self.registry.get(request.into_inner().scene_id).map_err(status)?;
         Ok(Response::new(convert::scene_stats(&handle.shared)))

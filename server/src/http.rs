@@ -7,6 +7,7 @@
 //! | GET, POST | `/api/v1/scenes` | list; create (`{"preset": "dam_break", "overrides": [...]}` or `{"document": "...", "document_format": "toml"}`) |
 //! | GET, DELETE | `/api/v1/scenes/{id}` | get; delete |
 //! | POST | `/api/v1/scenes/{id}/step` | `{"steps": 10}` or `{"until_time": 0.5}` |
+//! | POST | `/api/v1/scenes/{id}/reset` | back to t = 0 with the current settings |
 //! | POST | `/api/v1/scenes/{id}/run`, `/pause` | `{"real_time_factor": 1.0}` (0 = as fast as possible) |
 //! | GET | `/api/v1/scenes/{id}/stats` | throughput and streaming statistics |
 //! | POST | `/api/v1/scenes/{id}/parameters` | `{"overrides": ["gravity=[0,-1,0]"]}`: change tunable settings |
@@ -40,6 +41,7 @@ pub fn router(registry: Arc<Registry>, web_root: std::path::PathBuf) -> Router {
         .route("/scenes/{id}/step", post(step))
         .route("/scenes/{id}/run", post(run))
         .route("/scenes/{id}/pause", post(pause))
+        .route("/scenes/{id}/reset", post(reset))
         .route("/scenes/{id}/stats", get(stats))
         .route("/scenes/{id}/snapshot", get(snapshot).put(restore))
         .route("/scenes/{id}/parameters", post(parameters))
@@ -105,6 +107,8 @@ pub struct SceneView {
     pub subscribers: u32,
     /// Frames skipped by slow subscribers.
     pub dropped_frames: u64,
+    /// The resolved scene, live changes included.
+    pub scene: serde_json::Value,
     /// Snapshots published.
     pub frames_published: u64,
 }
@@ -139,6 +143,7 @@ impl SceneView {
             subscribers: shared.subscribers.load(Ordering::Relaxed),
             dropped_frames: shared.dropped_frames(),
             frames_published: shared.published.load(Ordering::Relaxed),
+            scene: serde_json::from_str(&shared.scene_json()).unwrap_or_default(),
         }
     }
 }
@@ -307,5 +312,11 @@ async fn parameters(
         crate::service::scene::CommandError::BadParameter(m) => ApiError(StatusCode::BAD_REQUEST, m),
         _ => ApiError(StatusCode::CONFLICT, e.to_string()),
     })?;
+    Ok(Json(SceneView::of(&h.shared)))
+}
+
+async fn reset(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> ApiResult<SceneView> {
+    let h = r.get(id)?;
+    h.reset().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
     Ok(Json(SceneView::of(&h.shared)))
 }

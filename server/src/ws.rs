@@ -4,7 +4,7 @@
 //!
 //! Client to server: `{"op": "run", "real_time_factor": 1}`, `{"op": "pause"}`,
 //! `{"op": "step", "steps": 1}` (or `"until_time"`), `{"op": "set", "overrides": ["gravity=[0,-1,0]"]}`,
-//! `{"op": "status"}`.
+//! `{"op": "reset"}`, `{"op": "status"}`.
 //! Server to client: `{"type": "status", "scene": {...}}` after each op,
 //! `{"type": "event", "event": "halted", "reason": "...", "step": n, "sim_time": t}`,
 //! `{"type": "event", "event": "deleted"}` (then the socket closes), and
@@ -136,6 +136,7 @@ enum Control {
     Set {
         overrides: Vec<String>,
     },
+    Reset,
     Status,
 }
 
@@ -159,6 +160,7 @@ async fn control(handle: &SceneHandle, text: &str) -> Message {
             Err(m) => Err(m),
         },
         Control::Set { overrides } => handle.set_parameters(overrides).await.map(|_| ()).map_err(|e| e.to_string()),
+        Control::Reset => handle.reset().await.map(|_| ()).map_err(|e| e.to_string()),
         Control::Status => Ok(()),
     };
     match result {

@@ -85,6 +85,21 @@ test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, a
     const after = await stat(page, 'frames');
     assert.equal(after, before, `frames kept arriving after pause (${before} -> ${after})`);
     await page.screenshot({ path: path.join(root, 'target/viewer.png') });
+
+    // Reset: the scene goes back to t = 0 (the overlay polls the status every second).
+    await page.click('#reset');
+    await page.waitForFunction(() => /sim time\s+0\.000 s/.test(document.querySelector('#stats').textContent),
+      null, { timeout: 10_000 });
+    // A slider changes a live setting: the server reports the new gravity.
+    await page.evaluate(() => {
+      const g = document.querySelector('#gravity');
+      g.value = '-1.6';
+      g.dispatchEvent(new Event('change'));
+    });
+    await page.waitForFunction(async () => {
+      const s = await (await fetch('/api/v1/scenes/1')).json();
+      return Math.abs(s.scene.gravity[1] + 1.6) < 1e-6;
+    }, null, { timeout: 10_000 });
     assert.deepEqual(errors, []);
   } finally {
     await browser.close();

@@ -173,6 +173,11 @@ async fn an_unstable_scene_halts_with_an_event_and_the_server_lives_on() {
     }
     let e = s.client.step(pb::StepRequest { scene_id: id, steps: 1, until_time: 0.0 }).await.unwrap_err();
     assert_eq!(e.code(), Code::FailedPrecondition);
+    // Reset puts the halted scene back at the start, ready to step again.
+    let reset = s.client.reset(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
+    assert_eq!((reset.state, reset.steps, reset.sim_time), (pb::SceneState::Paused as i32, 0, 0.0));
+    assert!(reset.halt_reason.is_empty());
+    s.client.step(pb::StepRequest { scene_id: id, steps: 1, until_time: 0.0 }).await.unwrap();
     // Another scene still works.
     let other = s.client.create_scene(preset("hydrostatic", &["particle_spacing=0.05"])).await.unwrap().into_inner();
     s.client.step(pb::StepRequest { scene_id: other.scene_id, steps: 5, until_time: 0.0 }).await.unwrap();

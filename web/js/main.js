@@ -93,13 +93,17 @@ function connect() {
 
 function onText(msg) {
   if (msg.type === 'status') {
+    if (!['gravity', 'xsph'].includes(document.activeElement?.id)) showSettings(msg.scene.scene);
     state.lastStatus = msg.scene;
+    // A halt banner goes once the scene is no longer halted (after a reset).
+    if (msg.scene.state !== 'halted' && $('banner').textContent.startsWith('Halted')) banner(null);
     state.running = msg.scene.state === 'running';
     if (msg.scene.state === 'halted') banner(`Halted: ${msg.scene.halt_reason}`);
   } else if (msg.type === 'event' && msg.event === 'halted') {
     state.running = false;
     banner(`Halted: ${msg.reason}`);
   } else if (msg.type === 'event' && msg.event === 'parameter_changed') {
+    send({ op: 'status' });
     $('param').value = '';
     $('param').placeholder = `applied: ${msg.overrides.join(' ')}`;
   } else if (msg.type === 'event' && msg.event === 'deleted') {
@@ -139,6 +143,20 @@ function send(op) {
 $('play').onclick = () => send({ op: 'run', real_time_factor: rtf() });
 $('pause').onclick = () => send({ op: 'pause' });
 $('step').onclick = () => send({ op: 'step', steps: 1 });
+$('reset').onclick = () => { banner(null); send({ op: 'reset' }); };
+// Sliders for tunable settings: applied when released.
+$('gravity').oninput = () => { $('gravity-value').textContent = Number($('gravity').value).toFixed(2); };
+$('gravity').onchange = () => send({ op: 'set', overrides: [`gravity=[0,${$('gravity').value},0]`] });
+$('xsph').oninput = () => { $('xsph-value').textContent = Number($('xsph').value).toFixed(2); };
+$('xsph').onchange = () => send({ op: 'set', overrides: [`fluids[0].xsph=${$('xsph').value}`] });
+
+/** Shows a scene's current tunable settings on the sliders. */
+function showSettings(scene) {
+  const g = scene?.gravity?.[1];
+  if (typeof g === 'number') { $('gravity').value = g; $('gravity-value').textContent = g.toFixed(2); }
+  const x = scene?.fluids?.[0]?.xsph;
+  if (typeof x === 'number') { $('xsph').value = x; $('xsph-value').textContent = x.toFixed(2); }
+}
 $('rtf').oninput = () => { const v = rtf(); if (state.running) send({ op: 'run', real_time_factor: v }); };
 $('colour').onchange = () => { if (state.scene) open(state.scene); };
 $('scenes').onchange = () => refreshScenes(Number($('scenes').value));
@@ -172,6 +190,7 @@ addEventListener('keydown', (e) => {
   if (e.target.tagName === 'TEXTAREA' || (e.target.tagName === 'INPUT' && e.target.type === 'text')) return;
   if (e.key === ' ') { e.preventDefault(); send(state.running ? { op: 'pause' } : { op: 'run', real_time_factor: rtf() }); }
   if (e.key === 's') send({ op: 'step', steps: 1 });
+  if (e.key === 'r') send({ op: 'reset' });
 });
 
 // Colour-map legend, drawn once.

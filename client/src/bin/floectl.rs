@@ -61,6 +61,11 @@ enum Command {
         /// Scene id.
         id: u64,
     },
+    /// Put a paused or halted scene back at t = 0 (current settings kept).
+    Reset {
+        /// Scene id.
+        id: u64,
+    },
     /// Change tunable settings of a scene, e.g. `floectl set 2 gravity=[0,-1,0]`.
     Set {
         /// Scene id.
@@ -184,6 +189,7 @@ async fn execute(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Run { id, rtf } => println!("{}", line(&floe.run(id, rtf).await?)),
         Command::Pause { id } => println!("{}", line(&floe.pause(id).await?)),
+        Command::Reset { id } => println!("{}", line(&floe.reset(id).await?)),
         Command::Set { id, overrides } => {
             let o: Vec<&str> = overrides.iter().map(String::as_str).collect();
             println!("{}", line(&floe.set_parameters(id, &o).await?));

@@ -104,6 +104,9 @@ enum Command {
         overrides: Vec<String>,
         reply: oneshot::Sender<Result<Status, CommandError>>,
     },
+    Reset {
+        reply: oneshot::Sender<Result<Status, CommandError>>,
+    },
     Save {
         reply: oneshot::Sender<Vec<u8>>,
     },
@@ -121,8 +124,8 @@ pub struct Shared {
     pub id: u64,
     /// Scene name.
     pub name: String,
-    /// The resolved scene as JSON.
-    pub scene_json: String,
+    /// The resolved scene as JSON, as it is now (live changes included).
+    scene_json: Mutex<String>,
     /// Fluid particles.
     pub particles: usize,
     /// Particle spacing (m).
@@ -207,6 +210,11 @@ impl Shared {
         self.wanted.lock().expect("lock").iter().map(|w| w.0).collect()
     }
 
+    /// The resolved scene as JSON, live changes included.
+    pub fn scene_json(&self) -> String {
+        self.scene_json.lock().expect("lock").clone()
+    }
+
     /// A copy of the latest status.
     pub fn status(&self) -> Status {
         self.status.lock().expect("lock").clone()
@@ -237,7 +245,7 @@ impl SceneHandle {
         let shared = Arc::new(Shared {
             id,
             name: sim.scene().name.clone(),
-            scene_json: serde_json::to_string(sim.scene()).expect("scenes serialise"),
+            scene_json: Mutex::new(serde_json::to_string(sim.scene()).expect("scenes serialise")),
             particles: sim.particle_count(),
             particle_spacing: sim.scene().particle_spacing,
             bounds: (domain.min.to_array(), domain.max.to_array()),
@@ -296,6 +304,13 @@ impl SceneHandle {
     pub async fn set_parameters(&self, overrides: Vec<String>) -> Result<Status, CommandError> {
         let (reply, rx) = oneshot::channel();
         self.send(Command::Set { overrides, reply })?;
+        rx.await.map_err(|_| CommandError::Gone)?
+    }
+
+    /// Puts a paused (or halted) scene back at t = 0, keeping its current settings.
+    pub async fn reset(&self) -> Result<Status, CommandError> {
+        let (reply, rx) = oneshot::channel();
+        self.send(Command::Reset { reply })?;
         rx.await.map_err(|_| CommandError::Gone)?
     }
 
@@ -367,11 +382,24 @@ impl Worker {
                 Some(Command::Set { overrides, reply }) => {
                     let r = match self.sim.set_parameters(&overrides) {
                         Ok(()) => {
+                            *self.shared.scene_json.lock().expect("lock") =
+                                serde_json::to_string(self.sim.scene()).expect("scenes serialise");
                             tracing::info!(scene = self.shared.id, "parameters changed: {}", overrides.join(" "));
                             let _ = self.shared.events.send(Event::ParameterChanged(overrides));
                             Ok(self.shared.status())
                         }
                         Err(e) => Err(CommandError::BadParameter(e.to_string())),
+                    };
+                    let _ = reply.send(r);
+                }
+                Some(Command::Reset { reply }) => {
+                    let r = if self.running.is_some() {
+                        Err(CommandError::Running)
+                    } else {
+                        match Simulation::new_cpu(self.sim.scene().clone()) {
+                            Ok(sim) => Ok(self.replace(sim)),
+                            Err(e) => Err(CommandError::BadParameter(e.to_string())),
+                        }
                     };
                     let _ = reply.send(r);
                 }
@@ -436,6 +464,11 @@ impl Worker {
         if sim.scene() != self.sim.scene() {
             return Err(CommandError::BadSnapshot("the snapshot is of a different scene".into()));
         }
+        Ok(self.replace(sim))
+    }
+
+    /// Takes `sim` as the scene's simulation and publishes its state.
+    fn replace(&mut self, sim: Simulation) -> Status {
         self.sim = sim;
         {
             let mut s = self.shared.status.lock().expect("lock");
@@ -445,7 +478,7 @@ impl Worker {
             s.state = if s.halt_reason.is_some() { State::Halted } else { State::Paused };
         }
         self.publish();
-        Ok(self.shared.status())
+        self.shared.status()
     }
 
     fn refuse_if_halted(&self) -> Result<(), CommandError> {
