@@ -3,29 +3,13 @@
 
 use floe_client::recording::{self, Recorder};
 use floe_client::{Client, ClientError, FrameRequest};
-use floe_server::service::Registry;
-use std::sync::Arc;
 
-async fn server() -> (String, tokio::sync::oneshot::Sender<()>, tokio::task::JoinHandle<anyhow::Result<()>>) {
-    let grpc = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let http = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let addr = format!("http://{}", grpc.local_addr().unwrap());
-    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
-    let task = tokio::spawn(floe_server::serve::run(
-        floe_server::serve::Listeners { grpc, http },
-        Arc::new(Registry::new(Default::default())),
-        "../web".into(),
-        async {
-            let _ = stopped.await;
-        },
-    ));
-    (addr, stop, task)
-}
+mod common;
 
 #[tokio::test]
 async fn the_client_drives_a_scene_and_records_it() {
-    let (addr, stop, task) = server().await;
-    let mut floe = Client::connect(&addr).await.unwrap();
+    let server = common::TestServer::start().await;
+    let mut floe = Client::connect(&server.grpc_url()).await.unwrap();
     let scene = floe.create_preset("dam_break", &["particle_spacing=0.05"]).await.unwrap();
     let id = scene.scene_id;
     assert_eq!(floe.step(id, 10).await.unwrap().steps, 10);
@@ -89,6 +73,5 @@ async fn the_client_drives_a_scene_and_records_it() {
     }
     assert_eq!(floe.list().await.unwrap().len(), 1);
     floe.delete(id).await.unwrap();
-    stop.send(()).unwrap();
-    task.await.unwrap().unwrap();
+    server.shutdown().await;
 }

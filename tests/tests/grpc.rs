@@ -4,36 +4,24 @@
 use floe_proto::pb::scene_service_client::SceneServiceClient;
 use floe_proto::pb::{self, create_scene_request::Source};
 use floe_proto::{Decoder, Limits};
-use floe_server::service::Registry;
-use std::sync::Arc;
-use tokio::sync::oneshot;
 use tonic::Code;
 use tonic::transport::Channel;
 
+mod common;
+
 struct Server {
     client: SceneServiceClient<Channel>,
-    stop: Option<oneshot::Sender<()>>,
-    task: tokio::task::JoinHandle<anyhow::Result<()>>,
+    server: common::TestServer,
 }
 
 async fn start() -> Server {
-    let grpc = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let http = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let addr = grpc.local_addr().unwrap();
-    let (stop, stopped) = oneshot::channel::<()>();
-    let registry = Arc::new(Registry::new(Default::default()));
-    let listeners = floe_server::serve::Listeners { grpc, http };
-    let task = tokio::spawn(floe_server::serve::run(listeners, registry, "../web".into(), async {
-        let _ = stopped.await;
-    }));
-    let channel = tonic::transport::Endpoint::from_shared(format!("http://{addr}")).unwrap().connect().await.unwrap();
-    Server { client: SceneServiceClient::new(channel), stop: Some(stop), task }
+    let server = common::TestServer::start().await;
+    Server { client: SceneServiceClient::new(server.channel().await), server }
 }
 
 impl Server {
-    async fn shutdown(mut self) {
-        self.stop.take().unwrap().send(()).unwrap();
-        self.task.await.unwrap().unwrap();
+    async fn shutdown(self) {
+        self.server.shutdown().await;
     }
 }
 

@@ -11,6 +11,8 @@ use std::sync::Arc;
 use tokio_tungstenite::tungstenite::Message;
 use tower::ServiceExt;
 
+mod common;
+
 async fn call(app: &axum::Router, method: &str, uri: &str, body: Option<String>) -> (StatusCode, serde_json::Value) {
     let req = Request::builder()
         .method(method)
@@ -86,22 +88,12 @@ async fn rest_mirrors_the_control_calls() {
 
 #[tokio::test]
 async fn websocket_streams_frames_and_survives_garbage() {
-    let grpc = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let http = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let addr = http.local_addr().unwrap();
-    let registry = Arc::new(Registry::new(Default::default()));
-    let scene = registry
+    let mut server = common::TestServer::start().await;
+    let addr = server.http;
+    let scene = server
+        .registry
         .create(floe_server::service::SceneSource::Preset("dam_break".into()), &["particle_spacing=0.05".into()])
         .unwrap();
-    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
-    let server = tokio::spawn(floe_server::serve::run(
-        floe_server::serve::Listeners { grpc, http },
-        registry,
-        "../web".into(),
-        async {
-            let _ = stopped.await;
-        },
-    ));
     let url = format!("ws://{addr}/api/v1/scenes/{}/ws?channels=velocity&max_fps=60", scene.shared.id);
     let (mut ws, _) = tokio_tungstenite::connect_async(url).await.unwrap();
 
@@ -140,7 +132,7 @@ async fn websocket_streams_frames_and_survives_garbage() {
             more += 1;
         }
     }
-    stop.send(()).unwrap();
+    server.stop();
     // Shutdown deletes the scene: the socket hears about it and closes.
     let mut saw_deleted = false;
     while let Some(Ok(m)) = ws.next().await {
@@ -149,7 +141,7 @@ async fn websocket_streams_frames_and_survives_garbage() {
         }
     }
     assert!(saw_deleted);
-    server.await.unwrap().unwrap();
+    server.stopped().await;
 }
 
 /// The next text message, skipping frames.

@@ -4,9 +4,9 @@
 
 use floe_proto::pb::scene_service_client::SceneServiceClient;
 use floe_proto::pb::{self, create_scene_request::Source};
-use floe_server::service::Registry;
-use std::sync::Arc;
 use std::time::Duration;
+
+mod common;
 
 fn rss_bytes() -> u64 {
     let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
@@ -19,24 +19,8 @@ fn rss_bytes() -> u64 {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_subscriber_that_never_reads_does_not_slow_stepping() {
-    let grpc = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let http = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
-    let addr = format!("http://{}", grpc.local_addr().unwrap());
-    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
-    let registry = Arc::new(Registry::new(Default::default()));
-    let server = tokio::spawn(floe_server::serve::run(
-        floe_server::serve::Listeners { grpc, http },
-        registry,
-        "../web".into(),
-        async {
-            let _ = stopped.await;
-        },
-    ));
-    let connect = |addr: String| async move {
-        let channel = tonic::transport::Endpoint::from_shared(addr).unwrap().connect().await.unwrap();
-        SceneServiceClient::new(channel)
-    };
-    let mut client = connect(addr.clone()).await;
+    let server = common::TestServer::start().await;
+    let mut client = SceneServiceClient::new(server.channel().await);
     let req = pb::CreateSceneRequest {
         // A column at rest costs the same per step all along, so the two windows compare.
         source: Some(Source::Preset("hydrostatic".into())),
@@ -56,7 +40,7 @@ async fn a_subscriber_that_never_reads_does_not_slow_stepping() {
     let alone = steps(&mut client).await - a;
 
     // A stream opened and never read, at the highest rate and with every channel.
-    let mut other = connect(addr).await;
+    let mut other = SceneServiceClient::new(server.channel().await);
     let request = pb::StreamFramesRequest {
         scene_id: id,
         channels: vec![pb::Channel::Velocity as i32, pb::Channel::Density as i32, pb::Channel::Pressure as i32],
@@ -93,6 +77,5 @@ async fn a_subscriber_that_never_reads_does_not_slow_stepping() {
     assert!(stats.dropped_frames > 0, "the stalled subscriber should be skipping frames");
     let grown = rss_after.saturating_sub(rss_before);
     assert!(grown < 16 << 20, "server memory grew by {grown} bytes while a subscriber stalled");
-    stop.send(()).unwrap();
-    server.await.unwrap().unwrap();
+    server.shutdown().await;
 }
