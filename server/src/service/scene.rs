@@ -279,53 +279,46 @@ impl SceneHandle {
         self.commands.lock().expect("lock").send(c).map_err(|_| CommandError::Gone)
     }
 
+    /// Sends the command `make` builds around a reply channel and waits for the reply.
+    async fn request<T>(&self, make: impl FnOnce(oneshot::Sender<T>) -> Command) -> Result<T, CommandError> {
+        let (reply, rx) = oneshot::channel();
+        self.send(make(reply))?;
+        rx.await.map_err(|_| CommandError::Gone)
+    }
+
     /// Steps a paused scene `steps` times, or until simulated time `until` (s).
     pub async fn step(&self, steps: u64, until: Option<f64>) -> Result<Status, CommandError> {
-        let (reply, rx) = oneshot::channel();
-        self.send(Command::Step { steps, until, reply })?;
-        rx.await.map_err(|_| CommandError::Gone)?
+        self.request(|reply| Command::Step { steps, until, reply }).await?
     }
 
     /// Runs continuously at `real_time_factor` (0: as fast as possible).
     pub async fn run(&self, real_time_factor: f64) -> Result<Status, CommandError> {
-        let (reply, rx) = oneshot::channel();
-        self.send(Command::Run { real_time_factor, reply })?;
-        rx.await.map_err(|_| CommandError::Gone)?
+        self.request(|reply| Command::Run { real_time_factor, reply }).await?
     }
 
     /// Pauses after the current step.
     pub async fn pause(&self) -> Result<Status, CommandError> {
-        let (reply, rx) = oneshot::channel();
-        self.send(Command::Pause { reply })?;
-        rx.await.map_err(|_| CommandError::Gone)
+        self.request(|reply| Command::Pause { reply }).await
     }
 
     /// Changes tunable settings (`key=value` overrides) from the next step on.
     pub async fn set_parameters(&self, overrides: Vec<String>) -> Result<Status, CommandError> {
-        let (reply, rx) = oneshot::channel();
-        self.send(Command::Set { overrides, reply })?;
-        rx.await.map_err(|_| CommandError::Gone)?
+        self.request(|reply| Command::Set { overrides, reply }).await?
     }
 
     /// Puts a paused (or halted) scene back at t = 0, keeping its current settings.
     pub async fn reset(&self) -> Result<Status, CommandError> {
-        let (reply, rx) = oneshot::channel();
-        self.send(Command::Reset { reply })?;
-        rx.await.map_err(|_| CommandError::Gone)?
+        self.request(|reply| Command::Reset { reply }).await?
     }
 
     /// The scene's complete state (see `floe_engine::snapshot`).
     pub async fn save(&self) -> Result<Vec<u8>, CommandError> {
-        let (reply, rx) = oneshot::channel();
-        self.send(Command::Save { reply })?;
-        rx.await.map_err(|_| CommandError::Gone)
+        self.request(|reply| Command::Save { reply }).await
     }
 
     /// Replaces a paused scene's state with a snapshot of the same scene.
     pub async fn restore(&self, state: Vec<u8>) -> Result<Status, CommandError> {
-        let (reply, rx) = oneshot::channel();
-        self.send(Command::Restore { state, reply })?;
-        rx.await.map_err(|_| CommandError::Gone)?
+        self.request(|reply| Command::Restore { state, reply }).await?
     }
 
     /// Registers a frame subscriber wanting `channels` and has the worker publish
