@@ -57,6 +57,12 @@ impl Kernel {
         self.h
     }
 
+    /// The normalisations of `W` and of `|grad W|` (see the fields), for
+    /// backends that evaluate the kernel themselves.
+    pub fn norms(&self) -> (Real, Real) {
+        (self.w_norm, self.g_norm)
+    }
+
     /// The family.
     pub fn kind(&self) -> KernelKind {
         self.kind

@@ -39,6 +39,7 @@ pub mod sampling;
 pub mod scene;
 pub mod simulation;
 pub mod snapshot;
+pub mod stepping;
 pub mod summary;
 pub mod timestep;
 pub mod validation;

@@ -28,6 +28,9 @@ pub enum BuildError {
         "solver.speed_of_sound: cannot be derived (no gravity along the fluid's height and no initial velocity); set solver.speed_of_sound or solver.expected_max_speed"
     )]
     NoSoundSpeed,
+    /// The backend cannot hold or run the scene (e.g. it exceeds a GPU's limits).
+    #[error("backend: {0}")]
+    Backend(String),
 }
 
 /// The fluid phase's resolved constants.

@@ -33,6 +33,26 @@ impl Grid {
         Self { origin: bounds.min, inv_cell: 1.0 / cell, dims, starts: vec![0; cells + 1] }
     }
 
+    /// Lower corner of cell (0, 0, 0) (m).
+    pub fn origin(&self) -> Vec3 {
+        self.origin
+    }
+
+    /// Inverse cell edge (1/m).
+    pub fn inv_cell(&self) -> Real {
+        self.inv_cell
+    }
+
+    /// Cells per axis.
+    pub fn dims(&self) -> [u32; 3] {
+        self.dims
+    }
+
+    /// Cell run starts after the last sort (`cell_count + 1` entries).
+    pub fn starts(&self) -> &[u32] {
+        &self.starts
+    }
+
     /// Number of cells.
     pub fn cell_count(&self) -> usize {
         self.starts.len() - 1

@@ -46,11 +46,25 @@ impl std::fmt::Debug for Simulation {
     }
 }
 
+/// Builds the backend a scene runs on from its model: how a server chooses
+/// between the CPU and a GPU once, for every scene it creates or restores.
+pub type BackendFactory = dyn Fn(Model) -> Result<Box<dyn Backend>, BuildError> + Send + Sync;
+
+/// The CPU backend as a [`BackendFactory`].
+pub fn cpu_backend(model: Model) -> Result<Box<dyn Backend>, BuildError> {
+    Ok(Box::new(CpuBackend::new(model)))
+}
+
 impl Simulation {
     /// Builds a scene on the CPU backend.
     pub fn new_cpu(scene: Scene) -> Result<Self, BuildError> {
+        Self::new(scene, &cpu_backend)
+    }
+
+    /// Builds a scene on the backend `make` builds.
+    pub fn new(scene: Scene, make: &BackendFactory) -> Result<Self, BuildError> {
         let model = Model::build(&scene)?;
-        Ok(Self::with_backend(scene, Box::new(CpuBackend::new(model))))
+        Ok(Self::with_backend(scene, make(model)?))
     }
 
     /// Wraps an already built backend.
@@ -167,6 +181,11 @@ impl Simulation {
 
     /// Rebuilds a scene from a snapshot, on the CPU backend.
     pub fn restore(bytes: &[u8]) -> Result<Self, SnapshotError> {
+        Self::restore_on(bytes, &cpu_backend)
+    }
+
+    /// Rebuilds a scene from a snapshot, on the backend `make` builds.
+    pub fn restore_on(bytes: &[u8], make: &BackendFactory) -> Result<Self, SnapshotError> {
         let bad = |m: String| SnapshotError::Malformed(m);
         if bytes.len() < MAGIC.len() || &bytes[..MAGIC.len()] != MAGIC {
             return Err(bad("it does not start with FLOESNAP".into()));
@@ -179,7 +198,7 @@ impl Simulation {
         let scene_json = r.bytes("scene")?;
         let value: serde_json::Value = serde_json::from_slice(scene_json).map_err(|e| bad(format!("scene: {e}")))?;
         let scene = crate::scene::load::from_value(value).map_err(|e| bad(format!("scene: {e}")))?;
-        let mut sim = Self::new_cpu(scene).map_err(|e| bad(format!("scene: {e}")))?;
+        let mut sim = Self::new(scene, make).map_err(|e| bad(format!("scene: {e}")))?;
         let mut f = [0.0; 6];
         for v in &mut f {
             *v = r.f64("statistics")?;

@@ -1,0 +1,286 @@
+//! [`GpuBackend`]: the engine's [`Backend`] with every particle pass on the GPU.
+//!
+//! A step records its passes into one command buffer per evaluation and waits
+//! only for the 32-byte measures the time step and guard need (the kick and
+//! drift that follow are submitted without waiting). The step sequence itself
+//! (integrators, dt, guard, snapshots) is the engine's [`Clock`], shared with
+//! the CPU backend.
+
+use crate::buffers::{Binds, Buffers, STEP_SLOTS, vec4s};
+use crate::context::GpuContext;
+use crate::layout::{Measures, Params, Step};
+use crate::passes::measure::PER_PARTIAL;
+use floe_engine::backend::{Backend, Channel, Particles, StepReport};
+use floe_engine::guard::Halted;
+use floe_engine::math::{Aabb, Real, Vec3};
+use floe_engine::model::{BuildError, Model};
+use floe_engine::neighbors::Grid;
+use floe_engine::scene::Scene;
+use floe_engine::snapshot::{Reader, SnapshotError, Writer};
+use floe_engine::stepping::{Clock, Passes, SortedState, by_identity};
+use wgpu::{Buffer, CommandEncoder};
+
+/// One scene's fluid on the GPU.
+#[derive(Debug)]
+pub struct GpuBackend {
+    gpu: GpuContext,
+    model: Model,
+    grid: Grid,
+    n: u32,
+    buffers: Buffers,
+    binds: Binds,
+    clock: Clock,
+    /// Kicks and drifts recorded since the last submission.
+    pending: Option<CommandEncoder>,
+    /// Next free step uniform of `buffers.steps`.
+    slot: usize,
+}
+
+impl GpuBackend {
+    /// Uploads `model`'s initial state to the GPU of `gpu`.
+    pub fn new(gpu: &GpuContext, mut model: Model) -> Result<Self, BuildError> {
+        let grid = Grid::new(model.domain, model.kernel.support());
+        let buffers = Buffers::new(gpu, &model, &grid)?;
+        let binds = buffers.bind(gpu, grid.cell_count() as u32);
+        let n = model.particle_count() as u32;
+        // The GPU holds the state from here on.
+        model.positions = Vec::new();
+        model.velocities = Vec::new();
+        let clock = Clock::new(&model);
+        Ok(Self { gpu: gpu.clone(), model, grid, n, buffers, binds, clock, pending: None, slot: 0 })
+    }
+
+    /// The encoder being recorded (taken out; put it back in `pending`).
+    fn take_encoder(&mut self) -> CommandEncoder {
+        self.pending.take().unwrap_or_else(|| {
+            self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("floe step") })
+        })
+    }
+
+    /// Submits the kicks and drifts recorded so far, without waiting.
+    /// [`Backend::step`] does this itself; callers driving [`Passes`] directly
+    /// flush before reading the state.
+    pub fn flush(&mut self) {
+        if let Some(encoder) = self.pending.take() {
+            self.gpu.queue.submit([encoder.finish()]);
+        }
+        self.slot = 0;
+    }
+
+    /// Records the stable counting sort by cell, the permutation of the state
+    /// and the density pass.
+    fn record_sort_and_density(&mut self) {
+        let (n, cells) = (self.n, self.grid.cell_count() as u32);
+        let mut e = self.take_encoder();
+        let p = &self.gpu.programs;
+        let (b, binds) = (&self.buffers, &self.binds);
+        let copies = [(&b.pos2, &b.pos, 16), (&b.vel2, &b.vel, 16), (&b.acc2, &b.acc, 16), (&b.ids2, &b.ids, 4)];
+        e.clear_buffer(&b.counts, 0, None);
+        p.grid.count.dispatch(&mut e, &binds.grid, n);
+        p.scan.record(&mut e, &binds.scan);
+        p.grid.scatter.dispatch(&mut e, &binds.grid, n);
+        p.grid.settle.dispatch(&mut e, &binds.grid, cells);
+        for bind in [&binds.reorder_pos, &binds.reorder_vel, &binds.reorder_acc] {
+            p.reorder.state.dispatch(&mut e, bind, n);
+        }
+        p.reorder.ids.dispatch(&mut e, &binds.reorder_ids, n);
+        for (from, to, size) in copies {
+            e.copy_buffer_to_buffer(from, 0, to, 0, size * n as u64);
+        }
+        p.density.kernel.dispatch(&mut e, &binds.density, n);
+        self.pending = Some(e);
+    }
+
+    fn write_step(&mut self, step: Step) -> usize {
+        let slot = self.slot;
+        assert!(slot < STEP_SLOTS, "more kicks and drifts between two evaluations than step slots");
+        self.slot += 1;
+        self.gpu.queue.write_buffer(&self.buffers.steps[slot], 0, bytemuck::bytes_of(&step));
+        slot
+    }
+
+    /// Copies byte ranges of buffers back to the CPU (one submission, one wait).
+    fn download(&self, ranges: &[(&Buffer, u64, u64)]) -> Vec<Vec<u8>> {
+        let device = &self.gpu.device;
+        let mut e = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("floe readback") });
+        let staging: Vec<Buffer> = ranges
+            .iter()
+            .map(|&(src, offset, size)| {
+                let s = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("readback"),
+                    size: size.max(4),
+                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                if size > 0 {
+                    e.copy_buffer_to_buffer(src, offset, &s, 0, size);
+                }
+                s
+            })
+            .collect();
+        self.gpu.queue.submit([e.finish()]);
+        let (tx, rx) = std::sync::mpsc::channel();
+        for s in &staging {
+            let tx = tx.clone();
+            s.map_async(wgpu::MapMode::Read, .., move |r| {
+                let _ = tx.send(r);
+            });
+        }
+        device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None }).expect("GPU device lost");
+        for _ in &staging {
+            rx.recv().expect("map callback").expect("GPU readback failed");
+        }
+        staging
+            .iter()
+            .zip(ranges)
+            .map(|(s, &(_, _, size))| {
+                let bytes = s.get_mapped_range(..).expect("mapped")[..size as usize].to_vec();
+                s.unmap();
+                bytes
+            })
+            .collect()
+    }
+
+    fn vec3s(bytes: &[u8]) -> Vec<Vec3> {
+        bytemuck::cast_slice::<u8, [f32; 4]>(bytes).iter().map(|v| Vec3::new(v[0], v[1], v[2])).collect()
+    }
+
+    /// The sorted state, as a snapshot stores it.
+    fn sorted_state(&self) -> SortedState {
+        let (b, n) = (&self.buffers, self.n as u64);
+        let got = self.download(&[(&b.pos, 0, 16 * n), (&b.vel, 0, 16 * n), (&b.acc, 0, 16 * n), (&b.ids, 0, 4 * n)]);
+        SortedState {
+            pos: Self::vec3s(&got[0]),
+            vel: Self::vec3s(&got[1]),
+            acc: Self::vec3s(&got[2]),
+            ids: bytemuck::cast_slice(&got[3]).to_vec(),
+        }
+    }
+}
+
+impl Passes for GpuBackend {
+    fn model(&self) -> &Model {
+        &self.model
+    }
+
+    fn evaluate(&mut self) -> floe_engine::guard::Measures {
+        self.record_sort_and_density();
+        let mut e = self.take_encoder();
+        let (p, b) = (&self.gpu.programs, &self.binds);
+        let walls = self.model.boundary.len() as u32;
+        if walls > 0 {
+            p.wall_pressure.kernel.dispatch(&mut e, &b.wall_pressure, walls);
+        }
+        p.forces.kernel.dispatch(&mut e, &b.forces, self.n);
+        p.measure.partials.dispatch(&mut e, &b.measure, self.n);
+        p.measure.total.dispatch(&mut e, &b.measure, PER_PARTIAL);
+        self.gpu.queue.submit([e.finish()]);
+        self.slot = 0;
+        let got = self.download(&[(&self.buffers.partials, 0, std::mem::size_of::<Measures>() as u64)]);
+        bytemuck::pod_read_unaligned::<Measures>(&got[0]).into()
+    }
+
+    fn kick(&mut self, dt: Real, keep: Real, with_xsph: bool) {
+        let slot = self.write_step(Step { kick_dt: dt, keep, with_xsph: with_xsph as u32, drift_dt: 0.0 });
+        let mut e = self.take_encoder();
+        self.gpu.programs.integrate.kick.dispatch(&mut e, &self.binds.integrate[slot], self.n);
+        self.pending = Some(e);
+    }
+
+    fn drift(&mut self, dt: Real) {
+        let slot = self.write_step(Step { kick_dt: 0.0, keep: 1.0, with_xsph: 0, drift_dt: dt });
+        let mut e = self.take_encoder();
+        self.gpu.programs.integrate.drift.dispatch(&mut e, &self.binds.integrate[slot], self.n);
+        self.pending = Some(e);
+    }
+
+    fn particle_id(&mut self, slot: u32) -> u32 {
+        self.flush();
+        let got = self.download(&[(&self.buffers.ids, 4 * slot as u64, 4)]);
+        bytemuck::pod_read_unaligned(&got[0])
+    }
+}
+
+impl Backend for GpuBackend {
+    fn name(&self) -> &'static str {
+        "gpu"
+    }
+
+    fn step(&mut self) -> Result<StepReport, Halted> {
+        let mut clock = self.clock.clone();
+        let r = clock.step(self, self.n as usize);
+        self.clock = clock;
+        self.flush();
+        r
+    }
+
+    fn time(&self) -> f64 {
+        self.clock.time()
+    }
+
+    fn steps(&self) -> u64 {
+        self.clock.steps()
+    }
+
+    fn substeps(&self) -> u64 {
+        self.clock.substeps()
+    }
+
+    fn particle_count(&self) -> usize {
+        self.n as usize
+    }
+
+    fn particle_mass(&self) -> f32 {
+        self.model.fluid.mass
+    }
+
+    fn domain(&self) -> Aabb {
+        self.model.domain
+    }
+
+    fn read(&self, channels: &[Channel]) -> Particles {
+        let (b, n) = (&self.buffers, self.n as u64);
+        let want = |c| channels.contains(&c);
+        let vel = want(Channel::Velocity);
+        let rho = want(Channel::Density) || want(Channel::Pressure);
+        let mut ranges = vec![(&b.ids, 0, 4 * n), (&b.pos, 0, 16 * n)];
+        ranges.push((&b.vel, 0, if vel { 16 * n } else { 0 }));
+        ranges.push((&b.dens, 0, if rho { 8 * n } else { 0 }));
+        let got = self.download(&ranges);
+        let velocities = vel.then(|| Self::vec3s(&got[2]));
+        let densities: Option<Vec<Real>> =
+            rho.then(|| bytemuck::cast_slice::<u8, [f32; 2]>(&got[3]).iter().map(|d| d[0]).collect());
+        by_identity(
+            channels,
+            bytemuck::cast_slice(&got[0]),
+            &Self::vec3s(&got[1]),
+            velocities.as_deref(),
+            densities.as_deref(),
+            &self.model.fluid.eos,
+        )
+    }
+
+    fn retune(&mut self, scene: &Scene) {
+        self.model.retune(scene);
+        self.clock.retune(&self.model);
+        let params = Params::new(&self.model, &self.grid);
+        self.gpu.queue.write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&params));
+    }
+
+    fn save(&self, out: &mut Writer) {
+        self.clock.save(out, &self.sorted_state());
+    }
+
+    fn load(&mut self, r: &mut Reader<'_>) -> Result<(), SnapshotError> {
+        let s = self.clock.load(r, self.n as usize)?;
+        let (q, b) = (&self.gpu.queue, &self.buffers);
+        q.write_buffer(&b.pos, 0, bytemuck::cast_slice(&vec4s(&s.pos)));
+        q.write_buffer(&b.vel, 0, bytemuck::cast_slice(&vec4s(&s.vel)));
+        q.write_buffer(&b.acc, 0, bytemuck::cast_slice(&vec4s(&s.acc)));
+        q.write_buffer(&b.ids, 0, bytemuck::cast_slice(&s.ids));
+        // Densities for output right away; the next step recomputes them identically.
+        self.record_sort_and_density();
+        self.flush();
+        Ok(())
+    }
+}

@@ -1,0 +1,228 @@
+//! Structs shared with the WGSL kernels, laid out to match WGSL's rules
+//! (`vec3` aligned to 16 bytes, so each is followed by a scalar) and checked by
+//! size assertions; the field order mirrors the WGSL declarations.
+
+use bytemuck::{Pod, Zeroable};
+use floe_engine::boundary::WallConstraint;
+use floe_engine::eos::Eos;
+use floe_engine::kernel::KernelKind;
+use floe_engine::model::Model;
+use floe_engine::neighbors::Grid;
+use floe_engine::viscosity::ViscosityModel;
+
+/// Scene constants of every particle kernel (`Params` in common.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct Params {
+    /// Fluid particles.
+    pub n: u32,
+    /// Wall particles.
+    pub n_walls: u32,
+    /// Wall constraints.
+    pub n_constraints: u32,
+    /// 0 Müller, 1 cubic spline.
+    pub kernel_kind: u32,
+    /// Fluid grid: origin (m), inverse cell edge (1/m), cells per axis, cell count.
+    pub grid_origin: [f32; 3],
+    pub inv_cell: f32,
+    pub grid_dims: [u32; 3],
+    pub cell_count: u32,
+    /// Wall grid, likewise.
+    pub wall_origin: [f32; 3],
+    pub wall_inv_cell: f32,
+    pub wall_dims: [u32; 3],
+    pub wall_cell_count: u32,
+    /// Gravity (m/s^2) and kernel support (m).
+    pub gravity: [f32; 3],
+    pub support: f32,
+    /// Domain (m) and support squared (m^2).
+    pub domain_min: [f32; 3],
+    pub h2: f32,
+    pub domain_max: [f32; 3],
+    pub inv_h: f32,
+    /// Kernel normalisations, particle mass (kg), rest density (kg/m^3).
+    pub w_norm: f32,
+    pub g_norm: f32,
+    pub mass: f32,
+    pub rho0: f32,
+    /// Equation of state: 0 Tait (`eos_a` = b, Pa), 1 linear (`eos_a` = k, m^2/s^2).
+    pub eos_kind: u32,
+    pub eos_a: f32,
+    pub eos_gamma: f32,
+    /// Viscosity: 0 none, 1 Laplacian (`visc_a` = mu, Pa s), 2 artificial
+    /// (`visc_a` = alpha c h, m^2/s; `visc_b` = 0.01 h^2, m^2).
+    pub visc_kind: u32,
+    pub visc_a: f32,
+    pub visc_b: f32,
+    /// XSPH epsilon and `1 / rho0^2`.
+    pub xsph: f32,
+    pub inv_rho0_2: f32,
+}
+const _: () = assert!(std::mem::size_of::<Params>() == 176);
+
+impl Params {
+    /// The constants of `model` on the fluid grid `grid`.
+    pub fn new(model: &Model, grid: &Grid) -> Self {
+        let k = &model.kernel;
+        let (w_norm, g_norm) = k.norms();
+        let f = &model.fluid;
+        let (eos_kind, eos_a, eos_gamma) = match f.eos {
+            Eos::Tait { b, gamma, .. } => (0, b, gamma),
+            Eos::Linear { k, .. } => (1, k, 1.0),
+        };
+        let (visc_kind, visc_a, visc_b) = match f.viscosity {
+            ViscosityModel::None => (0, 0.0, 0.0),
+            ViscosityModel::Laplacian { mu } => (1, mu, 0.0),
+            ViscosityModel::Artificial { alpha_c_h, eps_h2 } => (2, alpha_c_h, eps_h2),
+        };
+        let walls = &model.boundary.grid;
+        let h = k.support();
+        Self {
+            n: model.particle_count() as u32,
+            n_walls: model.boundary.len() as u32,
+            n_constraints: model.walls.len() as u32,
+            kernel_kind: match k.kind() {
+                KernelKind::Mueller => 0,
+                KernelKind::CubicSpline => 1,
+            },
+            grid_origin: grid.origin().to_array(),
+            inv_cell: grid.inv_cell(),
+            grid_dims: grid.dims(),
+            cell_count: grid.cell_count() as u32,
+            wall_origin: walls.origin().to_array(),
+            wall_inv_cell: walls.inv_cell(),
+            wall_dims: walls.dims(),
+            wall_cell_count: walls.cell_count() as u32,
+            gravity: model.gravity.to_array(),
+            support: h,
+            domain_min: model.domain.min.to_array(),
+            h2: h * h,
+            domain_max: model.domain.max.to_array(),
+            inv_h: 1.0 / h,
+            w_norm,
+            g_norm,
+            mass: f.mass,
+            rho0: f.rho0,
+            eos_kind,
+            eos_a,
+            eos_gamma,
+            visc_kind,
+            visc_a,
+            visc_b,
+            xsph: f.xsph,
+            inv_rho0_2: 1.0 / (f.rho0 * f.rho0),
+        }
+    }
+}
+
+/// One kick or drift (`Step` in integrate.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, Pod, Zeroable)]
+pub struct Step {
+    /// dt of the kick (s).
+    pub kick_dt: f32,
+    /// Damping factor applied with the kick.
+    pub keep: f32,
+    /// 1 when the kick adds the XSPH correction.
+    pub with_xsph: u32,
+    /// dt of the drift (s).
+    pub drift_dt: f32,
+}
+const _: () = assert!(std::mem::size_of::<Step>() == 16);
+
+/// A wall's non-penetration constraint (`Constraint` in integrate.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, Pod, Zeroable)]
+pub struct Constraint {
+    /// 0 box, 1 plane.
+    pub kind: u32,
+    /// Box: bit `2 axis + side` set for each closed face.
+    pub closed: u32,
+    /// How far outside the surface the constraint reaches (m).
+    pub reach: f32,
+    pub _pad: u32,
+    /// Box: lower interior corner; plane: centre (m).
+    pub a: [f32; 4],
+    /// Box: upper interior corner; plane: unit normal.
+    pub b: [f32; 4],
+    /// Plane: unit tangents with half edge lengths (m) in `w`.
+    pub t1: [f32; 4],
+    pub t2: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<Constraint>() == 80);
+
+impl From<&WallConstraint> for Constraint {
+    fn from(w: &WallConstraint) -> Self {
+        let v4 = |v: glam::Vec3, w: f32| [v.x, v.y, v.z, w];
+        match w {
+            WallConstraint::Box { min, max, closed, reach } => {
+                let mut bits = 0;
+                for (axis, sides) in closed.iter().enumerate() {
+                    for (side, &c) in sides.iter().enumerate() {
+                        if c {
+                            bits |= 1 << (2 * axis + side);
+                        }
+                    }
+                }
+                Constraint {
+                    kind: 0,
+                    closed: bits,
+                    reach: *reach,
+                    a: v4(*min, 0.0),
+                    b: v4(*max, 0.0),
+                    ..Default::default()
+                }
+            }
+            WallConstraint::Plane { center, normal, tangents, reach } => Constraint {
+                kind: 1,
+                reach: *reach,
+                a: v4(*center, 0.0),
+                b: v4(*normal, 0.0),
+                t1: v4(tangents[0].0, tangents[0].1),
+                t2: v4(tangents[1].0, tangents[1].1),
+                ..Default::default()
+            },
+        }
+    }
+}
+
+/// The guard's and time step's measures (`Measures` in measure.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, Pod, Zeroable)]
+pub struct Measures {
+    pub speed2: f32,
+    pub speed_slot: u32,
+    pub accel2: f32,
+    pub compression: f32,
+    pub compression_slot: u32,
+    pub compression_sum: f32,
+    /// First non-finite slot, `u32::MAX` if none.
+    pub non_finite: u32,
+    /// First slot outside the domain, `u32::MAX` if none.
+    pub outside: u32,
+}
+const _: () = assert!(std::mem::size_of::<Measures>() == 32);
+
+impl From<Measures> for floe_engine::guard::Measures {
+    fn from(m: Measures) -> Self {
+        let slot = |s: u32| (s != u32::MAX).then_some(s);
+        Self {
+            max_speed2: (m.speed2, m.speed_slot),
+            max_accel2: m.accel2,
+            max_compression: (m.compression, m.compression_slot),
+            sum_compression: m.compression_sum as f64,
+            non_finite: slot(m.non_finite),
+            outside: slot(m.outside),
+        }
+    }
+}
+
+/// Parameters of one prefix-sum level (`ScanParams` in scan.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, Pod, Zeroable)]
+pub struct ScanParams {
+    /// Values at this level.
+    pub len: u32,
+    pub _pad: [u32; 3],
+}
+const _: () = assert!(std::mem::size_of::<ScanParams>() == 16);

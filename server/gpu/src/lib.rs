@@ -1,0 +1,25 @@
+//! # floe-gpu
+//!
+//! Floe's GPU backend: every pass of the engine's fluid step as a WGSL compute
+//! shader on wgpu (Vulkan), with the CPU backend as its oracle. The state stays
+//! on the GPU; each step reads back only the 32-byte reduction the time step
+//! and the stability guard need, and frames only when someone asks for one.
+//!
+//! - [`context`]: adapter choice (hardware first; software such as Mesa's
+//!   lavapipe when allowed), device, compiled kernels.
+//! - [`passes`]: one `.wgsl` per kernel and the `.rs` owning its pipelines.
+//! - [`layout`]: the `#[repr(C)]` structs shared with WGSL.
+//! - [`buffers`], [`backend`]: one scene's GPU memory and its `Backend`.
+//! - [`select`]: `auto | gpu | cpu` for the server and the CLI.
+
+pub mod backend;
+pub mod buffers;
+pub mod context;
+pub mod layout;
+pub mod passes;
+pub mod program;
+pub mod select;
+
+pub use backend::GpuBackend;
+pub use context::{Adapters, GpuContext, GpuError};
+pub use select::{BackendChoice, Selected};

@@ -1,0 +1,33 @@
+//! Accelerations and XSPH corrections (see forces.wgsl).
+
+use crate::program::{Access, Kernel, Layout, module};
+use wgpu::Device;
+
+const BINDINGS: &[(u32, Access)] = &[
+    (0, Access::Uniform),
+    (1, Access::Read),
+    (2, Access::Read),
+    (3, Access::Read),
+    (4, Access::Read),
+    (5, Access::Read),
+    (6, Access::Read),
+    (7, Access::Read),
+    (8, Access::ReadWrite),
+];
+
+/// Source of forces.wgsl.
+pub const SOURCE: &str = super::particle_kernel!("forces.wgsl");
+
+/// params, positions, velocities, (rho, p/rho^2), cell starts, walls, wall cell
+/// starts, wall pressures, accelerations then XSPH corrections.
+#[derive(Debug)]
+pub struct Forces {
+    pub kernel: Kernel,
+}
+
+impl Forces {
+    pub fn new(device: &Device) -> Self {
+        let m = module(device, "forces.wgsl", SOURCE);
+        Self { kernel: Kernel::new(device, &m, "forces", "main", &Layout::new(device, "forces", BINDINGS), 128) }
+    }
+}

@@ -1,0 +1,64 @@
+//! The GPU passes: one WGSL file per kernel (`common.wgsl` prepended to the
+//! particle kernels) and one Rust file owning its pipelines and bindings.
+//! [`Programs`] compiles them once per device; every scene on that device
+//! shares them.
+
+pub mod density;
+pub mod forces;
+pub mod grid;
+pub mod integrate;
+pub mod measure;
+pub mod reorder;
+pub mod scan;
+pub mod wall_pressure;
+
+use wgpu::Device;
+
+/// Joins `common.wgsl` with a particle kernel's own source.
+macro_rules! particle_kernel {
+    ($file:literal) => {
+        concat!(include_str!("common.wgsl"), "\n", include_str!($file))
+    };
+}
+pub(crate) use particle_kernel;
+
+/// Every shader's label and complete WGSL source (for validation and docs).
+pub const SOURCES: &[(&str, &str)] = &[
+    ("grid", grid::SOURCE),
+    ("scan", scan::SOURCE),
+    ("reorder", reorder::SOURCE),
+    ("density", density::SOURCE),
+    ("wall_pressure", wall_pressure::SOURCE),
+    ("forces", forces::SOURCE),
+    ("measure", measure::SOURCE),
+    ("integrate", integrate::SOURCE),
+];
+
+/// All compiled kernels of one device.
+#[derive(Debug)]
+pub struct Programs {
+    pub grid: grid::Grid,
+    pub scan: scan::Scan,
+    pub reorder: reorder::Reorder,
+    pub density: density::Density,
+    pub wall_pressure: wall_pressure::WallPressure,
+    pub forces: forces::Forces,
+    pub measure: measure::Measure,
+    pub integrate: integrate::Integrate,
+}
+
+impl Programs {
+    /// Compiles every kernel for `device`.
+    pub fn new(device: &Device) -> Self {
+        Self {
+            grid: grid::Grid::new(device),
+            scan: scan::Scan::new(device),
+            reorder: reorder::Reorder::new(device),
+            density: density::Density::new(device),
+            wall_pressure: wall_pressure::WallPressure::new(device),
+            forces: forces::Forces::new(device),
+            measure: measure::Measure::new(device),
+            integrate: integrate::Integrate::new(device),
+        }
+    }
+}

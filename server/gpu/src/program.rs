@@ -1,0 +1,129 @@
+//! A compute kernel: one entry point of a WGSL module with its explicit bind
+//! group layout, and how to bind and dispatch it.
+//!
+//! Layouts are explicit (not derived from the shader) so one layout fits every
+//! bind group of a kernel, and a binding a shader stops using is still checked.
+
+use wgpu::{BindGroup, Buffer, CommandEncoder, ComputePipeline, Device};
+
+/// How a kernel sees one binding.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Access {
+    /// A uniform buffer.
+    Uniform,
+    /// A read-only storage buffer.
+    Read,
+    /// A read-write storage buffer.
+    ReadWrite,
+}
+
+/// Largest workgroup count per dispatch dimension (WebGPU's guaranteed limit).
+const MAX_GROUPS: u32 = 65_535;
+
+/// A bind group layout with its bindings; kernels sharing one accept each
+/// other's bind groups.
+#[derive(Debug, Clone)]
+pub struct Layout {
+    layout: wgpu::BindGroupLayout,
+    bindings: &'static [(u32, Access)],
+}
+
+impl Layout {
+    /// The layout of group 0 with `bindings`.
+    pub fn new(device: &Device, label: &'static str, bindings: &'static [(u32, Access)]) -> Self {
+        let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
+            .iter()
+            .map(|&(binding, access)| wgpu::BindGroupLayoutEntry {
+                binding,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty: match access {
+                        Access::Uniform => wgpu::BufferBindingType::Uniform,
+                        Access::Read => wgpu::BufferBindingType::Storage { read_only: true },
+                        Access::ReadWrite => wgpu::BufferBindingType::Storage { read_only: false },
+                    },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            })
+            .collect();
+        let layout =
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries });
+        Self { layout, bindings }
+    }
+}
+
+/// One entry point with its pipeline and bind group layout.
+#[derive(Debug)]
+pub struct Kernel {
+    label: &'static str,
+    pipeline: ComputePipeline,
+    layout: Layout,
+    workgroup: u32,
+}
+
+impl Kernel {
+    /// Builds `entry` of `module` on `layout`, with `workgroup` threads per
+    /// workgroup (as declared in the shader).
+    pub fn new(
+        device: &Device,
+        module: &wgpu::ShaderModule,
+        label: &'static str,
+        entry: &'static str,
+        layout: &Layout,
+        workgroup: u32,
+    ) -> Self {
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&layout.layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: Some(&pipeline_layout),
+            module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        Self { label, pipeline, layout: layout.clone(), workgroup }
+    }
+
+    /// A bind group with `buffers` in the order of the kernel's bindings.
+    pub fn bind(&self, device: &Device, buffers: &[&Buffer]) -> BindGroup {
+        let bindings = self.layout.bindings;
+        assert_eq!(buffers.len(), bindings.len(), "{}: wrong number of buffers", self.label);
+        let entries: Vec<wgpu::BindGroupEntry> = bindings
+            .iter()
+            .zip(buffers)
+            .map(|(&(binding, _), b)| wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(self.label),
+            layout: &self.layout.layout,
+            entries: &entries,
+        })
+    }
+
+    /// Records a dispatch of at least `threads` threads (one pass, labelled).
+    /// Counts above 65535 workgroups spill into a second dimension, which the
+    /// shaders fold back (`thread_index` in common.wgsl).
+    pub fn dispatch(&self, encoder: &mut CommandEncoder, bind: &BindGroup, threads: u32) {
+        let groups = threads.div_ceil(self.workgroup).max(1);
+        let (x, y) = if groups > MAX_GROUPS { (MAX_GROUPS, groups.div_ceil(MAX_GROUPS)) } else { (groups, 1) };
+        let mut pass = encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(self.label), timestamp_writes: None });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, bind, &[]);
+        pass.dispatch_workgroups(x, y, 1);
+    }
+}
+
+/// A shader module from WGSL source, labelled.
+pub fn module(device: &Device, label: &'static str, source: &'static str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    })
+}

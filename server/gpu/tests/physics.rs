@@ -1,0 +1,114 @@
+//! Whole runs on the GPU backend: the same references as the CPU backend
+//! (VALIDATION.md cases 1 and 2), agreement between the backends, halts,
+//! snapshots and live parameters.
+
+mod common;
+
+use floe_engine::Channel;
+use floe_engine::Simulation;
+use floe_engine::backend::Backend;
+use floe_engine::model::Model;
+use floe_engine::scene::load::from_preset;
+use floe_engine::scene::presets::DAM_BREAK_A;
+use floe_engine::validation::{dam_break, hydrostatic};
+use floe_gpu::{GpuBackend, GpuContext};
+
+fn on_gpu(gpu: &GpuContext, name: &str, overrides: &[&str]) -> Simulation {
+    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let scene = from_preset(name, &o).unwrap();
+    let model = Model::build(&scene).unwrap();
+    Simulation::with_backend(scene, Box::new(GpuBackend::new(gpu, model).unwrap()))
+}
+
+/// Surge front Z at T = 1 and T = 2 (first step at or past each).
+fn fronts(sim: &mut Simulation, a: f64, d: f64) -> Vec<f64> {
+    let t_scale = (2.0 * 9.81 / a).sqrt();
+    let mut out = Vec::new();
+    for t in [1.0, 2.0] {
+        sim.run_until(dam_break::seconds(t, 9.81, a), |_, _| {}).unwrap();
+        out.push(dam_break::front(&sim.read(&[]).positions, 0.0, d, a));
+        assert!(sim.time() * t_scale - t < 0.01);
+    }
+    out
+}
+
+#[test]
+fn dam_break_agrees_with_the_cpu_backend() {
+    let Some(gpu) = common::gpu("dam_break_agrees_with_the_cpu_backend") else { return };
+    let n = 16.0;
+    let spacing = format!("particle_spacing={}", DAM_BREAK_A / n);
+    let (a, d) = (DAM_BREAK_A as f64, DAM_BREAK_A as f64 / n as f64);
+    let mut g = on_gpu(gpu, "dam_break", &[&spacing]);
+    let mut c = Simulation::new_cpu(from_preset("dam_break", &[spacing.clone()]).unwrap()).unwrap();
+    assert_eq!(g.particle_count(), c.particle_count());
+    let (zg, zc) = (fronts(&mut g, a, d), fronts(&mut c, a, d));
+    eprintln!("{} particles: front Z at T = 1, 2: GPU {zg:?}, CPU {zc:?}", g.particle_count());
+    for (t, (zg, zc)) in [1, 2].iter().zip(zg.iter().zip(&zc)) {
+        assert!((zg - zc).abs() <= 0.1, "T = {t}: GPU front {zg:.3}, CPU {zc:.3}");
+    }
+    assert_eq!(g.read(&[]).positions.len(), c.particle_count());
+}
+
+#[test]
+fn hydrostatic_column_passes_the_cpu_bounds() {
+    let Some(gpu) = common::gpu("hydrostatic_column_passes_the_cpu_bounds") else { return };
+    let mut sim = on_gpu(gpu, "hydrostatic", &[]);
+    sim.run_until(1.0, |_, _| {}).unwrap();
+    let p = sim.read(&[Channel::Density, Channel::Pressure]);
+    let e = hydrostatic::measure(&p, 1000.0, 9.81, 0.9, sim.scene().particle_spacing as f64);
+    eprintln!("GPU: {} particles, {} steps: {e:?}", sim.particle_count(), sim.steps());
+    // The bounds of the CPU test (engine tests/physics.rs).
+    assert!(e.pressure_l2 < 0.05, "pressure L2 error {:.4}", e.pressure_l2);
+    assert!(e.mean_density_deviation < 0.01, "mean density deviation {:.4}", e.mean_density_deviation);
+    assert!((e.surface - 0.9).abs() < 0.03, "free surface at {:.4} m", e.surface);
+}
+
+#[test]
+fn an_unstable_scene_halts_with_a_reason_on_the_gpu() {
+    let Some(gpu) = common::gpu("an_unstable_scene_halts_with_a_reason_on_the_gpu") else { return };
+    // Sound ten times slower than the flow: the fluid compresses without bound.
+    let mut sim = on_gpu(gpu, "dam_break", &["particle_spacing=0.05", "solver.speed_of_sound=0.5"]);
+    let halted = sim.run_until(1.0, |_, _| {}).unwrap_err();
+    assert!(halted.reason.contains("exceeds guard."), "{halted}");
+    let id = halted.particle.expect("the halting particle");
+    assert!((id as usize) < sim.particle_count());
+    assert!(halted.time > 0.0 && halted.time < 1.0);
+    assert_eq!(sim.step().unwrap_err(), halted);
+}
+
+#[test]
+fn a_gpu_snapshot_steps_on_bit_for_bit() {
+    let Some(gpu) = common::gpu("a_gpu_snapshot_steps_on_bit_for_bit") else { return };
+    let make = |model| -> Result<Box<dyn Backend>, _> { Ok(Box::new(GpuBackend::new(gpu, model)?)) };
+    let mut sim = on_gpu(gpu, "dam_break", &["particle_spacing=0.05", "solver.integrator=\"leapfrog\""]);
+    for _ in 0..30 {
+        sim.step().unwrap();
+    }
+    let saved = sim.snapshot();
+    let mut restored = Simulation::restore_on(&saved, &make).unwrap();
+    assert_eq!(restored.backend_name(), "gpu");
+    for _ in 0..30 {
+        assert_eq!(sim.step().unwrap(), restored.step().unwrap());
+    }
+    let all = [Channel::Velocity, Channel::Density];
+    assert_eq!(sim.read(&all), restored.read(&all));
+    // A CPU snapshot loads onto the GPU too (the format is the backends' shared one).
+    let mut cpu = Simulation::new_cpu(sim.scene().clone()).unwrap();
+    cpu.step().unwrap();
+    let mut moved = Simulation::restore_on(&cpu.snapshot(), &make).unwrap();
+    assert_eq!(moved.read(&[]).positions, cpu.read(&[]).positions);
+    moved.step().unwrap();
+}
+
+#[test]
+fn gravity_changed_on_a_gpu_scene_takes_effect() {
+    let Some(gpu) = common::gpu("gravity_changed_on_a_gpu_scene_takes_effect") else { return };
+    let mut sim = on_gpu(gpu, "dam_break", &["particle_spacing=0.05"]);
+    sim.set_parameters(&["gravity=[0.0, 0.0, 0.0]".into()]).unwrap();
+    for _ in 0..50 {
+        sim.step().unwrap();
+    }
+    let v = sim.read(&[Channel::Velocity]).velocities.unwrap();
+    let fastest = v.iter().map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()).fold(0.0, f32::max);
+    assert!(fastest < 0.05, "without gravity the column stays put; fastest particle {fastest} m/s");
+}
