@@ -42,7 +42,8 @@ pub struct Decoder {
     limits: Limits,
     last_sequence: Option<u64>,
     base: Option<Base>,
-    planes: Vec<u8>,
+    /// Stored values of the stream being read, reused from stream to stream.
+    values: Vec<u64>,
 }
 
 impl Decoder {
@@ -109,7 +110,7 @@ impl Decoder {
             };
             if info.predictor == Predictor::Morton {
                 out.positions =
-                    unordered::read_positions(&mut p, n, &quantizers, &mut self.planes).map_err(in_channel)?;
+                    unordered::read_positions(&mut p, n, &quantizers, &mut self.values).map_err(in_channel)?;
             } else {
                 let prev = base.and_then(|b| b.channels.iter().find(|c| c.kind == kind));
                 let before = base.and_then(|b| b.before.as_ref()).filter(|_| kind == ChannelKind::Position);
@@ -130,7 +131,7 @@ impl Decoder {
                 for k in 0..quantizers.len() {
                     let reference = (prev.map(|c| c.codes[k].as_slice()), before.map(|b| b[k].as_slice()));
                     codes.push(
-                        predict::read(&mut p, n, info.bits, info.predictor, reference, &mut self.planes)
+                        predict::read(&mut p, n, info.bits, info.predictor, reference, &mut self.values)
                             .map_err(in_channel)?,
                     );
                 }

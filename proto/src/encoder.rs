@@ -31,9 +31,11 @@ pub struct EncoderConfig {
     pub mode: Mode,
     /// Written into every frame, so a decoder can tell streams of different scenes apart.
     pub scene_id: u64,
-    /// Position quantisation box (m): the scene bounds with a margin.
+    /// Position quantisation box (m): the scene bounds with a margin. Its longest side sets
+    /// the quantisation step of all three axes.
     pub bounds: Bounds,
-    /// Bits per position axis, 8 to 16. At 16 bits over a 2 m box the error is 15 µm.
+    /// Bits per position axis, 8 to 16. All three axes share one step, the longest axis's
+    /// span over `2^bits - 1`: at 16 bits over a 2 m box the error is 15 µm in every direction.
     pub position_bits: u8,
     /// Bits per velocity component, over the frame's own range (1 to 16).
     pub velocity_bits: u8,
@@ -80,10 +82,14 @@ impl EncoderConfig {
                 return bad(format!("{name} = {b} (1 to 16 allowed)"));
             }
         }
-        for (k, q) in self.position_quantizers().iter().enumerate() {
-            if !(q.min.is_finite() && q.max.is_finite() && q.min <= q.max && q.step().is_finite()) {
-                return bad(format!("bounds axis {k}: [{}, {}] is not a finite, ordered range", q.min, q.max));
+        let Bounds { min, max } = self.bounds;
+        for k in 0..3 {
+            if !(min[k].is_finite() && max[k].is_finite() && min[k] <= max[k]) {
+                return bad(format!("bounds axis {k}: [{}, {}] is not a finite, ordered range", min[k], max[k]));
             }
+        }
+        if self.position_quantizers().iter().any(|q| !(q.max.is_finite() && q.step().is_finite())) {
+            return bad(format!("bounds {min:?} to {max:?} are too large for f32 steps"));
         }
         if self.keyframe_interval == 0 {
             return bad("keyframe_interval = 0 (at least 1)".into());
@@ -91,12 +97,15 @@ impl EncoderConfig {
         Ok(())
     }
 
-    fn position_quantizers(&self) -> [Quantizer; 3] {
-        std::array::from_fn(|k| Quantizer {
-            min: self.bounds.min[k],
-            max: self.bounds.max[k],
-            bits: self.position_bits,
-        })
+    /// How positions are quantised. One step for all three axes, the longest axis's: each
+    /// axis's range starts at the bounds' minimum and spans the longest axis. The error bound
+    /// is then the same in every direction, and the shorter axes use fewer codes, which the
+    /// streams store in fewer bits (0.4 bytes/particle less on the dam break's
+    /// 2.2 x 1.3 x 0.35 m box).
+    pub fn position_quantizers(&self) -> [Quantizer; 3] {
+        let Bounds { min, max } = self.bounds;
+        let span = (0..3).map(|k| max[k] - min[k]).fold(0.0, f32::max);
+        std::array::from_fn(|k| Quantizer { min: min[k], max: min[k] + span, bits: self.position_bits })
     }
 }
 

@@ -45,7 +45,7 @@ use crate::reader::Reader;
 /// Identifies a Floe frame: the first four bytes.
 pub const MAGIC: [u8; 4] = *b"FLOF";
 /// The format version this crate writes and reads.
-pub const VERSION: u16 = 1;
+pub const VERSION: u16 = 2;
 /// Bytes of the fixed header, before the channel table.
 pub const FIXED_HEADER_LEN: usize = 64;
 /// Most channels a frame may declare, so a header's size stays bounded.

@@ -48,9 +48,9 @@ pub mod pb;
 mod predict;
 pub mod quantize;
 mod reader;
-mod shuffle;
 pub mod stream;
 mod unordered;
+mod zigzag;
 
 pub use decoder::{Decoder, Limits, read_header};
 pub use encoder::{Bounds, Encoder, EncoderConfig};

@@ -3,14 +3,13 @@
 use crate::error::DecodeError;
 use crate::header::Predictor;
 use crate::reader::Reader;
-use crate::shuffle::{apply_residual, join_planes_u16, zigzag_residual};
 use crate::stream;
+use crate::zigzag::{apply_residual, zigzag_residual};
 
 /// Scratch buffers reused from frame to frame.
 #[derive(Debug, Default)]
 pub(crate) struct Scratch {
-    pub(crate) values: Vec<u16>,
-    pub(crate) planes: Vec<u8>,
+    values: Vec<u64>,
 }
 
 /// Where a component's codes are predicted from.
@@ -43,32 +42,32 @@ impl Reference<'_> {
 pub(crate) fn write(out: &mut Vec<u8>, codes: &[u16], bits: u8, reference: Reference<'_>, s: &mut Scratch) {
     let v = &mut s.values;
     v.clear();
+    let mut push = |r: u16| v.push(u64::from(r));
     match reference {
-        Reference::Nothing => v.extend_from_slice(codes),
+        Reference::Nothing => codes.iter().for_each(|&c| push(c)),
         Reference::Previous(None) => {
             let mut prev = 0;
-            v.extend(codes.iter().map(|&c| {
-                let r = zigzag_residual(c, prev, bits);
+            for &c in codes {
+                push(zigzag_residual(c, prev, bits));
                 prev = c;
-                r
-            }));
+            }
         }
         Reference::Previous(Some(order)) => {
             let mut prev = 0;
-            v.extend(order.iter().map(|&i| {
+            for &i in order {
                 let c = codes[i as usize];
-                let r = zigzag_residual(c, prev, bits);
+                push(zigzag_residual(c, prev, bits));
                 prev = c;
-                r
-            }));
+            }
         }
-        Reference::Base(base) => v.extend(codes.iter().zip(base).map(|(&c, &b)| zigzag_residual(c, b, bits))),
-        Reference::Linear(base, before) => v.extend(
-            codes.iter().zip(base).zip(before).map(|((&c, &b), &a)| zigzag_residual(c, extrapolate(b, a), bits)),
-        ),
+        Reference::Base(base) => codes.iter().zip(base).for_each(|(&c, &b)| push(zigzag_residual(c, b, bits))),
+        Reference::Linear(base, before) => codes
+            .iter()
+            .zip(base)
+            .zip(before)
+            .for_each(|((&c, &b), &a)| push(zigzag_residual(c, extrapolate(b, a), bits))),
     }
-    let max = v.iter().copied().max().unwrap_or(0);
-    stream::write(out, v, u64::from(max), &mut s.planes);
+    stream::write(out, v);
 }
 
 /// `2 base - before`; [`zigzag_residual`] and [`apply_residual`] reduce it modulo `2^bits`.
@@ -86,15 +85,11 @@ pub(crate) fn read(
     bits: u8,
     predictor: Predictor,
     (base, before): (Option<&[u16]>, Option<&[u16]>),
-    planes: &mut Vec<u8>,
+    values: &mut Vec<u64>,
 ) -> Result<Vec<u16>, DecodeError> {
-    let width = stream::read(r, n, usize::from(bits).div_ceil(8), planes)?;
-    let mut codes = vec![0u16; n];
-    join_planes_u16(planes, width, &mut codes);
-    let top = ((1u32 << bits) - 1) as u16;
-    if codes.iter().any(|&c| c > top) {
-        return Err(DecodeError::malformed(format!("a stored value exceeds {bits} bits")));
-    }
+    // The stream's width is at most `bits`, so every stored value fits in `bits` bits.
+    stream::read(r, n, u32::from(bits), values)?;
+    let mut codes: Vec<u16> = values.iter().map(|&v| v as u16).collect();
     match (predictor, base, before) {
         (Predictor::None, ..) => {}
         (Predictor::Previous, ..) => {

@@ -10,7 +10,6 @@ use crate::error::DecodeError;
 use crate::morton;
 use crate::quantize::Quantizer;
 use crate::reader::Reader;
-use crate::shuffle::join_planes_u64;
 use crate::stream;
 
 /// Scratch buffers reused from frame to frame.
@@ -20,7 +19,6 @@ pub(crate) struct Scratch {
     pub(crate) ids: Vec<u32>,
     spare_keys: Vec<u64>,
     spare_ids: Vec<u32>,
-    planes: Vec<u8>,
 }
 
 /// Appends the positions stream of `positions` (sorted Morton-key differences). With
@@ -40,14 +38,12 @@ pub(crate) fn write_positions(out: &mut Vec<u8>, positions: &ChannelCodes, carry
         morton::sort(&mut s.keys, None, key_bits, &mut s.spare_keys, &mut s.spare_ids);
     }
     let mut prev = 0;
-    let mut max = 0;
     for k in &mut s.keys {
         let d = *k - prev;
         prev = *k;
         *k = d;
-        max = max.max(d);
     }
-    stream::write(out, &s.keys, max, &mut s.planes);
+    stream::write(out, &s.keys);
 }
 
 /// Reads the positions stream of `n` particles quantised by `q` (one per axis) and
@@ -56,14 +52,12 @@ pub(crate) fn read_positions(
     r: &mut Reader<'_>,
     n: usize,
     q: &[Quantizer],
-    planes: &mut Vec<u8>,
+    keys: &mut Vec<u64>,
 ) -> Result<Vec<[f32; 3]>, DecodeError> {
     let key_bits = 3 * u32::from(q[0].bits);
-    let width = stream::read(r, n, key_bits.div_ceil(8) as usize, planes)?;
-    let mut keys = vec![0u64; n];
-    join_planes_u64(planes, width, &mut keys);
+    stream::read(r, n, key_bits, keys)?;
     let mut key = 0u64;
-    for k in &mut keys {
+    for k in keys.iter_mut() {
         key = key
             .checked_add(*k)
             .filter(|&k| k >> key_bits == 0)

@@ -4,7 +4,7 @@
 mod common;
 
 use common::{Particles, Rng};
-use floe_proto::header::FIXED_HEADER_LEN;
+use floe_proto::header::{FIXED_HEADER_LEN, VERSION};
 use floe_proto::{Bounds, DecodeError, Decoder, Encoder, EncoderConfig, Frame, Limits, Mode, read_header};
 
 const BOUNDS: Bounds = Bounds { min: [-1.0, 0.0, 0.0], max: [1.0, 1.0, 0.3] };
@@ -182,9 +182,9 @@ fn corrupted_header_fields_are_refused() {
             assert!(matches!(got, Err(DecodeError::Malformed { .. })), "{}: {what} gave {}", s.name, brief(&got));
         }
         let mut bytes = s.bytes.clone();
-        put(&mut bytes, 4, &2u16.to_le_bytes());
+        put(&mut bytes, 4, &(VERSION + 1).to_le_bytes());
         let got = s.decoder.clone().decode(&bytes);
-        assert_eq!(got, Err(DecodeError::UnsupportedVersion { found: 2, supported: 1 }), "{}", s.name);
+        assert_eq!(got, Err(DecodeError::UnsupportedVersion { found: VERSION + 1, supported: VERSION }), "{}", s.name);
         let mut bytes = s.bytes.clone();
         put(&mut bytes, FRAME_LEN, &(frame_len(s) + 1).to_le_bytes());
         let got = s.decoder.clone().decode(&bytes);

@@ -138,11 +138,7 @@ fn unordered_positions_are_the_quantised_inputs_in_another_order() {
         };
         let bytes = Encoder::new(config.clone()).unwrap().encode(0, 0.0, &p.input()).unwrap();
         let frame = Decoder::new(Limits::default()).decode(&bytes).unwrap();
-        let q: [Quantizer; 3] = std::array::from_fn(|k| Quantizer {
-            min: config.bounds.min[k],
-            max: config.bounds.max[k],
-            bits: config.position_bits,
-        });
+        let q: [Quantizer; 3] = config.position_quantizers();
         let key = |v: &[f32; 3]| v.map(f32::to_bits);
         let mut want: Vec<[u32; 3]> = p
             .positions
@@ -171,10 +167,12 @@ fn stated_errors_are_half_a_step() {
     let frame = Decoder::new(Limits::default()).decode(&bytes).unwrap();
     let pos = &frame.header.channels[0];
     assert_eq!(pos.bits, config.position_bits);
+    // One step for every axis, the longest axis's (up to the rounding of `min + span`).
+    let span = (0..3).map(|k| config.bounds.max[k] - config.bounds.min[k]).fold(0.0, f32::max);
+    let half_step = span / ((1u32 << config.position_bits) - 1) as f32 / 2.0;
     for k in 0..3 {
-        let span = config.bounds.max[k] - config.bounds.min[k];
-        let half_step = span / ((1u32 << config.position_bits) - 1) as f32 / 2.0;
-        assert_eq!(pos.ranges[k].max_error, half_step);
+        assert_eq!(pos.ranges[k].min, config.bounds.min[k]);
+        assert!((pos.ranges[k].max_error - half_step).abs() <= half_step * 1e-5, "axis {k}");
     }
     let phase = channel(&frame, ChannelKind::Phase.tag());
     assert_eq!((phase.bits, phase.ranges[0].max_error), (8, 0.0));

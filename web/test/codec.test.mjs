@@ -111,11 +111,12 @@ test('one decoder follows the identity stream, and keeps its state when a frame 
   d.decode(bin('identity_keyframe'));
   const good = bin('identity_delta');
   const h = readHeader(good);
-  // Damage the first plane's method byte of the last channel (phase): the refusal comes after
-  // positions and velocities have been decoded.
+  // Damage the stream width of the last channel (phase): the refusal comes after positions
+  // and velocities have been decoded.
   const last = good.slice();
-  last[h.frameLen - h.channels.at(-1).payloadLen + 1] = 7;
-  assert.throws(() => d.decode(last), (e) => e instanceof MalformedError && /channel 2 \(phase\): plane 0: unknown method 7/.test(e.what));
+  last[h.frameLen - h.channels.at(-1).payloadLen] = 9;
+  assert.throws(() => d.decode(last), (e) => e instanceof MalformedError &&
+    /channel 2 \(phase\): stream width 9 bits \(at most 8 allowed\)/.test(e.what));
   assert.equal(d.heldSequence, 0n);
   assert.equal(d.lastSequence, 0n);
   const delta = d.decode(good);

@@ -6,7 +6,8 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import test from 'node:test';
 import {
-  DecodeError, Decoder, IncompleteError, MalformedError, NeedKeyframeError, UnsupportedVersionError, readHeader,
+  DecodeError, Decoder, IncompleteError, MalformedError, NeedKeyframeError, UnsupportedVersionError, VERSION,
+  readHeader,
 } from '../js/codec/index.js';
 
 const DATA = new URL('../../proto/testdata/', import.meta.url);
@@ -89,10 +90,11 @@ test('named corruptions of header fields are refused as in Rust', () => {
       edit(b);
       assert.throws(() => primed(name).decode(b), MalformedError, `${name}: ${what}`);
     }
-    const v2 = bin(name);
-    v2[4] = 2;
-    assert.throws(() => primed(name).decode(v2), (e) =>
-      e instanceof UnsupportedVersionError && e.kind === 'UnsupportedVersion' && e.found === 2 && e.supported === 1);
+    const next = bin(name);
+    next[4] = VERSION + 1;
+    assert.throws(() => primed(name).decode(next), (e) =>
+      e instanceof UnsupportedVersionError && e.kind === 'UnsupportedVersion' && e.found === VERSION + 1 &&
+      e.supported === VERSION);
     const longer = bin(name);
     put32(longer, 8, longer.length + 1);
     assert.throws(() => primed(name).decode(longer), IncompleteError, `${name}: frame length + 1`);

@@ -39,7 +39,7 @@ fn dam_break_agrees_with_the_cpu_backend() {
     let spacing = format!("particle_spacing={}", DAM_BREAK_A / n);
     let (a, d) = (DAM_BREAK_A as f64, DAM_BREAK_A as f64 / n as f64);
     let mut g = on_gpu(gpu, "dam_break", &[&spacing]);
-    let mut c = Simulation::new_cpu(from_preset("dam_break", &[spacing.clone()]).unwrap()).unwrap();
+    let mut c = Simulation::new_cpu(from_preset("dam_break", std::slice::from_ref(&spacing)).unwrap()).unwrap();
     assert_eq!(g.particle_count(), c.particle_count());
     let (zg, zc) = (fronts(&mut g, a, d), fronts(&mut c, a, d));
     eprintln!("{} particles: front Z at T = 1, 2: GPU {zg:?}, CPU {zc:?}", g.particle_count());

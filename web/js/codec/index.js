@@ -19,11 +19,10 @@ export {
   ChannelKind, DEFAULT_LIMITS, FIXED_HEADER_LEN, KIND_COMPONENTS, KIND_NAMES, MAGIC, MAX_CHANNELS, MAX_COMPONENTS,
   Mode, VERSION, readHeader,
 } from './header.js';
-export { Lz4Error, decompressBlockInto } from './lz4.js';
 export { decodeKey, encodeKey } from './morton.js';
 export { PREDICTOR_NAMES, Predictor, extrapolate, readCodes } from './predict.js';
 export { checkRange, dequantise, maxErrorOf, stepOf } from './quantize.js';
 export { Reader } from './reader.js';
-export { applyResidual, joinPlanesU16, joinPlanesU48, unzigzag, widthOf, zigzagResidual } from './shuffle.js';
-export { Scratch, readStream } from './stream.js';
+export { BLOCK, ESCAPE, Scratch, ZERO_BLOCK, readStream } from './stream.js';
 export { readMortonPositions } from './unordered.js';
+export { applyResidual, unzigzag, zigzagResidual } from './zigzag.js';

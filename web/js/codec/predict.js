@@ -48,31 +48,16 @@ export function extrapolate(base, before) {
  * @throws {MalformedError}
  */
 export function readCodes(r, n, bits, predictor, base, before, scratch) {
-  const width = readStream(r, n, Math.ceil(bits / 8), scratch);
-  const planes = scratch.planes;
+  // The stream's width is at most `bits`, so every stored value fits in `bits` bits.
+  const values = readStream(r, n, bits, scratch);
   const top = (1 << bits) - 1;
   const usable =
     predictor === Predictor.NONE ||
     predictor === Predictor.PREVIOUS ||
     (predictor === Predictor.BASE && base !== null && base.length === n) ||
     (predictor === Predictor.LINEAR && base !== null && before !== null && base.length === n && before.length === n);
-  // Join the byte planes and check each stored value against `bits`, then undo the prediction.
-  // (As in Rust: every stored value is checked before the predictor is looked at.)
   const codes = new Uint16Array(n);
-  let bad = false;
-  if (width === 1) {
-    for (let i = 0; i < n; i++) codes[i] = planes[i];
-    bad = top < 255 && codes.some((z) => z > top);
-  } else {
-    let any = 0;
-    for (let i = 0; i < n; i++) {
-      const z = planes[i] | (planes[n + i] << 8);
-      codes[i] = z;
-      any |= z > top ? 1 : 0;
-    }
-    bad = any !== 0;
-  }
-  if (bad) throw new MalformedError(`a stored value exceeds ${bits} bits`);
+  for (let i = 0; i < n; i++) codes[i] = values[i];
   if (!usable) {
     const name = PREDICTOR_DEBUG_NAMES[predictor] ?? String(predictor);
     throw new MalformedError(`predictor ${name} cannot apply to this channel`);

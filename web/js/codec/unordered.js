@@ -1,7 +1,7 @@
 /**
  * Positions of unordered frames (mirrors `proto/src/unordered.rs`): particles sorted by the
  * Morton key of their quantised position, the sorted keys stored as differences from the
- * previous key (the first from 0) in one stream of up to `ceil(3 b / 8)` bytes per value.
+ * previous key (the first from 0) in one stream of values of up to `3 b` bits.
  * @module
  */
 
@@ -25,8 +25,7 @@ const TWO_24 = 16777216;
  */
 export function readMortonPositions(r, n, ranges, bits, scratch) {
   const keyBits = 3 * bits;
-  const width = readStream(r, n, Math.ceil(keyBits / 8), scratch);
-  const planes = scratch.planes;
+  const values = readStream(r, n, keyBits, scratch);
   // The running key as two 24-bit halves (all bit operations stay in int32); it must stay
   // below 2^keyBits, i.e. the high half below 2^(keyBits - 24) (2^0 = 1: zero, for keyBits <= 24).
   const loLimit = keyBits >= 24 ? TWO_24 : 2 ** keyBits;
@@ -39,13 +38,11 @@ export function readMortonPositions(r, n, ranges, bits, scratch) {
   let lo = 0;
   let hi = 0;
   for (let i = 0; i < n; i++) {
-    // The difference, from up to 6 planes, added with a carry between the halves.
-    lo += planes[i];
-    if (width > 1) lo += planes[n + i] << 8;
-    if (width > 2) lo += planes[2 * n + i] << 16;
-    if (width > 3) hi += planes[3 * n + i];
-    if (width > 4) hi += planes[4 * n + i] << 8;
-    if (width > 5) hi += planes[5 * n + i] << 16;
+    // The difference (below 2^48), split into halves and added with a carry between them.
+    const diff = values[i];
+    const dHi = Math.floor(diff / TWO_24);
+    lo += diff - dHi * TWO_24;
+    hi += dHi;
     hi += lo >>> 24;
     lo &= 0xffffff;
     if (hi >= hiLimit || (hi === 0 && lo >= loLimit)) {
