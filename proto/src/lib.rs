@@ -8,20 +8,21 @@
 //!
 //! Two modes ([`Mode`]):
 //!
-//! - **Unordered**, for viewers: positions are quantised over the scene bounds, particles
-//!   are sorted by the Morton key of their quantised position and the sorted keys are
-//!   delta-coded; other channels follow the same order, each value predicted from the
-//!   previous particle's. 4.1 bytes per particle at 16-bit positions on the dam break, 3.2
-//!   at 14 bits (`proto/README.md`).
+//! - **Unordered**, for viewers: positions are quantised over the scene bounds (one step for
+//!   all three axes), particles are sorted by the Morton key of their quantised position and
+//!   the sorted keys are delta-coded; other channels follow the same order, each value
+//!   predicted from the previous particle's. 3.4 bytes per particle at 16-bit positions on
+//!   the dam break, 2.7 at 14 bits (`docs/benchmarks.md`).
 //! - **Identity-ordered**, for clients that follow particles: particle `i` stays at index `i`;
 //!   delta frames store each position code's difference from its prediction from the previous
 //!   frame (or the previous two, at constant velocity), with a keyframe at a configurable
 //!   interval or on request ([`Encoder::force_keyframe`]). A decoder that does not hold a delta
-//!   frame's base returns [`DecodeError::NeedKeyframe`]. 3.9 bytes per particle at 16 bits.
+//!   frame's base returns [`DecodeError::NeedKeyframe`]. 3.0 bytes per particle at 16 bits
+//!   with a keyframe every 30 frames.
 //!
-//! Stored values are byte-shuffled into planes and each plane is LZ4-compressed
-//! when that makes it smaller. Decoding never panics: every length is checked against the
-//! frame, and the particle count and frame size against the caller's [`Limits`].
+//! Stored values are Rice-coded in blocks of 128, each block with its own parameter
+//! ([`stream`]). Decoding never panics: every length is checked against the frame, and the
+//! particle count and frame size against the caller's [`Limits`].
 //!
 //! ```
 //! use floe_proto::{Bounds, Decoder, Encoder, EncoderConfig, FrameInput, Limits, Mode};

@@ -42,30 +42,35 @@ impl Reference<'_> {
 pub(crate) fn write(out: &mut Vec<u8>, codes: &[u16], bits: u8, reference: Reference<'_>, s: &mut Scratch) {
     let v = &mut s.values;
     v.clear();
-    let mut push = |r: u16| v.push(u64::from(r));
     match reference {
-        Reference::Nothing => codes.iter().for_each(|&c| push(c)),
+        Reference::Nothing => v.extend(codes.iter().map(|&c| u64::from(c))),
         Reference::Previous(None) => {
             let mut prev = 0;
-            for &c in codes {
-                push(zigzag_residual(c, prev, bits));
+            v.extend(codes.iter().map(|&c| {
+                let r = zigzag_residual(c, prev, bits);
                 prev = c;
-            }
+                u64::from(r)
+            }));
         }
         Reference::Previous(Some(order)) => {
             let mut prev = 0;
-            for &i in order {
+            v.extend(order.iter().map(|&i| {
                 let c = codes[i as usize];
-                push(zigzag_residual(c, prev, bits));
+                let r = zigzag_residual(c, prev, bits);
                 prev = c;
-            }
+                u64::from(r)
+            }));
         }
-        Reference::Base(base) => codes.iter().zip(base).for_each(|(&c, &b)| push(zigzag_residual(c, b, bits))),
-        Reference::Linear(base, before) => codes
-            .iter()
-            .zip(base)
-            .zip(before)
-            .for_each(|((&c, &b), &a)| push(zigzag_residual(c, extrapolate(b, a), bits))),
+        Reference::Base(base) => {
+            v.extend(codes.iter().zip(base).map(|(&c, &b)| u64::from(zigzag_residual(c, b, bits))));
+        }
+        Reference::Linear(base, before) => v.extend(
+            codes
+                .iter()
+                .zip(base)
+                .zip(before)
+                .map(|((&c, &b), &a)| u64::from(zigzag_residual(c, extrapolate(b, a), bits))),
+        ),
     }
     stream::write(out, v);
 }

@@ -81,28 +81,20 @@ pub(crate) fn width_of(max: u64) -> u32 {
     64 - max.leading_zeros()
 }
 
-/// Bits the values of `block` take with parameter `k`, escapes included.
-fn block_cost(block: &[u64], k: u32, width: u32) -> u64 {
-    block
-        .iter()
-        .map(|&v| {
-            let q = v >> k;
-            if q < u64::from(ESCAPE) { q + 1 + u64::from(k) } else { u64::from(ESCAPE + width) }
-        })
-        .sum()
-}
-
-/// The parameter that codes `block` in the fewest bits: the one its mean suggests
-/// (a Rice code's best `k` is about `log2` of the mean) or a neighbour of it.
-fn best_parameter(block: &[u64], width: u32) -> u32 {
-    let mean = block.iter().sum::<u64>() / block.len() as u64;
-    let guess = width_of(mean).min(width);
-    let candidates = [guess.saturating_sub(1), guess, (guess + 1).min(width)];
-    let mut best = (u64::MAX, 0);
-    for k in candidates {
-        best = best.min((block_cost(block, k, width), k));
+/// The parameter that codes `block` (not all zero) in about the fewest bits: of the one its
+/// mean suggests (a Rice code's best `k` is about `log2` of the mean) and its two neighbours,
+/// the one with the fewest bits not counting escapes, which the best parameter makes rare.
+fn best_parameter(block: &[u64], sum: u64, width: u32) -> u32 {
+    let guess = width_of(sum / block.len() as u64).min(width);
+    let k = [guess.saturating_sub(1), guess, (guess + 1).min(width)];
+    let mut quotients = [0u64; 3];
+    for &v in block {
+        for (q, &k) in quotients.iter_mut().zip(&k) {
+            *q += v >> k;
+        }
     }
-    best.1
+    let cost = |i: usize| quotients[i] + block.len() as u64 * u64::from(k[i]);
+    (0..3).min_by_key(|&i| (cost(i), k[i])).map_or(guess, |i| k[i])
 }
 
 /// Appends a stream of `values` to `out`.
@@ -113,18 +105,26 @@ pub(crate) fn write(out: &mut Vec<u8>, values: &[u64]) {
     out.extend_from_slice(&[0; 4]);
     let mut w = BitWriter { out, acc: 0, filled: 0 };
     for block in values.chunks(BLOCK) {
-        if block.iter().all(|&v| v == 0) {
+        // Values are below 2^48, so 128 of them sum below 2^55.
+        let sum: u64 = block.iter().sum();
+        if sum == 0 {
             w.put(u64::from(ZERO_BLOCK), PARAMETER_BITS);
             continue;
         }
-        let k = best_parameter(block, width);
+        let k = best_parameter(block, sum, width);
         w.put(u64::from(k), PARAMETER_BITS);
         let low = (1u64 << k) - 1;
         for &v in block {
             let q = v >> k;
             if q < u64::from(ESCAPE) {
-                w.put(1 << q, q as u32 + 1);
-                w.put_wide(v & low, k);
+                // The unary quotient and the low bits in one call when they fit.
+                let unary = q as u32 + 1;
+                if unary + k <= 32 {
+                    w.put(1 << q | (v & low) << unary, unary + k);
+                } else {
+                    w.put(1 << q, unary);
+                    w.put_wide(v & low, k);
+                }
             } else {
                 w.put(0, ESCAPE);
                 w.put_wide(v, width);
@@ -202,8 +202,13 @@ pub(crate) fn read(r: &mut Reader<'_>, n: usize, max_width: u32, values: &mut Ve
         }
         let mut any = 0;
         for _ in 0..count {
-            let q = bits.peek().trailing_zeros().min(ESCAPE);
-            let v = if q < ESCAPE {
+            let window = bits.peek();
+            let q = window.trailing_zeros().min(ESCAPE);
+            let v = if q < ESCAPE && q + k < 56 {
+                // The quotient and the low bits from the same 56-bit window.
+                bits.pos += (q + 1 + k) as usize;
+                u64::from(q) << k | (window >> (q + 1)) & ((1u64 << k) - 1)
+            } else if q < ESCAPE {
                 bits.pos += q as usize + 1;
                 u64::from(q) << k | bits.read(k)
             } else {
@@ -223,7 +228,7 @@ pub(crate) fn read(r: &mut Reader<'_>, n: usize, max_width: u32, values: &mut Ve
     if bits.pos.div_ceil(8) != len {
         return Err(DecodeError::malformed(format!("the values take {} bits of the stream's {len} bytes", bits.pos)));
     }
-    if bits.pos % 8 != 0 && bytes[len - 1] >> (bits.pos % 8) != 0 {
+    if !bits.pos.is_multiple_of(8) && bytes[len - 1] >> (bits.pos % 8) != 0 {
         return Err(DecodeError::malformed("padding bits after the last value are not zero"));
     }
     Ok(())
