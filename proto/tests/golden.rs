@@ -252,13 +252,7 @@ fn todays_encoder_reproduces_the_golden_values() {
     for (g, (bytes, _)) in GOLDEN.iter().zip(encode_all()) {
         let want = read_sidecar(g);
         let decoder = if g.name.starts_with("identity") { &mut identity } else { &mut unordered };
-        let mut frame = decoder.decode(&bytes).unwrap();
-        // Compressed sizes may change with the LZ4 version; header fields, quantisation
-        // and values may not.
-        for (c, w) in frame.header.channels.iter_mut().zip(want["header"]["channels"].as_array().unwrap()) {
-            c.payload_len = w["payload_len"].as_u64().unwrap() as u32;
-        }
-        frame.header.frame_len = want["header"]["frame_len"].as_u64().unwrap() as u32;
+        let frame = decoder.decode(&bytes).unwrap();
         if let Some(d) = first_difference(g.name, &sidecar(g, &frame), &want) {
             panic!("today's encoder differs from the golden frame: {d}");
         }

@@ -7,14 +7,15 @@ use floe_engine::Simulation;
 use floe_engine::scene::load;
 use floe_engine::scene::presets::DAM_BREAK_A;
 use floe_engine::validation::dam_break;
+use floe_gpu::Selected;
 use std::time::Instant;
 
 /// The dam break scaled to about `particles` fluid particles (the column holds
 /// n^3 particles for spacing a/n).
-fn dam_break(particles: usize, overrides: &[String]) -> anyhow::Result<Simulation> {
+fn dam_break(particles: usize, overrides: &[String], backend: &Selected) -> anyhow::Result<Simulation> {
     let spacing = format!("particle_spacing={}", DAM_BREAK_A / (particles as f32).cbrt().round());
     let all: Vec<String> = std::iter::once(spacing).chain(overrides.iter().cloned()).collect();
-    Ok(Simulation::new_cpu(load::from_preset("dam_break", &all)?)?)
+    Ok(Simulation::new(load::from_preset("dam_break", &all)?, &*backend.factory)?)
 }
 
 /// Peak resident set size of this process (bytes), from /proc.
@@ -29,15 +30,15 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     if let Some(frames) = args.codec {
         return crate::codec_bench::codec_bench(args.particles[0], frames);
     }
+    let backend = floe_gpu::select::select(args.backend.into())?;
     if let Some(seconds) = args.solve {
-        return solve(args.particles[0], &args.overrides, seconds);
+        return solve(args.particles[0], &args.overrides, seconds, &backend);
     }
-    let threads = rayon::current_num_threads();
-    println!("dam break, CPU backend, {threads} threads, {} timed steps per size", args.steps);
+    println!("dam break on {}, {} timed steps per size", backend.description, args.steps);
     println!("| fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle |");
     println!("|---:|---:|---:|---:|---:|---:|");
     for &n in &args.particles {
-        let mut sim = dam_break(n, &args.overrides)?;
+        let mut sim = dam_break(n, &args.overrides, &backend)?;
         for _ in 0..5 {
             sim.step().context("warm-up")?;
         }
@@ -60,8 +61,8 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
 }
 
 /// Time to solution: simulate `seconds` of the dam break and compare the front.
-fn solve(particles: usize, overrides: &[String], seconds: f64) -> anyhow::Result<()> {
-    let mut sim = dam_break(particles, overrides)?;
+fn solve(particles: usize, overrides: &[String], seconds: f64, backend: &Selected) -> anyhow::Result<()> {
+    let mut sim = dam_break(particles, overrides, backend)?;
     let a = DAM_BREAK_A as f64;
     let d = sim.scene().particle_spacing as f64;
     let g = 9.81;

@@ -29,11 +29,25 @@ pub enum Command {
     Presets,
 }
 
-/// Which backend steps the scene.
+/// Which backend steps the scenes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum BackendChoice {
+    /// A hardware GPU (Vulkan) when there is one, else the CPU; logs which and why.
+    Auto,
+    /// A GPU, software adapters (Mesa's lavapipe) included; fails if there is none.
+    Gpu,
     /// The rayon CPU backend.
     Cpu,
+}
+
+impl From<BackendChoice> for floe_gpu::BackendChoice {
+    fn from(c: BackendChoice) -> Self {
+        match c {
+            BackendChoice::Auto => Self::Auto,
+            BackendChoice::Gpu => Self::Gpu,
+            BackendChoice::Cpu => Self::Cpu,
+        }
+    }
 }
 
 /// Export file format.
@@ -58,7 +72,7 @@ pub struct RunArgs {
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     pub until: f64,
     /// Backend.
-    #[arg(long, value_enum, default_value = "cpu")]
+    #[arg(long, value_enum, default_value = "auto")]
     pub backend: BackendChoice,
     /// Write frames into this directory.
     #[arg(long, value_name = "DIR")]
@@ -90,7 +104,7 @@ pub struct BenchArgs {
     #[arg(long, default_value = "100")]
     pub steps: u64,
     /// Backend.
-    #[arg(long, value_enum, default_value = "cpu")]
+    #[arg(long, value_enum, default_value = "auto")]
     pub backend: BackendChoice,
     /// Also report peak resident memory per particle (run one size per process
     /// for a clean figure).
@@ -142,4 +156,7 @@ pub struct ServeArgs {
     /// Preset to create at start-up, or `none`.
     #[arg(long, default_value = "dam_break")]
     pub scene: String,
+    /// Backend every scene runs on.
+    #[arg(long, env = "FLOE_BACKEND", value_enum, default_value = "auto")]
+    pub backend: BackendChoice,
 }

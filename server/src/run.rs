@@ -18,7 +18,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         bail!("--every must be a positive number of seconds, got {}", args.every);
     }
     let scene = load::resolve(&args.scene, &args.overrides)?;
-    let mut sim = Simulation::new_cpu(scene)?;
+    let backend = floe_gpu::select::select(args.backend.into())?;
+    let mut sim = Simulation::new(scene, &*backend.factory)?;
     tracing::info!(
         scene = %sim.scene().name,
         particles = sim.particle_count(),

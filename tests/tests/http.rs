@@ -4,10 +4,8 @@
 use axum::body::Body;
 use axum::http::{Request, StatusCode};
 use floe_proto::{Decoder, Limits};
-use floe_server::service::Registry;
 use futures_util::{SinkExt, StreamExt};
 use http_body_util::BodyExt;
-use std::sync::Arc;
 use tokio_tungstenite::tungstenite::Message;
 use tower::ServiceExt;
 
@@ -28,7 +26,7 @@ async fn call(app: &axum::Router, method: &str, uri: &str, body: Option<String>)
 
 #[tokio::test]
 async fn rest_mirrors_the_control_calls() {
-    let registry = Arc::new(Registry::new(Default::default()));
+    let registry = common::cpu_registry();
     let app = floe_server::http::router(registry.clone(), "../web".into());
     let (s, v) = call(&app, "GET", "/api/v1/presets", None).await;
     assert_eq!((s, v), (StatusCode::OK, serde_json::json!(["dam_break", "hydrostatic"])));

@@ -9,6 +9,7 @@ pub mod scene;
 
 use floe_engine::Simulation;
 use floe_engine::scene::load::{self, Format};
+use floe_engine::simulation::BackendFactory;
 use frames::{FrameCache, FrameOptions, Subscription};
 use scene::SceneHandle;
 use std::collections::BTreeMap;
@@ -68,17 +69,24 @@ struct Entry {
 }
 
 /// Every scene on this server.
-#[derive(Debug)]
 pub struct Registry {
     scenes: RwLock<BTreeMap<u64, Entry>>,
     next_id: AtomicU64,
     limits: Limits,
+    /// Builds each scene's backend (the one `--backend` chose at start-up).
+    backend: Arc<BackendFactory>,
+}
+
+impl std::fmt::Debug for Registry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Registry").field("scenes", &self.scenes).field("limits", &self.limits).finish()
+    }
 }
 
 impl Registry {
-    /// An empty registry.
-    pub fn new(limits: Limits) -> Self {
-        Self { scenes: RwLock::new(BTreeMap::new()), next_id: AtomicU64::new(1), limits }
+    /// An empty registry whose scenes run on the backends `backend` builds.
+    pub fn new(limits: Limits, backend: Arc<BackendFactory>) -> Self {
+        Self { scenes: RwLock::new(BTreeMap::new()), next_id: AtomicU64::new(1), limits, backend }
     }
 
     /// Builds a scene and starts its worker. Building samples every particle, so
@@ -95,7 +103,7 @@ impl Registry {
             SceneSource::Document { text, format } => load::from_str(&text, format, overrides),
         }
         .map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
-        let sim = Simulation::new_cpu(scene).map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
+        let sim = Simulation::new(scene, &*self.backend).map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
         if sim.particle_count() > self.limits.max_particles {
             return Err(ServiceError::InvalidArgument(format!(
                 "particle_spacing: the scene has {} particles, more than this server's limit of {}",
@@ -105,7 +113,7 @@ impl Registry {
         }
         let id = self.next_id.fetch_add(1, Ordering::Relaxed);
         tracing::info!(scene = id, name = %sim.scene().name, particles = sim.particle_count(), "scene created");
-        let handle = Arc::new(SceneHandle::spawn(id, sim));
+        let handle = Arc::new(SceneHandle::spawn(id, sim, self.backend.clone()));
         let entry = Entry { handle: handle.clone(), cache: Arc::new(FrameCache::default()) };
         self.scenes.write().expect("lock").insert(id, entry);
         Ok(handle)

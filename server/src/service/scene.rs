@@ -3,6 +3,7 @@
 //! server through a command channel, a latest-snapshot watch and an event
 //! broadcast.
 
+use floe_engine::simulation::BackendFactory;
 use floe_engine::{Channel, Particles, Simulation};
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 use std::sync::mpsc;
@@ -238,7 +239,7 @@ const PUBLISH_INTERVAL: Duration = Duration::from_millis(16);
 
 impl SceneHandle {
     /// Starts the worker of a built simulation.
-    pub fn spawn(id: u64, sim: Simulation) -> Self {
+    pub fn spawn(id: u64, sim: Simulation, backend: Arc<BackendFactory>) -> Self {
         let domain = sim.domain();
         let (snapshots, _) = watch::channel(None);
         let (events, _) = broadcast::channel(16);
@@ -270,7 +271,7 @@ impl SceneHandle {
         let worker_shared = shared.clone();
         let worker = std::thread::Builder::new()
             .name(format!("scene-{id}"))
-            .spawn(move || Worker::new(sim, worker_shared).run(rx))
+            .spawn(move || Worker::new(sim, backend, worker_shared).run(rx))
             .expect("spawn scene worker");
         Self { shared, commands: Mutex::new(tx), worker: Mutex::new(Some(worker)) }
     }
@@ -341,6 +342,8 @@ impl SceneHandle {
 /// The worker thread's state.
 struct Worker {
     sim: Simulation,
+    /// Builds the backend of a reset or restored simulation.
+    backend: Arc<BackendFactory>,
     shared: Arc<Shared>,
     running: Option<f64>,
     last_publish: Option<Instant>,
@@ -349,8 +352,8 @@ struct Worker {
 }
 
 impl Worker {
-    fn new(sim: Simulation, shared: Arc<Shared>) -> Self {
-        Self { sim, shared, running: None, last_publish: None, sequence: 0, rate: (Instant::now(), 0) }
+    fn new(sim: Simulation, backend: Arc<BackendFactory>, shared: Arc<Shared>) -> Self {
+        Self { sim, backend, shared, running: None, last_publish: None, sequence: 0, rate: (Instant::now(), 0) }
     }
 
     fn run(mut self, rx: mpsc::Receiver<Command>) {
@@ -389,7 +392,7 @@ impl Worker {
                     let r = if self.running.is_some() {
                         Err(CommandError::Running)
                     } else {
-                        match Simulation::new_cpu(self.sim.scene().clone()) {
+                        match Simulation::new(self.sim.scene().clone(), &*self.backend) {
                             Ok(sim) => Ok(self.replace(sim)),
                             Err(e) => Err(CommandError::BadParameter(e.to_string())),
                         }
@@ -453,7 +456,8 @@ impl Worker {
     }
 
     fn restore(&mut self, state: &[u8]) -> Result<Status, CommandError> {
-        let sim = Simulation::restore(state).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
+        let sim =
+            Simulation::restore_on(state, &*self.backend).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
         if sim.scene() != self.sim.scene() {
             return Err(CommandError::BadSnapshot("the snapshot is of a different scene".into()));
         }

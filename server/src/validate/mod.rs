@@ -22,8 +22,8 @@ pub struct Report {
     pub machine: String,
     /// `quick` or `full`.
     pub mode: &'static str,
-    /// Backend the runs used.
-    pub backend: &'static str,
+    /// Backend the runs used (and its device).
+    pub backend: String,
     /// Every accuracy run.
     pub runs: Vec<Outcome>,
     /// The stability battery.
@@ -36,6 +36,8 @@ pub struct Report {
 pub fn validate(args: ValidateArgs) -> anyhow::Result<()> {
     let full = args.full;
     let (chosen_cases, chosen_stability) = select(&args.cases)?;
+    let backend = floe_gpu::select::select(args.backend.into())?;
+    let make = &*backend.factory;
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let total =
         chosen_cases.iter().map(|c| c.spacings(full).len() * VARIANTS.len()).sum::<usize>() + chosen_stability.len();
@@ -49,7 +51,7 @@ pub fn validate(args: ValidateArgs) -> anyhow::Result<()> {
     for &case in &chosen_cases {
         for variant in VARIANTS {
             for spacing in case.spacings(full) {
-                let o = cases::run(case, spacing, variant)?;
+                let o = cases::run(case, spacing, variant, make)?;
                 note(format!(
                     "{} {} spacing {:.4} m: {} particles, {} steps, {:.1} s, {} {:.4}{}",
                     case.name(),
@@ -68,7 +70,7 @@ pub fn validate(args: ValidateArgs) -> anyhow::Result<()> {
     }
     let mut battery = Vec::new();
     for case in &chosen_stability {
-        let o = stability::run(case, full, if full { 5 } else { 3 })?;
+        let o = stability::run(case, full, if full { 5 } else { 3 }, make)?;
         note(format!(
             "stability {}: {}, max density deviation {:.1} %, largest stable CFL {}{}",
             case.name,
@@ -85,7 +87,7 @@ pub fn validate(args: ValidateArgs) -> anyhow::Result<()> {
         date: report::today(),
         machine: report::machine(),
         mode: if full { "full" } else { "quick" },
-        backend: "cpu",
+        backend: backend.description.clone(),
         runs,
         stability: battery,
         failures,

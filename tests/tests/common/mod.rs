@@ -19,13 +19,19 @@ pub struct TestServer {
     task: tokio::task::JoinHandle<anyhow::Result<()>>,
 }
 
+/// An empty registry with the default limits whose scenes run on the CPU
+/// backend (fast and deterministic; the GPU backend has its own tests).
+pub fn cpu_registry() -> Arc<Registry> {
+    Arc::new(Registry::new(Default::default(), Arc::new(floe_engine::simulation::cpu_backend)))
+}
+
 impl TestServer {
     /// Starts a server with no scenes.
     pub async fn start() -> Self {
         let grpc = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
         let http = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
         let (grpc_addr, http_addr) = (grpc.local_addr().unwrap(), http.local_addr().unwrap());
-        let registry = Arc::new(Registry::new(Default::default()));
+        let registry = cpu_registry();
         let (stop, stopped) = oneshot::channel::<()>();
         let task = tokio::spawn(floe_server::serve::run(
             floe_server::serve::Listeners { grpc, http },

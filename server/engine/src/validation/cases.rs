@@ -4,6 +4,7 @@
 use super::{dam_break, hydrostatic, run_probed};
 use crate::scene::load::{SceneError, from_preset};
 use crate::scene::presets::DAM_BREAK_A;
+use crate::simulation::BackendFactory;
 use crate::{Channel, Simulation};
 use serde::Serialize;
 
@@ -108,12 +109,12 @@ impl Outcome {
     }
 }
 
-/// Runs `case` at `spacing` with `variant` (the backend is the CPU one).
-pub fn run(case: Case, spacing: f64, variant: &Variant) -> Result<Outcome, SceneError> {
+/// Runs `case` at `spacing` with `variant` on the backend `make` builds.
+pub fn run(case: Case, spacing: f64, variant: &Variant, make: &BackendFactory) -> Result<Outcome, SceneError> {
     let mut overrides = vec![format!("particle_spacing={spacing}")];
     overrides.extend(variant.overrides.iter().map(|s| s.to_string()));
     let scene = from_preset(case.name(), &overrides)?;
-    let mut sim = Simulation::new_cpu(scene).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;
+    let mut sim = Simulation::new(scene, make).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;
     let (wall, halted, errors) = match case {
         Case::Hydrostatic => run_hydrostatic(&mut sim, spacing),
         Case::DamBreak => run_dam_break(&mut sim, spacing),

@@ -9,6 +9,7 @@
 use super::{energy, run_probed};
 use crate::scene::load::{SceneError, from_preset};
 use crate::scene::presets::DAM_BREAK_A;
+use crate::simulation::BackendFactory;
 use crate::{Channel, Simulation};
 use serde::Serialize;
 
@@ -139,15 +140,15 @@ pub struct StabilityOutcome {
     pub passed: bool,
 }
 
-/// Runs one trial of `case` with `extra` overrides.
-pub fn trial(case: &StabilityCase, full: bool, extra: &[String]) -> Result<Trial, SceneError> {
+/// Runs one trial of `case` with `extra` overrides on the backend `make` builds.
+pub fn trial(case: &StabilityCase, full: bool, extra: &[String], make: &BackendFactory) -> Result<Trial, SceneError> {
     let spacing = DAM_BREAK_A as f64 / if full { 16.0 } else { 10.0 };
     let mut overrides = vec![format!("particle_spacing={spacing}")];
     overrides.extend(case.overrides.iter().map(|s| s.to_string()));
     overrides.extend_from_slice(extra);
     let scene = from_preset("dam_break", &overrides)?;
     let g = scene.gravity;
-    let mut sim = Simulation::new_cpu(scene).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;
+    let mut sim = Simulation::new(scene, make).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;
     let mass = sim.particle_mass() as f64;
     let mut energies = Vec::new();
     let until = if full { case.until.1 } else { case.until.0 };
@@ -176,10 +177,15 @@ pub fn trial(case: &StabilityCase, full: bool, extra: &[String]) -> Result<Trial
 
 /// Runs `case` at its own settings, then bisects the CFL number (`iterations`
 /// halvings between the default 0.5 and 2) for the largest stable step.
-pub fn run(case: &StabilityCase, full: bool, iterations: u32) -> Result<StabilityOutcome, SceneError> {
-    let base = trial(case, full, &[])?;
+pub fn run(
+    case: &StabilityCase,
+    full: bool,
+    iterations: u32,
+    make: &BackendFactory,
+) -> Result<StabilityOutcome, SceneError> {
+    let base = trial(case, full, &[], make)?;
     let stable = |t: &Trial| t.finished && !t.silent_explosion;
-    let at = |cfl: f64| trial(case, full, &[format!("solver.time_step.cfl={cfl}")]);
+    let at = |cfl: f64| trial(case, full, &[format!("solver.time_step.cfl={cfl}")], make);
     let mut best: Option<(f64, f64)> = None;
     if stable(&base) {
         let top = at(2.0)?;
