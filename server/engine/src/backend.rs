@@ -1,6 +1,7 @@
 //! What every backend (CPU now, GPU next) offers the rest of Floe.
 
 use crate::guard::Halted;
+use crate::quantize::PositionGrid;
 use serde::{Deserialize, Serialize};
 
 /// A per-particle quantity a frame or export can carry besides position.
@@ -75,6 +76,14 @@ pub trait Backend: Send {
     fn domain(&self) -> crate::math::Aabb;
     /// Copies out positions and the requested channels.
     fn read(&self, channels: &[Channel]) -> Particles;
+    /// Like [`Backend::read`], with positions moved to their points on `grid`:
+    /// what a frame encoder quantising to `grid` needs, and all it needs. A GPU
+    /// quantises on the device and copies back 16-bit codes.
+    fn read_on_grid(&self, channels: &[Channel], grid: &PositionGrid) -> Particles {
+        let mut p = self.read(channels);
+        p.positions.iter_mut().for_each(|x| *x = grid.snap(*x));
+        p
+    }
     /// Takes new tunable settings (see [`crate::scene::tunable`]) from `scene`.
     fn retune(&mut self, scene: &crate::scene::Scene);
     /// Writes the complete stepping state (see [`crate::snapshot`]).

@@ -35,6 +35,7 @@ pub mod kernel;
 pub mod math;
 pub mod model;
 pub mod neighbors;
+pub mod quantize;
 pub mod sampling;
 pub mod scene;
 pub mod simulation;

@@ -127,6 +127,11 @@ impl Simulation {
         self.backend.read(channels)
     }
 
+    /// [`Simulation::read`] with positions on `grid` (see [`Backend::read_on_grid`]).
+    pub fn read_on_grid(&self, channels: &[Channel], grid: &crate::quantize::PositionGrid) -> Particles {
+        self.backend.read_on_grid(channels, grid)
+    }
+
     /// One step. After a halt every call returns the same [`Halted`].
     pub fn step(&mut self) -> Result<StepReport, Halted> {
         if let Some(h) = &self.halted {

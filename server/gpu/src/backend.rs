@@ -8,13 +8,14 @@
 
 use crate::buffers::{Binds, Buffers, STEP_SLOTS, vec4s};
 use crate::context::GpuContext;
-use crate::layout::{Measures, Params, Step};
+use crate::layout::{Measures, Params, QuantGrid, Step};
 use crate::passes::measure::PER_PARTIAL;
 use floe_engine::backend::{Backend, Channel, Particles, StepReport};
 use floe_engine::guard::Halted;
 use floe_engine::math::{Aabb, Real, Vec3};
 use floe_engine::model::{BuildError, Model};
 use floe_engine::neighbors::Grid;
+use floe_engine::quantize::PositionGrid;
 use floe_engine::scene::Scene;
 use floe_engine::snapshot::{Reader, SnapshotError, Writer};
 use floe_engine::stepping::{Clock, Passes, SortedState, by_identity};
@@ -99,8 +100,9 @@ impl GpuBackend {
         slot
     }
 
-    /// Copies byte ranges of buffers back to the CPU (one submission, one wait).
-    fn download(&self, ranges: &[(&Buffer, u64, u64)]) -> Vec<Vec<u8>> {
+    /// Copies byte ranges (multiples of 4 bytes) of buffers back to the CPU, one
+    /// submission and one wait, as 4-byte words (aligned for any of the state's types).
+    fn download(&self, ranges: &[(&Buffer, u64, u64)]) -> Vec<Vec<u32>> {
         let device = &self.gpu.device;
         let mut e = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("floe readback") });
         let staging: Vec<Buffer> = ranges
@@ -134,15 +136,15 @@ impl GpuBackend {
             .iter()
             .zip(ranges)
             .map(|(s, &(_, _, size))| {
-                let bytes = s.get_mapped_range(..).expect("mapped")[..size as usize].to_vec();
+                let words = bytemuck::cast_slice(&s.get_mapped_range(..).expect("mapped")[..size as usize]).to_vec();
                 s.unmap();
-                bytes
+                words
             })
             .collect()
     }
 
-    fn vec3s(bytes: &[u8]) -> Vec<Vec3> {
-        bytemuck::cast_slice::<u8, [f32; 4]>(bytes).iter().map(|v| Vec3::new(v[0], v[1], v[2])).collect()
+    fn vec3s(words: &[u32]) -> Vec<Vec3> {
+        bytemuck::cast_slice::<u32, [f32; 4]>(words).iter().map(|v| Vec3::new(v[0], v[1], v[2])).collect()
     }
 
     /// The sorted state, as a snapshot stores it.
@@ -153,8 +155,56 @@ impl GpuBackend {
             pos: Self::vec3s(&got[0]),
             vel: Self::vec3s(&got[1]),
             acc: Self::vec3s(&got[2]),
-            ids: bytemuck::cast_slice(&got[3]).to_vec(),
+            ids: got[3].clone(),
         }
+    }
+}
+
+impl GpuBackend {
+    /// Positions (f32, or quantised on the GPU to `grid`) and `channels`, in
+    /// identity order, copied back in one submission.
+    fn read_with(&self, channels: &[Channel], grid: Option<&PositionGrid>) -> Particles {
+        let (b, n) = (&self.buffers, self.n as u64);
+        let want = |c| channels.contains(&c);
+        let vel = want(Channel::Velocity);
+        let rho = want(Channel::Density) || want(Channel::Pressure);
+        // Sorted-order data needs the ids; quantised positions come in identity order.
+        let sorted = vel || rho || grid.is_none();
+        if let Some(g) = grid {
+            self.gpu.queue.write_buffer(&b.quant_grid, 0, bytemuck::bytes_of(&QuantGrid::from(g)));
+            let mut e =
+                self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("quantize") });
+            self.gpu.programs.quantize.kernel.dispatch(&mut e, &self.binds.quantize, self.n.div_ceil(2));
+            self.gpu.queue.submit([e.finish()]);
+        }
+        let size = |on: bool, bytes: u64| if on { bytes * n } else { 0 };
+        let got = self.download(&[
+            (&b.ids, 0, size(sorted, 4)),
+            (&b.pos, 0, size(grid.is_none(), 16)),
+            (&b.vel, 0, size(vel, 16)),
+            (&b.dens, 0, size(rho, 8)),
+            (&b.codes, 0, if grid.is_some() { 12 * n.div_ceil(2) } else { 0 }),
+        ]);
+        let velocities = vel.then(|| Self::vec3s(&got[2]));
+        let densities: Option<Vec<Real>> =
+            rho.then(|| bytemuck::cast_slice::<u32, [f32; 2]>(&got[3]).iter().map(|d| d[0]).collect());
+        let mut p = by_identity(
+            channels,
+            &got[0],
+            &Self::vec3s(&got[1]),
+            velocities.as_deref(),
+            densities.as_deref(),
+            &self.model.fluid.eos,
+        );
+        if let Some(g) = grid {
+            let codes: &[u16] = bytemuck::cast_slice(&got[4]);
+            p.positions = codes
+                .chunks_exact(3)
+                .take(self.n as usize)
+                .map(|c| std::array::from_fn(|k| g.value(c[k], k)))
+                .collect();
+        }
+        p
     }
 }
 
@@ -177,7 +227,7 @@ impl Passes for GpuBackend {
         self.gpu.queue.submit([e.finish()]);
         self.slot = 0;
         let got = self.download(&[(&self.buffers.partials, 0, std::mem::size_of::<Measures>() as u64)]);
-        bytemuck::pod_read_unaligned::<Measures>(&got[0]).into()
+        bytemuck::pod_read_unaligned::<Measures>(bytemuck::cast_slice(&got[0])).into()
     }
 
     fn kick(&mut self, dt: Real, keep: Real, with_xsph: bool) {
@@ -196,8 +246,7 @@ impl Passes for GpuBackend {
 
     fn particle_id(&mut self, slot: u32) -> u32 {
         self.flush();
-        let got = self.download(&[(&self.buffers.ids, 4 * slot as u64, 4)]);
-        bytemuck::pod_read_unaligned(&got[0])
+        self.download(&[(&self.buffers.ids, 4 * slot as u64, 4)])[0][0]
     }
 }
 
@@ -239,25 +288,11 @@ impl Backend for GpuBackend {
     }
 
     fn read(&self, channels: &[Channel]) -> Particles {
-        let (b, n) = (&self.buffers, self.n as u64);
-        let want = |c| channels.contains(&c);
-        let vel = want(Channel::Velocity);
-        let rho = want(Channel::Density) || want(Channel::Pressure);
-        let mut ranges = vec![(&b.ids, 0, 4 * n), (&b.pos, 0, 16 * n)];
-        ranges.push((&b.vel, 0, if vel { 16 * n } else { 0 }));
-        ranges.push((&b.dens, 0, if rho { 8 * n } else { 0 }));
-        let got = self.download(&ranges);
-        let velocities = vel.then(|| Self::vec3s(&got[2]));
-        let densities: Option<Vec<Real>> =
-            rho.then(|| bytemuck::cast_slice::<u8, [f32; 2]>(&got[3]).iter().map(|d| d[0]).collect());
-        by_identity(
-            channels,
-            bytemuck::cast_slice(&got[0]),
-            &Self::vec3s(&got[1]),
-            velocities.as_deref(),
-            densities.as_deref(),
-            &self.model.fluid.eos,
-        )
+        self.read_with(channels, None)
+    }
+
+    fn read_on_grid(&self, channels: &[Channel], grid: &PositionGrid) -> Particles {
+        self.read_with(channels, Some(grid))
     }
 
     fn retune(&mut self, scene: &Scene) {

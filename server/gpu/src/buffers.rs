@@ -6,7 +6,7 @@
 //! 150 bytes, plus 4 bytes per grid cell.
 
 use crate::context::GpuContext;
-use crate::layout::{Constraint, Params, Step};
+use crate::layout::{Constraint, Params, QuantGrid, Step};
 use crate::passes::scan::{MAX_LEN, ScanPlan};
 use bytemuck::Pod;
 use floe_engine::model::{BuildError, Model};
@@ -43,6 +43,10 @@ pub struct Buffers {
     pub wall_p: Buffer,
     pub constraints: Buffer,
     pub partials: Buffer,
+    /// The frame position grid, and positions quantised to it (16-bit codes,
+    /// identity order, 6 bytes per particle).
+    pub quant_grid: Buffer,
+    pub codes: Buffer,
 }
 
 /// Bind groups of one scene, one per kernel use.
@@ -60,6 +64,7 @@ pub struct Binds {
     pub measure: BindGroup,
     /// One per step slot.
     pub integrate: Vec<BindGroup>,
+    pub quantize: BindGroup,
 }
 
 fn storage(device: &Device, label: &str, size: u64, extra: U) -> Buffer {
@@ -137,6 +142,8 @@ impl Buffers {
             wall_p: storage(device, "wall pressures", 4 * walls.len() as u64, U::empty()),
             constraints: init(device, "wall constraints", &constraints, U::STORAGE),
             partials: storage(device, "measure partials", 32 * n.div_ceil(256), U::empty()),
+            quant_grid: init(device, "frame position grid", &[QuantGrid::default()], U::UNIFORM | U::COPY_DST),
+            codes: storage(device, "frame position codes", 12 * n.div_ceil(2), U::empty()),
         })
     }
 
@@ -185,6 +192,10 @@ impl Buffers {
                     p.integrate.kick.bind(d, &[&self.params, s, &self.pos, &self.vel, &self.acc, &self.constraints])
                 })
                 .collect(),
+            quantize: p
+                .quantize
+                .kernel
+                .bind(d, &[&self.params, &self.quant_grid, &self.pos, &self.slot_of, &self.codes]),
         }
     }
 }

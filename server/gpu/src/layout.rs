@@ -217,6 +217,26 @@ impl From<Measures> for floe_engine::guard::Measures {
     }
 }
 
+/// A frame's position grid (`QuantGrid` in quantize.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, Pod, Zeroable)]
+pub struct QuantGrid {
+    /// Value of code 0 per axis (m).
+    pub min: [f32; 3],
+    /// The largest code.
+    pub top: f32,
+    /// Codes per metre per axis.
+    pub scale: [f32; 3],
+    pub _pad: f32,
+}
+const _: () = assert!(std::mem::size_of::<QuantGrid>() == 32);
+
+impl From<&floe_engine::quantize::PositionGrid> for QuantGrid {
+    fn from(g: &floe_engine::quantize::PositionGrid) -> Self {
+        Self { min: g.min, top: g.top() as f32, scale: std::array::from_fn(|k| g.scale(k)), _pad: 0.0 }
+    }
+}
+
 /// Parameters of one prefix-sum level (`ScanParams` in scan.wgsl).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, Pod, Zeroable)]

@@ -12,6 +12,7 @@ use floe_engine::backend::{Backend, Channel};
 use floe_engine::cpu::CpuBackend;
 use floe_engine::guard::Measures;
 use floe_engine::model::Model;
+use floe_engine::quantize::PositionGrid;
 use floe_engine::scene::load::from_preset;
 use floe_engine::snapshot::{Reader, Writer};
 use floe_engine::stepping::{Clock, Passes, SortedState};
@@ -126,4 +127,42 @@ fn the_guard_finds_the_same_particle() {
     let (mc, mg) = (cpu.evaluate(), g.evaluate());
     let id = |b: &mut dyn FnMut(u32) -> u32, slot| b(slot);
     assert_eq!(id(&mut |s| cpu.particle_id(s), mc.max_speed2.1), id(&mut |s| g.particle_id(s), mg.max_speed2.1));
+}
+
+#[test]
+fn positions_quantised_on_the_gpu_match_the_cpu() {
+    let Some(gpu) = common::gpu("positions_quantised_on_the_gpu_match_the_cpu") else { return };
+    let (cpu, g, model) = pair(gpu, "dam_break", &["particle_spacing=0.05"], 40);
+    let d = model.domain;
+    let span = (d.max - d.min).max_element();
+    for bits in [16, 10] {
+        let grid = PositionGrid { min: d.min.to_array(), max: (d.min + glam::Vec3::splat(span)).to_array(), bits };
+        let step = span / grid.top() as f32;
+        let channels = [Channel::Density];
+        let (pc, pg) = (cpu.read_on_grid(&channels, &grid), g.read_on_grid(&channels, &grid));
+        assert_eq!(pc.densities.map(|v| v.len()), pg.densities.map(|v| v.len()));
+        assert_eq!(pc.positions.len(), pg.positions.len());
+        // The same codes, except where a fused multiply-add on the GPU rounds a
+        // value sitting on a code boundary the other way: then one step apart.
+        let mut differ = 0;
+        for (a, b) in pc.positions.iter().zip(&pg.positions) {
+            for k in 0..3 {
+                let codes = (grid.code(a[k], k), grid.code(b[k], k));
+                assert!(codes.0.abs_diff(codes.1) <= 1, "{bits} bits: codes {codes:?}");
+                differ += (codes.0 != codes.1) as usize;
+            }
+        }
+        assert!(differ * 1000 <= 3 * pc.positions.len(), "{bits} bits: {differ} codes differ");
+        // Positions only: the GPU copies back nothing but the codes.
+        let only = g.read_on_grid(&[], &grid);
+        assert_eq!(only.positions, pg.positions);
+        assert!(only.densities.is_none() && only.velocities.is_none());
+        let true_pos = g.read(&[]).positions;
+        let worst = true_pos
+            .iter()
+            .zip(&only.positions)
+            .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs()))
+            .fold(0.0, f32::max);
+        assert!(worst <= 0.5 * step * 1.001, "{bits} bits: error {worst} m, half a step is {} m", 0.5 * step);
+    }
 }

@@ -9,6 +9,7 @@
 //! so it has an encoder of its own.
 
 use super::scene::{SceneHandle, Shared, Snapshot, State};
+use floe_engine::quantize::PositionGrid;
 use floe_engine::{Channel, Particles};
 use floe_proto::{Bounds, EncodeError, Encoder, EncoderConfig, FrameInput, Mode};
 use std::sync::atomic::Ordering;
@@ -60,6 +61,13 @@ fn config(shared: &Shared, o: &FrameOptions) -> EncoderConfig {
     let mut c = EncoderConfig::new(o.mode, shared.id, bounds);
     c.position_bits = o.position_bits;
     c
+}
+
+/// The position grid of an encoder: the points the worker may snap positions
+/// to without changing a single code of this stream.
+fn position_grid(c: &EncoderConfig) -> PositionGrid {
+    let q = c.position_quantizers();
+    PositionGrid { min: q.map(|q| q.min), max: q.map(|q| q.max), bits: q[0].bits }
 }
 
 fn input<'a>(p: &'a Particles, channels: &[Channel]) -> FrameInput<'a> {
@@ -130,6 +138,8 @@ pub struct Subscription {
     cache: Arc<FrameCache>,
     rx: watch::Receiver<Option<Arc<Snapshot>>>,
     options: FrameOptions,
+    /// The grid this stream's encoder quantises positions to.
+    grid: PositionGrid,
     own: Option<Encoder>,
     last_sequence: Option<u64>,
     /// `last_sequence` shared with the scene's dropped-frame count.
@@ -155,8 +165,9 @@ impl Subscription {
         // The fresh snapshot the worker publishes next is this subscriber's first.
         let delivered = Arc::new(std::sync::atomic::AtomicU64::new(last_sequence.unwrap_or(0)));
         scene.shared.track(&delivered);
-        scene.subscribe(&options.channels);
-        Ok(Self { scene, cache, rx, options, own, last_sequence, delivered, last_sent: None })
+        let grid = position_grid(&config(&scene.shared, &options));
+        scene.subscribe(&options.channels, grid);
+        Ok(Self { scene, cache, rx, options, grid, own, last_sequence, delivered, last_sent: None })
     }
 
     /// The next frame; `None` once the scene is gone.
@@ -216,6 +227,6 @@ impl Subscription {
 
 impl Drop for Subscription {
     fn drop(&mut self) {
-        self.scene.shared.unsubscribe(&self.options.channels);
+        self.scene.shared.unsubscribe(&self.options.channels, self.grid);
     }
 }

@@ -3,6 +3,7 @@
 //! server through a command channel, a latest-snapshot watch and an event
 //! broadcast.
 
+use floe_engine::quantize::PositionGrid;
 use floe_engine::simulation::BackendFactory;
 use floe_engine::{Channel, Particles, Simulation};
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
@@ -139,9 +140,10 @@ pub struct Shared {
     pub snapshots: watch::Sender<Option<Arc<Snapshot>>>,
     /// Events.
     pub events: broadcast::Sender<Event>,
-    /// Open frame streams, and per channel how many of them asked for it.
+    /// Open frame streams, and how many of them asked for each channel and
+    /// each position grid.
     pub subscribers: AtomicU32,
-    wanted: Mutex<Vec<(Channel, u32)>>,
+    wanted: Mutex<(Tally<Channel>, Tally<PositionGrid>)>,
     /// Frames skipped by subscribers that went on to a later frame.
     dropped_frames: AtomicU64,
     /// Per live subscription, the sequence of the last snapshot it received (or
@@ -155,28 +157,21 @@ pub struct Shared {
 }
 
 impl Shared {
-    /// Registers a subscriber wanting `channels`; undone by [`Shared::unsubscribe`].
-    pub fn subscribe(&self, channels: &[Channel]) {
+    /// Registers a subscriber wanting `channels` with positions quantised to
+    /// `grid`; undone by [`Shared::unsubscribe`].
+    pub fn subscribe(&self, channels: &[Channel], grid: PositionGrid) {
         self.subscribers.fetch_add(1, Ordering::Relaxed);
         let mut wanted = self.wanted.lock().expect("lock");
-        for &c in channels {
-            match wanted.iter_mut().find(|w| w.0 == c) {
-                Some(w) => w.1 += 1,
-                None => wanted.push((c, 1)),
-            }
-        }
+        channels.iter().for_each(|&c| wanted.0.add(c));
+        wanted.1.add(grid);
     }
 
-    /// Removes a subscriber registered with `channels`.
-    pub fn unsubscribe(&self, channels: &[Channel]) {
+    /// Removes a subscriber registered with `channels` and `grid`.
+    pub fn unsubscribe(&self, channels: &[Channel], grid: PositionGrid) {
         self.subscribers.fetch_sub(1, Ordering::Relaxed);
         let mut wanted = self.wanted.lock().expect("lock");
-        for &c in channels {
-            if let Some(w) = wanted.iter_mut().find(|w| w.0 == c) {
-                w.1 -= 1;
-            }
-        }
-        wanted.retain(|w| w.1 > 0);
+        channels.iter().for_each(|&c| wanted.0.remove(c));
+        wanted.1.remove(grid);
     }
 
     /// Tracks a subscription's last received sequence (see [`Shared::dropped_frames`]).
@@ -206,9 +201,13 @@ impl Shared {
         self.dropped_frames.load(Ordering::Relaxed) + pending
     }
 
-    /// The union of the channels subscribers want: the only ones read back.
-    fn wanted(&self) -> Vec<Channel> {
-        self.wanted.lock().expect("lock").iter().map(|w| w.0).collect()
+    /// The union of the channels subscribers want (the only ones read back),
+    /// and the position grid when every subscriber quantises to the same one
+    /// (positions are then quantised where they live: on a GPU, on the device).
+    fn wanted(&self) -> (Vec<Channel>, Option<PositionGrid>) {
+        let wanted = self.wanted.lock().expect("lock");
+        let grids: Vec<PositionGrid> = wanted.1.values().collect();
+        (wanted.0.values().collect(), (grids.len() == 1).then(|| grids[0]))
     }
 
     /// The resolved scene as JSON, live changes included.
@@ -219,6 +218,36 @@ impl Shared {
     /// A copy of the latest status.
     pub fn status(&self) -> Status {
         self.status.lock().expect("lock").clone()
+    }
+}
+
+/// How many open subscriptions want each value.
+#[derive(Debug)]
+struct Tally<T>(Vec<(T, u32)>);
+
+impl<T> Default for Tally<T> {
+    fn default() -> Self {
+        Self(Vec::new())
+    }
+}
+
+impl<T: PartialEq + Copy> Tally<T> {
+    fn add(&mut self, v: T) {
+        match self.0.iter_mut().find(|w| w.0 == v) {
+            Some(w) => w.1 += 1,
+            None => self.0.push((v, 1)),
+        }
+    }
+
+    fn remove(&mut self, v: T) {
+        if let Some(w) = self.0.iter_mut().find(|w| w.0 == v) {
+            w.1 -= 1;
+        }
+        self.0.retain(|w| w.1 > 0);
+    }
+
+    fn values(&self) -> impl Iterator<Item = T> + '_ {
+        self.0.iter().map(|w| w.0)
     }
 }
 
@@ -261,7 +290,7 @@ impl SceneHandle {
             snapshots,
             events,
             subscribers: AtomicU32::new(0),
-            wanted: Mutex::new(Vec::new()),
+            wanted: Mutex::new((Tally::default(), Tally::default())),
             dropped_frames: AtomicU64::new(0),
             delivered: Mutex::new(Vec::new()),
             published: AtomicU64::new(0),
@@ -322,10 +351,10 @@ impl SceneHandle {
         self.request(|reply| Command::Restore { state, reply }).await?
     }
 
-    /// Registers a frame subscriber wanting `channels` and has the worker publish
-    /// a fresh snapshot for it. Undo with [`Shared::unsubscribe`].
-    pub fn subscribe(&self, channels: &[Channel]) {
-        self.shared.subscribe(channels);
+    /// Registers a frame subscriber wanting `channels` on `grid` and has the
+    /// worker publish a fresh snapshot for it. Undo with [`Shared::unsubscribe`].
+    pub fn subscribe(&self, channels: &[Channel], grid: PositionGrid) {
+        self.shared.subscribe(channels, grid);
         let _ = self.send(Command::Publish);
     }
 
@@ -551,7 +580,10 @@ impl Worker {
         if self.shared.subscribers.load(Ordering::Relaxed) == 0 && self.sequence > 0 {
             return;
         }
-        let particles = self.sim.read(&self.shared.wanted());
+        let particles = match self.shared.wanted() {
+            (channels, Some(grid)) => self.sim.read_on_grid(&channels, &grid),
+            (channels, None) => self.sim.read(&channels),
+        };
         let snapshot = Snapshot { sequence: self.sequence, step: self.sim.steps(), time: self.sim.time(), particles };
         self.sequence += 1;
         self.shared.published.fetch_add(1, Ordering::Relaxed);

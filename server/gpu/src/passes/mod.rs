@@ -8,6 +8,7 @@ pub mod forces;
 pub mod grid;
 pub mod integrate;
 pub mod measure;
+pub mod quantize;
 pub mod reorder;
 pub mod scan;
 pub mod wall_pressure;
@@ -32,6 +33,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("forces", forces::SOURCE),
     ("measure", measure::SOURCE),
     ("integrate", integrate::SOURCE),
+    ("quantize", quantize::SOURCE),
 ];
 
 /// All compiled kernels of one device.
@@ -45,6 +47,7 @@ pub struct Programs {
     pub forces: forces::Forces,
     pub measure: measure::Measure,
     pub integrate: integrate::Integrate,
+    pub quantize: quantize::Quantize,
 }
 
 impl Programs {
@@ -59,6 +62,7 @@ impl Programs {
             forces: forces::Forces::new(device),
             measure: measure::Measure::new(device),
             integrate: integrate::Integrate::new(device),
+            quantize: quantize::Quantize::new(device),
         }
     }
 }
