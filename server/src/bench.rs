@@ -35,8 +35,10 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
         return solve(args.particles[0], &args.overrides, seconds, &backend);
     }
     println!("dam break on {}, {} timed steps per size", backend.description, args.steps);
-    println!("| fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle |");
-    println!("|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|");
     for &n in &args.particles {
         let mut sim = dam_break(n, &args.overrides, &backend)?;
         for _ in 0..5 {
@@ -48,13 +50,16 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
         }
         let wall = t0.elapsed().as_secs_f64();
         let p = sim.particle_count();
-        let mem = if args.memory { peak_rss().map(|b| format!("{:.0}", b as f64 / p as f64)) } else { None };
+        let per_particle = |b: u64| format!("{:.0}", b as f64 / p as f64);
+        let mem = if args.memory { peak_rss().map(per_particle) } else { None };
+        let device = sim.device_memory().map(per_particle);
         println!(
-            "| {p} | {} | {wall:.2} | {:.2} | {:.2} | {} |",
+            "| {p} | {} | {wall:.2} | {:.2} | {:.2} | {} | {} |",
             args.steps,
             wall * 1e3 / args.steps as f64,
             p as f64 * args.steps as f64 / wall / 1e6,
-            mem.unwrap_or_else(|| "-".into())
+            mem.unwrap_or_else(|| "-".into()),
+            device.unwrap_or_else(|| "-".into())
         );
     }
     Ok(())

@@ -76,6 +76,11 @@ pub trait Backend: Send {
     fn domain(&self) -> crate::math::Aabb;
     /// Copies out positions and the requested channels.
     fn read(&self, channels: &[Channel]) -> Particles;
+    /// Bytes the scene holds in device memory (a GPU's buffers); `None` for a
+    /// backend whose state lives in the process (see peak RSS instead).
+    fn device_memory(&self) -> Option<u64> {
+        None
+    }
     /// Like [`Backend::read`], with positions moved to their points on `grid`:
     /// what a frame encoder quantising to `grid` needs, and all it needs. A GPU
     /// quantises on the device and copies back 16-bit codes.

@@ -127,6 +127,11 @@ impl Simulation {
         self.backend.read(channels)
     }
 
+    /// Bytes held in device memory (see [`Backend::device_memory`]).
+    pub fn device_memory(&self) -> Option<u64> {
+        self.backend.device_memory()
+    }
+
     /// [`Simulation::read`] with positions on `grid` (see [`Backend::read_on_grid`]).
     pub fn read_on_grid(&self, channels: &[Channel], grid: &crate::quantize::PositionGrid) -> Particles {
         self.backend.read_on_grid(channels, grid)

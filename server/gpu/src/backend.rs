@@ -291,6 +291,10 @@ impl Backend for GpuBackend {
         self.read_with(channels, None)
     }
 
+    fn device_memory(&self) -> Option<u64> {
+        Some(self.buffers.bytes() + self.binds.scan.bytes())
+    }
+
     fn read_on_grid(&self, channels: &[Channel], grid: &PositionGrid) -> Particles {
         self.read_with(channels, Some(grid))
     }

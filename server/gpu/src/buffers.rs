@@ -147,6 +147,34 @@ impl Buffers {
         })
     }
 
+    /// Bytes of every buffer.
+    pub fn bytes(&self) -> u64 {
+        let all = [
+            &self.params,
+            &self.pos,
+            &self.vel,
+            &self.acc,
+            &self.pos2,
+            &self.vel2,
+            &self.acc2,
+            &self.ids,
+            &self.ids2,
+            &self.slot_of,
+            &self.dens,
+            &self.cell_rank,
+            &self.counts,
+            &self.order,
+            &self.walls,
+            &self.wall_start,
+            &self.wall_p,
+            &self.constraints,
+            &self.partials,
+            &self.quant_grid,
+            &self.codes,
+        ];
+        all.iter().chain(&self.steps.iter().collect::<Vec<_>>()).map(|b| b.size()).sum()
+    }
+
     /// Every bind group the step needs.
     pub fn bind(&self, gpu: &GpuContext, cells: u32) -> Binds {
         let d = &gpu.device;

@@ -26,8 +26,15 @@ pub struct Scan {
 #[derive(Debug)]
 pub struct ScanPlan {
     levels: Vec<(u32, wgpu::BindGroup)>,
-    /// Block totals of every level, kept alive for the bind groups.
-    _sums: Vec<Buffer>,
+    /// Block totals of every level (bound by `levels`).
+    sums: Vec<Buffer>,
+}
+
+impl ScanPlan {
+    /// Bytes of the block totals.
+    pub fn bytes(&self) -> u64 {
+        self.sums.iter().map(|b| b.size()).sum()
+    }
 }
 
 impl Scan {
@@ -67,7 +74,7 @@ impl Scan {
             }
             len = blocks;
         }
-        ScanPlan { levels, _sums: sums }
+        ScanPlan { levels, sums }
     }
 
     /// Records the scan: blocks of every level up, then block offsets back down.
