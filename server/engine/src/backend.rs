@@ -2,6 +2,7 @@
 
 use crate::guard::Halted;
 use crate::quantize::PositionGrid;
+use crate::stepping::{Clock, Passes, SortedState};
 use serde::{Deserialize, Serialize};
 
 /// A per-particle quantity a frame or export can carry besides position.
@@ -57,23 +58,64 @@ pub struct StepReport {
 }
 
 /// A simulation backend: owns the physics state and steps it.
-pub trait Backend: Send {
+///
+/// A backend supplies its particle passes ([`Passes`]), its state and its
+/// [`Clock`]; the step sequence, the clock's queries and snapshots are provided
+/// here once for every backend.
+pub trait Backend: Passes + Send {
     /// Short name (`cpu`, `gpu`).
     fn name(&self) -> &'static str;
-    /// Advances one step.
-    fn step(&mut self) -> Result<StepReport, Halted>;
-    /// Simulated time (s).
-    fn time(&self) -> f64;
-    /// Steps taken.
-    fn steps(&self) -> u64;
-    /// Steps taken beyond one per fixed interval (fixed time-step mode).
-    fn substeps(&self) -> u64;
+    /// Where the run stands.
+    fn clock(&self) -> &Clock;
+    /// Where the run stands, to advance it.
+    fn clock_mut(&mut self) -> &mut Clock;
     /// Number of fluid particles.
     fn particle_count(&self) -> usize;
+    /// The particle state in sorted-slot order, for snapshots.
+    fn sorted_state(&self) -> SortedState;
+    /// Takes a state from a snapshot (then sorts and computes densities, so
+    /// output is right at once).
+    fn restore_state(&mut self, state: SortedState);
+
+    /// Advances one step.
+    fn step(&mut self) -> Result<StepReport, Halted> {
+        let mut clock = self.clock().clone();
+        let n = self.particle_count();
+        let r = clock.step(self, n);
+        *self.clock_mut() = clock;
+        r
+    }
+    /// Simulated time (s).
+    fn time(&self) -> f64 {
+        self.clock().time()
+    }
+    /// Steps taken.
+    fn steps(&self) -> u64 {
+        self.clock().steps()
+    }
+    /// Steps taken beyond one per fixed interval (fixed time-step mode).
+    fn substeps(&self) -> u64 {
+        self.clock().substeps()
+    }
     /// Mass of one fluid particle (kg).
-    fn particle_mass(&self) -> f32;
+    fn particle_mass(&self) -> f32 {
+        self.model().fluid.mass
+    }
     /// The simulation domain (m): particles leaving it halt the scene.
-    fn domain(&self) -> crate::math::Aabb;
+    fn domain(&self) -> crate::math::Aabb {
+        self.model().domain
+    }
+    /// Writes the complete stepping state (see [`crate::snapshot`]).
+    fn save(&self, out: &mut crate::snapshot::Writer) {
+        self.clock().save(out, &self.sorted_state());
+    }
+    /// Loads a state written by [`Backend::save`] for the same scene.
+    fn load(&mut self, r: &mut crate::snapshot::Reader<'_>) -> Result<(), crate::snapshot::SnapshotError> {
+        let n = self.particle_count();
+        let state = self.clock_mut().load(r, n)?;
+        self.restore_state(state);
+        Ok(())
+    }
     /// Copies out positions and the requested channels.
     fn read(&self, channels: &[Channel]) -> Particles;
     /// Bytes the scene holds in device memory (a GPU's buffers); `None` for a
@@ -91,8 +133,4 @@ pub trait Backend: Send {
     }
     /// Takes new tunable settings (see [`crate::scene::tunable`]) from `scene`.
     fn retune(&mut self, scene: &crate::scene::Scene);
-    /// Writes the complete stepping state (see [`crate::snapshot`]).
-    fn save(&self, out: &mut crate::snapshot::Writer);
-    /// Loads a state written by [`Backend::save`] for the same scene.
-    fn load(&mut self, r: &mut crate::snapshot::Reader<'_>) -> Result<(), crate::snapshot::SnapshotError>;
 }

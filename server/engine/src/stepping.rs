@@ -34,6 +34,8 @@ pub trait Passes {
     fn drift(&mut self, dt: Real);
     /// The stable id of the particle in sorted slot `slot`.
     fn particle_id(&mut self, slot: u32) -> u32;
+    /// Called after every step (a GPU submits the step's last passes).
+    fn end_step(&mut self) {}
 }
 
 /// Where a run stands: time, steps, time-step control and the last measures.
@@ -75,7 +77,7 @@ impl Clock {
     }
 
     /// Evaluates and applies the stability guard.
-    fn evaluate(&mut self, s: &Settings, p: &mut impl Passes) -> Result<Measures, Halted> {
+    fn evaluate<P: Passes + ?Sized>(&mut self, s: &Settings, p: &mut P) -> Result<Measures, Halted> {
         let m = p.evaluate();
         if let Some((reason, slot)) = m.violation(s.max_compression, s.max_speed) {
             return Err(self.halt(reason, Some(p.particle_id(slot))));
@@ -85,7 +87,7 @@ impl Clock {
     }
 
     /// Advances one step of the `n` particles of `p` with its model's integrator.
-    pub fn step(&mut self, p: &mut impl Passes, n: usize) -> Result<StepReport, Halted> {
+    pub fn step<P: Passes + ?Sized>(&mut self, p: &mut P, n: usize) -> Result<StepReport, Halted> {
         let s = Settings::of(p.model());
         let keep = |dt: Real, time: f64| {
             let (rate, until) = s.damping;
@@ -112,6 +114,7 @@ impl Clock {
                 (dt, m)
             }
         };
+        p.end_step();
         self.time += dt as f64;
         self.steps += 1;
         Ok(StepReport {

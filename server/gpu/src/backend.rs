@@ -10,14 +10,12 @@ use crate::buffers::{Binds, Buffers, STEP_SLOTS, vec4s};
 use crate::context::GpuContext;
 use crate::layout::{Measures, Params, QuantGrid, Step};
 use crate::passes::measure::PER_PARTIAL;
-use floe_engine::backend::{Backend, Channel, Particles, StepReport};
-use floe_engine::guard::Halted;
-use floe_engine::math::{Aabb, Real, Vec3};
+use floe_engine::backend::{Backend, Channel, Particles};
+use floe_engine::math::{Real, Vec3};
 use floe_engine::model::{BuildError, Model};
 use floe_engine::neighbors::Grid;
 use floe_engine::quantize::PositionGrid;
 use floe_engine::scene::Scene;
-use floe_engine::snapshot::{Reader, SnapshotError, Writer};
 use floe_engine::stepping::{Clock, Passes, SortedState, by_identity};
 use wgpu::{Buffer, CommandEncoder};
 
@@ -88,7 +86,7 @@ impl GpuBackend {
         for (from, to, size) in copies {
             e.copy_buffer_to_buffer(from, 0, to, 0, size * n as u64);
         }
-        p.density.kernel.dispatch(&mut e, &binds.density, n);
+        p.density.dispatch(&mut e, &binds.density, n);
         self.pending = Some(e);
     }
 
@@ -146,18 +144,6 @@ impl GpuBackend {
     fn vec3s(words: &[u32]) -> Vec<Vec3> {
         bytemuck::cast_slice::<u32, [f32; 4]>(words).iter().map(|v| Vec3::new(v[0], v[1], v[2])).collect()
     }
-
-    /// The sorted state, as a snapshot stores it.
-    fn sorted_state(&self) -> SortedState {
-        let (b, n) = (&self.buffers, self.n as u64);
-        let got = self.download(&[(&b.pos, 0, 16 * n), (&b.vel, 0, 16 * n), (&b.acc, 0, 16 * n), (&b.ids, 0, 4 * n)]);
-        SortedState {
-            pos: Self::vec3s(&got[0]),
-            vel: Self::vec3s(&got[1]),
-            acc: Self::vec3s(&got[2]),
-            ids: got[3].clone(),
-        }
-    }
 }
 
 impl GpuBackend {
@@ -174,7 +160,7 @@ impl GpuBackend {
             self.gpu.queue.write_buffer(&b.quant_grid, 0, bytemuck::bytes_of(&QuantGrid::from(g)));
             let mut e =
                 self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("quantize") });
-            self.gpu.programs.quantize.kernel.dispatch(&mut e, &self.binds.quantize, self.n.div_ceil(2));
+            self.gpu.programs.quantize.dispatch(&mut e, &self.binds.quantize, self.n.div_ceil(2));
             self.gpu.queue.submit([e.finish()]);
         }
         let size = |on: bool, bytes: u64| if on { bytes * n } else { 0 };
@@ -219,9 +205,9 @@ impl Passes for GpuBackend {
         let (p, b) = (&self.gpu.programs, &self.binds);
         let walls = self.model.boundary.len() as u32;
         if walls > 0 {
-            p.wall_pressure.kernel.dispatch(&mut e, &b.wall_pressure, walls);
+            p.wall_pressure.dispatch(&mut e, &b.wall_pressure, walls);
         }
-        p.forces.kernel.dispatch(&mut e, &b.forces, self.n);
+        p.forces.dispatch(&mut e, &b.forces, self.n);
         p.measure.partials.dispatch(&mut e, &b.measure, self.n);
         p.measure.total.dispatch(&mut e, &b.measure, PER_PARTIAL);
         self.gpu.queue.submit([e.finish()]);
@@ -244,6 +230,10 @@ impl Passes for GpuBackend {
         self.pending = Some(e);
     }
 
+    fn end_step(&mut self) {
+        self.flush();
+    }
+
     fn particle_id(&mut self, slot: u32) -> u32 {
         self.flush();
         self.download(&[(&self.buffers.ids, 4 * slot as u64, 4)])[0][0]
@@ -255,36 +245,38 @@ impl Backend for GpuBackend {
         "gpu"
     }
 
-    fn step(&mut self) -> Result<StepReport, Halted> {
-        let mut clock = self.clock.clone();
-        let r = clock.step(self, self.n as usize);
-        self.clock = clock;
-        self.flush();
-        r
+    fn clock(&self) -> &Clock {
+        &self.clock
     }
 
-    fn time(&self) -> f64 {
-        self.clock.time()
-    }
-
-    fn steps(&self) -> u64 {
-        self.clock.steps()
-    }
-
-    fn substeps(&self) -> u64 {
-        self.clock.substeps()
+    fn clock_mut(&mut self) -> &mut Clock {
+        &mut self.clock
     }
 
     fn particle_count(&self) -> usize {
         self.n as usize
     }
 
-    fn particle_mass(&self) -> f32 {
-        self.model.fluid.mass
+    fn sorted_state(&self) -> SortedState {
+        let (b, n) = (&self.buffers, self.n as u64);
+        let got = self.download(&[(&b.pos, 0, 16 * n), (&b.vel, 0, 16 * n), (&b.acc, 0, 16 * n), (&b.ids, 0, 4 * n)]);
+        SortedState {
+            pos: Self::vec3s(&got[0]),
+            vel: Self::vec3s(&got[1]),
+            acc: Self::vec3s(&got[2]),
+            ids: got[3].clone(),
+        }
     }
 
-    fn domain(&self) -> Aabb {
-        self.model.domain
+    fn restore_state(&mut self, s: SortedState) {
+        let (q, b) = (&self.gpu.queue, &self.buffers);
+        q.write_buffer(&b.pos, 0, bytemuck::cast_slice(&vec4s(&s.pos)));
+        q.write_buffer(&b.vel, 0, bytemuck::cast_slice(&vec4s(&s.vel)));
+        q.write_buffer(&b.acc, 0, bytemuck::cast_slice(&vec4s(&s.acc)));
+        q.write_buffer(&b.ids, 0, bytemuck::cast_slice(&s.ids));
+        // Densities for output right away; the next step recomputes them identically.
+        self.record_sort_and_density();
+        self.flush();
     }
 
     fn read(&self, channels: &[Channel]) -> Particles {
@@ -304,22 +296,5 @@ impl Backend for GpuBackend {
         self.clock.retune(&self.model);
         let params = Params::new(&self.model, &self.grid);
         self.gpu.queue.write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&params));
-    }
-
-    fn save(&self, out: &mut Writer) {
-        self.clock.save(out, &self.sorted_state());
-    }
-
-    fn load(&mut self, r: &mut Reader<'_>) -> Result<(), SnapshotError> {
-        let s = self.clock.load(r, self.n as usize)?;
-        let (q, b) = (&self.gpu.queue, &self.buffers);
-        q.write_buffer(&b.pos, 0, bytemuck::cast_slice(&vec4s(&s.pos)));
-        q.write_buffer(&b.vel, 0, bytemuck::cast_slice(&vec4s(&s.vel)));
-        q.write_buffer(&b.acc, 0, bytemuck::cast_slice(&vec4s(&s.acc)));
-        q.write_buffer(&b.ids, 0, bytemuck::cast_slice(&s.ids));
-        // Densities for output right away; the next step recomputes them identically.
-        self.record_sort_and_density();
-        self.flush();
-        Ok(())
     }
 }

@@ -189,13 +189,11 @@ impl Buffers {
             reorder_ids: p.reorder.ids.bind(d, &[&self.params, &self.order, &self.ids, &self.ids2, &self.slot_of]),
             density: p
                 .density
-                .kernel
                 .bind(d, &[&self.params, &self.pos, &self.counts, &self.walls, &self.wall_start, &self.dens]),
             wall_pressure: p
                 .wall_pressure
-                .kernel
                 .bind(d, &[&self.params, &self.pos, &self.counts, &self.walls, &self.dens, &self.wall_p]),
-            forces: p.forces.kernel.bind(
+            forces: p.forces.bind(
                 d,
                 &[
                     &self.params,
@@ -220,10 +218,7 @@ impl Buffers {
                     p.integrate.kick.bind(d, &[&self.params, s, &self.pos, &self.vel, &self.acc, &self.constraints])
                 })
                 .collect(),
-            quantize: p
-                .quantize
-                .kernel
-                .bind(d, &[&self.params, &self.quant_grid, &self.pos, &self.slot_of, &self.codes]),
+            quantize: p.quantize.bind(d, &[&self.params, &self.quant_grid, &self.pos, &self.slot_of, &self.codes]),
         }
     }
 }

@@ -90,6 +90,19 @@ impl Kernel {
         Self { label, pipeline, layout: layout.clone(), workgroup }
     }
 
+    /// The kernel of a WGSL file with one entry point, `main`, on its own layout
+    /// with `bindings` and workgroups of 128 threads (`WG` in common.wgsl).
+    pub fn main(
+        device: &Device,
+        file: &'static str,
+        source: &'static str,
+        label: &'static str,
+        bindings: &'static [(u32, Access)],
+    ) -> Self {
+        let m = module(device, file, source);
+        Self::new(device, &m, label, "main", &Layout::new(device, label, bindings), 128)
+    }
+
     /// A bind group with `buffers` in the order of the kernel's bindings.
     pub fn bind(&self, device: &Device, buffers: &[&Buffer]) -> BindGroup {
         let bindings = self.layout.bindings;

@@ -7,12 +7,11 @@
 
 mod passes;
 
-use crate::backend::{Backend, Channel, Particles, StepReport};
-use crate::guard::{Halted, Measures};
+use crate::backend::{Backend, Channel, Particles};
+use crate::guard::Measures;
 use crate::math::{Real, Vec3};
 use crate::model::Model;
 use crate::neighbors::{Grid, permute};
-use crate::snapshot::{Reader, SnapshotError, Writer};
 use crate::stepping::{Clock, Passes, SortedState, by_identity};
 use rayon::prelude::*;
 
@@ -131,35 +130,16 @@ impl Backend for CpuBackend {
         "cpu"
     }
 
-    fn step(&mut self) -> Result<StepReport, Halted> {
-        let mut clock = self.clock.clone();
-        let r = clock.step(self, self.pos.len());
-        self.clock = clock;
-        r
+    fn clock(&self) -> &Clock {
+        &self.clock
     }
 
-    fn time(&self) -> f64 {
-        self.clock.time()
-    }
-
-    fn steps(&self) -> u64 {
-        self.clock.steps()
-    }
-
-    fn substeps(&self) -> u64 {
-        self.clock.substeps()
+    fn clock_mut(&mut self) -> &mut Clock {
+        &mut self.clock
     }
 
     fn particle_count(&self) -> usize {
         self.pos.len()
-    }
-
-    fn particle_mass(&self) -> f32 {
-        self.model.fluid.mass
-    }
-
-    fn domain(&self) -> crate::math::Aabb {
-        self.model.domain
     }
 
     fn retune(&mut self, scene: &crate::scene::Scene) {
@@ -172,18 +152,14 @@ impl Backend for CpuBackend {
         }
     }
 
-    fn save(&self, out: &mut Writer) {
-        let state =
-            SortedState { pos: self.pos.clone(), vel: self.vel.clone(), acc: self.acc.clone(), ids: self.ids.clone() };
-        self.clock.save(out, &state);
+    fn sorted_state(&self) -> SortedState {
+        SortedState { pos: self.pos.clone(), vel: self.vel.clone(), acc: self.acc.clone(), ids: self.ids.clone() }
     }
 
-    fn load(&mut self, r: &mut Reader<'_>) -> Result<(), SnapshotError> {
-        let s = self.clock.load(r, self.pos.len())?;
+    fn restore_state(&mut self, s: SortedState) {
         (self.pos, self.vel, self.acc, self.ids) = (s.pos, s.vel, s.acc, s.ids);
         // Densities for output right away; the next step recomputes them identically.
         self.sort_and_density();
-        Ok(())
     }
 
     fn read(&self, channels: &[Channel]) -> Particles {

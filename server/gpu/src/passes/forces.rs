@@ -1,8 +1,13 @@
 //! Accelerations and XSPH corrections (see forces.wgsl).
 
-use crate::program::{Access, Kernel, Layout, module};
+use crate::program::{Access, Kernel};
 use wgpu::Device;
 
+/// Source of forces.wgsl.
+pub const SOURCE: &str = super::particle_kernel!("forces.wgsl");
+
+/// params, positions, velocities, (rho, p/rho^2), cell starts, walls, wall cell
+/// starts, wall pressures, accelerations then XSPH corrections.
 const BINDINGS: &[(u32, Access)] = &[
     (0, Access::Uniform),
     (1, Access::Read),
@@ -15,19 +20,7 @@ const BINDINGS: &[(u32, Access)] = &[
     (8, Access::ReadWrite),
 ];
 
-/// Source of forces.wgsl.
-pub const SOURCE: &str = super::particle_kernel!("forces.wgsl");
-
-/// params, positions, velocities, (rho, p/rho^2), cell starts, walls, wall cell
-/// starts, wall pressures, accelerations then XSPH corrections.
-#[derive(Debug)]
-pub struct Forces {
-    pub kernel: Kernel,
-}
-
-impl Forces {
-    pub fn new(device: &Device) -> Self {
-        let m = module(device, "forces.wgsl", SOURCE);
-        Self { kernel: Kernel::new(device, &m, "forces", "main", &Layout::new(device, "forces", BINDINGS), 128) }
-    }
+/// The force pass.
+pub fn kernel(device: &Device) -> Kernel {
+    Kernel::main(device, "forces.wgsl", SOURCE, "forces", BINDINGS)
 }

@@ -13,6 +13,7 @@ pub mod reorder;
 pub mod scan;
 pub mod wall_pressure;
 
+use crate::program::Kernel;
 use wgpu::Device;
 
 /// Joins `common.wgsl` with a particle kernel's own source.
@@ -42,12 +43,12 @@ pub struct Programs {
     pub grid: grid::Grid,
     pub scan: scan::Scan,
     pub reorder: reorder::Reorder,
-    pub density: density::Density,
-    pub wall_pressure: wall_pressure::WallPressure,
-    pub forces: forces::Forces,
+    pub density: Kernel,
+    pub wall_pressure: Kernel,
+    pub forces: Kernel,
     pub measure: measure::Measure,
     pub integrate: integrate::Integrate,
-    pub quantize: quantize::Quantize,
+    pub quantize: Kernel,
 }
 
 impl Programs {
@@ -57,12 +58,12 @@ impl Programs {
             grid: grid::Grid::new(device),
             scan: scan::Scan::new(device),
             reorder: reorder::Reorder::new(device),
-            density: density::Density::new(device),
-            wall_pressure: wall_pressure::WallPressure::new(device),
-            forces: forces::Forces::new(device),
+            density: density::kernel(device),
+            wall_pressure: wall_pressure::kernel(device),
+            forces: forces::kernel(device),
             measure: measure::Measure::new(device),
             integrate: integrate::Integrate::new(device),
-            quantize: quantize::Quantize::new(device),
+            quantize: quantize::kernel(device),
         }
     }
 }
