@@ -1,5 +1,6 @@
 //! Density and `p / rho^2` per particle (see density.wgsl).
 
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use crate::program::{Access, Kernel};
 use wgpu::Device;
 
@@ -7,14 +8,7 @@ use wgpu::Device;
 pub const SOURCE: &str = super::particle_kernel!("density.wgsl");
 
 /// params, positions, cell starts, walls, wall cell starts, (rho, p/rho^2).
-const BINDINGS: &[(u32, Access)] = &[
-    (0, Access::Uniform),
-    (1, Access::Read),
-    (2, Access::Read),
-    (3, Access::Read),
-    (4, Access::Read),
-    (5, Access::ReadWrite),
-];
+const BINDINGS: &[(u32, Access)] = &[(0, U), (1, R), (2, R), (3, R), (4, R), (5, W)];
 
 /// The density pass.
 pub fn kernel(device: &Device) -> Kernel {

@@ -1,13 +1,13 @@
 //! Counting sort by cell: `count`, `scatter` and `settle` (see grid.wgsl).
 
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use crate::program::{Access, Kernel, Layout, module};
 use wgpu::Device;
 
 /// Source of grid.wgsl.
 pub const SOURCE: &str = super::particle_kernel!("grid.wgsl");
 
-const BINDINGS: &[(u32, Access)] =
-    &[(0, Access::Uniform), (1, Access::Read), (2, Access::ReadWrite), (3, Access::ReadWrite), (4, Access::ReadWrite)];
+const BINDINGS: &[(u32, Access)] = &[(0, U), (1, R), (2, W), (3, W), (4, W)];
 
 /// The three sort kernels; they share one binding layout:
 /// params, positions, (cell, rank) per particle, per-cell counts then starts, order.

@@ -1,19 +1,13 @@
 //! Kick and drift (see integrate.wgsl).
 
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use crate::program::{Access, Kernel, Layout, module};
 use wgpu::Device;
 
 /// Source of integrate.wgsl.
 pub const SOURCE: &str = super::particle_kernel!("integrate.wgsl");
 
-const BINDINGS: &[(u32, Access)] = &[
-    (0, Access::Uniform),
-    (1, Access::Uniform),
-    (2, Access::ReadWrite),
-    (3, Access::ReadWrite),
-    (4, Access::Read),
-    (5, Access::Read),
-];
+const BINDINGS: &[(u32, Access)] = &[(0, U), (1, U), (2, W), (3, W), (4, R), (5, R)];
 
 /// params, step, positions, velocities, accelerations + XSPH, wall constraints.
 #[derive(Debug)]

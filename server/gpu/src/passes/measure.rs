@@ -1,5 +1,6 @@
 //! The guard's and time step's reduction (see measure.wgsl).
 
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use crate::program::{Access, Kernel, Layout, module};
 use wgpu::Device;
 
@@ -9,14 +10,7 @@ pub const SOURCE: &str = super::particle_kernel!("measure.wgsl");
 /// Particles per partial (the reduction's workgroup size).
 pub const PER_PARTIAL: u32 = 256;
 
-const BINDINGS: &[(u32, Access)] = &[
-    (0, Access::Uniform),
-    (1, Access::Read),
-    (2, Access::Read),
-    (3, Access::Read),
-    (4, Access::Read),
-    (5, Access::ReadWrite),
-];
+const BINDINGS: &[(u32, Access)] = &[(0, U), (1, R), (2, R), (3, R), (4, R), (5, W)];
 
 /// params, positions, velocities, accelerations, (rho, p/rho^2), partials.
 #[derive(Debug)]

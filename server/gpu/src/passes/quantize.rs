@@ -1,5 +1,6 @@
 //! Frame positions quantised on the GPU (see quantize.wgsl).
 
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use crate::program::{Access, Kernel};
 use wgpu::Device;
 
@@ -7,8 +8,7 @@ use wgpu::Device;
 pub const SOURCE: &str = super::particle_kernel!("quantize.wgsl");
 
 /// params, grid, positions, slot of each id, packed codes.
-const BINDINGS: &[(u32, Access)] =
-    &[(0, Access::Uniform), (1, Access::Uniform), (2, Access::Read), (3, Access::Read), (4, Access::ReadWrite)];
+const BINDINGS: &[(u32, Access)] = &[(0, U), (1, U), (2, R), (3, R), (4, W)];
 
 /// The frame position quantiser.
 pub fn kernel(device: &Device) -> Kernel {

@@ -1,14 +1,14 @@
 //! Applying the sort's permutation to the state and the ids (see reorder.wgsl).
 
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use crate::program::{Access, Kernel, Layout, module};
 use wgpu::Device;
 
 /// Source of reorder.wgsl.
 pub const SOURCE: &str = super::particle_kernel!("reorder.wgsl");
 
-const STATE: &[(u32, Access)] = &[(0, Access::Uniform), (1, Access::Read), (2, Access::Read), (3, Access::ReadWrite)];
-const IDS: &[(u32, Access)] =
-    &[(0, Access::Uniform), (1, Access::Read), (4, Access::Read), (5, Access::ReadWrite), (6, Access::ReadWrite)];
+const STATE: &[(u32, Access)] = &[(0, U), (1, R), (2, R), (3, W)];
+const IDS: &[(u32, Access)] = &[(0, U), (1, R), (4, R), (5, W), (6, W)];
 
 /// The two permutation kernels.
 #[derive(Debug)]

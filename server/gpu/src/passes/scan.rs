@@ -1,6 +1,7 @@
 //! Exclusive prefix sum over the per-cell counts (see scan.wgsl).
 
 use crate::layout::ScanParams;
+use crate::program::Access::{ReadWrite as W, Uniform as U};
 use crate::program::{Access, Kernel, Layout, module};
 use wgpu::util::DeviceExt;
 use wgpu::{Buffer, CommandEncoder, Device};
@@ -13,7 +14,7 @@ const BLOCK: u32 = 512;
 /// Largest array one level can scan (one dispatch dimension of blocks).
 pub const MAX_LEN: u64 = 65_535 * BLOCK as u64;
 
-const BINDINGS: &[(u32, Access)] = &[(0, Access::Uniform), (1, Access::ReadWrite), (2, Access::ReadWrite)];
+const BINDINGS: &[(u32, Access)] = &[(0, U), (1, W), (2, W)];
 
 /// The scan kernels.
 #[derive(Debug)]

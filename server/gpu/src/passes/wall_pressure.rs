@@ -1,5 +1,6 @@
 //! Wall particle pressures extrapolated from the fluid (see wall_pressure.wgsl).
 
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use crate::program::{Access, Kernel};
 use wgpu::Device;
 
@@ -7,14 +8,7 @@ use wgpu::Device;
 pub const SOURCE: &str = super::particle_kernel!("wall_pressure.wgsl");
 
 /// params, positions, cell starts, walls, (rho, p/rho^2), wall pressures.
-const BINDINGS: &[(u32, Access)] = &[
-    (0, Access::Uniform),
-    (1, Access::Read),
-    (2, Access::Read),
-    (3, Access::Read),
-    (4, Access::Read),
-    (5, Access::ReadWrite),
-];
+const BINDINGS: &[(u32, Access)] = &[(0, U), (1, R), (2, R), (3, R), (4, R), (5, W)];
 
 /// The wall pressure pass.
 pub fn kernel(device: &Device) -> Kernel {
