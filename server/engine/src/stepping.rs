@@ -26,8 +26,9 @@ pub trait Passes {
     /// The model being stepped (its current, possibly retuned, settings).
     fn model(&self) -> &Model;
     /// Re-sorts by cell, computes density, pressure and accelerations, and reduces
-    /// the state to the guard's and the time step's measures.
-    fn evaluate(&mut self) -> Measures;
+    /// the state to the guard's and the time step's measures; or says why the
+    /// hardware could not (a lost GPU), which halts the scene.
+    fn evaluate(&mut self) -> Result<Measures, String>;
     /// `v = (v + dt a) keep`, plus the XSPH correction when `with_xsph`.
     fn kick(&mut self, dt: Real, keep: Real, with_xsph: bool);
     /// `x += dt v`, then the walls' non-penetration constraints.
@@ -78,7 +79,7 @@ impl Clock {
 
     /// Evaluates and applies the stability guard.
     fn evaluate<P: Passes + ?Sized>(&mut self, s: &Settings, p: &mut P) -> Result<Measures, Halted> {
-        let m = p.evaluate();
+        let m = p.evaluate().map_err(|reason| self.halt(reason, None))?;
         if let Some((reason, slot)) = m.violation(s.max_compression, s.max_speed) {
             return Err(self.halt(reason, Some(p.particle_id(slot))));
         }

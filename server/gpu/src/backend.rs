@@ -39,8 +39,15 @@ impl GpuBackend {
     /// Uploads `model`'s initial state to the GPU of `gpu`.
     pub fn new(gpu: &GpuContext, mut model: Model) -> Result<Self, BuildError> {
         let grid = Grid::new(model.domain, model.kernel.support());
+        // A scene too large for the device's memory is refused, not a panic.
+        let oom = gpu.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let invalid = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let buffers = Buffers::new(gpu, &model, &grid)?;
         let binds = buffers.bind(gpu, grid.cell_count() as u32);
+        let refused = pollster::block_on(invalid.pop()).or(pollster::block_on(oom.pop()));
+        if let Some(e) = refused {
+            return Err(BuildError::Backend(format!("the GPU cannot hold this scene: {e}")));
+        }
         let n = model.particle_count() as u32;
         // The GPU holds the state from here on.
         model.positions = Vec::new();
@@ -99,8 +106,14 @@ impl GpuBackend {
     }
 
     /// Copies byte ranges (multiples of 4 bytes) of buffers back to the CPU, one
-    /// submission and one wait, as 4-byte words (aligned for any of the state's types).
+    /// submission and one wait, as 4-byte words (aligned for any of the state's
+    /// types). Panics if the device is lost (see [`GpuBackend::try_download`]).
     fn download(&self, ranges: &[(&Buffer, u64, u64)]) -> Vec<Vec<u32>> {
+        self.try_download(ranges).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// [`GpuBackend::download`], or why the GPU could not deliver.
+    fn try_download(&self, ranges: &[(&Buffer, u64, u64)]) -> Result<Vec<Vec<u32>>, String> {
         let device = &self.gpu.device;
         let mut e = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("floe readback") });
         let staging: Vec<Buffer> = ranges
@@ -126,17 +139,23 @@ impl GpuBackend {
                 let _ = tx.send(r);
             });
         }
-        device.poll(wgpu::PollType::Wait { submission_index: None, timeout: None }).expect("GPU device lost");
+        device
+            .poll(wgpu::PollType::Wait { submission_index: None, timeout: None })
+            .map_err(|e| format!("GPU device failed: {e}"))?;
         for _ in &staging {
-            rx.recv().expect("map callback").expect("GPU readback failed");
+            rx.recv()
+                .map_err(|e| format!("GPU readback lost: {e}"))?
+                .map_err(|e| format!("GPU readback failed: {e}"))?;
         }
         staging
             .iter()
             .zip(ranges)
             .map(|(s, &(_, _, size))| {
-                let words = bytemuck::cast_slice(&s.get_mapped_range(..).expect("mapped")[..size as usize]).to_vec();
+                let view = s.get_mapped_range(..).map_err(|e| format!("GPU readback failed: {e}"))?;
+                let words = bytemuck::cast_slice(&view[..size as usize]).to_vec();
+                drop(view);
                 s.unmap();
-                words
+                Ok(words)
             })
             .collect()
     }
@@ -199,7 +218,7 @@ impl Passes for GpuBackend {
         &self.model
     }
 
-    fn evaluate(&mut self) -> floe_engine::guard::Measures {
+    fn evaluate(&mut self) -> Result<floe_engine::guard::Measures, String> {
         self.record_sort_and_density();
         let mut e = self.take_encoder();
         let (p, b) = (&self.gpu.programs, &self.binds);
@@ -212,8 +231,8 @@ impl Passes for GpuBackend {
         p.measure.total.dispatch(&mut e, &b.measure, PER_PARTIAL);
         self.gpu.queue.submit([e.finish()]);
         self.slot = 0;
-        let got = self.download(&[(&self.buffers.partials, 0, std::mem::size_of::<Measures>() as u64)]);
-        bytemuck::pod_read_unaligned::<Measures>(bytemuck::cast_slice(&got[0])).into()
+        let got = self.try_download(&[(&self.buffers.partials, 0, std::mem::size_of::<Measures>() as u64)])?;
+        Ok(bytemuck::pod_read_unaligned::<Measures>(bytemuck::cast_slice(&got[0])).into())
     }
 
     fn kick(&mut self, dt: Real, keep: Real, with_xsph: bool) {

@@ -61,7 +61,7 @@ fn sort_density_wall_pressure_forces_and_measures_match_the_cpu() {
     let Some(gpu) = common::gpu("sort_density_wall_pressure_forces_and_measures_match_the_cpu") else { return };
     for overrides in VARIANTS {
         let (mut cpu, mut g, model) = pair(gpu, "dam_break", overrides, 40);
-        let (mc, mg): (Measures, Measures) = (cpu.evaluate(), g.evaluate());
+        let (mc, mg): (Measures, Measures) = (cpu.evaluate().unwrap(), g.evaluate().unwrap());
         let (sc, sg) = (state(&cpu, &model), state(&g, &model));
         // The sort: both are stable counting sorts of the same order, so the
         // permutation (and the permuted state) is identical.
@@ -94,8 +94,8 @@ fn kick_and_drift_match_the_cpu() {
     let Some(gpu) = common::gpu("kick_and_drift_match_the_cpu") else { return };
     for overrides in VARIANTS {
         let (mut cpu, mut g, model) = pair(gpu, "dam_break", overrides, 40);
-        cpu.evaluate();
-        g.evaluate();
+        cpu.evaluate().unwrap();
+        g.evaluate().unwrap();
         for p in [&mut cpu as &mut dyn PassesDyn, &mut g] {
             p.kick_drift(2e-3, 0.999);
         }
@@ -124,7 +124,7 @@ impl<P: Passes> PassesDyn for P {
 fn the_guard_finds_the_same_particle() {
     let Some(gpu) = common::gpu("the_guard_finds_the_same_particle") else { return };
     let (mut cpu, mut g, _) = pair(gpu, "dam_break", &["particle_spacing=0.05"], 10);
-    let (mc, mg) = (cpu.evaluate(), g.evaluate());
+    let (mc, mg) = (cpu.evaluate().unwrap(), g.evaluate().unwrap());
     let id = |b: &mut dyn FnMut(u32) -> u32, slot| b(slot);
     assert_eq!(id(&mut |s| cpu.particle_id(s), mc.max_speed2.1), id(&mut |s| g.particle_id(s), mg.max_speed2.1));
 }

@@ -86,7 +86,7 @@ impl Passes for CpuBackend {
         &self.model
     }
 
-    fn evaluate(&mut self) -> Measures {
+    fn evaluate(&mut self) -> Result<Measures, String> {
         self.sort_and_density();
         passes::wall_pressure(&self.model, &self.grid, &self.pos, &self.rho, &self.pterm, &mut self.wall_p);
         passes::forces(
@@ -100,7 +100,7 @@ impl Passes for CpuBackend {
             &mut self.acc,
             self.xsph.as_deref_mut(),
         );
-        passes::measure(&self.pos, &self.vel, &self.acc, &self.rho, self.model.fluid.rho0, self.model.domain)
+        Ok(passes::measure(&self.pos, &self.vel, &self.acc, &self.rho, self.model.fluid.rho0, self.model.domain))
     }
 
     fn kick(&mut self, dt: Real, keep: Real, with_xsph: bool) {
