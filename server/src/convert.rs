@@ -53,6 +53,7 @@ pub fn scene_info(shared: &Shared) -> pb::SceneInfo {
         bounds_max: shared.bounds.1.to_vec(),
         halt_reason: s.halt_reason.unwrap_or_default(),
         scene_json: shared.scene_json(),
+        backend: shared.backend.to_string(),
     }
 }
 

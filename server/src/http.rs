@@ -93,6 +93,8 @@ pub struct SceneView {
     pub particles: usize,
     /// Particle spacing (m), for drawing particles at their size.
     pub particle_spacing: f32,
+    /// The backend stepping the scene: `gpu` or `cpu`.
+    pub backend: &'static str,
     /// Domain (m).
     pub bounds_min: [f32; 3],
     /// Domain (m).
@@ -135,6 +137,7 @@ impl SceneView {
             steps: s.steps,
             particles: shared.particles,
             particle_spacing: shared.particle_spacing,
+            backend: shared.backend,
             bounds_min: shared.bounds.0,
             bounds_max: shared.bounds.1,
             halt_reason: s.halt_reason,

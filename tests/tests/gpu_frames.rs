@@ -17,6 +17,7 @@ async fn frames_of_a_gpu_scene_decode_within_their_stated_error() {
     };
     let registry = Registry::new(Default::default(), backend.factory);
     let scene = registry.create(SceneSource::Preset("dam_break".into()), &["particle_spacing=0.05".into()]).unwrap();
+    assert_eq!(scene.shared.backend, "gpu");
     scene.step(25, None).await.unwrap();
     let options = FrameOptions {
         channels: vec![Channel::Velocity],

@@ -38,6 +38,7 @@ async fn create_step_and_stream_a_dam_break() {
     let mut s = start().await;
     let info = s.client.create_scene(preset("dam_break", &["particle_spacing=0.05"])).await.unwrap().into_inner();
     assert_eq!(info.particles, 1000);
+    assert_eq!(info.backend, "cpu");
     assert_eq!(info.state, pb::SceneState::Paused as i32);
     let id = info.scene_id;
     let stepped =

@@ -35,6 +35,7 @@ async fn rest_mirrors_the_control_calls() {
     let (s, v) = call(&app, "POST", "/api/v1/scenes", Some(body.into())).await;
     assert_eq!(s, StatusCode::CREATED, "{v}");
     assert_eq!(v["particles"], 1000);
+    assert_eq!(v["backend"], "cpu");
     assert_eq!(v["state"], "paused");
     let id = v["scene_id"].as_u64().unwrap();
 

@@ -215,7 +215,7 @@ function frame(now) {
     const s = state.lastStatus;
     $('stats').textContent = [
       `render     ${state.renderFps.toFixed(0)} fps`,
-      `particles  ${renderer.count}`,
+      `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}`,
       s ? `sim time   ${s.sim_time.toFixed(3)} s (${s.state})` : '',
       s ? `steps/s    ${s.steps_per_second.toFixed(0)}` : '',
       `frames     ${state.frames}`,

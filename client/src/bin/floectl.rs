@@ -140,8 +140,8 @@ fn line(s: &floe_client::SceneInfo) -> String {
     let state = state.trim_start_matches("SCENE_STATE_").to_lowercase();
     let halt = if s.halt_reason.is_empty() { String::new() } else { format!("  {}", s.halt_reason) };
     format!(
-        "{:>4}  {:<16} {:>9} particles  t = {:.4} s  step {}  {state}{halt}",
-        s.scene_id, s.name, s.particles, s.sim_time, s.steps
+        "{:>4}  {:<16} {:>9} particles on {}  t = {:.4} s  step {}  {state}{halt}",
+        s.scene_id, s.name, s.particles, s.backend, s.sim_time, s.steps
     )
 }
 

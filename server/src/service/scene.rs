@@ -132,6 +132,8 @@ pub struct Shared {
     pub particles: usize,
     /// Particle spacing (m).
     pub particle_spacing: f32,
+    /// The backend stepping the scene (`gpu`, `cpu`); resets and restores keep it.
+    pub backend: &'static str,
     /// Domain (m): frames quantise positions over it.
     pub bounds: ([f32; 3], [f32; 3]),
     /// Latest status.
@@ -278,6 +280,7 @@ impl SceneHandle {
             scene_json: Mutex::new(serde_json::to_string(sim.scene()).expect("scenes serialise")),
             particles: sim.particle_count(),
             particle_spacing: sim.scene().particle_spacing,
+            backend: sim.backend_name(),
             bounds: (domain.min.to_array(), domain.max.to_array()),
             status: Mutex::new(Status {
                 state: State::Paused,
