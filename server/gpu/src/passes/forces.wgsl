@@ -41,7 +41,9 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
             a -= grad * (m * (di.y + dj.y));
             let v_ij = vi - vel[j].xyz;
             a += viscosity(x_ij, r, v_ij, m, di.x, dj.x, grad);
-            dv -= v_ij * (2.0 * m / (di.x + dj.x) * kernel_w(r2));
+            if (params.xsph > 0.0) {
+                dv -= v_ij * (2.0 * m / (di.x + dj.x) * kernel_w(r2));
+            }
         }
     }
     if (params.n_walls > 0u) {
@@ -63,5 +65,9 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
         }
     }
     acc[i] = vec4<f32>(a, 0.0);
-    acc[params.n + i] = vec4<f32>(dv * params.xsph, 0.0);
+    // Only scenes with XSPH compute and store the correction (the kick reads it
+    // only then).
+    if (params.xsph > 0.0) {
+        acc[params.n + i] = vec4<f32>(dv * params.xsph, 0.0);
+    }
 }
