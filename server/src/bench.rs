@@ -30,7 +30,7 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     if let Some(frames) = args.codec {
         return crate::codec_bench::codec_bench(args.particles[0], frames);
     }
-    let backend = floe_gpu::select::select(args.backend.into())?;
+    let backend = floe_gpu::select::select_with(args.backend.into(), args.profile)?;
     if let Some(seconds) = args.solve {
         return solve(args.particles[0], &args.overrides, seconds, &backend);
     }
@@ -39,16 +39,19 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
         "| fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle |"
     );
     println!("|---:|---:|---:|---:|---:|---:|---:|");
+    let mut profiles = Vec::new();
     for &n in &args.particles {
         let mut sim = dam_break(n, &args.overrides, &backend)?;
         for _ in 0..5 {
             sim.step().context("warm-up")?;
         }
+        let kernels_before = sim.kernel_times();
         let t0 = Instant::now();
         for _ in 0..args.steps {
             sim.step().context("timed step")?;
         }
         let wall = t0.elapsed().as_secs_f64();
+        profiles.push((sim.particle_count(), per_step(&kernels_before, &sim.kernel_times(), args.steps)));
         let p = sim.particle_count();
         let per_particle = |b: u64| format!("{:.0}", b as f64 / p as f64);
         let mem = if args.memory { peak_rss().map(per_particle) } else { None };
@@ -62,7 +65,34 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
             device.unwrap_or_else(|| "-".into())
         );
     }
+    for (p, kernels) in profiles.iter().filter(|k| !k.1.is_empty()) {
+        let total: f64 = kernels.iter().map(|k| k.1).sum();
+        println!("\nGPU time per step by kernel at {p} particles (timestamp queries), {total:.3} ms in all:");
+        println!("| kernel | dispatches/step | ms/step | share |");
+        println!("|---|---:|---:|---:|");
+        for (label, ms, dispatches) in kernels.iter() {
+            println!("| {label} | {dispatches:.1} | {ms:.3} | {:.1} % |", 100.0 * ms / total.max(f64::MIN_POSITIVE));
+        }
+    }
     Ok(())
+}
+
+/// Per kernel, device milliseconds and dispatches per step between two
+/// [`floe_engine::Simulation::kernel_times`] readings `steps` steps apart, slowest first.
+fn per_step(
+    before: &[(&'static str, f64, u64)],
+    after: &[(&'static str, f64, u64)],
+    steps: u64,
+) -> Vec<(&'static str, f64, f64)> {
+    let mut out: Vec<_> = after
+        .iter()
+        .map(|&(label, s, d)| {
+            let (s0, d0) = before.iter().find(|b| b.0 == label).map_or((0.0, 0), |b| (b.1, b.2));
+            (label, (s - s0) * 1e3 / steps as f64, (d - d0) as f64 / steps as f64)
+        })
+        .collect();
+    out.sort_by(|a, b| b.1.total_cmp(&a.1));
+    out
 }
 
 /// Time to solution: simulate `seconds` of the dam break and compare the front.

@@ -110,6 +110,10 @@ pub struct BenchArgs {
     /// for a clean figure).
     #[arg(long)]
     pub memory: bool,
+    /// GPU backend: also time every kernel with timestamp queries and print
+    /// device milliseconds per step for each (adds a wait per submission).
+    #[arg(long)]
+    pub profile: bool,
     /// Frame codec instead: bytes per particle and encode/decode throughput on
     /// this many dam-break frames at the first particle count.
     #[arg(long, value_name = "FRAMES", conflicts_with = "solve")]

@@ -118,6 +118,11 @@ pub trait Backend: Passes + Send {
     }
     /// Copies out positions and the requested channels.
     fn read(&self, channels: &[Channel]) -> Particles;
+    /// Per kernel: label, total device seconds and dispatches so far, when the
+    /// backend was asked to profile (`floe bench --profile`); empty otherwise.
+    fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
+        Vec::new()
+    }
     /// Bytes the scene holds in device memory (a GPU's buffers); `None` for a
     /// backend whose state lives in the process (see peak RSS instead).
     fn device_memory(&self) -> Option<u64> {

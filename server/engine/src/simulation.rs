@@ -127,6 +127,11 @@ impl Simulation {
         self.backend.read(channels)
     }
 
+    /// Per-kernel device time (see [`Backend::kernel_times`]).
+    pub fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
+        self.backend.kernel_times()
+    }
+
     /// Bytes held in device memory (see [`Backend::device_memory`]).
     pub fn device_memory(&self) -> Option<u64> {
         self.backend.device_memory()

@@ -10,6 +10,8 @@ use crate::buffers::{Binds, Buffers, STEP_SLOTS, vec4s};
 use crate::context::GpuContext;
 use crate::layout::{Measures, Params, QuantGrid, Step};
 use crate::passes::measure::PER_PARTIAL;
+use crate::program::Recorder;
+use crate::timer::Timer;
 use floe_engine::backend::{Backend, Channel, Particles};
 use floe_engine::math::{Real, Vec3};
 use floe_engine::model::{BuildError, Model};
@@ -17,7 +19,7 @@ use floe_engine::neighbors::Grid;
 use floe_engine::quantize::PositionGrid;
 use floe_engine::scene::Scene;
 use floe_engine::stepping::{Clock, Passes, SortedState, by_identity};
-use wgpu::{Buffer, CommandEncoder};
+use wgpu::Buffer;
 
 /// One scene's fluid on the GPU.
 #[derive(Debug)]
@@ -30,7 +32,9 @@ pub struct GpuBackend {
     binds: Binds,
     clock: Clock,
     /// Kicks and drifts recorded since the last submission.
-    pending: Option<CommandEncoder>,
+    pending: Option<Recorder>,
+    /// Per-kernel GPU time, when profiling (held by `pending` while recording).
+    timer: Option<Timer>,
     /// Next free step uniform of `buffers.steps`.
     slot: usize,
 }
@@ -53,22 +57,39 @@ impl GpuBackend {
         model.positions = Vec::new();
         model.velocities = Vec::new();
         let clock = Clock::new(&model);
-        Ok(Self { gpu: gpu.clone(), model, grid, n, buffers, binds, clock, pending: None, slot: 0 })
+        let timer = gpu.profiling().then(|| Timer::new(&gpu.device, gpu.queue.get_timestamp_period()));
+        Ok(Self { gpu: gpu.clone(), model, grid, n, buffers, binds, clock, pending: None, timer, slot: 0 })
     }
 
-    /// The encoder being recorded (taken out; put it back in `pending`).
-    fn take_encoder(&mut self) -> CommandEncoder {
-        self.pending.take().unwrap_or_else(|| {
-            self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("floe step") })
+    /// The recorder being filled (taken out; put it back in `pending` or submit it).
+    fn take_recorder(&mut self) -> Recorder {
+        self.pending.take().unwrap_or_else(|| Recorder {
+            encoder: self
+                .gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("floe step") }),
+            timer: self.timer.take(),
         })
+    }
+
+    /// Submits `rec` without waiting (when profiling, waits for its timestamps).
+    fn submit(&mut self, rec: Recorder) {
+        let Recorder { mut encoder, mut timer } = rec;
+        let stamps = timer.as_ref().and_then(|t| t.resolve(&mut encoder)).map(|(b, len)| (b.clone(), len));
+        self.gpu.queue.submit([encoder.finish()]);
+        self.slot = 0;
+        if let (Some(t), Some((buffer, len))) = (timer.as_mut(), stamps) {
+            t.add(&self.download(&[(&buffer, 0, len)])[0]);
+        }
+        self.timer = timer;
     }
 
     /// Submits the kicks and drifts recorded so far, without waiting.
     /// [`Backend::step`] does this itself; callers driving [`Passes`] directly
     /// flush before reading the state.
     pub fn flush(&mut self) {
-        if let Some(encoder) = self.pending.take() {
-            self.gpu.queue.submit([encoder.finish()]);
+        if let Some(rec) = self.pending.take() {
+            self.submit(rec);
         }
         self.slot = 0;
     }
@@ -77,11 +98,11 @@ impl GpuBackend {
     /// and the density pass.
     fn record_sort_and_density(&mut self) {
         let (n, cells) = (self.n, self.grid.cell_count() as u32);
-        let mut e = self.take_encoder();
+        let mut e = self.take_recorder();
         let p = &self.gpu.programs;
         let (b, binds) = (&self.buffers, &self.binds);
         let copies = [(&b.pos2, &b.pos, 16), (&b.vel2, &b.vel, 16), (&b.acc2, &b.acc, 16), (&b.ids2, &b.ids, 4)];
-        e.clear_buffer(&b.counts, 0, None);
+        e.encoder.clear_buffer(&b.counts, 0, None);
         p.grid.count.dispatch(&mut e, &binds.grid, n);
         p.scan.record(&mut e, &binds.scan);
         p.grid.scatter.dispatch(&mut e, &binds.grid, n);
@@ -91,7 +112,7 @@ impl GpuBackend {
         }
         p.reorder.ids.dispatch(&mut e, &binds.reorder_ids, n);
         for (from, to, size) in copies {
-            e.copy_buffer_to_buffer(from, 0, to, 0, size * n as u64);
+            e.encoder.copy_buffer_to_buffer(from, 0, to, 0, size * n as u64);
         }
         p.density.dispatch(&mut e, &binds.density, n);
         self.pending = Some(e);
@@ -177,10 +198,11 @@ impl GpuBackend {
         let sorted = vel || rho || grid.is_none();
         if let Some(g) = grid {
             self.gpu.queue.write_buffer(&b.quant_grid, 0, bytemuck::bytes_of(&QuantGrid::from(g)));
-            let mut e =
+            let encoder =
                 self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("quantize") });
+            let mut e = Recorder { encoder, timer: None };
             self.gpu.programs.quantize.dispatch(&mut e, &self.binds.quantize, self.n.div_ceil(2));
-            self.gpu.queue.submit([e.finish()]);
+            self.gpu.queue.submit([e.encoder.finish()]);
         }
         let size = |on: bool, bytes: u64| if on { bytes * n } else { 0 };
         let got = self.download(&[
@@ -220,7 +242,7 @@ impl Passes for GpuBackend {
 
     fn evaluate(&mut self) -> Result<floe_engine::guard::Measures, String> {
         self.record_sort_and_density();
-        let mut e = self.take_encoder();
+        let mut e = self.take_recorder();
         let (p, b) = (&self.gpu.programs, &self.binds);
         let walls = self.model.boundary.len() as u32;
         if walls > 0 {
@@ -229,22 +251,21 @@ impl Passes for GpuBackend {
         p.forces.dispatch(&mut e, &b.forces, self.n);
         p.measure.partials.dispatch(&mut e, &b.measure, self.n);
         p.measure.total.dispatch(&mut e, &b.measure, PER_PARTIAL);
-        self.gpu.queue.submit([e.finish()]);
-        self.slot = 0;
+        self.submit(e);
         let got = self.try_download(&[(&self.buffers.partials, 0, std::mem::size_of::<Measures>() as u64)])?;
         Ok(bytemuck::pod_read_unaligned::<Measures>(bytemuck::cast_slice(&got[0])).into())
     }
 
     fn kick(&mut self, dt: Real, keep: Real, with_xsph: bool) {
         let slot = self.write_step(Step { kick_dt: dt, keep, with_xsph: with_xsph as u32, drift_dt: 0.0 });
-        let mut e = self.take_encoder();
+        let mut e = self.take_recorder();
         self.gpu.programs.integrate.kick.dispatch(&mut e, &self.binds.integrate[slot], self.n);
         self.pending = Some(e);
     }
 
     fn drift(&mut self, dt: Real) {
         let slot = self.write_step(Step { kick_dt: 0.0, keep: 1.0, with_xsph: 0, drift_dt: dt });
-        let mut e = self.take_encoder();
+        let mut e = self.take_recorder();
         self.gpu.programs.integrate.drift.dispatch(&mut e, &self.binds.integrate[slot], self.n);
         self.pending = Some(e);
     }
@@ -300,6 +321,10 @@ impl Backend for GpuBackend {
 
     fn read(&self, channels: &[Channel]) -> Particles {
         self.read_with(channels, None)
+    }
+
+    fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
+        self.timer.as_ref().map(|t| t.totals().to_vec()).unwrap_or_default()
     }
 
     fn device_memory(&self) -> Option<u64> {

@@ -41,12 +41,14 @@ pub struct GpuContext {
     pub(crate) queue: wgpu::Queue,
     pub(crate) programs: Arc<Programs>,
     info: wgpu::AdapterInfo,
+    profile: bool,
 }
 
 impl GpuContext {
     /// Opens the best qualifying Vulkan adapter: discrete before integrated
-    /// before virtual before software.
-    pub fn new(which: Adapters) -> Result<Self, GpuError> {
+    /// before virtual before software. With `profile`, scenes on it time every
+    /// kernel (when the adapter has timestamp queries; see [`crate::timer`]).
+    pub fn new(which: Adapters, profile: bool) -> Result<Self, GpuError> {
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
             backends: wgpu::Backends::VULKAN,
             ..wgpu::InstanceDescriptor::new_without_display_handle()
@@ -64,15 +66,17 @@ impl GpuContext {
         if which == Adapters::Hardware && info.device_type == wgpu::DeviceType::Cpu {
             return Err(GpuError::SoftwareOnly(info.name));
         }
+        let profile = profile && adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         // The adapter's own limits: large scenes need its full buffer sizes.
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("floe"),
+            required_features: if profile { wgpu::Features::TIMESTAMP_QUERY } else { wgpu::Features::empty() },
             required_limits: adapter.limits(),
             ..Default::default()
         }))
         .map_err(|e| GpuError::Device { adapter: info.name.clone(), reason: e.to_string() })?;
         let programs = Arc::new(Programs::new(&device));
-        Ok(Self { device, queue, programs, info })
+        Ok(Self { device, queue, programs, info, profile })
     }
 
     /// The adapter's name and kind, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (software)`.
@@ -85,6 +89,11 @@ impl GpuContext {
             wgpu::DeviceType::Other => "other",
         };
         format!("{} ({kind}, driver {})", self.info.name, self.info.driver_info)
+    }
+
+    /// Whether scenes time their kernels.
+    pub fn profiling(&self) -> bool {
+        self.profile
     }
 
     /// Whether the adapter is a software rasteriser.

@@ -19,6 +19,7 @@ pub mod layout;
 pub mod passes;
 pub mod program;
 pub mod select;
+pub mod timer;
 
 pub use backend::GpuBackend;
 pub use context::{Adapters, GpuContext, GpuError};

@@ -4,7 +4,15 @@
 //! Layouts are explicit (not derived from the shader) so one layout fits every
 //! bind group of a kernel, and a binding a shader stops using is still checked.
 
+use crate::timer::Timer;
 use wgpu::{BindGroup, Buffer, CommandEncoder, ComputePipeline, Device};
+
+/// Where passes are recorded: a command encoder, and the timer when profiling.
+#[derive(Debug)]
+pub struct Recorder {
+    pub encoder: CommandEncoder,
+    pub timer: Option<Timer>,
+}
 
 /// How a kernel sees one binding.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -122,11 +130,12 @@ impl Kernel {
     /// Records a dispatch of at least `threads` threads (one pass, labelled).
     /// Counts above 65535 workgroups spill into a second dimension, which the
     /// shaders fold back (`thread_index` in common.wgsl).
-    pub fn dispatch(&self, encoder: &mut CommandEncoder, bind: &BindGroup, threads: u32) {
+    pub fn dispatch(&self, rec: &mut Recorder, bind: &BindGroup, threads: u32) {
         let groups = threads.div_ceil(self.workgroup).max(1);
         let (x, y) = if groups > MAX_GROUPS { (MAX_GROUPS, groups.div_ceil(MAX_GROUPS)) } else { (groups, 1) };
-        let mut pass = encoder
-            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(self.label), timestamp_writes: None });
+        let timestamp_writes = rec.timer.as_mut().and_then(|t| t.next(self.label));
+        let mut pass =
+            rec.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(self.label), timestamp_writes });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, bind, &[]);
         pass.dispatch_workgroups(x, y, 1);

@@ -68,10 +68,15 @@ fn rayon_threads() -> usize {
 
 /// Resolves `choice` (logs the outcome and the reason).
 pub fn select(choice: BackendChoice) -> Result<Selected, GpuError> {
+    select_with(choice, false)
+}
+
+/// [`select`], with GPU scenes timing every kernel when `profile` is set.
+pub fn select_with(choice: BackendChoice, profile: bool) -> Result<Selected, GpuError> {
     let selected = match choice {
         BackendChoice::Cpu => Selected::cpu("asked for"),
-        BackendChoice::Gpu => Selected::gpu(GpuContext::new(Adapters::Any)?, "asked for"),
-        BackendChoice::Auto => match GpuContext::new(Adapters::Hardware) {
+        BackendChoice::Gpu => Selected::gpu(GpuContext::new(Adapters::Any, profile)?, "asked for"),
+        BackendChoice::Auto => match GpuContext::new(Adapters::Hardware, profile) {
             Ok(gpu) => Selected::gpu(gpu, "a hardware adapter was found"),
             Err(e) => Selected::cpu(&format!("no hardware GPU ({e})")),
         },

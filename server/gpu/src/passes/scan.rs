@@ -2,9 +2,10 @@
 
 use crate::layout::ScanParams;
 use crate::program::Access::{ReadWrite as W, Uniform as U};
+use crate::program::Recorder;
 use crate::program::{Access, Kernel, Layout, module};
 use wgpu::util::DeviceExt;
-use wgpu::{Buffer, CommandEncoder, Device};
+use wgpu::{Buffer, Device};
 
 /// Source of scan.wgsl (stand-alone: it needs no scene constants).
 pub const SOURCE: &str = include_str!("scan.wgsl");
@@ -79,12 +80,12 @@ impl Scan {
     }
 
     /// Records the scan: blocks of every level up, then block offsets back down.
-    pub fn record(&self, encoder: &mut CommandEncoder, plan: &ScanPlan) {
+    pub fn record(&self, rec: &mut Recorder, plan: &ScanPlan) {
         for (len, bind) in &plan.levels {
-            self.blocks.dispatch(encoder, bind, len.div_ceil(2));
+            self.blocks.dispatch(rec, bind, len.div_ceil(2));
         }
         for (len, bind) in plan.levels.iter().rev().skip(1) {
-            self.add.dispatch(encoder, bind, *len);
+            self.add.dispatch(rec, bind, *len);
         }
     }
 }

@@ -9,7 +9,7 @@ use std::sync::OnceLock;
 /// by tests/run-all.sh, which installs lavapipe) a missing GPU fails instead.
 pub fn gpu(test: &str) -> Option<&'static GpuContext> {
     static GPU: OnceLock<Result<GpuContext, String>> = OnceLock::new();
-    match GPU.get_or_init(|| GpuContext::new(Adapters::Any).map_err(|e| e.to_string())) {
+    match GPU.get_or_init(|| GpuContext::new(Adapters::Any, false).map_err(|e| e.to_string())) {
         Ok(g) => Some(g),
         Err(e) if std::env::var_os("FLOE_REQUIRE_GPU").is_some() => panic!("{test}: FLOE_REQUIRE_GPU is set: {e}"),
         Err(e) => {
