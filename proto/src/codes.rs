@@ -87,13 +87,8 @@ pub(crate) fn quantise(
     };
     let mut out = Vec::with_capacity(ChannelKind::ALL.len());
     let p = input.positions;
-    let codes = (0..3)
-        .map(|k| {
-            let mut c = fresh();
-            position[k].encode_into(p.iter().map(|v| v[k]), &mut c);
-            c
-        })
-        .collect();
+    let codes =
+        vec![axis::<0>(p, &position, fresh()), axis::<1>(p, &position, fresh()), axis::<2>(p, &position, fresh())];
     out.push(ChannelCodes { kind: ChannelKind::Position, quantizers: position.to_vec(), codes });
     if let Some(v) = input.velocities {
         let (mut quantizers, mut codes) = (Vec::new(), Vec::new());
@@ -125,6 +120,14 @@ pub(crate) fn quantise(
         out.push(ChannelCodes { kind: ChannelKind::Phase, quantizers: vec![PHASE], codes: vec![c] });
     }
     Ok(out)
+}
+
+/// Codes of axis `K` of `positions` appended to `out`. The axis is a constant, so the loop
+/// reads a fixed offset of each position with no bounds check and is partly vectorised.
+fn axis<const K: usize>(positions: &[[f32; 3]], quantizers: &[Quantizer; 3], mut out: Vec<u16>) -> Vec<u16> {
+    let coder = quantizers[K].coder();
+    out.extend(positions.iter().map(|v| coder.code(v[K])));
+    out
 }
 
 /// The quantiser of one component over its per-frame range.

@@ -42,8 +42,10 @@ pub struct Decoder {
     limits: Limits,
     last_sequence: Option<u64>,
     base: Option<Base>,
-    /// Stored values of the stream being read, reused from stream to stream.
-    values: Vec<u64>,
+    /// Morton-key differences of the positions being read, reused from frame to frame.
+    keys: Vec<u64>,
+    /// Code vectors of frames no longer needed, reused so steady streaming does not allocate.
+    spare_codes: Vec<Vec<u16>>,
 }
 
 impl Decoder {
@@ -110,7 +112,7 @@ impl Decoder {
             };
             if info.predictor == Predictor::Morton {
                 out.positions =
-                    unordered::read_positions(&mut p, n, &quantizers, &mut self.values).map_err(in_channel)?;
+                    unordered::read_positions(&mut p, n, &quantizers, &mut self.keys).map_err(in_channel)?;
             } else {
                 let prev = base.and_then(|b| b.channels.iter().find(|c| c.kind == kind));
                 let before = base.and_then(|b| b.before.as_ref()).filter(|_| kind == ChannelKind::Position);
@@ -127,17 +129,17 @@ impl Decoder {
                         header.base_sequence
                     )));
                 }
-                let mut codes = Vec::with_capacity(quantizers.len());
-                for k in 0..quantizers.len() {
-                    let reference = (prev.map(|c| c.codes[k].as_slice()), before.map(|b| b[k].as_slice()));
-                    codes.push(
-                        predict::read(&mut p, n, info.bits, info.predictor, reference, &mut self.values)
-                            .map_err(in_channel)?,
-                    );
+                let mut codes: Vec<Vec<u16>> =
+                    (0..quantizers.len()).map(|_| self.spare_codes.pop().unwrap_or_default()).collect();
+                let reference = |k: usize| (prev.map(|c| c.codes[k].as_slice()), before.map(|b| b[k].as_slice()));
+                if let Err(e) = predict::read(&mut p, n, info.bits, info.predictor, reference, &mut codes) {
+                    self.spare_codes.extend(codes);
+                    return Err(in_channel(e));
                 }
                 codes::store(&mut out, kind, &quantizers, &codes);
-                if header.mode == Mode::IdentityOrdered {
-                    kept.push(ChannelCodes { kind, quantizers, codes });
+                match header.mode {
+                    Mode::IdentityOrdered => kept.push(ChannelCodes { kind, quantizers, codes }),
+                    Mode::Unordered => self.spare_codes.extend(codes),
                 }
             }
             if p.remaining() != 0 {
@@ -145,9 +147,21 @@ impl Decoder {
             }
         }
         if header.mode == Mode::IdentityOrdered {
-            let before = match base {
-                Some(_) => self.base.take().and_then(|b| b.channels.into_iter().next()).map(|p| p.codes),
-                None => None,
+            let delta = base.is_some();
+            let before = match (delta, self.base.take()) {
+                (true, Some(old)) => {
+                    let mut channels = old.channels.into_iter();
+                    let positions = channels.next().map(|p| p.codes);
+                    self.spare_codes.extend(channels.flat_map(|ch| ch.codes).chain(old.before.into_iter().flatten()));
+                    positions
+                }
+                (_, old) => {
+                    let all = old.into_iter().flat_map(|b| {
+                        b.channels.into_iter().flat_map(|ch| ch.codes).chain(b.before.into_iter().flatten())
+                    });
+                    self.spare_codes.extend(all);
+                    None
+                }
             };
             self.base = Some(Base { scene_id: header.scene_id, sequence: header.sequence, channels: kept, before });
         }

@@ -238,16 +238,31 @@ impl Encoder {
                 }
                 (Mode::Unordered, _, _) => {
                     let order = Some(self.unordered.ids.as_slice());
-                    write_components(out, ch, |_| Reference::Previous(order), &mut self.predict)
+                    predict::write(out, &ch.codes, ch.bits(), |_| Reference::Previous(order), &mut self.predict)
                 }
-                (Mode::IdentityOrdered, 0, Some((p, before))) => {
-                    write_components(out, ch, |k| Reference::Linear(&p.codes[k], &before[k]), &mut self.predict)
-                }
+                (Mode::IdentityOrdered, 0, Some((p, before))) => predict::write(
+                    out,
+                    &ch.codes,
+                    ch.bits(),
+                    |k| Reference::Linear(&p.codes[k], &before[k]),
+                    &mut self.predict,
+                ),
                 (Mode::IdentityOrdered, _, _) => {
                     let same = base.as_ref().and_then(|b| b.channels.iter().find(|p| p.quantised_like(ch)));
                     match same {
-                        Some(p) => write_components(out, ch, |k| Reference::Base(&p.codes[k]), &mut self.predict),
-                        None => write_components(out, ch, |_| Reference::Nothing, &mut self.predict),
+                        Some(p) => predict::write(
+                            out,
+                            &ch.codes,
+                            ch.bits(),
+                            |k| Reference::Base(&p.codes[k]),
+                            &mut self.predict,
+                        ),
+                        // Particles created on a lattice keep neighbours at neighbouring
+                        // indices, so the previous particle predicts a keyframe's positions
+                        // (5.5 to 3.9 bytes/particle on the dam break) and other channels.
+                        None => {
+                            predict::write(out, &ch.codes, ch.bits(), |_| Reference::Previous(None), &mut self.predict)
+                        }
                     }
                 }
             };
@@ -283,22 +298,6 @@ impl Encoder {
         }
         Ok(())
     }
-}
-
-/// Writes each component of `ch` predicted from `reference(component)`; returns the predictor.
-fn write_components<'a>(
-    out: &mut Vec<u8>,
-    ch: &ChannelCodes,
-    reference: impl Fn(usize) -> Reference<'a>,
-    scratch: &mut predict::Scratch,
-) -> Predictor {
-    let mut predictor = Predictor::None;
-    for (k, codes) in ch.codes.iter().enumerate() {
-        let r = reference(k);
-        predictor = r.predictor();
-        predict::write(out, codes, ch.bits(), r, scratch);
-    }
-    predictor
 }
 
 /// Checks that every channel has one value per position; returns the particle count.

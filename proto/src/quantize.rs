@@ -47,20 +47,38 @@ impl Quantizer {
 
     /// Codes of `values`, appended to `out`.
     pub fn encode_into(&self, values: impl Iterator<Item = f32>, out: &mut Vec<u16>) {
+        let coder = self.coder();
+        out.extend(values.map(|v| coder.code(v)));
+    }
+
+    /// The encoding half, with the scale computed once.
+    pub(crate) fn coder(&self) -> Coder {
         let span = self.max - self.min;
         let scale = if span > 0.0 { self.largest_code() as f32 / span } else { 0.0 };
-        let (min, top) = (self.min, self.largest_code() as f32);
-        // `as u16` saturates negatives to 0 and turns NaN into 0; `f32::min` would
-        // turn NaN into the top code, hence the comparison.
-        out.extend(values.map(|v| {
-            let x = (v - min) * scale + 0.5;
-            if x >= top { top as u16 } else { x as u16 }
-        }));
+        Coder { min: self.min, scale, top: self.largest_code() as u16 }
     }
 
     /// The value of one code.
     pub fn decode(&self, code: u16) -> f32 {
         self.min + f32::from(code) * self.step()
+    }
+}
+
+/// Codes values of one [`Quantizer`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Coder {
+    min: f32,
+    scale: f32,
+    top: u16,
+}
+
+impl Coder {
+    /// The nearest code of `v`, clamped to the range.
+    #[inline(always)]
+    pub(crate) fn code(&self, v: f32) -> u16 {
+        // `as u16` saturates negatives to 0 and turns NaN into 0, which `f32::clamp` would
+        // keep; taking the minimum after the cast needs no branch.
+        (((v - self.min) * self.scale + 0.5) as u16).min(self.top)
     }
 }
 

@@ -27,6 +27,7 @@
 //! entropy and adapts to the local scale, where byte planes with LZ4 stayed 0.3 to 0.7 bytes
 //! per particle above it (`proto/README.md`); the escape bounds the cost of outliers.
 
+use crate::bits::{BitReader, BitWriter, WINDOW};
 use crate::error::DecodeError;
 use crate::reader::Reader;
 
@@ -38,41 +39,23 @@ pub const ZERO_BLOCK: u32 = 63;
 pub const ESCAPE: u32 = 16;
 const PARAMETER_BITS: u32 = 6;
 
-/// Appends bits least significant first; at most 32 bits per call.
-#[derive(Debug)]
-struct BitWriter<'a> {
-    out: &'a mut Vec<u8>,
-    acc: u64,
-    filled: u32,
+/// What a stream holds: 16-bit codes and residuals, or 48-bit Morton-key differences.
+pub(crate) trait Value: Copy + Default + Into<u64> {
+    /// The value of at most the type's bits (callers check the width first).
+    fn truncate(v: u64) -> Self;
 }
 
-impl BitWriter<'_> {
-    #[inline]
-    fn put(&mut self, bits: u64, count: u32) {
-        debug_assert!(count <= 32 && bits >> count == 0);
-        self.acc |= bits << self.filled;
-        self.filled += count;
-        if self.filled >= 32 {
-            self.out.extend_from_slice(&(self.acc as u32).to_le_bytes());
-            self.acc >>= 32;
-            self.filled -= 32;
-        }
+impl Value for u16 {
+    #[inline(always)]
+    fn truncate(v: u64) -> Self {
+        v as u16
     }
+}
 
-    /// Up to 64 bits.
-    #[inline]
-    fn put_wide(&mut self, bits: u64, count: u32) {
-        if count > 32 {
-            self.put(bits & 0xffff_ffff, 32);
-            self.put(bits >> 32, count - 32);
-        } else {
-            self.put(bits, count);
-        }
-    }
-
-    fn finish(self) {
-        let bytes = self.filled.div_ceil(8) as usize;
-        self.out.extend_from_slice(&self.acc.to_le_bytes()[..bytes]);
+impl Value for u64 {
+    #[inline(always)]
+    fn truncate(v: u64) -> Self {
+        v
     }
 }
 
@@ -81,16 +64,22 @@ pub(crate) fn width_of(max: u64) -> u32 {
     64 - max.leading_zeros()
 }
 
+/// Whether a value of a `width`-bit stream, Rice-coded or escaped, always fits in one
+/// [`WINDOW`]: then the coding loops need no second read or write per value.
+fn fits_window(width: u32) -> bool {
+    ESCAPE + width <= WINDOW
+}
+
 /// The parameter that codes `block` (not all zero) in about the fewest bits: of the one its
 /// mean suggests (a Rice code's best `k` is about `log2` of the mean) and its two neighbours,
 /// the one with the fewest bits not counting escapes, which the best parameter makes rare.
-fn best_parameter(block: &[u64], sum: u64, width: u32) -> u32 {
+fn best_parameter<T: Value>(block: &[T], sum: u64, width: u32) -> u32 {
     let guess = width_of(sum / block.len() as u64).min(width);
     let k = [guess.saturating_sub(1), guess, (guess + 1).min(width)];
     let mut quotients = [0u64; 3];
     for &v in block {
         for (q, &k) in quotients.iter_mut().zip(&k) {
-            *q += v >> k;
+            *q += v.into() >> k;
         }
     }
     let cost = |i: usize| quotients[i] + block.len() as u64 * u64::from(k[i]);
@@ -98,140 +87,270 @@ fn best_parameter(block: &[u64], sum: u64, width: u32) -> u32 {
 }
 
 /// Appends a stream of `values` to `out`.
-pub(crate) fn write(out: &mut Vec<u8>, values: &[u64]) {
-    let width = width_of(values.iter().fold(0, |a, &v| a | v));
-    out.push(width as u8);
-    let len_at = out.len();
-    out.extend_from_slice(&[0; 4]);
-    let mut w = BitWriter { out, acc: 0, filled: 0 };
-    for block in values.chunks(BLOCK) {
-        // Values are below 2^48, so 128 of them sum below 2^55.
-        let sum: u64 = block.iter().sum();
-        if sum == 0 {
-            w.put(u64::from(ZERO_BLOCK), PARAMETER_BITS);
-            continue;
+pub(crate) fn write<T: Value>(out: &mut Vec<u8>, values: &[T]) {
+    write_each([out], [values]);
+}
+
+/// Appends `S` streams, of `values[0]` to `values[S - 1]` (all of the same length), to
+/// `bufs[0]`; the other vectors of `bufs` (cleared first) hold streams 1 to `S - 1` while
+/// they are written.
+///
+/// The streams are written side by side, a value of each in turn, for the reason
+/// [`read_each`] reads them so: each value's position in its stream waits on the length of
+/// the one before it, and independent streams overlap those waits.
+pub(crate) fn write_each<T: Value, const S: usize>(mut bufs: [&mut Vec<u8>; S], values: [&[T]; S]) {
+    let n = values.first().map_or(0, |v| v.len());
+    let widths = values.map(|v| width_of(v.iter().fold(0, |a, &x| a | x.into())));
+    let mut len_at = [0; S];
+    let mut writers: [BitWriter; S] = std::array::from_fn(|s| {
+        let out = &mut *bufs[s];
+        if s > 0 {
+            out.clear();
         }
-        let k = best_parameter(block, sum, width);
-        w.put(u64::from(k), PARAMETER_BITS);
-        let low = (1u64 << k) - 1;
-        for &v in block {
-            let q = v >> k;
-            if q < u64::from(ESCAPE) {
-                // The unary quotient and the low bits in one call when they fit.
-                let unary = q as u32 + 1;
-                if unary + k <= 32 {
-                    w.put(1 << q | (v & low) << unary, unary + k);
+        out.push(widths[s] as u8);
+        len_at[s] = out.len();
+        out.extend_from_slice(&[0; 4]);
+        BitWriter::new(out)
+    });
+    let narrow = widths.iter().all(|&w| fits_window(w));
+    let mut start = 0;
+    while start < n {
+        let end = n.min(start + BLOCK);
+        let mut ks = [ZERO_BLOCK; S];
+        for s in 0..S {
+            let block = &values[s][start..end];
+            // Values are below 2^48, so 128 of them sum below 2^55.
+            let sum: u64 = block.iter().map(|&v| v.into()).sum();
+            let (w, out) = (&mut writers[s], &mut *bufs[s]);
+            w.reserve(out, PARAMETER_BITS as usize + block.len() * (ESCAPE + widths[s]) as usize);
+            if sum != 0 {
+                ks[s] = best_parameter(block, sum, widths[s]);
+            }
+            w.put(out, u64::from(ks[s]), PARAMETER_BITS);
+        }
+        let blocks = values.map(|v| &v[start..end]);
+        if narrow {
+            write_blocks::<T, S, false>(&mut writers, &mut bufs, blocks, ks, widths);
+        } else {
+            write_blocks::<T, S, true>(&mut writers, &mut bufs, blocks, ks, widths);
+        }
+        start = end;
+    }
+    for ((w, out), at) in writers.into_iter().zip(bufs.iter_mut()).zip(len_at) {
+        w.finish(out);
+        // The encoder has checked that the frame, and so this stream, fits in u32.
+        let len = (out.len() - at - 4) as u32;
+        out[at..at + 4].copy_from_slice(&len.to_le_bytes());
+    }
+    if let Some((first, rest)) = bufs.split_first_mut() {
+        for stream in rest {
+            first.extend_from_slice(stream);
+        }
+    }
+}
+
+/// Writes one block of each stream, with parameters `ks` (a stream whose parameter is
+/// [`ZERO_BLOCK`] writes nothing); `WIDE` when a value may not fit in one [`WINDOW`]
+/// (`!fits_window(width)`), so the narrow loop has no branch for it.
+#[inline(always)]
+#[allow(clippy::needless_range_loop, reason = "value `i` of every stream in turn")]
+fn write_blocks<T: Value, const S: usize, const WIDE: bool>(
+    writers: &mut [BitWriter; S],
+    bufs: &mut [&mut Vec<u8>; S],
+    blocks: [&[T]; S],
+    ks: [u32; S],
+    widths: [u32; S],
+) {
+    let outs = bufs.each_mut().map(|b| b.as_mut_slice());
+    let lows = ks.map(|k| (1u64 << k.min(48)) - 1);
+    let count = blocks.first().map_or(0, |b| b.len());
+    for i in 0..count {
+        for s in 0..S {
+            let (k, w, out) = (ks[s], &mut writers[s], &mut *outs[s]);
+            if k == ZERO_BLOCK {
+                continue;
+            }
+            let v: u64 = blocks[s][i].into();
+            let q = (v >> k) as u32;
+            if q < ESCAPE {
+                if WIDE && q + 1 + k > WINDOW {
+                    w.put(out, 1 << q, q + 1);
+                    w.put(out, v & lows[s], k);
                 } else {
-                    w.put(1 << q, unary);
-                    w.put_wide(v & low, k);
+                    // The unary quotient, its closing one bit and the low bits in one call.
+                    w.put(out, ((v & lows[s]) << 1 | 1) << q, q + 1 + k);
                 }
+            } else if WIDE {
+                w.put(out, 0, ESCAPE);
+                w.put_wide(out, v, widths[s]);
             } else {
-                w.put(0, ESCAPE);
-                w.put_wide(v, width);
+                w.put(out, v << ESCAPE, ESCAPE + widths[s]);
             }
         }
     }
-    w.finish();
-    // The encoder has checked that the frame, and so this stream, fits in u32.
-    let len = (out.len() - len_at - 4) as u32;
-    out[len_at..len_at + 4].copy_from_slice(&len.to_le_bytes());
 }
 
-/// Reads bits least significant first from a byte slice; reads past its end see zeros.
-#[derive(Debug)]
-struct BitReader<'a> {
-    bytes: &'a [u8],
-    pos: usize,
+/// Reads a stream of `n` values of at most `max_width` bits into `values`.
+/// `max_width` is at most the bits of `T`.
+pub(crate) fn read<T: Value>(
+    r: &mut Reader<'_>,
+    n: usize,
+    max_width: u32,
+    values: &mut Vec<T>,
+) -> Result<(), DecodeError> {
+    read_each(r, n, max_width, [values])
 }
 
-impl BitReader<'_> {
-    /// The next 56 bits or more, from bit `pos` up.
-    #[inline]
-    fn peek(&self) -> u64 {
-        let at = self.pos / 8;
-        let word = match self.bytes.get(at..).and_then(<[u8]>::first_chunk::<8>) {
-            Some(w) => u64::from_le_bytes(*w),
-            None => {
-                let mut w = [0; 8];
-                let tail = self.bytes.get(at..).unwrap_or(&[]);
-                w[..tail.len()].copy_from_slice(tail);
-                u64::from_le_bytes(w)
-            }
-        };
-        word >> (self.pos % 8)
-    }
-
-    /// `count` bits (at most 56).
-    #[inline]
-    fn read(&mut self, count: u32) -> u64 {
-        let v = self.peek() & ((1u64 << count) - 1);
-        self.pos += count as usize;
-        v
-    }
-}
-
-/// Reads a stream of `n` values of at most `max_width` bits into `values` (cleared first).
+/// Reads `S` consecutive streams of `n` values each, of at most `max_width` bits (at most
+/// the bits of `T`), into `values` (one vector per stream, resized to `n`).
+///
+/// The streams are decoded side by side, a value of each in turn: a Rice decoder waits on
+/// every value's length before it can find the next one, and interleaving independent
+/// streams lets the processor overlap those waits (the three axes of a channel decode
+/// about twice as fast as one after the other).
 ///
 /// Allocation is bounded twice: by `n` (which the caller has checked against its limit)
 /// and by the bytes actually present, since every block takes at least 6 bits.
-pub(crate) fn read(r: &mut Reader<'_>, n: usize, max_width: u32, values: &mut Vec<u64>) -> Result<(), DecodeError> {
-    let width = u32::from(r.u8()?);
-    if width > max_width {
-        return Err(DecodeError::malformed(format!("stream width {width} bits (at most {max_width} allowed)")));
+pub(crate) fn read_each<T: Value, const S: usize>(
+    r: &mut Reader<'_>,
+    n: usize,
+    max_width: u32,
+    mut values: [&mut Vec<T>; S],
+) -> Result<(), DecodeError> {
+    let mut streams: [Coded<'_>; S] = std::array::from_fn(|_| Coded::default());
+    for s in &mut streams {
+        *s = Coded::open(r, n, max_width)?;
     }
-    let len = r.u32()? as usize;
-    let bytes = r.take(len)?;
-    let available = 8 * len as u64;
-    if n.div_ceil(BLOCK) as u64 * u64::from(PARAMETER_BITS) > available {
-        return Err(DecodeError::malformed(format!("{len} bytes cannot hold {n} values")));
+    for v in &mut values {
+        // Every value is written below, zero blocks included, so old contents may stay.
+        v.resize(n, T::default());
     }
-    values.clear();
-    values.reserve(n);
-    let mut bits = BitReader { bytes, pos: 0 };
-    let mut left = n;
-    while left > 0 {
-        let count = left.min(BLOCK);
-        left -= count;
-        let k = bits.read(PARAMETER_BITS) as u32;
-        if k == ZERO_BLOCK {
-            values.extend(std::iter::repeat_n(0, count));
-            continue;
+    if streams.iter().all(|s| fits_window(s.width)) {
+        read_blocks::<T, S, false>(&mut streams, &mut values)?;
+    } else {
+        read_blocks::<T, S, true>(&mut streams, &mut values)?;
+    }
+    streams.iter().try_for_each(Coded::finish)
+}
+
+/// The blocks of `streams`, a value of each in turn. `WIDE` as for [`write_block`].
+fn read_blocks<T: Value, const S: usize, const WIDE: bool>(
+    streams: &mut [Coded<'_>; S],
+    values: &mut [&mut Vec<T>; S],
+) -> Result<(), DecodeError> {
+    let n = values.first().map_or(0, |v| v.len());
+    let mut start = 0;
+    while start < n {
+        let end = n.min(start + BLOCK);
+        for s in streams.iter_mut() {
+            s.start_block()?;
         }
-        if k > width {
+        let mut any = [0u64; S];
+        for i in start..end {
+            for ((s, v), any) in streams.iter_mut().zip(values.iter_mut()).zip(&mut any) {
+                let x = s.value::<WIDE>();
+                *any |= x;
+                v[i] = T::truncate(x);
+            }
+        }
+        for (s, any) in streams.iter().zip(any) {
+            s.end_block(any)?;
+        }
+        start = end;
+    }
+    Ok(())
+}
+
+/// One stream being read: its header's fields, its blocks' bits, and the current block's
+/// parameter.
+#[derive(Debug, Default)]
+struct Coded<'a> {
+    width: u32,
+    len: usize,
+    bits: BitReader<'a>,
+    /// The current block's parameter, [`ZERO_BLOCK`] included.
+    k: u32,
+    /// `2^k - 1`, the mask of a value's low bits.
+    low: u64,
+}
+
+impl<'a> Coded<'a> {
+    /// Reads the stream's header and takes its bytes, checking they could hold `n` values.
+    fn open(r: &mut Reader<'a>, n: usize, max_width: u32) -> Result<Self, DecodeError> {
+        let width = u32::from(r.u8()?);
+        if width > max_width {
+            return Err(DecodeError::malformed(format!("stream width {width} bits (at most {max_width} allowed)")));
+        }
+        let len = r.u32()? as usize;
+        let bytes = r.take(len)?;
+        if n.div_ceil(BLOCK) as u64 * u64::from(PARAMETER_BITS) > 8 * len as u64 {
+            return Err(DecodeError::malformed(format!("{len} bytes cannot hold {n} values")));
+        }
+        Ok(Self { width, len, bits: BitReader::new(bytes), k: 0, low: 0 })
+    }
+
+    /// Reads and checks the next block's parameter.
+    fn start_block(&mut self) -> Result<(), DecodeError> {
+        let k = self.bits.read(PARAMETER_BITS) as u32;
+        if k != ZERO_BLOCK && k > self.width {
+            let width = self.width;
             return Err(DecodeError::malformed(format!("block parameter {k} exceeds the stream width {width}")));
         }
-        let mut any = 0;
-        for _ in 0..count {
-            let window = bits.peek();
-            let q = window.trailing_zeros().min(ESCAPE);
-            let v = if q < ESCAPE && q + k < 56 {
-                // The quotient and the low bits from the same 56-bit window.
-                bits.pos += (q + 1 + k) as usize;
-                u64::from(q) << k | (window >> (q + 1)) & ((1u64 << k) - 1)
-            } else if q < ESCAPE {
+        self.k = k;
+        self.low = (1u64 << k.min(self.width)) - 1;
+        Ok(())
+    }
+
+    /// The next value of the current block.
+    #[inline(always)]
+    fn value<const WIDE: bool>(&mut self) -> u64 {
+        let (k, bits) = (self.k, &mut self.bits);
+        if k == ZERO_BLOCK {
+            return 0;
+        }
+        let window = bits.window();
+        // The unary quotient's length; 64 for an all-zero window, an escape like any q >= 16.
+        let q = window.trailing_zeros();
+        if q < ESCAPE {
+            if WIDE && q + 1 + k > WINDOW {
                 bits.pos += q as usize + 1;
                 u64::from(q) << k | bits.read(k)
             } else {
-                bits.pos += ESCAPE as usize;
-                bits.read(width)
-            };
-            any |= v;
-            values.push(v);
-        }
-        if width_of(any) > width {
-            return Err(DecodeError::malformed(format!("a value exceeds the stream width {width}")));
-        }
-        if bits.pos as u64 > available {
-            return Err(DecodeError::malformed(format!("the values run past the stream's {len} bytes")));
+                bits.pos += (q + 1 + k) as usize;
+                u64::from(q) << k | (window >> (q + 1)) & self.low
+            }
+        } else if WIDE {
+            bits.pos += ESCAPE as usize;
+            bits.read_wide(self.width)
+        } else {
+            bits.pos += (ESCAPE + self.width) as usize;
+            (window >> ESCAPE) & ((1u64 << self.width) - 1)
         }
     }
-    if bits.pos.div_ceil(8) != len {
-        return Err(DecodeError::malformed(format!("the values take {} bits of the stream's {len} bytes", bits.pos)));
+
+    /// Checks a finished block: `any`, the bitwise or of its values, within the width, and
+    /// the bits read within the stream.
+    fn end_block(&self, any: u64) -> Result<(), DecodeError> {
+        if width_of(any) > self.width {
+            return Err(DecodeError::malformed(format!("a value exceeds the stream width {}", self.width)));
+        }
+        if self.bits.pos as u64 > 8 * self.len as u64 {
+            return Err(DecodeError::malformed(format!("the values run past the stream's {} bytes", self.len)));
+        }
+        Ok(())
     }
-    if !bits.pos.is_multiple_of(8) && bytes[len - 1] >> (bits.pos % 8) != 0 {
-        return Err(DecodeError::malformed("padding bits after the last value are not zero"));
+
+    /// Checks that the values took exactly the stream's bytes, with zero padding bits.
+    fn finish(&self) -> Result<(), DecodeError> {
+        let (pos, len) = (self.bits.pos, self.len);
+        if pos.div_ceil(8) != len {
+            return Err(DecodeError::malformed(format!("the values take {pos} bits of the stream's {len} bytes")));
+        }
+        if !pos.is_multiple_of(8) && self.bits.window() != 0 {
+            return Err(DecodeError::malformed("padding bits after the last value are not zero"));
+        }
+        Ok(())
     }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -241,7 +360,7 @@ mod tests {
     fn round_trip(values: &[u64], max_width: u32) -> Vec<u8> {
         let mut out = Vec::new();
         write(&mut out, values);
-        let mut back = Vec::new();
+        let mut back: Vec<u64> = Vec::new();
         let mut r = Reader::new(&out, "stream");
         read(&mut r, values.len(), max_width, &mut back).unwrap();
         assert_eq!(r.remaining(), 0);
@@ -270,6 +389,27 @@ mod tests {
     }
 
     #[test]
+    fn streams_side_by_side_match_streams_one_after_the_other() {
+        // Different widths (one past a window), zero blocks in one stream only, and escapes.
+        let a: Vec<u64> = (0..700u64).map(|i| if i < 300 { 0 } else { i % 13 }).collect();
+        let b: Vec<u64> = (0..700u64).map(|i| if i % 50 == 0 { (1 << 47) + i } else { i * 31 }).collect();
+        let c: Vec<u64> = (0..700u64).map(|i| (i * 2_654_435_761) % 65_536).collect();
+        let mut one_by_one = Vec::new();
+        for v in [&a, &b, &c] {
+            write(&mut one_by_one, v);
+        }
+        let (mut out, mut y, mut z) = (Vec::new(), vec![9], Vec::new());
+        write_each([&mut out, &mut y, &mut z], [&a, &b, &c]);
+        assert_eq!(out, one_by_one);
+        let mut back: [Vec<u64>; 3] = Default::default();
+        let [x, y, z] = &mut back;
+        let mut r = Reader::new(&out, "streams");
+        read_each(&mut r, 700, 48, [x, y, z]).unwrap();
+        assert_eq!(r.remaining(), 0);
+        assert_eq!(back, [a, b, c]);
+    }
+
+    #[test]
     fn zero_blocks_cost_six_bits() {
         let out = round_trip(&[0; 1000], 16);
         assert_eq!(out.len(), 5 + (8 * 6usize).div_ceil(8), "eight zero blocks");
@@ -288,7 +428,8 @@ mod tests {
         let values: Vec<u64> = (0..500u64).map(|i| i % 37).collect();
         let mut good = Vec::new();
         write(&mut good, &values);
-        let decode = |bytes: &[u8], max_width| read(&mut Reader::new(bytes, "stream"), 500, max_width, &mut Vec::new());
+        let decode =
+            |bytes: &[u8], max_width| read(&mut Reader::new(bytes, "stream"), 500, max_width, &mut Vec::<u16>::new());
         assert!(decode(&good, 16).is_ok());
         assert!(decode(&good, 5).is_err(), "width 6 over a maximum of 5");
         let mut longer = good.clone();
@@ -308,7 +449,7 @@ mod tests {
         let mut bytes = vec![16];
         bytes.extend_from_slice(&4u32.to_le_bytes());
         bytes.extend_from_slice(&[0; 4]);
-        let mut values = Vec::new();
+        let mut values: Vec<u16> = Vec::new();
         let err = read(&mut Reader::new(&bytes, "stream"), 1 << 30, 16, &mut values).unwrap_err();
         assert!(matches!(err, DecodeError::Malformed { .. }), "{err}");
         assert_eq!(values.capacity(), 0);

@@ -35,13 +35,14 @@ const GOLDEN: [Golden; 5] = [
     },
     Golden {
         name: "identity_keyframe",
-        description: "Identity-ordered keyframe, 256 particles, 16-bit positions, velocity (10 bits) and phase.",
+        description: "Identity-ordered keyframe, 256 particles, 16-bit positions, velocity (10 bits) and phase, \
+                      each predicted from the previous particle.",
         decode_after: &[],
     },
     Golden {
         name: "identity_delta",
         description: "Identity-ordered delta frame after identity_keyframe: positions and phase use the base \
-                      predictor, velocity (new per-frame range) none.",
+                      predictor, velocity (new per-frame range) the previous-particle one.",
         decode_after: &["identity_keyframe"],
     },
     Golden {

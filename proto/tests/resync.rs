@@ -32,7 +32,7 @@ fn keyframes_come_at_the_interval_and_deltas_predict_from_the_frame_before() {
         let want_base = if h.keyframe { f as u64 } else { f as u64 - 1 };
         assert_eq!(h.base_sequence, want_base);
         let positions = if h.keyframe {
-            Predictor::None
+            Predictor::Previous
         } else if f % 4 == 1 {
             Predictor::Base
         } else {
