@@ -159,6 +159,14 @@ impl Simulation {
         }
     }
 
+    /// Halts the scene for a failure outside the physics (a backend that failed
+    /// unexpectedly); later steps return this halt.
+    pub fn fail(&mut self, reason: String) -> Halted {
+        let h = Halted { step: self.steps(), time: self.time(), reason, particle: None };
+        self.halted = Some(h.clone());
+        h
+    }
+
     /// Steps until simulated time reaches `t_end` (s), calling `each` after every step.
     pub fn run_until(&mut self, t_end: f64, mut each: impl FnMut(&Simulation, &StepReport)) -> Result<(), Halted> {
         while self.time() < t_end {

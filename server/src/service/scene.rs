@@ -5,7 +5,7 @@
 
 use floe_engine::quantize::PositionGrid;
 use floe_engine::simulation::BackendFactory;
-use floe_engine::{Channel, Particles, Simulation};
+use floe_engine::{Channel, Halted, Particles, Simulation};
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
@@ -533,9 +533,28 @@ impl Worker {
         self.publish();
     }
 
+    /// Runs `f` on the simulation; a panic in a backend (a bug, a lost GPU)
+    /// halts this scene with the panic's message instead of killing its worker,
+    /// so the scene still answers and every other scene goes on.
+    fn guarded<T>(&mut self, f: impl FnOnce(&mut Simulation) -> T) -> Result<T, Halted> {
+        let sim = &mut self.sim;
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(sim))).map_err(|panic| {
+            let message = panic
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| panic.downcast_ref::<&str>().copied())
+                .unwrap_or("unknown panic");
+            self.sim.fail(format!("internal error in the {} backend: {message}", self.sim.backend_name()))
+        })
+    }
+
     /// One step; on a halt, records it and tells subscribers. Returns whether it stepped.
     fn step_once(&mut self) -> bool {
-        match self.sim.step() {
+        if self.sim.halted().is_some() {
+            // Halted while publishing (see `guarded`): already reported.
+            return false;
+        }
+        match self.guarded(Simulation::step).and_then(|r| r) {
             Ok(r) => {
                 self.rate.1 += 1;
                 let elapsed = self.rate.0.elapsed().as_secs_f64();
@@ -550,17 +569,22 @@ impl Worker {
                 true
             }
             Err(h) => {
-                {
-                    let mut s = self.shared.status.lock().expect("lock");
-                    s.state = State::Halted;
-                    s.halt_reason = Some(h.to_string());
-                }
-                tracing::warn!(scene = self.shared.id, "{h}");
-                let _ = self.shared.events.send(Event::Halted(h));
+                self.report_halt(h);
                 self.publish();
                 false
             }
         }
+    }
+
+    /// Shows a halt in the status and tells the event subscribers.
+    fn report_halt(&self, h: Halted) {
+        {
+            let mut s = self.shared.status.lock().expect("lock");
+            s.state = State::Halted;
+            s.halt_reason = Some(h.to_string());
+        }
+        tracing::warn!(scene = self.shared.id, "{h}");
+        let _ = self.shared.events.send(Event::Halted(h));
     }
 
     fn set_state(&self, state: State) {
@@ -583,9 +607,14 @@ impl Worker {
         if self.shared.subscribers.load(Ordering::Relaxed) == 0 && self.sequence > 0 {
             return;
         }
-        let particles = match self.shared.wanted() {
-            (channels, Some(grid)) => self.sim.read_on_grid(&channels, &grid),
-            (channels, None) => self.sim.read(&channels),
+        let wanted = self.shared.wanted();
+        let read = self.guarded(|sim| match wanted {
+            (channels, Some(grid)) => sim.read_on_grid(&channels, &grid),
+            (channels, None) => sim.read(&channels),
+        });
+        let particles = match read {
+            Ok(p) => p,
+            Err(h) => return self.report_halt(h),
         };
         let snapshot = Snapshot { sequence: self.sequence, step: self.sim.steps(), time: self.sim.time(), particles };
         self.sequence += 1;
