@@ -3,6 +3,7 @@
 use clap::Parser;
 
 fn main() -> std::process::ExitCode {
+    quiet_mesa_device_select();
     let cli = floe_server::cli::Cli::parse();
     tracing_subscriber::fmt()
         .with_env_filter(tracing_subscriber::EnvFilter::try_from_env("FLOE_LOG").unwrap_or_else(|_| "info".into()))
@@ -14,5 +15,18 @@ fn main() -> std::process::ExitCode {
             eprintln!("error: {e:#}");
             std::process::ExitCode::FAILURE
         }
+    }
+}
+
+/// Mesa's Vulkan device-select layer connects to a Wayland display to rank the
+/// GPUs and prints "error: XDG_RUNTIME_DIR is invalid" on a server without one.
+/// Floe ranks adapters itself (`floe_gpu::context`), so the layer is switched off
+/// unless the user set `NODEVICE_SELECT` one way or the other.
+#[allow(unsafe_code)]
+fn quiet_mesa_device_select() {
+    if std::env::var_os("NODEVICE_SELECT").is_none() {
+        // SAFETY: the first thing `main` does, before any other thread exists, so
+        // nothing reads the environment while it changes.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
     }
 }
