@@ -153,8 +153,16 @@ impl GpuBackend {
             })
             .collect();
         self.gpu.queue.submit([e.finish()]);
+        let mapped: Vec<(&Buffer, u64)> = staging.iter().zip(ranges).map(|(s, r)| (s, r.2)).collect();
+        self.read_mapped(&mapped)
+    }
+
+    /// Maps readback buffers written by work already submitted, waits for them,
+    /// and copies out their first `len` bytes as words.
+    fn read_mapped(&self, staging: &[(&Buffer, u64)]) -> Result<Vec<Vec<u32>>, String> {
+        let device = &self.gpu.device;
         let (tx, rx) = std::sync::mpsc::channel();
-        for s in &staging {
+        for (s, _) in staging {
             let tx = tx.clone();
             s.map_async(wgpu::MapMode::Read, .., move |r| {
                 let _ = tx.send(r);
@@ -163,17 +171,16 @@ impl GpuBackend {
         device
             .poll(wgpu::PollType::Wait { submission_index: None, timeout: None })
             .map_err(|e| format!("GPU device failed: {e}"))?;
-        for _ in &staging {
+        for _ in staging {
             rx.recv()
                 .map_err(|e| format!("GPU readback lost: {e}"))?
                 .map_err(|e| format!("GPU readback failed: {e}"))?;
         }
         staging
             .iter()
-            .zip(ranges)
-            .map(|(s, &(_, _, size))| {
+            .map(|&(s, len)| {
                 let view = s.get_mapped_range(..).map_err(|e| format!("GPU readback failed: {e}"))?;
-                let words = bytemuck::cast_slice(&view[..size as usize]).to_vec();
+                let words = bytemuck::cast_slice(&view[..len as usize]).to_vec();
                 drop(view);
                 s.unmap();
                 Ok(words)
@@ -251,8 +258,11 @@ impl Passes for GpuBackend {
         p.forces.dispatch(&mut e, &b.forces, self.n);
         p.measure.partials.dispatch(&mut e, &b.measure, self.n);
         p.measure.total.dispatch(&mut e, &b.measure, PER_PARTIAL);
+        let (size, readback) = (std::mem::size_of::<Measures>() as u64, &self.buffers.measures_readback);
+        e.encoder.copy_buffer_to_buffer(&self.buffers.partials, 0, readback, 0, size);
+        let readback = readback.clone();
         self.submit(e);
-        let got = self.try_download(&[(&self.buffers.partials, 0, std::mem::size_of::<Measures>() as u64)])?;
+        let got = self.read_mapped(&[(&readback, size)])?;
         Ok(bytemuck::pod_read_unaligned::<Measures>(bytemuck::cast_slice(&got[0])).into())
     }
 

@@ -47,6 +47,8 @@ pub struct Buffers {
     /// identity order, 6 bytes per particle).
     pub quant_grid: Buffer,
     pub codes: Buffer,
+    /// Where each step's measures are copied for the CPU to map.
+    pub measures_readback: Buffer,
 }
 
 /// Bind groups of one scene, one per kernel use.
@@ -144,6 +146,12 @@ impl Buffers {
             partials: storage(device, "measure partials", 32 * n.div_ceil(256), U::empty()),
             quant_grid: init(device, "frame position grid", &[QuantGrid::default()], U::UNIFORM | U::COPY_DST),
             codes: storage(device, "frame position codes", 12 * n.div_ceil(2), U::empty()),
+            measures_readback: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("measures readback"),
+                size: std::mem::size_of::<crate::layout::Measures>() as u64,
+                usage: U::MAP_READ | U::COPY_DST,
+                mapped_at_creation: false,
+            }),
         })
     }
 
@@ -171,6 +179,7 @@ impl Buffers {
             &self.partials,
             &self.quant_grid,
             &self.codes,
+            &self.measures_readback,
         ];
         all.iter().chain(&self.steps.iter().collect::<Vec<_>>()).map(|b| b.size()).sum()
     }
