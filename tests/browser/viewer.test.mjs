@@ -13,15 +13,16 @@ const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..')
 const floe = process.env.FLOE_BIN ?? path.join(root, 'target/debug/floe');
 const browserPath = process.env.CHROMIUM ?? '/usr/bin/chromium';
 
-/** Starts the server and resolves with the viewer's URL it prints. */
-function startServer() {
-  const child = spawn(floe, ['serve', '--http', '127.0.0.1:0', '--grpc', '127.0.0.1:0', '--scene', 'none'], {
+/** Starts the server (HTTP on `http`) and resolves with the viewer's URL it prints. */
+function startServer(http = '127.0.0.1:0') {
+  const child = spawn(floe, ['serve', '--http', http, '--grpc', '127.0.0.1:0', '--scene', 'none'], {
     cwd: root, stdio: ['ignore', 'pipe', 'inherit'],
   });
   return new Promise((resolve, reject) => {
     let out = '';
     child.on('error', reject);
     child.on('exit', (code) => reject(new Error(`floe serve exited with ${code}`)));
+    child.exited = new Promise((done) => child.on('exit', done));
     child.stdout.on('data', (d) => {
       out += d;
       const m = out.match(/Floe viewer: (http:\/\/\S+)/);
@@ -39,6 +40,7 @@ async function stat(page, label) {
 
 test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, async () => {
   const { child, url } = await startServer();
+  let server = child;
   const browser = await chromium.launch({
     executablePath: browserPath,
     args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--disable-quic',
@@ -100,9 +102,25 @@ test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, a
       const s = await (await fetch('/api/v1/scenes/1')).json();
       return Math.abs(s.scene.gravity[1] + 1.6) < 1e-6;
     }, null, { timeout: 10_000 });
+
+    // The server restarts under the page (same address, a new scene 1): the viewer
+    // finds it again by itself and streams the new scene.
+    server.kill('SIGTERM');
+    await server.exited;
+    server = (await startServer(new URL(url).host)).child;
+    const post = (p, body) => fetch(new URL(p, url), {
+      method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify(body),
+    });
+    assert.equal((await post('/api/v1/scenes', { preset: 'dam_break', overrides: ['particle_spacing=0.05'] })).status, 201);
+    assert.equal((await post('/api/v1/scenes/1/run', { real_time_factor: 1 })).status, 200);
+    await page.waitForFunction(() => /particles\s+1000\b/.test(document.querySelector('#stats').textContent),
+      null, { timeout: 30_000 });
+    const reconnected = await stat(page, 'frames');
+    await page.waitForFunction((n) => /frames\s+(\d+)/.exec(document.querySelector('#stats').textContent)?.[1] >= n + 5,
+      reconnected, { timeout: 30_000 });
     assert.deepEqual(errors, []);
   } finally {
     await browser.close();
-    child.kill('SIGTERM');
+    server.kill('SIGTERM');
   }
 });

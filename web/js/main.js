@@ -39,14 +39,19 @@ function channelFor(mode) {
   return { speed: 'velocity', density: 'density', pressure: 'pressure' }[mode] ?? '';
 }
 
-async function refreshScenes(select) {
+/**
+ * Re-reads the scene list and opens `select`, else the scene shown now if it is
+ * still there, else the first. `reopen` opens it afresh even if it is the one
+ * shown (after a reconnect the server may have restarted under the page).
+ */
+async function refreshScenes(select, reopen = false) {
   const scenes = await api('/scenes');
   const sel = $('scenes');
   sel.replaceChildren(...scenes.map((s) => new Option(`${s.scene_id}: ${s.name} (${s.particles} particles)`, s.scene_id)));
   const id = select ?? (scenes.some((s) => s.scene_id === state.scene?.scene_id) ? state.scene.scene_id : scenes[0]?.scene_id);
   if (id != null) {
     sel.value = id;
-    if (id !== state.scene?.scene_id) open(scenes.find((s) => s.scene_id === Number(id)));
+    if (reopen || id !== state.scene?.scene_id) open(scenes.find((s) => s.scene_id === Number(id)));
   } else {
     close();
     state.scene = null;
@@ -86,9 +91,14 @@ function connect() {
   };
   ws.onclose = () => {
     if (state.socket !== ws || !state.wantOpen) return;
-    // The server went away or restarted: try again, and re-read the scene list.
-    setTimeout(() => refreshScenes().catch(() => setTimeout(connect, 1000)), 1000);
+    // The server went away or restarted: find it again, then the scene.
+    setTimeout(reconnect, 1000);
   };
+}
+
+/** Re-reads the scene list every second until the server answers, then reopens the scene. */
+function reconnect() {
+  refreshScenes(undefined, true).catch(() => setTimeout(reconnect, 1000));
 }
 
 function onText(msg) {
