@@ -117,7 +117,8 @@ function onText(msg) {
     $('param').value = '';
     $('param').placeholder = `applied: ${msg.overrides.join(' ')}`;
   } else if (msg.type === 'event' && msg.event === 'deleted') {
-    refreshScenes();
+    // Deleted by someone, or the server is shutting down: find what is there now.
+    reconnect();
   } else if (msg.type === 'error') {
     banner(msg.message);
     setTimeout(() => banner(state.lastStatus?.halt_reason ? `Halted: ${state.lastStatus.halt_reason}` : null), 4000);
