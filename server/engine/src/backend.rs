@@ -128,13 +128,12 @@ pub trait Backend: Passes + Send {
     fn device_memory(&self) -> Option<u64> {
         None
     }
-    /// Like [`Backend::read`], with positions moved to their points on `grid`:
-    /// what a frame encoder quantising to `grid` needs, and all it needs. A GPU
-    /// quantises on the device and copies back 16-bit codes.
-    fn read_on_grid(&self, channels: &[Channel], grid: &PositionGrid) -> Particles {
-        let mut p = self.read(channels);
-        p.positions.iter_mut().for_each(|x| *x = grid.snap(*x));
-        p
+    /// Like [`Backend::read`], with positions that quantise on `grid` to the
+    /// same codes as the exact ones: all a frame encoder quantising to `grid`
+    /// needs. The exact positions qualify (this default, no extra work); a GPU
+    /// quantises on the device, copies back 16-bit codes and returns their values.
+    fn read_on_grid(&self, channels: &[Channel], _grid: &PositionGrid) -> Particles {
+        self.read(channels)
     }
     /// Takes new tunable settings (see [`crate::scene::tunable`]) from `scene`.
     fn retune(&mut self, scene: &crate::scene::Scene);
