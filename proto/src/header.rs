@@ -45,7 +45,7 @@ use crate::reader::Reader;
 /// Identifies a Floe frame: the first four bytes.
 pub const MAGIC: [u8; 4] = *b"FLOF";
 /// The format version this crate writes and reads.
-pub const VERSION: u16 = 2;
+pub const VERSION: u16 = 3;
 /// Bytes of the fixed header, before the channel table.
 pub const FIXED_HEADER_LEN: usize = 64;
 /// Most channels a frame may declare, so a header's size stays bounded.
@@ -162,10 +162,14 @@ pub enum Predictor {
     /// code (the first from 0). Particles are in that sorted order in every channel.
     Morton = 3,
     /// Positions of identity-ordered delta frames whose base frame was itself a delta frame:
-    /// each code minus its constant-velocity extrapolation `2 base - before` (`before` is the
-    /// base frame's own base), modulo `2^b`, zigzag-encoded. Between frames 1/60 s apart the
-    /// particles' motion changes far less than it moves, so these residuals are smaller than
-    /// [`Predictor::Base`]'s (0.6 bytes/particle less on the dam break).
+    /// each code minus its extrapolation `base + floor((g (base - before) + 2^15) / 2^16)`
+    /// (`before` is the base frame's own base), modulo `2^b`, zigzag-encoded. The payload
+    /// starts with each component's velocity gain `g`, an i32 in units of 2^-16 between
+    /// -8 and 8 (`-2^19..=2^19`), then the streams. The encoder fits `g` by least squares: 1
+    /// for equally spaced frames at constant velocity, the ratio of the intervals when frames
+    /// are unequally spaced (a subscriber that skipped frames). Between frames 1/60 s apart
+    /// the particles' motion changes far less than it moves, so these residuals are smaller
+    /// than [`Predictor::Base`]'s (0.6 bytes/particle less on the dam break).
     Linear = 4,
 }
 

@@ -23,8 +23,8 @@ pub(crate) enum Reference<'a> {
     Previous(Option<&'a [u32]>),
     /// The same particle in the base frame: [`Predictor::Base`].
     Base(&'a [u16]),
-    /// The same particle extrapolated from the base frame and the one before it:
-    /// [`Predictor::Linear`].
+    /// The same particle extrapolated from the base frame and the one before it, with a
+    /// velocity gain the encoder fits: [`Predictor::Linear`].
     Linear(&'a [u16], &'a [u16]),
 }
 
@@ -38,8 +38,18 @@ impl Reference<'_> {
     }
 }
 
+/// A velocity gain of 1 in the units [`Predictor::Linear`] stores gains in (2^-16).
+const GAIN_ONE: i32 = 1 << 16;
+/// Largest gain magnitude a frame may carry: 8. Keeps `gain * (base - before)` within 2^35,
+/// exact in the f64 arithmetic of a JavaScript decoder.
+pub(crate) const MAX_GAIN: i32 = 8 * GAIN_ONE;
+/// The gain is fitted on every this many particles: a quarter of the work, and tens of
+/// thousands of particles in a large frame still pin it to well under 1 %.
+const FIT_STRIDE: usize = 4;
+
 /// Appends the streams of a channel's components, `codes` (1 or 3 of them, `bits` bits
-/// each), component `k` predicted from `reference(k)`; returns the predictor.
+/// each), component `k` predicted from `reference(k)`; returns the predictor. With
+/// [`Reference::Linear`] the payload starts with each component's gain (i32).
 pub(crate) fn write<'a>(
     out: &mut Vec<u8>,
     codes: &[Vec<u16>],
@@ -51,7 +61,9 @@ pub(crate) fn write<'a>(
     for (k, (codes, v)) in codes.iter().zip(&mut s.residuals).enumerate() {
         let reference = reference(k);
         predictor = reference.predictor();
-        residuals(codes, bits, reference, v);
+        if let Some(gain) = residuals(codes, bits, reference, v) {
+            out.extend_from_slice(&gain.to_le_bytes());
+        }
     }
     let r = &s.residuals;
     match codes.len() {
@@ -64,8 +76,9 @@ pub(crate) fn write<'a>(
     predictor
 }
 
-/// The values stored for `codes` predicted from `reference`, in `v`.
-fn residuals(codes: &[u16], bits: u8, reference: Reference<'_>, v: &mut Vec<u16>) {
+/// The values stored for `codes` predicted from `reference`, in `v`; for
+/// [`Reference::Linear`], the gain they were predicted with.
+fn residuals(codes: &[u16], bits: u8, reference: Reference<'_>, v: &mut Vec<u16>) -> Option<i32> {
     v.clear();
     match reference {
         Reference::Previous(None) => {
@@ -88,22 +101,60 @@ fn residuals(codes: &[u16], bits: u8, reference: Reference<'_>, v: &mut Vec<u16>
         Reference::Base(base) => {
             v.extend(codes.iter().zip(base).map(|(&c, &b)| zigzag_residual(c, b, bits)));
         }
-        Reference::Linear(base, before) => v.extend(
-            codes.iter().zip(base).zip(before).map(|((&c, &b), &a)| zigzag_residual(c, extrapolate(b, a), bits)),
-        ),
+        Reference::Linear(base, before) => {
+            let gain = fit_gain(codes, base, before);
+            v.extend(
+                codes
+                    .iter()
+                    .zip(base)
+                    .zip(before)
+                    .map(|((&c, &b), &a)| zigzag_residual(c, extrapolate(b, a, gain), bits)),
+            );
+            return Some(gain);
+        }
     }
+    None
 }
 
-/// `2 base - before`; [`zigzag_residual`] and [`apply_residual`] reduce it modulo `2^bits`.
+/// The velocity gain (in 2^-16) that best predicts `codes` from `base + gain (base - before)`
+/// in the least-squares sense over every [`FIT_STRIDE`]th particle, rounded and clamped to
+/// [`MAX_GAIN`]: 1 for frames equally spaced in time at constant velocity, the ratio of the
+/// intervals for unequal spacing (a subscriber that skipped frames), less where the motion is
+/// damped. 0 if nothing moved. Only the encoder fits; the decoder reads the result.
+fn fit_gain(codes: &[u16], base: &[u16], before: &[u16]) -> i32 {
+    // Each product is below 2^32 in magnitude and at most 2^30 are summed (frames hold under
+    // 2^32 particles), so the sums fit an i64 exactly.
+    let (mut dy, mut dd) = (0i64, 0i64);
+    for ((c, b), a) in sample(codes).zip(sample(base)).zip(sample(before)) {
+        let d = b - a;
+        dy += d * (c - b);
+        dd += d * d;
+    }
+    if dd == 0 {
+        return 0;
+    }
+    let gain = (dy as f64 / dd as f64 * f64::from(GAIN_ONE)).round();
+    gain.clamp(-f64::from(MAX_GAIN), f64::from(MAX_GAIN)) as i32
+}
+
+/// Every [`FIT_STRIDE`]th code, widened.
+fn sample(codes: &[u16]) -> impl Iterator<Item = i64> + '_ {
+    codes.iter().step_by(FIT_STRIDE).map(|&c| i64::from(c))
+}
+
+/// `base + round(gain (base - before))`, `gain` in 2^-16, rounding halves up, modulo 2^16;
+/// [`zigzag_residual`] and [`apply_residual`] reduce it modulo `2^bits`.
 #[inline]
-fn extrapolate(base: u16, before: u16) -> u16 {
-    base.wrapping_mul(2).wrapping_sub(before)
+fn extrapolate(base: u16, before: u16, gain: i32) -> u16 {
+    let d = i64::from(base) - i64::from(before);
+    let step = (d * i64::from(gain) + i64::from(GAIN_ONE / 2)) >> 16;
+    (i64::from(base) + step) as u16
 }
 
 /// Reads the streams of a channel's components, `n` codes of `bits` bits each, predicted by
 /// `predictor`, into `codes` (one vector per component, 1 or 3). `reference(k)` gives, for
 /// component `k`, the base frame's codes for [`Predictor::Base`], and the codes of the frame
-/// before it as well for [`Predictor::Linear`].
+/// before it as well for [`Predictor::Linear`], whose gains are read from the payload's start.
 pub(crate) fn read<'a>(
     r: &mut Reader<'_>,
     n: usize,
@@ -114,6 +165,18 @@ pub(crate) fn read<'a>(
 ) -> Result<(), DecodeError> {
     // The streams' width is at most `bits`, so every stored value fits in `bits` bits.
     let max_width = u32::from(bits);
+    let mut gains = [0; 4];
+    if predictor == Predictor::Linear {
+        for gain in gains.iter_mut().take(codes.len()) {
+            *gain = r.u32()? as i32;
+            if !(-MAX_GAIN..=MAX_GAIN).contains(gain) {
+                return Err(DecodeError::malformed(format!(
+                    "velocity gain {} out of range (at most 8 either way)",
+                    f64::from(*gain) / f64::from(GAIN_ONE)
+                )));
+            }
+        }
+    }
     match codes {
         [x, y, z] => stream::read_each(r, n, max_width, [x, y, z])?,
         [c] => stream::read_each(r, n, max_width, [c])?,
@@ -135,8 +198,9 @@ pub(crate) fn read<'a>(
                 }
             }
             (Predictor::Linear, (Some(base), Some(before))) if base.len() == n && before.len() == n => {
+                let gain = gains[k];
                 for ((c, &b), &a) in codes.iter_mut().zip(base).zip(before) {
-                    *c = apply_residual(*c, extrapolate(b, a), bits);
+                    *c = apply_residual(*c, extrapolate(b, a, gain), bits);
                 }
             }
             (p, _) => return Err(DecodeError::malformed(format!("predictor {p:?} cannot apply to this channel"))),

@@ -47,7 +47,8 @@ const GOLDEN: [Golden; 5] = [
     },
     Golden {
         name: "identity_linear",
-        description: "Identity-ordered delta frame after identity_delta: positions use the linear predictor.",
+        description: "Identity-ordered delta frame after identity_delta: positions use the linear predictor, over an \
+                      interval twice the previous one (gains near 2).",
         decode_after: &["identity_keyframe", "identity_delta"],
     },
 ];
@@ -77,9 +78,16 @@ fn encode_all() -> Vec<(Vec<u8>, Particles)> {
     p.velocities = Some((0..256).map(|_| std::array::from_fn(|_| rng.range(-2.0, 2.0))).collect());
     p.phases = Some((0..256).map(|i| (i % 3) as u8).collect());
     let mut enc = Encoder::new(EncoderConfig::new(Mode::IdentityOrdered, 3, bounds)).unwrap();
-    for f in 0..3u64 {
-        out.push((enc.encode(60 + 10 * f, 1.0 + f as f64 / 64.0, &p.input()).unwrap(), p.clone()));
-        p.advance(&mut rng, &bounds, 0.004);
+    // Frames 10 and then 20 steps apart (a subscriber that skipped one), so the linear
+    // predictor's gains are near 2, not 1.
+    let (mut step, mut time) = (60, 1.0);
+    for steps in [10u64, 20, 0] {
+        out.push((enc.encode(step, time, &p.input()).unwrap(), p.clone()));
+        step += steps;
+        let dt = steps as f32 / 640.0;
+        p.drift(&bounds, dt);
+        p.advance(&mut rng, &bounds, 0.001);
+        time += f64::from(dt);
     }
     out
 }

@@ -5,7 +5,7 @@ mod common;
 
 use common::{Particles, Rng, channel, random_bounds, tolerance};
 use floe_proto::quantize::Quantizer;
-use floe_proto::{ChannelKind, Decoder, Encoder, EncoderConfig, Frame, Limits, Mode};
+use floe_proto::{ChannelKind, Decoder, Encoder, EncoderConfig, Frame, FrameInput, Limits, Mode, Predictor};
 
 fn random_config(rng: &mut Rng, mode: Mode) -> EncoderConfig {
     let mut c = EncoderConfig::new(mode, rng.next_u64(), random_bounds(rng));
@@ -92,6 +92,45 @@ fn identity_ordered_streams_round_trip_within_max_error() {
             assert_frame_matches(&frame, &p, &identity);
             p.advance(&mut rng, &bounds, motion);
         }
+    }
+}
+
+/// Frames of particles moving at constant velocity, taken at unequal intervals (as a
+/// subscriber that skips frames receives them): the linear predictor's fitted gain follows the
+/// ratio of the intervals, so every delta frame after the first stays as small as one of
+/// equally spaced frames.
+#[test]
+fn unequally_spaced_frames_extrapolate_with_the_interval_ratio() {
+    let mut rng = Rng::new(7);
+    let bounds = floe_proto::Bounds { min: [0.0; 3], max: [2.0, 1.0, 0.5] };
+    let inner = floe_proto::Bounds { min: [0.5, 0.3, 0.15], max: [1.5, 0.7, 0.35] };
+    let mut p = Particles::random(&mut rng, 5_000, &inner, 0.0);
+    p.velocities = Some((0..5_000).map(|_| std::array::from_fn(|_| rng.range(-1.0, 1.0))).collect());
+    let mut encoder = Encoder::new(EncoderConfig::new(Mode::IdentityOrdered, 1, bounds)).unwrap();
+    let mut decoder = Decoder::new(Limits::default());
+    let identity: Vec<usize> = (0..p.positions.len()).collect();
+    let (mut time, mut since) = (0.0, 0.0);
+    // Intervals in 1/60 s: the fourth frame comes three intervals after the third, the
+    // fifth half an interval after that.
+    for (f, interval) in [1.0, 1.0, 3.0, 0.5, 0.0].into_iter().enumerate() {
+        let bytes = encoder.encode(f as u64, time, &FrameInput { positions: &p.positions, ..Default::default() });
+        let bytes = bytes.unwrap();
+        let frame = decoder.decode(&bytes).unwrap();
+        assert_frame_matches(&frame, &Particles { positions: p.positions.clone(), ..Default::default() }, &identity);
+        if f >= 2 {
+            assert_eq!(frame.header.channels[0].predictor, Predictor::Linear);
+            // About 1,100 codes of motion per axis per interval; what is left to store is
+            // rounding, a few bits per axis.
+            let per_particle = bytes.len() as f64 / p.positions.len() as f64;
+            assert!(
+                per_particle < 1.2,
+                "frame {f} ({since} intervals after the last): {per_particle:.2} bytes/particle"
+            );
+        }
+        since = interval;
+        let dt = interval / 60.0;
+        p.drift(&bounds, dt as f32);
+        time += dt;
     }
 }
 

@@ -88,6 +88,16 @@ impl Particles {
 
     /// Moves every particle by up to `step` (m) per axis, staying inside `bounds`, and
     /// perturbs the other channels a little.
+    /// Moves every particle by its velocity over `dt` (s), clamped to `bounds`.
+    pub fn drift(&mut self, bounds: &Bounds, dt: f32) {
+        let v = self.velocities.as_ref().expect("drift needs velocities");
+        for (p, v) in self.positions.iter_mut().zip(v) {
+            for k in 0..3 {
+                p[k] = (p[k] + v[k] * dt).clamp(bounds.min[k], bounds.max[k]);
+            }
+        }
+    }
+
     pub fn advance(&mut self, rng: &mut Rng, bounds: &Bounds, step: f32) {
         for p in &mut self.positions {
             for (k, x) in p.iter_mut().enumerate() {

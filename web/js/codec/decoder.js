@@ -6,7 +6,7 @@
 
 import { MalformedError, NeedKeyframeError } from './errors.js';
 import { ChannelKind, DEFAULT_LIMITS, KIND_NAMES, Mode, readHeader } from './header.js';
-import { Predictor, readCodes } from './predict.js';
+import { Predictor, readCodes, readGains } from './predict.js';
 import { dequantiseInto, sameQuantizer } from './quantize.js';
 import { Reader } from './reader.js';
 import { Scratch } from './stream.js';
@@ -134,10 +134,13 @@ export class Decoder {
         const [prev, before] = references(header, info, i, base);
         const codes = [];
         try {
+          const linear = info.predictorTag === Predictor.LINEAR;
+          const gains = linear ? readGains(p, info.ranges.length) : [];
           for (let k = 0; k < info.ranges.length; k++) {
             const refK = prev !== null && k < prev.codes.length ? prev.codes[k] : null;
             const beforeK = before !== null && k < before.length ? before[k] : null;
-            codes.push(readCodes(p, n, info.bits, info.predictorTag, refK, beforeK, this.#scratch));
+            const gain = linear ? gains[k] : 0;
+            codes.push(readCodes(p, n, info.bits, info.predictorTag, refK, beforeK, gain, this.#scratch));
           }
         } catch (e) {
           throw inChannel(e);

@@ -20,7 +20,7 @@ import { Reader } from './reader.js';
 export const MAGIC = 'FLOF';
 const MAGIC_BYTES = [0x46, 0x4c, 0x4f, 0x46];
 /** The format version this decoder reads. */
-export const VERSION = 2;
+export const VERSION = 3;
 /** Bytes of the fixed header. */
 export const FIXED_HEADER_LEN = 64;
 /** Most channels a frame may declare. */

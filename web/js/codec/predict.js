@@ -9,8 +9,10 @@
  * - `BASE` (2): predicted by the same particle's code in the base frame (identity-ordered
  *   delta frames: the previous-frame predictor).
  * - `MORTON` (3): unordered positions, read by `unordered.js`, not here.
- * - `LINEAR` (4): identity-ordered delta positions after a delta frame, predicted at constant
- *   velocity, `2 base - before` (modulo 2^16, then 2^b), from the base frame and its own base.
+ * - `LINEAR` (4): identity-ordered delta positions after a delta frame, extrapolated from the
+ *   base frame and its own base, `base + floor((g (base - before) + 2^15) / 2^16)` (modulo 2^16,
+ *   then 2^b), with each component's velocity gain `g` (i32, units of 2^-16, at most 8 either
+ *   way) read from the start of the channel payload ({@link readGains}).
  * @module
  */
 
@@ -26,13 +28,38 @@ export const PREDICTOR_NAMES = Object.freeze(['none', 'previous', 'base', 'morto
 /** Rust `Debug` names by tag, for messages. */
 export const PREDICTOR_DEBUG_NAMES = ['None', 'Previous', 'Base', 'Morton', 'Linear'];
 
+/** A velocity gain of 1, in the units gains are stored in (2^-16). */
+const GAIN_ONE = 65536;
+/** Largest gain magnitude a frame may carry (8): `g (base - before)` stays exact in a double. */
+const MAX_GAIN = 8 * GAIN_ONE;
+
 /**
- * `2 base - before` modulo 2^16, the constant-velocity extrapolation.
- * @param {number} base @param {number} before codes
+ * `base + floor((gain (base - before) + 2^15) / 2^16)` modulo 2^16, the extrapolation of
+ * `LINEAR`; exact, since every intermediate is an integer below 2^36.
+ * @param {number} base @param {number} before codes @param {number} gain in 2^-16
  * @returns {number}
  */
-export function extrapolate(base, before) {
-  return (2 * base - before) & 0xffff;
+export function extrapolate(base, before, gain) {
+  return (base + Math.floor(((base - before) * gain + GAIN_ONE / 2) / GAIN_ONE)) & 0xffff;
+}
+
+/**
+ * Reads the `LINEAR` predictor's gains, one i32 per component, from the start of a payload.
+ * @param {import('./reader.js').Reader} r the channel's payload
+ * @param {number} components
+ * @returns {number[]}
+ * @throws {MalformedError} a gain beyond 8 either way
+ */
+export function readGains(r, components) {
+  const gains = [];
+  for (let k = 0; k < components; k++) {
+    const gain = r.u32() | 0;
+    if (gain < -MAX_GAIN || gain > MAX_GAIN) {
+      throw new MalformedError(`velocity gain ${gain / GAIN_ONE} out of range (at most 8 either way)`);
+    }
+    gains.push(gain);
+  }
+  return gains;
 }
 
 /**
@@ -43,11 +70,12 @@ export function extrapolate(base, before) {
  * @param {number} predictor a tag of {@link Predictor}
  * @param {Uint16Array|null} base the base frame's codes of this component (`BASE`, `LINEAR`)
  * @param {Uint16Array|null} before the codes of the frame before the base (`LINEAR`)
+ * @param {number} gain the component's velocity gain (`LINEAR`; see {@link readGains})
  * @param {import('./stream.js').Scratch} scratch
  * @returns {Uint16Array} the `n` codes
  * @throws {MalformedError}
  */
-export function readCodes(r, n, bits, predictor, base, before, scratch) {
+export function readCodes(r, n, bits, predictor, base, before, gain, scratch) {
   // The stream's width is at most `bits`, so every stored value fits in `bits` bits.
   const values = readStream(r, n, bits, scratch);
   const top = (1 << bits) - 1;
@@ -77,7 +105,7 @@ export function readCodes(r, n, bits, predictor, base, before, scratch) {
   } else if (predictor === Predictor.LINEAR) {
     for (let i = 0; i < n; i++) {
       const z = codes[i];
-      codes[i] = (((2 * base[i] - before[i]) & 0xffff) + ((z >>> 1) ^ -(z & 1))) & top;
+      codes[i] = (extrapolate(base[i], before[i], gain) + ((z >>> 1) ^ -(z & 1))) & top;
     }
   }
   return codes;

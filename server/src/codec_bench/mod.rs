@@ -2,7 +2,10 @@
 //! `floe-proto` on dam-break frames taken 1/60 s of simulated time apart.
 //!
 //! Frames start once the column has collapsed into a running surge (t = 0.25 s), so the
-//! motion between frames is that of the flow rather than of water still at rest.
+//! motion between frames is that of the flow rather than of water still at rest. A second
+//! table ([`intervals`]) gives identity-ordered sizes against the time between frames.
+
+mod intervals;
 
 use anyhow::Context;
 use floe_engine::Simulation;
@@ -23,7 +26,7 @@ const FRAME_INTERVAL: f64 = 1.0 / 60.0;
 const PASSES: usize = 5;
 
 /// The dam-break tank (4a x 2.4a x a/2 for a = 0.5 m) with a 5 cm margin for splashes.
-fn tank() -> Bounds {
+pub(super) fn tank() -> Bounds {
     let a = DAM_BREAK_A;
     Bounds { min: [0.0; 3], max: [4.0 * a, 2.4 * a, 0.5 * a] }.with_margin(0.05)
 }
@@ -59,6 +62,7 @@ pub fn codec_bench(particles: usize, frames: usize) -> anyhow::Result<()> {
     while sim.time() < WARM_UP {
         sim.step().context("warm-up")?;
     }
+    let start = sim.snapshot();
     let mut positions = Vec::with_capacity(frames);
     let mut times = Vec::with_capacity(frames);
     for _ in 0..frames {
@@ -85,7 +89,6 @@ pub fn codec_bench(particles: usize, frames: usize) -> anyhow::Result<()> {
     );
     println!("| mode | bits | bytes/particle | encode M particles/s | decode M particles/s | max error x/y/z (µm) |");
     println!("|---|---:|---:|---:|---:|---:|");
-    let mut sizes = Vec::new();
     for case in &cases {
         let row = measure(case, &positions, &times)?;
         let per = |d: Duration| row.particles as f64 / d.as_secs_f64() / 1e6;
@@ -98,13 +101,8 @@ pub fn codec_bench(particles: usize, frames: usize) -> anyhow::Result<()> {
             per(row.encode),
             per(row.decode)
         );
-        sizes.push((case.label, case.bits, bpp));
     }
-    let size = |label: &str, bits: u8| sizes.iter().find(|s| s.0 == label && s.1 == bits).map_or(f64::NAN, |s| s.2);
-    let amortised = (size("identity, keyframes", 16) + 29.0 * size("identity, delta frames", 16)) / 30.0;
-    println!();
-    println!("identity-ordered, 16 bits, one keyframe every 30 frames: {amortised:.2} bytes/particle");
-    Ok(())
+    intervals::by_interval(&start, frames)
 }
 
 /// Encodes and decodes every frame `PASSES` times with a fresh encoder and decoder per pass.
