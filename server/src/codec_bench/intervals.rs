@@ -53,6 +53,7 @@ pub fn by_interval(start: &[u8], frames: usize) -> anyhow::Result<()> {
     );
     println!("|---|---:|---:|---:|---:|---:|---:|");
     for interval in INTERVALS {
+        eprintln!("frames {}: simulating {frames} frames", interval.label());
         let mut sim = Simulation::restore(start)?;
         let t0 = sim.time();
         let mut positions = vec![sim.read(&[]).positions];
