@@ -208,3 +208,40 @@ pub(crate) fn read<'a>(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `(base, before, gain, prediction)`; `web/test/codec.test.mjs` checks the JavaScript
+    /// decoder's extrapolation against the same table.
+    const CASES: [(u16, u16, i32, u16); 8] = [
+        (100, 90, GAIN_ONE, 110),
+        (100, 90, -GAIN_ONE, 90),
+        (100, 90, 3 * GAIN_ONE / 2, 115),
+        (100, 99, GAIN_ONE / 2, 101),
+        (100, 101, GAIN_ONE / 2, 100),
+        (100, 101, -GAIN_ONE / 2, 101),
+        (65_535, 0, MAX_GAIN, 65_535 - 8),
+        // 3 + 8 * 59,997 = 479,979, modulo 65,536.
+        (3, 60_000, -MAX_GAIN, 21_227),
+    ];
+
+    #[test]
+    fn extrapolation_rounds_halves_up_and_wraps() {
+        for (base, before, gain, want) in CASES {
+            assert_eq!(extrapolate(base, before, gain), want, "extrapolate({base}, {before}, {gain})");
+        }
+    }
+
+    #[test]
+    fn the_fitted_gain_is_the_ratio_of_the_intervals() {
+        let before: Vec<u16> = (0..1000).map(|i| 1000 + i).collect();
+        let base: Vec<u16> = before.iter().enumerate().map(|(i, &a)| a + (i % 7) as u16 * 10).collect();
+        let now: Vec<u16> = base.iter().zip(&before).map(|(&b, &a)| b + 3 * (b - a)).collect();
+        assert_eq!(fit_gain(&now, &base, &before), 3 * GAIN_ONE);
+        assert_eq!(fit_gain(&base, &base, &base), 0, "nothing moved");
+        let far: Vec<u16> = base.iter().zip(&before).map(|(&b, &a)| b + 20 * (b - a)).collect();
+        assert_eq!(fit_gain(&far, &base, &before), MAX_GAIN, "clamped");
+    }
+}

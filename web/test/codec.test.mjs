@@ -5,7 +5,7 @@ import { readFileSync } from 'node:fs';
 import test from 'node:test';
 import {
   DecodeError, Decoder, FIXED_HEADER_LEN, IncompleteError, MalformedError, NeedKeyframeError, TooLargeError,
-  maxErrorOf, readHeader,
+  extrapolate, maxErrorOf, readHeader,
 } from '../js/codec/index.js';
 
 const DATA = new URL('../../proto/testdata/', import.meta.url);
@@ -231,6 +231,19 @@ test('limits: TooLarge before anything is allocated', () => {
   // A small frame claiming 16 Mi particles is refused by the plane-length check.
   put32(b, 12, 1 << 24);
   assert.throws(() => new Decoder().decode(b), MalformedError);
+});
+
+test('the linear extrapolation rounds halves up and wraps, as in proto/src/predict.rs', () => {
+  const ONE = 65536;
+  const MAX = 8 * ONE;
+  // (base, before, gain, prediction): the table of the Rust unit test.
+  const cases = [
+    [100, 90, ONE, 110], [100, 90, -ONE, 90], [100, 90, (3 * ONE) / 2, 115], [100, 99, ONE / 2, 101],
+    [100, 101, ONE / 2, 100], [100, 101, -ONE / 2, 101], [65535, 0, MAX, 65535 - 8], [3, 60000, -MAX, 21227],
+  ];
+  for (const [base, before, gain, want] of cases) {
+    assert.equal(extrapolate(base, before, gain), want, `extrapolate(${base}, ${before}, ${gain})`);
+  }
 });
 
 test('non-byte input is a TypeError, not a decode error', () => {
