@@ -162,14 +162,15 @@ pub enum Predictor {
     /// code (the first from 0). Particles are in that sorted order in every channel.
     Morton = 3,
     /// Positions of identity-ordered delta frames whose base frame was itself a delta frame:
-    /// each code minus its extrapolation `base + floor((g (base - before) + 2^15) / 2^16)`
-    /// (`before` is the base frame's own base), modulo `2^b`, zigzag-encoded. The payload
-    /// starts with each component's velocity gain `g`, an i32 in units of 2^-16 between
-    /// -8 and 8 (`-2^19..=2^19`), then the streams. The encoder fits `g` by least squares: 1
-    /// for equally spaced frames at constant velocity, the ratio of the intervals when frames
-    /// are unequally spaced (a subscriber that skipped frames). Between frames 1/60 s apart
-    /// the particles' motion changes far less than it moves, so these residuals are smaller
-    /// than [`Predictor::Base`]'s (0.6 bytes/particle less on the dam break).
+    /// each code minus its extrapolation `base + floor((g d + 2^11) / 2^12)` modulo 2^16, where
+    /// `d` is `base - before` modulo 2^16 read as a signed 16-bit number (`before` is the base
+    /// frame's own base), then modulo `2^b`, zigzag-encoded. The payload starts with each
+    /// component's velocity gain `g`, an i16 in units of 2^-12, then the streams. The encoder
+    /// fits `g` by least squares: 1 for equally spaced frames at constant velocity, the ratio
+    /// of the intervals when frames are unequally spaced (a subscriber that skipped frames).
+    /// Between frames 1/60 s apart the particles' motion changes far less than it moves, so
+    /// these residuals are smaller than [`Predictor::Base`]'s (0.6 bytes/particle less on the
+    /// dam break).
     Linear = 4,
 }
 

@@ -38,18 +38,20 @@ impl Reference<'_> {
     }
 }
 
-/// A velocity gain of 1 in the units [`Predictor::Linear`] stores gains in (2^-16).
-const GAIN_ONE: i32 = 1 << 16;
-/// Largest gain magnitude a frame may carry: 8. Keeps `gain * (base - before)` within 2^35,
-/// exact in the f64 arithmetic of a JavaScript decoder.
-pub(crate) const MAX_GAIN: i32 = 8 * GAIN_ONE;
+/// Fraction bits of the velocity gains of [`Predictor::Linear`]: a gain is an i16 in units of
+/// 2^-12, from -8 to just under 8, fine enough that a motion of 1,000 codes is predicted to an
+/// eighth of a code, and small enough that the prediction is exact in 32-bit integers (in a
+/// JavaScript decoder's too) and every stored value is a valid gain.
+const GAIN_BITS: u32 = 12;
+/// A velocity gain of 1.
+const GAIN_ONE: i16 = 1 << GAIN_BITS;
 /// The gain is fitted on every this many particles: a quarter of the work, and tens of
 /// thousands of particles in a large frame still pin it to well under 1 %.
 const FIT_STRIDE: usize = 4;
 
 /// Appends the streams of a channel's components, `codes` (1 or 3 of them, `bits` bits
 /// each), component `k` predicted from `reference(k)`; returns the predictor. With
-/// [`Reference::Linear`] the payload starts with each component's gain (i32).
+/// [`Reference::Linear`] the payload starts with each component's gain (i16).
 pub(crate) fn write<'a>(
     out: &mut Vec<u8>,
     codes: &[Vec<u16>],
@@ -78,7 +80,7 @@ pub(crate) fn write<'a>(
 
 /// The values stored for `codes` predicted from `reference`, in `v`; for
 /// [`Reference::Linear`], the gain they were predicted with.
-fn residuals(codes: &[u16], bits: u8, reference: Reference<'_>, v: &mut Vec<u16>) -> Option<i32> {
+fn residuals(codes: &[u16], bits: u8, reference: Reference<'_>, v: &mut Vec<u16>) -> Option<i16> {
     v.clear();
     match reference {
         Reference::Previous(None) => {
@@ -116,12 +118,12 @@ fn residuals(codes: &[u16], bits: u8, reference: Reference<'_>, v: &mut Vec<u16>
     None
 }
 
-/// The velocity gain (in 2^-16) that best predicts `codes` from `base + gain (base - before)`
-/// in the least-squares sense over every [`FIT_STRIDE`]th particle, rounded and clamped to
-/// [`MAX_GAIN`]: 1 for frames equally spaced in time at constant velocity, the ratio of the
-/// intervals for unequal spacing (a subscriber that skipped frames), less where the motion is
-/// damped. 0 if nothing moved. Only the encoder fits; the decoder reads the result.
-fn fit_gain(codes: &[u16], base: &[u16], before: &[u16]) -> i32 {
+/// The velocity gain (in 2^-12) that best predicts `codes` from `base + gain (base - before)`
+/// in the least-squares sense over every [`FIT_STRIDE`]th particle, rounded and clamped to an
+/// i16: 1 for frames equally spaced in time at constant velocity, the ratio of the intervals
+/// for unequal spacing (a subscriber that skipped frames), less where the motion is damped.
+/// 0 if nothing moved. Only the encoder fits; the decoder reads the result.
+fn fit_gain(codes: &[u16], base: &[u16], before: &[u16]) -> i16 {
     // Each product is below 2^32 in magnitude and at most 2^30 are summed (frames hold under
     // 2^32 particles), so the sums fit an i64 exactly.
     let (mut dy, mut dd) = (0i64, 0i64);
@@ -134,7 +136,7 @@ fn fit_gain(codes: &[u16], base: &[u16], before: &[u16]) -> i32 {
         return 0;
     }
     let gain = (dy as f64 / dd as f64 * f64::from(GAIN_ONE)).round();
-    gain.clamp(-f64::from(MAX_GAIN), f64::from(MAX_GAIN)) as i32
+    gain.clamp(f64::from(i16::MIN), f64::from(i16::MAX)) as i16
 }
 
 /// Every [`FIT_STRIDE`]th code, widened.
@@ -142,13 +144,15 @@ fn sample(codes: &[u16]) -> impl Iterator<Item = i64> + '_ {
     codes.iter().step_by(FIT_STRIDE).map(|&c| i64::from(c))
 }
 
-/// `base + round(gain (base - before))`, `gain` in 2^-16, rounding halves up, modulo 2^16;
-/// [`zigzag_residual`] and [`apply_residual`] reduce it modulo `2^bits`.
+/// `base + round(gain d)`, rounding halves up, modulo 2^16, where the motion `d` is
+/// `base - before` modulo 2^16 read as a signed 16-bit number and `gain` is in 2^-12;
+/// [`zigzag_residual`] and [`apply_residual`] reduce it modulo `2^bits`. `|gain d|` is at most
+/// 2^30: nothing overflows. (Written in i32 throughout, which the compiler vectorises.)
 #[inline]
-fn extrapolate(base: u16, before: u16, gain: i32) -> u16 {
-    let d = i64::from(base) - i64::from(before);
-    let step = (d * i64::from(gain) + i64::from(GAIN_ONE / 2)) >> 16;
-    (i64::from(base) + step) as u16
+fn extrapolate(base: u16, before: u16, gain: i16) -> u16 {
+    let d = ((i32::from(base) - i32::from(before)) << 16) >> 16;
+    let step = (d * i32::from(gain) + (1 << (GAIN_BITS - 1))) >> GAIN_BITS;
+    (i32::from(base) + step) as u16
 }
 
 /// Reads the streams of a channel's components, `n` codes of `bits` bits each, predicted by
@@ -168,13 +172,7 @@ pub(crate) fn read<'a>(
     let mut gains = [0; 4];
     if predictor == Predictor::Linear {
         for gain in gains.iter_mut().take(codes.len()) {
-            *gain = r.u32()? as i32;
-            if !(-MAX_GAIN..=MAX_GAIN).contains(gain) {
-                return Err(DecodeError::malformed(format!(
-                    "velocity gain {} out of range (at most 8 either way)",
-                    f64::from(*gain) / f64::from(GAIN_ONE)
-                )));
-            }
+            *gain = r.u16()? as i16;
         }
     }
     match codes {
@@ -215,16 +213,19 @@ mod tests {
 
     /// `(base, before, gain, prediction)`; `web/test/codec.test.mjs` checks the JavaScript
     /// decoder's extrapolation against the same table.
-    const CASES: [(u16, u16, i32, u16); 8] = [
+    const CASES: [(u16, u16, i16, u16); 9] = [
         (100, 90, GAIN_ONE, 110),
         (100, 90, -GAIN_ONE, 90),
         (100, 90, 3 * GAIN_ONE / 2, 115),
         (100, 99, GAIN_ONE / 2, 101),
         (100, 101, GAIN_ONE / 2, 100),
         (100, 101, -GAIN_ONE / 2, 101),
-        (65_535, 0, MAX_GAIN, 65_535 - 8),
-        // 3 + 8 * 59,997 = 479,979, modulo 65,536.
-        (3, 60_000, -MAX_GAIN, 21_227),
+        // Motion across the wrap: 65,535 after 0 is one code down.
+        (65_535, 0, GAIN_ONE, 65_534),
+        // A motion of 40,000 codes reads as -25,536.
+        (50_000, 10_000, GAIN_ONE, 24_464),
+        // 3 - 59,997 is 5,539 modulo 2^16; 3 - 8 * 5,539 = -44,309, 21,227 modulo 2^16.
+        (3, 60_000, i16::MIN, 21_227),
     ];
 
     #[test]
@@ -242,6 +243,6 @@ mod tests {
         assert_eq!(fit_gain(&now, &base, &before), 3 * GAIN_ONE);
         assert_eq!(fit_gain(&base, &base, &base), 0, "nothing moved");
         let far: Vec<u16> = base.iter().zip(&before).map(|(&b, &a)| b + 20 * (b - a)).collect();
-        assert_eq!(fit_gain(&far, &base, &before), MAX_GAIN, "clamped");
+        assert_eq!(fit_gain(&far, &base, &before), i16::MAX, "clamped");
     }
 }

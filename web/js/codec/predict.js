@@ -10,9 +10,9 @@
  *   delta frames: the previous-frame predictor).
  * - `MORTON` (3): unordered positions, read by `unordered.js`, not here.
  * - `LINEAR` (4): identity-ordered delta positions after a delta frame, extrapolated from the
- *   base frame and its own base, `base + floor((g (base - before) + 2^15) / 2^16)` (modulo 2^16,
- *   then 2^b), with each component's velocity gain `g` (i32, units of 2^-16, at most 8 either
- *   way) read from the start of the channel payload ({@link readGains}).
+ *   base frame and its own base with each component's velocity gain (an i16 in units of 2^-12,
+ *   read from the start of the channel payload by {@link readGains}; see {@link extrapolate}),
+ *   modulo 2^16, then 2^b.
  * @module
  */
 
@@ -28,37 +28,30 @@ export const PREDICTOR_NAMES = Object.freeze(['none', 'previous', 'base', 'morto
 /** Rust `Debug` names by tag, for messages. */
 export const PREDICTOR_DEBUG_NAMES = ['None', 'Previous', 'Base', 'Morton', 'Linear'];
 
-/** A velocity gain of 1, in the units gains are stored in (2^-16). */
-const GAIN_ONE = 65536;
-/** Largest gain magnitude a frame may carry (8): `g (base - before)` stays exact in a double. */
-const MAX_GAIN = 8 * GAIN_ONE;
+/** Fraction bits of the `LINEAR` gains: an i16 in units of 2^-12. */
+const GAIN_BITS = 12;
 
 /**
- * `base + floor((gain (base - before) + 2^15) / 2^16)` modulo 2^16, the extrapolation of
- * `LINEAR`; exact, since every intermediate is an integer below 2^36.
- * @param {number} base @param {number} before codes @param {number} gain in 2^-16
+ * `base + round(gain d)` (halves up) modulo 2^16, the extrapolation of `LINEAR`, where the
+ * motion `d` is `base - before` modulo 2^16 read as a signed 16-bit number; exact in 32-bit
+ * integers, since `|gain d|` is at most 2^30.
+ * @param {number} base @param {number} before codes @param {number} gain in 2^-12
  * @returns {number}
  */
 export function extrapolate(base, before, gain) {
-  return (base + Math.floor(((base - before) * gain + GAIN_ONE / 2) / GAIN_ONE)) & 0xffff;
+  const d = ((base - before) << 16) >> 16;
+  return (base + ((d * gain + (1 << (GAIN_BITS - 1))) >> GAIN_BITS)) & 0xffff;
 }
 
 /**
- * Reads the `LINEAR` predictor's gains, one i32 per component, from the start of a payload.
+ * Reads the `LINEAR` predictor's gains, one i16 per component, from the start of a payload.
  * @param {import('./reader.js').Reader} r the channel's payload
  * @param {number} components
  * @returns {number[]}
- * @throws {MalformedError} a gain beyond 8 either way
  */
 export function readGains(r, components) {
   const gains = [];
-  for (let k = 0; k < components; k++) {
-    const gain = r.u32() | 0;
-    if (gain < -MAX_GAIN || gain > MAX_GAIN) {
-      throw new MalformedError(`velocity gain ${gain / GAIN_ONE} out of range (at most 8 either way)`);
-    }
-    gains.push(gain);
-  }
+  for (let k = 0; k < components; k++) gains.push((r.u16() << 16) >> 16);
   return gains;
 }
 
