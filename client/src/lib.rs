@@ -16,7 +16,9 @@
 //! ```
 //!
 //! - [`Client`]: the calls. [`Frames`]: a decoded frame stream. [`recording`]: frames to and from files.
+//! - [`cli`]: the `floectl` command line.
 
+pub mod cli;
 pub mod recording;
 
 use floe_proto::pb::scene_service_client::SceneServiceClient;
@@ -26,11 +28,13 @@ use tonic::transport::Channel;
 
 pub use floe_proto::pb::{SceneInfo, SceneStats};
 
-/// What went wrong talking to a server.
+/// What went wrong talking to a server. Each message says it all once: `Connect` leaves its
+/// cause to [`std::error::Error::source`], the others hold no source, so a printed error chain
+/// (`anyhow`'s `{:#}`) does not repeat itself.
 #[derive(Debug, thiserror::Error)]
 pub enum ClientError {
     /// Could not connect.
-    #[error("cannot connect to {address}: {source}")]
+    #[error("cannot connect to {address}")]
     Connect {
         /// The address.
         address: String,
@@ -39,10 +43,22 @@ pub enum ClientError {
     },
     /// The server refused the call; the message names what was wrong.
     #[error("{} ({:?})", .0.message(), .0.code())]
-    Status(#[from] tonic::Status),
+    Status(tonic::Status),
     /// A frame could not be decoded.
     #[error("frame: {0}")]
-    Decode(#[from] floe_proto::DecodeError),
+    Decode(floe_proto::DecodeError),
+}
+
+impl From<tonic::Status> for ClientError {
+    fn from(status: tonic::Status) -> Self {
+        ClientError::Status(status)
+    }
+}
+
+impl From<floe_proto::DecodeError> for ClientError {
+    fn from(e: floe_proto::DecodeError) -> Self {
+        ClientError::Decode(e)
+    }
 }
 
 /// Options of a frame stream.

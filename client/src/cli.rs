@@ -1,0 +1,295 @@
+//! `floectl`, the command line on top of [`Client`]: parsed by [`Cli`], run by [`execute`].
+//! A library module so that tests drive it the way a user does; `src/bin/floectl.rs` is only
+//! the entry point.
+
+use crate::recording::{self, Recorder};
+use crate::{Client, FrameRequest};
+use anyhow::Context;
+use clap::{Parser, Subcommand, ValueEnum};
+use floe_engine::Particles;
+use floe_engine::export::{self, Format};
+use floe_proto::pb::Channel;
+use std::path::{Path, PathBuf};
+
+/// Drive a Floe server: create, step, run, watch and record scenes.
+#[derive(Debug, Parser)]
+#[command(name = "floectl", version, about)]
+pub struct Cli {
+    /// The server's gRPC address.
+    #[arg(long, env = "FLOE_SERVER", default_value = "http://127.0.0.1:50051")]
+    pub server: String,
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// File format of `floectl export`.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum ExportFormat {
+    /// Legacy VTK polydata, for ParaView.
+    Vtk,
+    /// Comma-separated values with a header line.
+    Csv,
+}
+
+/// A `floectl` command.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Create a scene from a preset name or a scene file (.toml / .json).
+    Create {
+        /// Preset or file.
+        scene: String,
+        /// Field overrides, e.g. --set particle_spacing=0.02 (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        overrides: Vec<String>,
+    },
+    /// List the scenes.
+    List,
+    /// Step a paused scene.
+    Step {
+        /// Scene id.
+        id: u64,
+        /// Steps to take.
+        #[arg(long, default_value = "1", conflicts_with = "until")]
+        steps: u64,
+        /// Or: simulated time to reach (s).
+        #[arg(long)]
+        until: Option<f64>,
+    },
+    /// Run a scene continuously.
+    Run {
+        /// Scene id.
+        id: u64,
+        /// Simulated seconds per wall second (0: as fast as possible).
+        #[arg(long, default_value = "0")]
+        rtf: f64,
+    },
+    /// Pause a running scene.
+    Pause {
+        /// Scene id.
+        id: u64,
+    },
+    /// Put a paused or halted scene back at t = 0 (current settings kept).
+    Reset {
+        /// Scene id.
+        id: u64,
+    },
+    /// Change tunable settings of a scene, e.g. `floectl set 2 gravity=[0,-1,0]`.
+    Set {
+        /// Scene id.
+        id: u64,
+        /// `key=value` overrides.
+        #[arg(required = true, value_name = "KEY=VALUE")]
+        overrides: Vec<String>,
+    },
+    /// Print a live statistics line every second.
+    Watch {
+        /// Scene id.
+        id: u64,
+        /// Stop after this many lines (default: until interrupted).
+        #[arg(long)]
+        count: Option<u64>,
+    },
+    /// Record frames to a file.
+    Record {
+        /// Scene id.
+        id: u64,
+        /// The recording.
+        #[arg(long)]
+        out: PathBuf,
+        /// Frames to record.
+        #[arg(long, default_value = "100")]
+        frames: u64,
+        /// Most frames per second.
+        #[arg(long, default_value = "30")]
+        fps: f64,
+    },
+    /// Export frames of a live scene, or of a recording, as VTK or CSV files.
+    Export {
+        /// Scene id (live), unless --recording is given.
+        id: Option<u64>,
+        /// Export this recording instead.
+        #[arg(long, conflicts_with = "id")]
+        recording: Option<PathBuf>,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// File format.
+        #[arg(long, value_enum, default_value = "vtk")]
+        format: ExportFormat,
+        /// Frames to take from a live scene.
+        #[arg(long, default_value = "1")]
+        frames: u64,
+    },
+    /// Save a scene's full state to a file.
+    Snapshot {
+        /// Scene id.
+        id: u64,
+        /// The file.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Restore a paused scene from a snapshot file.
+    Restore {
+        /// Scene id.
+        id: u64,
+        /// The file.
+        file: PathBuf,
+    },
+    /// Delete a scene.
+    Delete {
+        /// Scene id.
+        id: u64,
+    },
+}
+
+fn line(s: &crate::SceneInfo) -> String {
+    let state = floe_proto::pb::SceneState::try_from(s.state).map_or("?", |x| x.as_str_name());
+    let state = state.trim_start_matches("SCENE_STATE_").to_lowercase();
+    let halt = if s.halt_reason.is_empty() { String::new() } else { format!("  {}", s.halt_reason) };
+    format!(
+        "{:>4}  {:<16} {:>9} particles on {}  t = {:.4} s  step {}  {state}{halt}",
+        s.scene_id, s.name, s.particles, s.backend, s.sim_time, s.steps
+    )
+}
+
+fn particles(f: floe_proto::Frame) -> Particles {
+    Particles { positions: f.positions, velocities: f.velocities, densities: f.densities, pressures: f.pressures }
+}
+
+/// The error and its causes, `: `-separated, each said once: the transport layers under tonic
+/// wrap a cause in an error of the same message ("tcp connect error: tcp connect error: ...").
+pub fn error_chain(e: &anyhow::Error) -> String {
+    let mut messages: Vec<String> = Vec::new();
+    for cause in e.chain() {
+        let message = cause.to_string();
+        if messages.last() != Some(&message) {
+            messages.push(message);
+        }
+    }
+    messages.join(": ")
+}
+
+/// Runs one command, printing its result; an error says what went wrong (print it with
+/// [`error_chain`]).
+pub async fn execute(cli: Cli) -> anyhow::Result<()> {
+    // Exporting a recording needs no server.
+    if let Command::Export { recording: Some(path), out, format, .. } = &cli.command {
+        let file = std::fs::File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+        return export_frames(recording::read(file)?, out, *format);
+    }
+    let mut floe = Client::connect(&cli.server).await?;
+    match cli.command {
+        Command::Create { scene, overrides } => {
+            let o: Vec<&str> = overrides.iter().map(String::as_str).collect();
+            let path = std::path::Path::new(&scene);
+            // A name with a scene file's extension is a file even when it is missing, so the
+            // error names the file rather than an unknown preset.
+            let is_file = path.exists() || scene.ends_with(".toml") || scene.ends_with(".json");
+            let info = if is_file {
+                let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {scene}"))?;
+                let format = if scene.ends_with(".json") { "json" } else { "toml" };
+                floe.create_document(&text, format, &o).await?
+            } else {
+                floe.create_preset(&scene, &o).await?
+            };
+            println!("{}", line(&info));
+        }
+        Command::List => {
+            for s in floe.list().await? {
+                println!("{}", line(&s));
+            }
+        }
+        Command::Step { id, steps, until } => {
+            let info = match until {
+                Some(t) => floe.step_until(id, t).await?,
+                None => floe.step(id, steps).await?,
+            };
+            println!("{}", line(&info));
+        }
+        Command::Run { id, rtf } => println!("{}", line(&floe.run(id, rtf).await?)),
+        Command::Pause { id } => println!("{}", line(&floe.pause(id).await?)),
+        Command::Reset { id } => println!("{}", line(&floe.reset(id).await?)),
+        Command::Set { id, overrides } => {
+            let o: Vec<&str> = overrides.iter().map(String::as_str).collect();
+            println!("{}", line(&floe.set_parameters(id, &o).await?));
+        }
+        Command::Delete { id } => println!("{}", line(&floe.delete(id).await?)),
+        Command::Watch { id, count } => {
+            let mut n = 0;
+            while count.is_none_or(|c| n < c) {
+                let s = floe.stats(id).await?;
+                println!(
+                    "t = {:.4} s  step {}  {:.0} steps/s  dt {:.2e} s  {} subscribers  {} frames published  {} dropped",
+                    s.sim_time, s.steps, s.steps_per_second, s.dt, s.subscribers, s.frames_published, s.dropped_frames
+                );
+                n += 1;
+                if count.is_none_or(|c| n < c) {
+                    tokio::time::sleep(std::time::Duration::from_secs(1)).await;
+                }
+            }
+        }
+        Command::Record { id, out, frames, fps } => {
+            let file = std::fs::File::create(&out).with_context(|| format!("cannot create {}", out.display()))?;
+            let mut rec = Recorder::new(std::io::BufWriter::new(file))?;
+            let mut stream = floe.frames(id, FrameRequest { max_fps: fps, ..FrameRequest::default() }).await?;
+            let mut n = 0;
+            // Ctrl-C ends the recording with the frames so far, a file that reads back whole.
+            let interrupt = tokio::signal::ctrl_c();
+            tokio::pin!(interrupt);
+            while n < frames {
+                let bytes = tokio::select! {
+                    next = stream.next_raw() => next?,
+                    _ = &mut interrupt => None,
+                };
+                let Some(bytes) = bytes else { break };
+                rec.push(&bytes)?;
+                n += 1;
+            }
+            rec.finish()?;
+            eprintln!("recorded {n} frames to {}", out.display());
+        }
+        Command::Export { id, out, format, frames, .. } => {
+            let Some(id) = id else { anyhow::bail!("give a scene id or --recording FILE") };
+            let req = FrameRequest {
+                channels: vec![Channel::Velocity, Channel::Density, Channel::Pressure],
+                ..FrameRequest::default()
+            };
+            let mut stream = floe.frames(id, req).await?;
+            let mut decoded = Vec::new();
+            while (decoded.len() as u64) < frames {
+                let Some(f) = stream.next().await? else { break };
+                decoded.push(f);
+            }
+            export_frames(decoded, &out, format)?;
+        }
+        Command::Snapshot { id, out } => {
+            let state = floe.snapshot(id).await?;
+            std::fs::write(&out, &state).with_context(|| format!("cannot write {}", out.display()))?;
+            eprintln!("saved {} bytes to {}", state.len(), out.display());
+        }
+        Command::Restore { id, file } => {
+            let state = std::fs::read(&file).with_context(|| format!("cannot read {}", file.display()))?;
+            println!("{}", line(&floe.restore(id, state).await?));
+        }
+    }
+    Ok(())
+}
+
+/// Writes each frame to `out/frame_NNNNN.vtk` (or `.csv`).
+fn export_frames(frames: Vec<floe_proto::Frame>, out: &Path, format: ExportFormat) -> anyhow::Result<()> {
+    let format = match format {
+        ExportFormat::Vtk => Format::Vtk,
+        ExportFormat::Csv => Format::Csv,
+    };
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let count = frames.len();
+    for (k, f) in frames.into_iter().enumerate() {
+        let time = f.header.time;
+        let path = out.join(format!("frame_{k:05}.{}", format.extension()));
+        export::write(&path, format, &particles(f), time)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    eprintln!("wrote {count} frames to {}", out.display());
+    Ok(())
+}
