@@ -232,6 +232,10 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
         Command::Record { id, out, frames, fps } => {
             let file = std::fs::File::create(&out).with_context(|| format!("cannot create {}", out.display()))?;
             let mut rec = Recorder::new(std::io::BufWriter::new(file))?;
+            let info = floe.get(id).await?;
+            if info.state != floe_proto::pb::SceneState::Running as i32 {
+                eprintln!("scene {id} is not running: one frame now, more only as it steps (`floectl run {id}`)");
+            }
             let mut stream = floe.frames(id, FrameRequest { max_fps: fps, ..FrameRequest::default() }).await?;
             let mut n = 0;
             // Ctrl-C ends the recording with the frames so far, a file that reads back whole.
