@@ -11,12 +11,12 @@
 //! `{"type": "error", "message": "..."}` for a message it could not use; the
 //! connection stays open after an error.
 
-use crate::http::{ApiError, RunBody, SceneView, StepBody};
+use crate::http::{ApiError, Params, RunBody, SceneId, SceneView, StepBody};
 use crate::service::Registry;
 use crate::service::frames::{EncodedFrame, FrameOptions};
 use crate::service::scene::{Event, SceneHandle};
+use axum::extract::State;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
-use axum::extract::{Path, Query, State};
 use axum::http::StatusCode;
 use axum::response::Response;
 use floe_engine::Channel;
@@ -80,8 +80,8 @@ impl WsQuery {
 /// Upgrades to a WebSocket after checking the scene and the options.
 pub async fn upgrade(
     State(registry): State<Arc<Registry>>,
-    Path(id): Path<u64>,
-    Query(q): Query<WsQuery>,
+    SceneId(id): SceneId,
+    Params(q): Params<WsQuery>,
     ws: WebSocketUpgrade,
 ) -> Result<Response, ApiError> {
     let options = q.options().map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))?;

@@ -85,6 +85,37 @@ async fn rest_mirrors_the_control_calls() {
     registry.shutdown();
 }
 
+/// Bodies, ids and query parameters axum cannot parse get the API's JSON errors too.
+#[tokio::test]
+async fn malformed_requests_get_json_errors_naming_what_was_wrong() {
+    let registry = common::cpu_registry();
+    let app = floe_server::http::router(registry.clone(), "../web".into());
+    let body = r#"{"preset": "dam_break", "overrides": ["particle_spacing=0.05"]}"#;
+    let (_, v) = call(&app, "POST", "/api/v1/scenes", Some(body.into())).await;
+    let step = format!("/api/v1/scenes/{}/step", v["scene_id"]);
+    let error = |v: &serde_json::Value| v["error"].as_str().unwrap_or("(not a JSON error)").to_owned();
+
+    let (s, v) = call(&app, "POST", &step, Some(r#"{"steps": -3}"#.into())).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    assert!(error(&v).contains("steps: invalid value: integer `-3`"), "{v}");
+    let (s, v) = call(&app, "POST", &step, Some(r#"{"steps": 3"#.into())).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    assert!(error(&v).contains("EOF while parsing"), "{v}");
+    let (s, v) = call(&app, "POST", "/api/v1/scenes/abc/step", Some(r#"{"steps": 3}"#.into())).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    assert!(error(&v).starts_with("scene id: "), "{v}");
+    let (s, v) = call(&app, "GET", "/api/v1/scenes/1/ws?max_fps=abc", None).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    assert!(error(&v).contains("max_fps"), "{v}");
+
+    let req = Request::builder().method("POST").uri(&step).body(Body::from(r#"{"steps": 3}"#)).unwrap();
+    let res = app.clone().oneshot(req).await.unwrap();
+    assert_eq!(res.status(), StatusCode::UNSUPPORTED_MEDIA_TYPE);
+    let v: serde_json::Value = serde_json::from_slice(&res.into_body().collect().await.unwrap().to_bytes()).unwrap();
+    assert!(error(&v).contains("Content-Type: application/json"), "{v}");
+    registry.shutdown();
+}
+
 #[tokio::test]
 async fn websocket_streams_frames_and_survives_garbage() {
     let mut server = common::TestServer::start().await;

@@ -15,11 +15,13 @@
 //! | GET | `/api/v1/scenes/{id}/ws` | WebSocket: binary frames, JSON control and events |
 //!
 //! Errors are `{"error": "..."}` with 400 (bad request, naming the field), 404
-//! (unknown scene), 409 (wrong state), 413 (body too large) or 429 (server full).
+//! (unknown scene), 409 (wrong state), 413 (body too large), 415 (a body that is not
+//! `application/json`) or 429 (server full); malformed bodies, ids and query parameters
+//! included ([`extract`]).
 
 use crate::service::scene::{MAX_STEPS_PER_REQUEST, Shared, State};
 use crate::service::{Registry, SceneSource, ServiceError};
-use axum::extract::{DefaultBodyLimit, Path, State as AxState};
+use axum::extract::{DefaultBodyLimit, State as AxState};
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
@@ -28,6 +30,10 @@ use floe_engine::scene::load::Format;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
+
+mod extract;
+
+pub use extract::{Body, Params, SceneId};
 
 /// Largest request body (bytes), as for gRPC.
 pub const MAX_BODY_BYTES: usize = crate::serve::MAX_REQUEST_BYTES;
@@ -173,9 +179,8 @@ struct CreateBody {
 
 async fn create(
     AxState(r): AxState<Arc<Registry>>,
-    body: Result<Json<CreateBody>, axum::extract::rejection::JsonRejection>,
+    Body(b): Body<CreateBody>,
 ) -> Result<(StatusCode, Json<SceneView>), ApiError> {
-    let Json(b) = body.map_err(|e| ApiError(e.status(), e.body_text()))?;
     let source = match (b.preset, b.document) {
         (Some(p), None) => SceneSource::Preset(p),
         (None, Some(text)) => {
@@ -199,15 +204,15 @@ async fn create(
     Ok((StatusCode::CREATED, Json(SceneView::of(&handle.shared))))
 }
 
-async fn scene(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> ApiResult<SceneView> {
+async fn scene(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> ApiResult<SceneView> {
     Ok(Json(SceneView::of(&r.get(id)?.shared)))
 }
 
-async fn stats(state: AxState<Arc<Registry>>, id: Path<u64>) -> ApiResult<SceneView> {
+async fn stats(state: AxState<Arc<Registry>>, id: SceneId) -> ApiResult<SceneView> {
     scene(state, id).await
 }
 
-async fn delete(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> ApiResult<SceneView> {
+async fn delete(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> ApiResult<SceneView> {
     let handle = tokio::task::spawn_blocking(move || r.delete(id))
         .await
         .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, e.to_string()))??;
@@ -242,8 +247,8 @@ impl StepBody {
 
 async fn step(
     AxState(r): AxState<Arc<Registry>>,
-    Path(id): Path<u64>,
-    Json(b): Json<StepBody>,
+    SceneId(id): SceneId,
+    Body(b): Body<StepBody>,
 ) -> ApiResult<SceneView> {
     let (steps, until) = b.checked().map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))?;
     let h = r.get(id)?;
@@ -262,8 +267,8 @@ pub struct RunBody {
 
 async fn run(
     AxState(r): AxState<Arc<Registry>>,
-    Path(id): Path<u64>,
-    body: Option<Json<RunBody>>,
+    SceneId(id): SceneId,
+    body: Option<Body<RunBody>>,
 ) -> ApiResult<SceneView> {
     let rtf = body.map(|b| b.0.real_time_factor).unwrap_or(0.0);
     if !(rtf.is_finite() && rtf >= 0.0) {
@@ -274,20 +279,20 @@ async fn run(
     Ok(Json(SceneView::of(&h.shared)))
 }
 
-async fn pause(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> ApiResult<SceneView> {
+async fn pause(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> ApiResult<SceneView> {
     let h = r.get(id)?;
     h.pause().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
     Ok(Json(SceneView::of(&h.shared)))
 }
 
-async fn snapshot(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> Result<Response, ApiError> {
+async fn snapshot(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> Result<Response, ApiError> {
     let state = r.get(id)?.save().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
     Ok(([(axum::http::header::CONTENT_TYPE, "application/octet-stream")], state).into_response())
 }
 
 async fn restore(
     AxState(r): AxState<Arc<Registry>>,
-    Path(id): Path<u64>,
+    SceneId(id): SceneId,
     body: axum::body::Bytes,
 ) -> ApiResult<SceneView> {
     let h = r.get(id)?;
@@ -307,8 +312,8 @@ struct ParametersBody {
 
 async fn parameters(
     AxState(r): AxState<Arc<Registry>>,
-    Path(id): Path<u64>,
-    Json(b): Json<ParametersBody>,
+    SceneId(id): SceneId,
+    Body(b): Body<ParametersBody>,
 ) -> ApiResult<SceneView> {
     let h = r.get(id)?;
     h.set_parameters(b.overrides).await.map_err(|e| match e {
@@ -318,7 +323,7 @@ async fn parameters(
     Ok(Json(SceneView::of(&h.shared)))
 }
 
-async fn reset(AxState(r): AxState<Arc<Registry>>, Path(id): Path<u64>) -> ApiResult<SceneView> {
+async fn reset(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> ApiResult<SceneView> {
     let h = r.get(id)?;
     h.reset().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
     Ok(Json(SceneView::of(&h.shared)))
