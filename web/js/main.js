@@ -2,6 +2,7 @@
 // scene's WebSocket, decoding in a Web Worker, drawing with WebGL2.
 
 import { OrbitCamera, perspective } from './camera.js';
+import { wallLines } from './outline.js';
 import { Renderer } from './render.js';
 
 const $ = (id) => document.getElementById(id);
@@ -71,6 +72,7 @@ function open(scene) {
   banner(scene.halt_reason ? `Halted: ${scene.halt_reason}` : null);
   camera.fit(scene.bounds_min, scene.bounds_max);
   renderer.radius = 0.5 * scene.particle_spacing;
+  renderer.outline.set(wallLines(scene.scene));
   connect();
 }
 

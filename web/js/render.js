@@ -1,5 +1,9 @@
 // WebGL2 particle renderer: each particle is a point sprite shaded as a lit
-// sphere impostor (Blinn-Phong), coloured by a scalar through a colour map.
+// sphere impostor (Blinn-Phong), coloured by a scalar through a colour map; the scene's box
+// walls are drawn as lines (outline.js).
+
+import { program } from './gl.js';
+import { Outline } from './outline.js';
 
 const VERT = `#version 300 es
 uniform mat4 u_proj, u_view;
@@ -40,14 +44,6 @@ void main() {
   colour = vec4(base * (0.25 + 0.75 * diffuse) + vec3(0.35) * specular, 1.0);
 }`;
 
-function compile(gl, type, src) {
-  const s = gl.createShader(type);
-  gl.shaderSource(s, src);
-  gl.compileShader(s);
-  if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(s));
-  return s;
-}
-
 /** Draws particles into a canvas. */
 export class Renderer {
   constructor(canvas) {
@@ -56,12 +52,10 @@ export class Renderer {
     if (!gl) throw new Error('WebGL2 is not available in this browser');
     this.gl = gl;
     this.canvas = canvas;
-    const p = gl.createProgram();
-    gl.attachShader(p, compile(gl, gl.VERTEX_SHADER, VERT));
-    gl.attachShader(p, compile(gl, gl.FRAGMENT_SHADER, FRAG));
-    gl.linkProgram(p);
-    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(p));
+    const p = program(gl, VERT, FRAG);
     this.program = p;
+    /** The scene's walls; `outline.set(wallLines(scene))` when the scene changes. */
+    this.outline = new Outline(gl);
     this.u = Object.fromEntries(['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured']
       .map((n) => [n, gl.getUniformLocation(p, n)]));
     this.vao = gl.createVertexArray();
@@ -109,5 +103,6 @@ export class Renderer {
     gl.uniform1i(this.u.u_coloured, this.coloured ? 1 : 0);
     gl.bindVertexArray(this.vao);
     gl.drawArrays(gl.POINTS, 0, this.count);
+    this.outline.draw(proj, view);
   }
 }
