@@ -53,7 +53,7 @@ pub enum Command {
         #[arg(long, default_value = "1", conflicts_with = "until")]
         steps: u64,
         /// Or: simulated time to reach (s).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         until: Option<f64>,
     },
     /// Run a scene continuously.
@@ -61,7 +61,7 @@ pub enum Command {
         /// Scene id.
         id: u64,
         /// Simulated seconds per wall second (0: as fast as possible).
-        #[arg(long, default_value = "0")]
+        #[arg(long, default_value = "0", allow_negative_numbers = true)]
         rtf: f64,
     },
     /// Pause a running scene.

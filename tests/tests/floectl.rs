@@ -90,6 +90,13 @@ async fn floectl_errors_name_what_was_wrong() {
     assert!(e.starts_with("cannot read /no/such/scene.toml: "), "{e}");
     let e = fails(&["create", "dam_break", "--set", "particle_spacing=-1"]).await;
     assert!(e.contains("particle_spacing") && e.ends_with("(InvalidArgument)"), "{e}");
+    // Negative numbers reach the server, which names the field.
+    floectl(&url, &["create", "dam_break", "--set", "particle_spacing=0.05"]).await.unwrap();
+    let id = server.registry.list()[0].shared.id.to_string();
+    let e = fails(&["run", &id, "--rtf", "-2"]).await;
+    assert!(e.starts_with("real_time_factor") && e.ends_with("(InvalidArgument)"), "{e}");
+    let e = fails(&["step", &id, "--until", "-1"]).await;
+    assert!(e.contains("until") && e.ends_with("(InvalidArgument)"), "{e}");
     let garbage = dir.path().join("garbage.floe");
     std::fs::write(&garbage, b"not a recording at all").unwrap();
     let e = fails(&["export", "--recording", text(&garbage), "--out", text(dir.path())]).await;
