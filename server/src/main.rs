@@ -1,6 +1,7 @@
 //! `floe`: parse the command line, set up logging, hand over to [`floe_server::execute`].
 
 use clap::Parser;
+use std::io::IsTerminal;
 
 fn main() -> std::process::ExitCode {
     quiet_mesa_device_select();
@@ -8,6 +9,8 @@ fn main() -> std::process::ExitCode {
     tracing_subscriber::fmt()
         .with_env_filter(tracing_subscriber::EnvFilter::try_from_env("FLOE_LOG").unwrap_or_else(|_| "info".into()))
         .with_writer(std::io::stderr)
+        // Colour on a terminal only: a log file or journal gets plain text.
+        .with_ansi(std::io::stderr().is_terminal())
         .init();
     match floe_server::execute(cli) {
         Ok(()) => std::process::ExitCode::SUCCESS,
