@@ -163,4 +163,19 @@ pub struct ServeArgs {
     /// Backend every scene runs on.
     #[arg(long, env = "FLOE_BACKEND", value_enum, default_value = "auto")]
     pub backend: BackendChoice,
+    /// Most scenes alive at once, over all users; one more is refused (HTTP 429, gRPC
+    /// RESOURCE_EXHAUSTED) until one is deleted.
+    #[arg(long, env = "FLOE_MAX_SCENES", default_value_t = crate::service::DEFAULT_MAX_SCENES, value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_scenes: u64,
+    /// Most fluid particles in one scene; a bigger scene is refused, naming the limit.
+    #[arg(long, env = "FLOE_MAX_PARTICLES", default_value_t = crate::service::DEFAULT_MAX_PARTICLES, value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_particles: u64,
+}
+
+impl ServeArgs {
+    /// The registry's limits these flags set.
+    pub fn limits(&self) -> crate::service::Limits {
+        let size = |v: u64| usize::try_from(v).unwrap_or(usize::MAX);
+        crate::service::Limits { max_scenes: size(self.max_scenes), max_particles: size(self.max_particles) }
+    }
 }

@@ -102,7 +102,7 @@ pub fn serve(args: crate::cli::ServeArgs) -> anyhow::Result<()> {
             tracing::warn!("no viewer at {} (pass --web DIR); the API still works", web_root.display());
         }
         let backend = tokio::task::spawn_blocking(move || floe_gpu::select::select(args.backend.into())).await??;
-        let registry = Arc::new(Registry::new(Default::default(), backend.factory));
+        let registry = Arc::new(Registry::new(args.limits(), backend.factory));
         if args.scene != "none" {
             let r = registry.clone();
             let preset = args.scene.clone();

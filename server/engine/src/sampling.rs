@@ -2,14 +2,28 @@
 //! walls as layers of boundary particles (Akinci et al. 2012, section 3).
 
 use crate::math::{Real, Vec3};
-use crate::scene::{Boundary, Face, FluidBlock};
+use crate::scene::{Boundary, Face, FluidBlock, Scene};
+
+/// Particles along each axis of `block` on a lattice of `spacing`.
+fn lattice_counts(block: &FluidBlock, spacing: Real) -> [u32; 3] {
+    let counts = ((Vec3::from(block.max) - Vec3::from(block.min)) / spacing + 1e-3).floor();
+    [counts.x as u32, counts.y as u32, counts.z as u32]
+}
+
+/// How many particles [`fill_block`] places in the fluid blocks of `scene`, counted without
+/// placing them, so a scene too large for a server can be refused before it is built.
+pub fn fluid_particle_count(scene: &Scene) -> u64 {
+    let blocks = scene.fluids.iter().flat_map(|f| &f.blocks);
+    blocks
+        .map(|b| lattice_counts(b, scene.particle_spacing).iter().fold(1u64, |n, &c| n.saturating_mul(u64::from(c))))
+        .fold(0u64, u64::saturating_add)
+}
 
 /// Particle centres filling `block` on a lattice of `spacing`, the first one
 /// half a spacing inside the lower corner.
 pub fn fill_block(block: &FluidBlock, spacing: Real) -> Vec<Vec3> {
     let min = Vec3::from(block.min);
-    let counts = ((Vec3::from(block.max) - min) / spacing + 1e-3).floor();
-    let [nx, ny, nz] = [counts.x as u32, counts.y as u32, counts.z as u32];
+    let [nx, ny, nz] = lattice_counts(block, spacing);
     let mut out = Vec::with_capacity((nx * ny * nz) as usize);
     for k in 0..nz {
         for j in 0..ny {
@@ -98,6 +112,16 @@ pub fn sample_boundary(boundary: &Boundary, spacing: Real) -> Vec<Vec3> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_counted_particles_are_those_a_simulation_builds() {
+        for spacing in ["0.05", "0.037", "0.02"] {
+            let scene = crate::scene::load::from_preset("dam_break", &[format!("particle_spacing={spacing}")]).unwrap();
+            let counted = fluid_particle_count(&scene);
+            let built = crate::Simulation::new_cpu(scene).unwrap().particle_count() as u64;
+            assert_eq!(counted, built, "spacing {spacing}");
+        }
+    }
 
     #[test]
     fn blocks_fill_on_the_lattice() {

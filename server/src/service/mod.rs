@@ -56,9 +56,14 @@ pub struct Limits {
     pub max_particles: usize,
 }
 
+/// Default of [`Limits::max_scenes`].
+pub const DEFAULT_MAX_SCENES: u64 = 64;
+/// Default of [`Limits::max_particles`].
+pub const DEFAULT_MAX_PARTICLES: u64 = 4_000_000;
+
 impl Default for Limits {
     fn default() -> Self {
-        Self { max_scenes: 64, max_particles: 4_000_000 }
+        Self { max_scenes: DEFAULT_MAX_SCENES as usize, max_particles: DEFAULT_MAX_PARTICLES as usize }
     }
 }
 
@@ -103,14 +108,15 @@ impl Registry {
             SceneSource::Document { text, format } => load::from_str(&text, format, overrides),
         }
         .map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
-        let sim = Simulation::new(scene, &*self.backend).map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
-        if sim.particle_count() > self.limits.max_particles {
+        // Counted before the scene is built, so a scene over the limit allocates nothing.
+        let particles = floe_engine::sampling::fluid_particle_count(&scene);
+        if particles > self.limits.max_particles as u64 {
             return Err(ServiceError::InvalidArgument(format!(
-                "particle_spacing: the scene has {} particles, more than this server's limit of {}",
-                sim.particle_count(),
+                "particle_spacing: the scene has {particles} particles, more than this server's limit of {}",
                 self.limits.max_particles
             )));
         }
+        let sim = Simulation::new(scene, &*self.backend).map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
         let id = self.next_id.fetch_add(1, Ordering::Relaxed);
         tracing::info!(scene = id, name = %sim.scene().name, particles = sim.particle_count(), "scene created");
         let handle = Arc::new(SceneHandle::spawn(id, sim, self.backend.clone()));
