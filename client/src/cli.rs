@@ -182,7 +182,7 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Create { scene, overrides } => {
             let o: Vec<&str> = overrides.iter().map(String::as_str).collect();
-            let path = std::path::Path::new(&scene);
+            let path = Path::new(&scene);
             // A name with a scene file's extension is a file even when it is missing, so the
             // error names the file rather than an unknown preset.
             let is_file = path.exists() || scene.ends_with(".toml") || scene.ends_with(".json");

@@ -16,6 +16,8 @@ use floe_proto::{Encoder, EncoderConfig, FrameInput, Mode};
 enum Interval {
     Steps(u64),
     Seconds(f64),
+    /// 1/60 s and 1/30 s in turn: a 60 frames/s subscriber that misses every other frame.
+    Skipping,
 }
 
 impl Interval {
@@ -24,12 +26,13 @@ impl Interval {
             Interval::Steps(1) => "every step".into(),
             Interval::Steps(n) => format!("every {n} steps"),
             Interval::Seconds(s) => format!("1/{:.0} s", 1.0 / s),
+            Interval::Skipping => "1/60 s and 1/30 s in turn".into(),
         }
     }
 }
 
 /// The rows, from a live stream on a slow machine to real-time playback at 30 frames/s.
-const INTERVALS: [Interval; 7] = [
+const INTERVALS: [Interval; 8] = [
     Interval::Steps(1),
     Interval::Steps(4),
     Interval::Steps(16),
@@ -37,6 +40,7 @@ const INTERVALS: [Interval; 7] = [
     Interval::Seconds(1.0 / 120.0),
     Interval::Seconds(1.0 / 60.0),
     Interval::Seconds(1.0 / 30.0),
+    Interval::Skipping,
 ];
 
 /// Keyframe interval of the amortised column: the encoder's default.
@@ -64,11 +68,9 @@ pub fn by_interval(start: &[u8], frames: usize) -> anyhow::Result<()> {
                         sim.step()?;
                     }
                 }
-                Interval::Seconds(s) => {
-                    let next = sim.time() + s;
-                    while sim.time() < next {
-                        sim.step()?;
-                    }
+                Interval::Seconds(s) => advance(&mut sim, s)?,
+                Interval::Skipping => {
+                    advance(&mut sim, if positions.len() % 2 == 1 { 1.0 / 60.0 } else { 1.0 / 30.0 })?
                 }
             }
             positions.push(sim.read(&[]).positions);
@@ -85,6 +87,15 @@ pub fn by_interval(start: &[u8], frames: usize) -> anyhow::Result<()> {
             interval.label(),
             rms_motion(&positions) * 1e3
         );
+    }
+    Ok(())
+}
+
+/// Steps `sim` until `seconds` of simulated time have passed.
+fn advance(sim: &mut Simulation, seconds: f64) -> anyhow::Result<()> {
+    let next = sim.time() + seconds;
+    while sim.time() < next {
+        sim.step()?;
     }
     Ok(())
 }
