@@ -3,7 +3,7 @@
 
 use crate::service::ServiceError;
 use crate::service::frames::FrameOptions;
-use crate::service::scene::{Event, Shared, State};
+use crate::service::{Event, Shared, State};
 use floe_engine::Channel;
 use floe_engine::scene::load::Format;
 use floe_proto::Mode;

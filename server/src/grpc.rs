@@ -4,7 +4,7 @@
 
 use crate::convert::{self, status};
 use crate::service::frames::FrameOptions;
-use crate::service::scene::{CommandError, Event, MAX_STEPS_PER_REQUEST};
+use crate::service::{CommandError, Event, MAX_STEPS_PER_REQUEST};
 use crate::service::{Registry, SceneSource, ServiceError};
 use floe_proto::pb::scene_service_server::SceneService;
 use floe_proto::pb::{self, create_scene_request::Source};

@@ -14,7 +14,7 @@
 use crate::http::{ApiError, Params, RunBody, SceneId, SceneView, StepBody};
 use crate::service::Registry;
 use crate::service::frames::{EncodedFrame, FrameOptions};
-use crate::service::scene::{Event, SceneHandle};
+use crate::service::{Event, SceneHandle};
 use axum::extract::State;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::http::StatusCode;

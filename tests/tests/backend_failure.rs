@@ -8,7 +8,7 @@ use floe_engine::model::Model;
 use floe_engine::scene::Scene;
 use floe_engine::simulation::BackendFactory;
 use floe_engine::stepping::{Clock, Passes, SortedState};
-use floe_server::service::scene::{CommandError, State};
+use floe_server::service::{CommandError, State};
 use floe_server::service::{Registry, SceneSource};
 use std::sync::Arc;
 

@@ -19,7 +19,7 @@
 //! `application/json`) or 429 (server full); malformed bodies, ids and query parameters
 //! included ([`extract`]).
 
-use crate::service::scene::{MAX_STEPS_PER_REQUEST, Shared, State};
+use crate::service::{MAX_STEPS_PER_REQUEST, Shared, State};
 use crate::service::{Registry, SceneSource, ServiceError};
 use axum::extract::{DefaultBodyLimit, State as AxState};
 use axum::http::StatusCode;
@@ -297,7 +297,7 @@ async fn restore(
 ) -> ApiResult<SceneView> {
     let h = r.get(id)?;
     h.restore(body.to_vec()).await.map_err(|e| match e {
-        crate::service::scene::CommandError::BadSnapshot(_) => ApiError(StatusCode::BAD_REQUEST, e.to_string()),
+        crate::service::CommandError::BadSnapshot(_) => ApiError(StatusCode::BAD_REQUEST, e.to_string()),
         _ => ApiError(StatusCode::CONFLICT, e.to_string()),
     })?;
     Ok(Json(SceneView::of(&h.shared)))
@@ -317,7 +317,7 @@ async fn parameters(
 ) -> ApiResult<SceneView> {
     let h = r.get(id)?;
     h.set_parameters(b.overrides).await.map_err(|e| match e {
-        crate::service::scene::CommandError::BadParameter(m) => ApiError(StatusCode::BAD_REQUEST, m),
+        crate::service::CommandError::BadParameter(m) => ApiError(StatusCode::BAD_REQUEST, m),
         _ => ApiError(StatusCode::CONFLICT, e.to_string()),
     })?;
     Ok(Json(SceneView::of(&h.shared)))

@@ -1,4 +1,4 @@
-//! Frame subscriptions: turn a scene's latest snapshots into encoded frames at a
+//! Frame subscriptions: turn a scene's latest published states into encoded frames at a
 //! subscriber's rate and options, with latest-frame semantics.
 //!
 //! A subscriber that reads slowly only ever waits for the newest snapshot (a
@@ -8,7 +8,8 @@
 //! identity-ordered stream predicts from the frames its own subscriber received,
 //! so it has an encoder of its own.
 
-use super::scene::{SceneHandle, Shared, Snapshot, State};
+use super::handle::SceneHandle;
+use super::shared::{Published, Shared, State};
 use floe_engine::quantize::PositionGrid;
 use floe_engine::{Channel, Particles};
 use floe_proto::{Bounds, EncodeError, Encoder, EncoderConfig, FrameInput, Mode};
@@ -96,7 +97,7 @@ fn decimate(p: &Particles, k: usize) -> Particles {
 }
 
 /// Encodes snapshot `s` with `o`'s channels and decimation.
-fn encode(encoder: &mut Encoder, s: &Snapshot, o: &FrameOptions) -> Result<Vec<u8>, EncodeError> {
+fn encode(encoder: &mut Encoder, s: &Published, o: &FrameOptions) -> Result<Vec<u8>, EncodeError> {
     if o.decimation > 1 {
         encoder.encode(s.step, s.time, &input(&decimate(&s.particles, o.decimation as usize), &o.channels))
     } else {
@@ -106,7 +107,7 @@ fn encode(encoder: &mut Encoder, s: &Snapshot, o: &FrameOptions) -> Result<Vec<u
 
 impl FrameCache {
     /// The unordered frame of `snapshot` for `options`, encoding it on first request.
-    fn unordered(&self, shared: &Shared, options: &FrameOptions, s: &Snapshot) -> Result<Arc<Vec<u8>>, EncodeError> {
+    fn unordered(&self, shared: &Shared, options: &FrameOptions, s: &Published) -> Result<Arc<Vec<u8>>, EncodeError> {
         let mut entries = self.entries.lock().expect("lock");
         let k = match entries.iter().position(|e| &e.options == options) {
             Some(k) => k,
@@ -136,7 +137,7 @@ impl FrameCache {
 pub struct Subscription {
     scene: Arc<SceneHandle>,
     cache: Arc<FrameCache>,
-    rx: watch::Receiver<Option<Arc<Snapshot>>>,
+    rx: watch::Receiver<Option<Arc<Published>>>,
     options: FrameOptions,
     /// The grid this stream's encoder quantises positions to.
     grid: PositionGrid,
@@ -158,7 +159,7 @@ impl Subscription {
                 None
             }
         };
-        let mut rx = scene.shared.snapshots.subscribe();
+        let mut rx = scene.shared.published_state.subscribe();
         // The snapshot held now may be stale (nobody was subscribed while the scene
         // stepped): treat it as seen, and have the worker publish a fresh one.
         let last_sequence = rx.borrow_and_update().as_ref().map(|s| s.sequence);
@@ -192,7 +193,7 @@ impl Subscription {
         }
     }
 
-    async fn encode(&mut self, s: Arc<Snapshot>) -> Result<EncodedFrame, EncodeError> {
+    async fn encode(&mut self, s: Arc<Published>) -> Result<EncodedFrame, EncodeError> {
         let skipped = self.last_sequence.map_or(0, |l| s.sequence - l - 1);
         // The first frame's predecessor was never sent to this subscriber.
         let skipped = if self.last_sent.is_none() { 0 } else { skipped };

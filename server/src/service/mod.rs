@@ -1,17 +1,22 @@
 //! The in-process service API: the scenes on this server and what can be done
 //! to them. gRPC (and, next, REST and WebSocket) are thin adapters over it.
 //!
-//! - [`scene`]: one scene, stepping on a worker thread of its own.
+//! - [`handle`]: the server's handle on one scene; commands to its worker.
+//! - [`shared`]: what a scene's worker shares with the server's tasks (status, published state, events).
+//! - [`worker`]: a scene's worker thread, which owns its simulation and steps it.
 //! - [`frames`]: frame subscriptions with latest-frame semantics and shared encoding.
 
 pub mod frames;
-pub mod scene;
+pub mod handle;
+pub mod shared;
+mod worker;
 
 use floe_engine::Simulation;
 use floe_engine::scene::load::{self, Format};
 use floe_engine::simulation::BackendFactory;
 use frames::{FrameCache, FrameOptions, Subscription};
-use scene::SceneHandle;
+pub use handle::{CommandError, MAX_STEPS_PER_REQUEST, SceneHandle};
+pub use shared::{Event, Published, Shared, State, Status};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, RwLock};

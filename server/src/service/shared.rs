@@ -1,0 +1,230 @@
+//! What a scene shares between its worker thread and the server's tasks: its
+//! status, the latest particle state published for frame subscribers, its
+//! events, and the subscribers' bookkeeping.
+
+use floe_engine::quantize::PositionGrid;
+use floe_engine::{Channel, Particles, Simulation};
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use tokio::sync::{broadcast, watch};
+
+/// Whether a scene is stepping.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum State {
+    /// Waiting for commands.
+    Paused,
+    /// Stepping continuously.
+    Running,
+    /// Stopped by the stability guard.
+    Halted,
+    /// Deleted; its worker has ended.
+    Deleted,
+}
+
+/// What a scene is doing, updated by its worker after every step.
+#[derive(Debug, Clone)]
+pub struct Status {
+    /// Running state.
+    pub state: State,
+    /// Simulated time (s).
+    pub time: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// The last dt (s).
+    pub dt: f64,
+    /// Steps per wall second over the last second of stepping.
+    pub steps_per_second: f64,
+    /// The halt message, when halted.
+    pub halt_reason: Option<String>,
+}
+
+/// Particle state published for frame subscribers, in identity order (the
+/// latest one is held in [`Shared::published_state`]).
+#[derive(Debug)]
+pub struct Published {
+    /// Counts up by one per published snapshot.
+    pub sequence: u64,
+    /// Step it was taken at.
+    pub step: u64,
+    /// Simulated time (s).
+    pub time: f64,
+    /// Positions and the channels subscribers asked for.
+    pub particles: Particles,
+}
+
+/// Something that happened to a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    /// The stability guard stopped it.
+    Halted(floe_engine::Halted),
+    /// Tunable settings changed (the overrides applied).
+    ParameterChanged(Vec<String>),
+    /// It was deleted.
+    Deleted,
+}
+
+/// State shared between a scene's worker and the server's tasks.
+#[derive(Debug)]
+pub struct Shared {
+    /// Scene id.
+    pub id: u64,
+    /// Scene name.
+    pub name: String,
+    /// The resolved scene as JSON, as it is now (live changes included).
+    pub(super) scene_json: Mutex<String>,
+    /// Fluid particles.
+    pub particles: usize,
+    /// Particle spacing (m).
+    pub particle_spacing: f32,
+    /// The backend stepping the scene (`gpu`, `cpu`); resets and restores keep it.
+    pub backend: &'static str,
+    /// Domain (m): frames quantise positions over it.
+    pub bounds: ([f32; 3], [f32; 3]),
+    /// Latest status.
+    pub status: Mutex<Status>,
+    /// Latest snapshot (latest-frame semantics: a receiver sees only the newest).
+    pub published_state: watch::Sender<Option<Arc<Published>>>,
+    /// Events.
+    pub events: broadcast::Sender<Event>,
+    /// Open frame streams, and how many of them asked for each channel and
+    /// each position grid.
+    pub subscribers: AtomicU32,
+    wanted: Mutex<(Tally<Channel>, Tally<PositionGrid>)>,
+    /// Frames skipped by subscribers that went on to a later frame.
+    dropped_frames: AtomicU64,
+    /// Per live subscription, the sequence of the last snapshot it received (or
+    /// the one it started at), so frames a blocked subscriber is missing count
+    /// as dropped while it is blocked, not only once it reads again.
+    delivered: Mutex<Vec<std::sync::Weak<AtomicU64>>>,
+    /// Snapshots published.
+    pub published: AtomicU64,
+    /// Set on delete, so a long hand-step ends at the next step.
+    pub(super) cancel: AtomicBool,
+}
+
+impl Shared {
+    /// The shared state of a new scene's simulation, paused at its start.
+    pub(super) fn new(id: u64, sim: &Simulation) -> Self {
+        let domain = sim.domain();
+        let (published_state, _) = watch::channel(None);
+        let (events, _) = broadcast::channel(16);
+        Self {
+            id,
+            name: sim.scene().name.clone(),
+            scene_json: Mutex::new(serde_json::to_string(sim.scene()).expect("scenes serialise")),
+            particles: sim.particle_count(),
+            particle_spacing: sim.scene().particle_spacing,
+            backend: sim.backend_name(),
+            bounds: (domain.min.to_array(), domain.max.to_array()),
+            status: Mutex::new(Status {
+                state: State::Paused,
+                time: 0.0,
+                steps: 0,
+                dt: 0.0,
+                steps_per_second: 0.0,
+                halt_reason: None,
+            }),
+            published_state,
+            events,
+            subscribers: AtomicU32::new(0),
+            wanted: Mutex::new((Tally::default(), Tally::default())),
+            dropped_frames: AtomicU64::new(0),
+            delivered: Mutex::new(Vec::new()),
+            published: AtomicU64::new(0),
+            cancel: AtomicBool::new(false),
+        }
+    }
+
+    /// Registers a subscriber wanting `channels` with positions quantised to
+    /// `grid`; undone by [`Shared::unsubscribe`].
+    pub fn subscribe(&self, channels: &[Channel], grid: PositionGrid) {
+        self.subscribers.fetch_add(1, Ordering::Relaxed);
+        let mut wanted = self.wanted.lock().expect("lock");
+        channels.iter().for_each(|&c| wanted.0.add(c));
+        wanted.1.add(grid);
+    }
+
+    /// Removes a subscriber registered with `channels` and `grid`.
+    pub fn unsubscribe(&self, channels: &[Channel], grid: PositionGrid) {
+        self.subscribers.fetch_sub(1, Ordering::Relaxed);
+        let mut wanted = self.wanted.lock().expect("lock");
+        channels.iter().for_each(|&c| wanted.0.remove(c));
+        wanted.1.remove(grid);
+    }
+
+    /// Tracks a subscription's last received sequence (see [`Shared::dropped_frames`]).
+    pub fn track(&self, last: &Arc<AtomicU64>) {
+        let mut d = self.delivered.lock().expect("lock");
+        d.retain(|w| w.strong_count() > 0);
+        d.push(Arc::downgrade(last));
+    }
+
+    /// Records `n` frames a subscriber skipped.
+    pub fn add_dropped(&self, n: u64) {
+        self.dropped_frames.fetch_add(n, Ordering::Relaxed);
+    }
+
+    /// Frames skipped by subscribers so far: those skipped before a frame they
+    /// received, plus those a subscriber is missing right now.
+    pub fn dropped_frames(&self) -> u64 {
+        let latest = self.published_state.borrow().as_ref().map_or(0, |s| s.sequence);
+        let pending: u64 = self
+            .delivered
+            .lock()
+            .expect("lock")
+            .iter()
+            .filter_map(|w| w.upgrade())
+            .map(|last| latest.saturating_sub(last.load(Ordering::Relaxed)).saturating_sub(1))
+            .sum();
+        self.dropped_frames.load(Ordering::Relaxed) + pending
+    }
+
+    /// The union of the channels subscribers want (the only ones read back),
+    /// and the position grid when every subscriber quantises to the same one
+    /// (positions are then quantised where they live: on a GPU, on the device).
+    pub(super) fn wanted(&self) -> (Vec<Channel>, Option<PositionGrid>) {
+        let wanted = self.wanted.lock().expect("lock");
+        let grids: Vec<PositionGrid> = wanted.1.values().collect();
+        (wanted.0.values().collect(), (grids.len() == 1).then(|| grids[0]))
+    }
+
+    /// The resolved scene as JSON, live changes included.
+    pub fn scene_json(&self) -> String {
+        self.scene_json.lock().expect("lock").clone()
+    }
+
+    /// A copy of the latest status.
+    pub fn status(&self) -> Status {
+        self.status.lock().expect("lock").clone()
+    }
+}
+
+/// How many open subscriptions want each value.
+#[derive(Debug)]
+struct Tally<T>(Vec<(T, u32)>);
+
+impl<T> Default for Tally<T> {
+    fn default() -> Self {
+        Self(Vec::new())
+    }
+}
+
+impl<T: PartialEq + Copy> Tally<T> {
+    fn add(&mut self, v: T) {
+        match self.0.iter_mut().find(|w| w.0 == v) {
+            Some(w) => w.1 += 1,
+            None => self.0.push((v, 1)),
+        }
+    }
+
+    fn remove(&mut self, v: T) {
+        if let Some(w) = self.0.iter_mut().find(|w| w.0 == v) {
+            w.1 -= 1;
+        }
+        self.0.retain(|w| w.1 > 0);
+    }
+
+    fn values(&self) -> impl Iterator<Item = T> + '_ {
+        self.0.iter().map(|w| w.0)
+    }
+}

@@ -1,0 +1,267 @@
+//! A scene's worker thread: it owns the simulation, carries out commands in
+//! order, steps (by hand or continuously, paced to a real-time factor) and
+//! publishes particle state for frame subscribers.
+
+use super::handle::{Command, CommandError};
+use super::shared::{Event, Published, Shared, State, Status};
+use floe_engine::simulation::BackendFactory;
+use floe_engine::{Halted, Simulation};
+use std::sync::Arc;
+use std::sync::atomic::Ordering;
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+/// Snapshots are published at most this often while stepping (s of wall time).
+const PUBLISH_INTERVAL: Duration = Duration::from_millis(16);
+
+/// The worker thread's state.
+pub(super) struct Worker {
+    sim: Simulation,
+    /// Builds the backend of a reset or restored simulation.
+    backend: Arc<BackendFactory>,
+    shared: Arc<Shared>,
+    running: Option<f64>,
+    last_publish: Option<Instant>,
+    sequence: u64,
+    rate: (Instant, u64),
+}
+
+impl Worker {
+    pub(super) fn new(sim: Simulation, backend: Arc<BackendFactory>, shared: Arc<Shared>) -> Self {
+        Self { sim, backend, shared, running: None, last_publish: None, sequence: 0, rate: (Instant::now(), 0) }
+    }
+
+    pub(super) fn run(mut self, rx: mpsc::Receiver<Command>) {
+        self.publish();
+        let mut run_start = (Instant::now(), 0.0);
+        loop {
+            let command = if self.running.is_some() {
+                match rx.try_recv() {
+                    Ok(c) => Some(c),
+                    Err(mpsc::TryRecvError::Empty) => None,
+                    Err(mpsc::TryRecvError::Disconnected) => break,
+                }
+            } else {
+                match rx.recv() {
+                    Ok(c) => Some(c),
+                    Err(_) => break,
+                }
+            };
+            match command {
+                Some(Command::Delete) => break,
+                Some(Command::Publish) => self.publish(),
+                Some(Command::Set { overrides, reply }) => {
+                    let r = match self.sim.set_parameters(&overrides) {
+                        Ok(()) => {
+                            *self.shared.scene_json.lock().expect("lock") =
+                                serde_json::to_string(self.sim.scene()).expect("scenes serialise");
+                            tracing::info!(scene = self.shared.id, "parameters changed: {}", overrides.join(" "));
+                            let _ = self.shared.events.send(Event::ParameterChanged(overrides));
+                            Ok(self.shared.status())
+                        }
+                        Err(e) => Err(CommandError::BadParameter(e.to_string())),
+                    };
+                    let _ = reply.send(r);
+                }
+                Some(Command::Reset { reply }) => {
+                    let r = if self.running.is_some() {
+                        Err(CommandError::Running)
+                    } else {
+                        match Simulation::new(self.sim.scene().clone(), &*self.backend) {
+                            Ok(sim) => Ok(self.replace(sim)),
+                            Err(e) => Err(CommandError::BadParameter(e.to_string())),
+                        }
+                    };
+                    let _ = reply.send(r);
+                }
+                Some(Command::Save { reply }) => {
+                    let _ = reply.send(self.sim.snapshot());
+                }
+                Some(Command::Restore { state, reply }) => {
+                    let r = if self.running.is_some() { Err(CommandError::Running) } else { self.restore(&state) };
+                    let _ = reply.send(r);
+                }
+                Some(Command::Pause { reply }) => {
+                    self.running = None;
+                    self.set_state(State::Paused);
+                    self.publish();
+                    let _ = reply.send(self.shared.status());
+                }
+                Some(Command::Run { real_time_factor, reply }) => {
+                    let r = self.refuse_if_halted();
+                    if r.is_ok() {
+                        self.running = Some(real_time_factor);
+                        run_start = (Instant::now(), self.sim.time());
+                        self.set_state(State::Running);
+                    }
+                    let _ = reply.send(r.map(|_| self.shared.status()));
+                }
+                Some(Command::Step { steps, until, reply }) => {
+                    let r = if self.running.is_some() {
+                        Err(CommandError::Running)
+                    } else {
+                        self.refuse_if_halted().map(|_| {
+                            self.step_by_hand(steps, until);
+                            self.shared.status()
+                        })
+                    };
+                    let _ = reply.send(r);
+                }
+                None => {}
+            }
+            if let Some(rtf) = self.running {
+                if rtf > 0.0 {
+                    // Pace: sleep while simulated time is ahead of wall time * factor.
+                    let ahead = (self.sim.time() - run_start.1) / rtf - run_start.0.elapsed().as_secs_f64();
+                    if ahead > 0.0 {
+                        std::thread::sleep(Duration::from_secs_f64(ahead.min(0.01)));
+                        continue;
+                    }
+                }
+                if !self.step_once() {
+                    self.running = None;
+                }
+                self.publish_if_due();
+            }
+        }
+        self.set_state(State::Deleted);
+        let _ = self.shared.events.send(Event::Deleted);
+        // Wakes frame subscribers waiting for a snapshot, so they see the deletion.
+        self.shared.published_state.send_replace(None);
+    }
+
+    fn restore(&mut self, state: &[u8]) -> Result<Status, CommandError> {
+        let sim =
+            Simulation::restore_on(state, &*self.backend).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
+        if sim.scene() != self.sim.scene() {
+            return Err(CommandError::BadSnapshot("the snapshot is of a different scene".into()));
+        }
+        Ok(self.replace(sim))
+    }
+
+    /// Takes `sim` as the scene's simulation and publishes its state.
+    fn replace(&mut self, sim: Simulation) -> Status {
+        self.sim = sim;
+        {
+            let mut s = self.shared.status.lock().expect("lock");
+            s.time = self.sim.time();
+            s.steps = self.sim.steps();
+            s.halt_reason = self.sim.halted().map(|h| h.to_string());
+            s.state = if s.halt_reason.is_some() { State::Halted } else { State::Paused };
+        }
+        self.publish();
+        self.shared.status()
+    }
+
+    fn refuse_if_halted(&self) -> Result<(), CommandError> {
+        match self.sim.halted() {
+            Some(h) => Err(CommandError::Halted(h.to_string())),
+            None => Ok(()),
+        }
+    }
+
+    fn step_by_hand(&mut self, steps: u64, until: Option<f64>) {
+        let mut taken = 0;
+        loop {
+            let done = match until {
+                Some(t) => self.sim.time() >= t,
+                None => taken >= steps,
+            };
+            if done || self.shared.cancel.load(Ordering::Relaxed) || !self.step_once() {
+                break;
+            }
+            taken += 1;
+            self.publish_if_due();
+        }
+        self.publish();
+    }
+
+    /// Runs `f` on the simulation; a panic in a backend (a bug, a lost GPU)
+    /// halts this scene with the panic's message instead of killing its worker,
+    /// so the scene still answers and every other scene goes on.
+    fn guarded<T>(&mut self, f: impl FnOnce(&mut Simulation) -> T) -> Result<T, Halted> {
+        let sim = &mut self.sim;
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(sim))).map_err(|panic| {
+            let message = panic
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| panic.downcast_ref::<&str>().copied())
+                .unwrap_or("unknown panic");
+            self.sim.fail(format!("internal error in the {} backend: {message}", self.sim.backend_name()))
+        })
+    }
+
+    /// One step; on a halt, records it and tells subscribers. Returns whether it stepped.
+    fn step_once(&mut self) -> bool {
+        if self.sim.halted().is_some() {
+            // Halted while publishing (see `guarded`): already reported.
+            return false;
+        }
+        match self.guarded(Simulation::step).and_then(|r| r) {
+            Ok(r) => {
+                self.rate.1 += 1;
+                let elapsed = self.rate.0.elapsed().as_secs_f64();
+                let mut s = self.shared.status.lock().expect("lock");
+                if elapsed >= 1.0 {
+                    s.steps_per_second = self.rate.1 as f64 / elapsed;
+                    self.rate = (Instant::now(), 0);
+                }
+                s.time = self.sim.time();
+                s.steps = self.sim.steps();
+                s.dt = r.dt as f64;
+                true
+            }
+            Err(h) => {
+                self.report_halt(h);
+                self.publish();
+                false
+            }
+        }
+    }
+
+    /// Shows a halt in the status and tells the event subscribers.
+    fn report_halt(&self, h: Halted) {
+        {
+            let mut s = self.shared.status.lock().expect("lock");
+            s.state = State::Halted;
+            s.halt_reason = Some(h.to_string());
+        }
+        tracing::warn!(scene = self.shared.id, "{h}");
+        let _ = self.shared.events.send(Event::Halted(h));
+    }
+
+    fn set_state(&self, state: State) {
+        let mut s = self.shared.status.lock().expect("lock");
+        if s.state != State::Halted || state == State::Deleted {
+            s.state = state;
+        }
+    }
+
+    fn publish_if_due(&mut self) {
+        if self.last_publish.is_none_or(|t| t.elapsed() >= PUBLISH_INTERVAL) {
+            self.publish();
+        }
+    }
+
+    /// Publishes a snapshot of positions and the channels subscribers want; none
+    /// is read back while nobody subscribes.
+    fn publish(&mut self) {
+        self.last_publish = Some(Instant::now());
+        if self.shared.subscribers.load(Ordering::Relaxed) == 0 && self.sequence > 0 {
+            return;
+        }
+        let wanted = self.shared.wanted();
+        let read = self.guarded(|sim| match wanted {
+            (channels, Some(grid)) => sim.read_on_grid(&channels, &grid),
+            (channels, None) => sim.read(&channels),
+        });
+        let particles = match read {
+            Ok(p) => p,
+            Err(h) => return self.report_halt(h),
+        };
+        let snapshot = Published { sequence: self.sequence, step: self.sim.steps(), time: self.sim.time(), particles };
+        self.sequence += 1;
+        self.shared.published.fetch_add(1, Ordering::Relaxed);
+        self.shared.published_state.send_replace(Some(Arc::new(snapshot)));
+    }
+}
