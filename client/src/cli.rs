@@ -6,9 +6,8 @@ use crate::recording::{self, Recorder};
 use crate::{Client, FrameRequest};
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
-use floe_engine::Particles;
-use floe_engine::export::{self, Format};
-use floe_proto::pb::Channel;
+use floe_proto::Particles;
+use floe_proto::export::{self, Format};
 use std::path::{Path, PathBuf};
 
 /// Drive a Floe server: create, step, run, watch and record scenes.
@@ -153,10 +152,6 @@ fn line(s: &crate::SceneInfo) -> String {
     )
 }
 
-fn particles(f: floe_proto::Frame) -> Particles {
-    Particles { positions: f.positions, velocities: f.velocities, densities: f.densities, pressures: f.pressures }
-}
-
 /// The error and its causes, `: `-separated, each said once: the transport layers under tonic
 /// wrap a cause in an error of the same message ("tcp connect error: tcp connect error: ...").
 pub fn error_chain(e: &anyhow::Error) -> String {
@@ -176,7 +171,14 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
     // Exporting a recording needs no server.
     if let Command::Export { recording: Some(path), out, format, .. } = &cli.command {
         let file = std::fs::File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
-        return export_frames(recording::read(file)?, out, *format);
+        let frames = recording::read(file)?
+            .into_iter()
+            .map(|f| {
+                let t = f.header.time;
+                (crate::particles(f, None), t)
+            })
+            .collect();
+        return export_frames(frames, out, *format);
     }
     let mut floe = Client::connect(&cli.server).await?;
     match cli.command {
@@ -255,15 +257,13 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Export { id, out, format, frames, .. } => {
             let Some(id) = id else { anyhow::bail!("give a scene id or --recording FILE") };
-            let req = FrameRequest {
-                channels: vec![Channel::Velocity, Channel::Density, Channel::Pressure],
-                ..FrameRequest::default()
-            };
-            let mut stream = floe.frames(id, req).await?;
+            let channels = floe.get(id).await?.channels.into_iter().map(|c| c.name).collect();
+            let mut stream = floe.frames(id, FrameRequest { channels, ..FrameRequest::default() }).await?;
             let mut decoded = Vec::new();
             while (decoded.len() as u64) < frames {
                 let Some(f) = stream.next().await? else { break };
-                decoded.push(f);
+                let t = f.header.time;
+                decoded.push((stream.particles(f), t));
             }
             export_frames(decoded, &out, format)?;
         }
@@ -280,19 +280,17 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes each frame to `out/frame_NNNNN.vtk` (or `.csv`).
-fn export_frames(frames: Vec<floe_proto::Frame>, out: &Path, format: ExportFormat) -> anyhow::Result<()> {
+/// Writes each frame (particles and the time) to `out/frame_NNNNN.vtk` (or `.csv`).
+fn export_frames(frames: Vec<(Particles, f64)>, out: &Path, format: ExportFormat) -> anyhow::Result<()> {
     let format = match format {
         ExportFormat::Vtk => Format::Vtk,
         ExportFormat::Csv => Format::Csv,
     };
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let count = frames.len();
-    for (k, f) in frames.into_iter().enumerate() {
-        let time = f.header.time;
+    for (k, (particles, time)) in frames.into_iter().enumerate() {
         let path = out.join(format!("frame_{k:05}.{}", format.extension()));
-        export::write(&path, format, &particles(f), time)
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        export::write(&path, format, &particles, time).with_context(|| format!("cannot write {}", path.display()))?;
     }
     eprintln!("wrote {count} frames to {}", out.display());
     Ok(())

@@ -23,7 +23,7 @@ pub mod recording;
 
 use floe_proto::pb::scene_service_client::SceneServiceClient;
 use floe_proto::pb::{self, create_scene_request::Source};
-use floe_proto::{Decoder, Frame, Limits};
+use floe_proto::{ChannelKind, Decoder, Frame, Limits, Particles};
 use tonic::transport::Channel;
 
 pub use floe_proto::pb::{SceneInfo, SceneStats};
@@ -64,8 +64,10 @@ impl From<floe_proto::DecodeError> for ClientError {
 /// Options of a frame stream.
 #[derive(Debug, Clone)]
 pub struct FrameRequest {
-    /// Extra channels: velocity, density, pressure.
-    pub channels: Vec<pb::Channel>,
+    /// Extra channels by name (the scene's `SceneInfo::channels` lists them), e.g. `velocity`.
+    pub channels: Vec<String>,
+    /// The particle set (`SceneInfo::sets`); empty for the scene's SPH particles.
+    pub set: String,
     /// Most frames per second.
     pub max_fps: f64,
     /// Bits per position axis, 8 to 16.
@@ -78,7 +80,14 @@ pub struct FrameRequest {
 
 impl Default for FrameRequest {
     fn default() -> Self {
-        Self { channels: Vec::new(), max_fps: 30.0, position_bits: 16, identity: true, decimation: 1 }
+        Self {
+            channels: Vec::new(),
+            set: String::new(),
+            max_fps: 30.0,
+            position_bits: 16,
+            identity: true,
+            decimation: 1,
+        }
     }
 }
 
@@ -185,18 +194,22 @@ impl Client {
         Ok(self.inner.restore(pb::RestoreRequest { scene_id, state }).await?.into_inner())
     }
 
-    /// A stream of decoded frames.
+    /// A stream of decoded frames. The scene's channel list is read first, so frames
+    /// convert to [`Particles`] with every channel under its name ([`Frames::particles`]).
     pub async fn frames(&mut self, scene_id: u64, r: FrameRequest) -> Result<Frames, ClientError> {
+        let scene = self.get(scene_id).await?;
         let req = pb::StreamFramesRequest {
             scene_id,
-            channels: r.channels.iter().map(|&c| c as i32).collect(),
+            channels: Vec::new(),
             max_fps: r.max_fps,
             position_bits: r.position_bits,
             mode: if r.identity { pb::FrameMode::Identity } else { pb::FrameMode::Unordered } as i32,
             decimation: r.decimation,
+            channel_names: r.channels,
+            particle_set: r.set,
         };
         let stream = self.inner.stream_frames(req).await?.into_inner();
-        Ok(Frames { stream, decoder: Decoder::new(Limits::default()) })
+        Ok(Frames { stream, decoder: Decoder::new(Limits::default()), scene })
     }
 
     /// The scene's events (halted, deleted).
@@ -210,6 +223,8 @@ impl Client {
 pub struct Frames {
     stream: tonic::Streaming<pb::Frame>,
     decoder: Decoder,
+    /// The scene, for its channels' and sets' names.
+    scene: SceneInfo,
 }
 
 impl Frames {
@@ -224,5 +239,27 @@ impl Frames {
     /// The next frame as the server encoded it (for recording).
     pub async fn next_raw(&mut self) -> Result<Option<Vec<u8>>, ClientError> {
         Ok(self.stream.message().await?.map(|f| f.data))
+    }
+
+    /// `frame`'s positions and channels under the scene's names.
+    pub fn particles(&self, frame: Frame) -> Particles {
+        particles(frame, Some(&self.scene))
+    }
+}
+
+/// `frame`'s positions and channels, each channel under its name in `scene`'s channel
+/// list, else the channel table's name (`channel <tag>` for a per-scene tag it lacks);
+/// the set under its name in `scene`, else `particles` for set 0 and `set <index>` otherwise.
+pub fn particles(frame: Frame, scene: Option<&SceneInfo>) -> Particles {
+    let name = |kind: ChannelKind| {
+        let named = scene.and_then(|s| s.channels.iter().find(|c| c.tag == u32::from(kind.tag())));
+        named.map_or_else(|| kind.name(), |c| c.name.clone())
+    };
+    let index = u32::from(frame.header.set);
+    let set = scene.and_then(|s| s.sets.iter().find(|x| x.index == index)).map(|x| x.name.clone());
+    Particles {
+        set: set.unwrap_or_else(|| if index == 0 { "particles".into() } else { format!("set {index}") }),
+        positions: frame.positions,
+        channels: frame.channels.into_iter().map(|(kind, values)| (name(kind), values)).collect(),
     }
 }

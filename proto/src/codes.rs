@@ -1,13 +1,14 @@
 //! Channels as quantised codes: the form both modes predict and store, and the form
 //! an identity-ordered encoder and decoder keep of the last frame to predict from.
 
+use crate::channels::ChannelKind;
 use crate::error::EncodeError;
-use crate::frame::{Frame, FrameInput};
-use crate::header::{ChannelInfo, ChannelKind, ComponentRange};
+use crate::frame::{FrameInput, Values, ValuesRef};
+use crate::header::{ChannelInfo, ComponentRange};
 use crate::quantize::{Quantizer, finite_range};
 
-/// The raw u8 quantisation of the phase channel: codes are the values.
-pub(crate) const PHASE: Quantizer = Quantizer { min: 0.0, max: 255.0, bits: 8 };
+/// The raw u8 quantisation of exact channels: codes are the values.
+pub(crate) const EXACT_U8: Quantizer = Quantizer { min: 0.0, max: 255.0, bits: 8 };
 
 /// One channel's codes, one vector per component, and how they map back to values.
 #[derive(Debug, Clone, PartialEq)]
@@ -27,9 +28,7 @@ impl ChannelCodes {
     pub(crate) fn ranges(&self) -> Vec<ComponentRange> {
         self.quantizers
             .iter()
-            .map(|q| {
-                if self.kind == ChannelKind::Phase { ComponentRange { max_error: 0.0, ..q.range() } } else { q.range() }
-            })
+            .map(|q| if self.kind.exact() { ComponentRange { max_error: 0.0, ..q.range() } } else { q.range() })
             .collect()
     }
 
@@ -63,21 +62,14 @@ fn same_quantizer(a: &Quantizer, b: &Quantizer) -> bool {
     a.bits == b.bits && a.min.to_bits() == b.min.to_bits() && a.max.to_bits() == b.max.to_bits()
 }
 
-/// Bits for each channel other than positions.
-pub(crate) struct ChannelBits {
-    pub(crate) velocity: u8,
-    pub(crate) density: u8,
-    pub(crate) pressure: u8,
-    pub(crate) temperature: u8,
-}
-
-/// Quantises every channel of `input`: positions over `position` (fixed bounds), the other
-/// float channels over their own per-frame ranges, phases as raw codes. `reuse` hands back
-/// code vectors of an earlier frame to fill, so steady streaming does not allocate.
+/// Quantises `input`'s channels: positions over `position` (fixed bounds; grid frames have
+/// none), the other float channels over their own per-frame ranges with `bits(kind)` bits,
+/// exact channels as raw codes. `reuse` hands back code vectors of an earlier frame to fill,
+/// so steady streaming does not allocate.
 pub(crate) fn quantise(
     input: &FrameInput<'_>,
-    position: [Quantizer; 3],
-    bits: &ChannelBits,
+    position: Option<[Quantizer; 3]>,
+    bits: impl Fn(ChannelKind) -> u8,
     reuse: &mut Vec<Vec<u16>>,
 ) -> Result<Vec<ChannelCodes>, EncodeError> {
     let mut fresh = || {
@@ -85,39 +77,34 @@ pub(crate) fn quantise(
         c.clear();
         c
     };
-    let mut out = Vec::with_capacity(ChannelKind::ALL.len());
-    let p = input.positions;
-    let codes =
-        vec![axis::<0>(p, &position, fresh()), axis::<1>(p, &position, fresh()), axis::<2>(p, &position, fresh())];
-    out.push(ChannelCodes { kind: ChannelKind::Position, quantizers: position.to_vec(), codes });
-    if let Some(v) = input.velocities {
-        let (mut quantizers, mut codes) = (Vec::new(), Vec::new());
-        for k in 0..3 {
-            let q = per_frame(ChannelKind::Velocity, bits.velocity, v.iter().map(|x| x[k]))?;
-            let mut c = fresh();
-            q.encode_into(v.iter().map(|x| x[k]), &mut c);
-            quantizers.push(q);
-            codes.push(c);
-        }
-        out.push(ChannelCodes { kind: ChannelKind::Velocity, quantizers, codes });
+    let mut out = Vec::with_capacity(1 + input.channels.len());
+    if let Some(position) = position {
+        let p = input.positions;
+        let codes =
+            vec![axis::<0>(p, &position, fresh()), axis::<1>(p, &position, fresh()), axis::<2>(p, &position, fresh())];
+        out.push(ChannelCodes { kind: ChannelKind::POSITION, quantizers: position.to_vec(), codes });
     }
-    let scalars = [
-        (ChannelKind::Density, input.densities, bits.density),
-        (ChannelKind::Pressure, input.pressures, bits.pressure),
-        (ChannelKind::Temperature, input.temperatures, bits.temperature),
-    ];
-    for (kind, values, b) in scalars {
-        if let Some(v) = values {
-            let q = per_frame(kind, b, v.iter().copied())?;
-            let mut c = fresh();
-            q.encode_into(v.iter().copied(), &mut c);
-            out.push(ChannelCodes { kind, quantizers: vec![q], codes: vec![c] });
+    for &(kind, values) in &input.channels {
+        match values {
+            ValuesRef::Exact(v) => {
+                let mut c = fresh();
+                c.extend(v.iter().map(|&x| u16::from(x)));
+                out.push(ChannelCodes { kind, quantizers: vec![EXACT_U8], codes: vec![c] });
+            }
+            ValuesRef::Float { components, data } => {
+                let n = usize::from(components);
+                let (mut quantizers, mut codes) = (Vec::with_capacity(n), Vec::with_capacity(n));
+                for k in 0..n {
+                    let component = || data.iter().skip(k).step_by(n).copied();
+                    let q = per_frame(kind, bits(kind), component())?;
+                    let mut c = fresh();
+                    q.encode_into(component(), &mut c);
+                    quantizers.push(q);
+                    codes.push(c);
+                }
+                out.push(ChannelCodes { kind, quantizers, codes });
+            }
         }
-    }
-    if let Some(v) = input.phases {
-        let mut c = fresh();
-        c.extend(v.iter().map(|&x| u16::from(x)));
-        out.push(ChannelCodes { kind: ChannelKind::Phase, quantizers: vec![PHASE], codes: vec![c] });
     }
     Ok(out)
 }
@@ -137,36 +124,34 @@ fn per_frame(kind: ChannelKind, bits: u8, values: impl Iterator<Item = f32>) -> 
     if q.step().is_finite() { Ok(q) } else { Err(EncodeError::RangeOverflow { channel: kind }) }
 }
 
-/// De-quantises `codes` (one vector per component, all of length `n`) into the frame's field
-/// for `kind`.
-pub(crate) fn store(frame: &mut Frame, kind: ChannelKind, quantizers: &[Quantizer], codes: &[Vec<u16>]) {
-    let scalar = || {
-        let (q, c) = (quantizers[0], &codes[0]);
-        let step = q.step();
-        c.iter().map(|&x| q.min + f32::from(x) * step).collect::<Vec<f32>>()
-    };
-    let vector = || {
-        let steps: Vec<f32> = quantizers.iter().map(Quantizer::step).collect();
-        let mins: Vec<f32> = quantizers.iter().map(|q| q.min).collect();
-        let (x, y, z) = (&codes[0], &codes[1], &codes[2]);
-        x.iter()
-            .zip(y)
-            .zip(z)
-            .map(|((&a, &b), &c)| {
-                [
-                    mins[0] + f32::from(a) * steps[0],
-                    mins[1] + f32::from(b) * steps[1],
-                    mins[2] + f32::from(c) * steps[2],
-                ]
-            })
-            .collect::<Vec<[f32; 3]>>()
-    };
-    match kind {
-        ChannelKind::Position => frame.positions = vector(),
-        ChannelKind::Velocity => frame.velocities = Some(vector()),
-        ChannelKind::Density => frame.densities = Some(scalar()),
-        ChannelKind::Pressure => frame.pressures = Some(scalar()),
-        ChannelKind::Temperature => frame.temperatures = Some(scalar()),
-        ChannelKind::Phase => frame.phases = Some(codes[0].iter().map(|&c| c as u8).collect()),
+/// De-quantises the codes of a position channel.
+pub(crate) fn positions(quantizers: &[Quantizer], codes: &[Vec<u16>]) -> Vec<[f32; 3]> {
+    let steps: Vec<f32> = quantizers.iter().map(Quantizer::step).collect();
+    let mins: Vec<f32> = quantizers.iter().map(|q| q.min).collect();
+    let (x, y, z) = (&codes[0], &codes[1], &codes[2]);
+    x.iter()
+        .zip(y)
+        .zip(z)
+        .map(|((&a, &b), &c)| {
+            [mins[0] + f32::from(a) * steps[0], mins[1] + f32::from(b) * steps[1], mins[2] + f32::from(c) * steps[2]]
+        })
+        .collect()
+}
+
+/// De-quantises `codes` (one vector per component, all of length `n`) of a channel of
+/// `kind` into its values, components interleaved.
+pub(crate) fn values(kind: ChannelKind, quantizers: &[Quantizer], codes: &[Vec<u16>]) -> Values {
+    if kind.exact() {
+        return Values::Exact(codes[0].iter().map(|&c| c as u8).collect());
     }
+    let components = quantizers.len();
+    let n = codes.first().map_or(0, Vec::len);
+    let mut data = vec![0.0f32; components * n];
+    for (k, (q, c)) in quantizers.iter().zip(codes).enumerate() {
+        let (min, step) = (q.min, q.step());
+        for (slot, &code) in data.iter_mut().skip(k).step_by(components).zip(c) {
+            *slot = min + f32::from(code) * step;
+        }
+    }
+    Values::Float { components: components as u8, data }
 }

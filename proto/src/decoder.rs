@@ -1,10 +1,11 @@
 //! The decoder: checks a frame completely before trusting it, and keeps the last
 //! identity-ordered frame to apply delta frames to.
 
+use crate::channels::ChannelKind;
 use crate::codes::{self, ChannelCodes};
 use crate::error::DecodeError;
-use crate::frame::Frame;
-use crate::header::{ChannelKind, FIXED_HEADER_LEN, Header, MAGIC, Mode, Predictor, VERSION};
+use crate::frame::{Frame, GridInfo};
+use crate::header::{FIXED_HEADER_LEN, Header, MAGIC, MIN_VERSION, Mode, Predictor, VERSION};
 use crate::predict;
 use crate::reader::Reader;
 use crate::unordered;
@@ -91,31 +92,37 @@ impl Decoder {
         };
         let mut r = Reader::new(frame, "channel payloads");
         r.skip(header.encoded_len())?;
-        let mut out = Frame {
-            header: header.clone(),
-            positions: Vec::new(),
-            velocities: None,
-            densities: None,
-            pressures: None,
-            temperatures: None,
-            phases: None,
-        };
+        let mut out = Frame { header: header.clone(), positions: Vec::new(), grid: None, channels: Vec::new() };
         let mut kept = Vec::new();
         for (i, info) in header.channels.iter().enumerate() {
             let payload = r.take(info.payload_len as usize)?;
-            let Some(kind) = info.kind() else { continue };
+            let kind = info.kind();
             let mut p = Reader::new(payload, "channel payload");
             let quantizers = ChannelCodes::quantizers_of(info);
             let in_channel = |e: DecodeError| match e {
                 DecodeError::Malformed { what } => DecodeError::malformed(format!("channel {i} ({kind}): {what}")),
                 other => other,
             };
-            if info.predictor == Predictor::Morton {
+            if kind == ChannelKind::GRID {
+                let dims = [p.u32()?, p.u32()?, p.u32()?];
+                let r = &info.ranges;
+                let grid = GridInfo {
+                    origin: [r[0].min, r[1].min, r[2].min],
+                    size: [r[0].max - r[0].min, r[1].max - r[1].min, r[2].max - r[2].min],
+                    dims,
+                };
+                if grid.cells() != n as u64 {
+                    return Err(in_channel(DecodeError::malformed(format!(
+                        "cell counts {dims:?} do not make the frame's {n} cells"
+                    ))));
+                }
+                out.grid = Some(grid);
+            } else if info.predictor == Predictor::Morton {
                 out.positions =
                     unordered::read_positions(&mut p, n, &quantizers, &mut self.keys).map_err(in_channel)?;
             } else {
                 let prev = base.and_then(|b| b.channels.iter().find(|c| c.kind == kind));
-                let before = base.and_then(|b| b.before.as_ref()).filter(|_| kind == ChannelKind::Position);
+                let before = base.and_then(|b| b.before.as_ref()).filter(|_| kind == ChannelKind::POSITION);
                 let temporal = matches!(info.predictor, Predictor::Base | Predictor::Linear);
                 if temporal && !prev.is_some_and(|c| c.same_quantisation(info)) {
                     return Err(DecodeError::malformed(format!(
@@ -136,10 +143,14 @@ impl Decoder {
                     self.spare_codes.extend(codes);
                     return Err(in_channel(e));
                 }
-                codes::store(&mut out, kind, &quantizers, &codes);
+                if kind == ChannelKind::POSITION {
+                    out.positions = codes::positions(&quantizers, &codes);
+                } else {
+                    out.channels.push((kind, codes::values(kind, &quantizers, &codes)));
+                }
                 match header.mode {
                     Mode::IdentityOrdered => kept.push(ChannelCodes { kind, quantizers, codes }),
-                    Mode::Unordered => self.spare_codes.extend(codes),
+                    Mode::Unordered | Mode::Grid => self.spare_codes.extend(codes),
                 }
             }
             if p.remaining() != 0 {
@@ -180,8 +191,8 @@ pub fn read_header(bytes: &[u8], limits: &Limits) -> Result<Header, DecodeError>
     }
     if available >= 6 {
         let found = u16::from_le_bytes([bytes[4], bytes[5]]);
-        if found != VERSION {
-            return Err(DecodeError::UnsupportedVersion { found, supported: VERSION });
+        if !(MIN_VERSION..=VERSION).contains(&found) {
+            return Err(DecodeError::UnsupportedVersion { found, oldest: MIN_VERSION, newest: VERSION });
         }
     }
     if available < FIXED_HEADER_LEN {
@@ -209,14 +220,18 @@ pub fn read_header(bytes: &[u8], limits: &Limits) -> Result<Header, DecodeError>
     Ok(header)
 }
 
-/// Checks how the header's fields fit together: positions first, known kinds with their
-/// component counts and at most once, predictors allowed by the mode, and lengths that
+/// Checks how the header's fields fit together: positions (or, in a grid frame, the grid)
+/// first and once, every other channel at most once and with the table's component
+/// count where the table defines it, predictors allowed by the mode, and lengths that
 /// add up to the frame length.
 fn check(h: &Header) -> Result<(), DecodeError> {
     let bad = |what: String| Err(DecodeError::malformed(what));
     let delta = h.mode == Mode::IdentityOrdered && !h.keyframe;
-    if h.mode == Mode::Unordered && !h.keyframe {
-        return bad("unordered frames are all keyframes".into());
+    if h.mode != Mode::IdentityOrdered && !h.keyframe {
+        return bad("unordered and grid frames are all keyframes".into());
+    }
+    if h.mode == Mode::Grid && h.version < 4 {
+        return bad(format!("grid frames need format version 4, not {}", h.version));
     }
     if !delta && h.base_sequence != h.sequence {
         return bad(format!("keyframe {} names base frame {}", h.sequence, h.base_sequence));
@@ -224,29 +239,34 @@ fn check(h: &Header) -> Result<(), DecodeError> {
     if delta && h.base_sequence == h.sequence {
         return bad(format!("delta frame {} predicts from itself", h.sequence));
     }
-    let mut seen = [false; ChannelKind::ALL.len()];
+    let first = if h.mode == Mode::Grid { ChannelKind::GRID } else { ChannelKind::POSITION };
     let mut total = h.encoded_len() as u64;
     for (i, c) in h.channels.iter().enumerate() {
         total += u64::from(c.payload_len);
-        let Some(kind) = c.kind() else {
-            if i == 0 {
-                return bad("the first channel is not positions".into());
-            }
-            continue;
-        };
-        if (i == 0) != (kind == ChannelKind::Position) {
-            return bad(format!("channel {i} is {kind}; positions come first and once"));
+        let kind = c.kind();
+        if (i == 0) != (kind == first) || (i > 0 && (kind == ChannelKind::POSITION || kind == ChannelKind::GRID)) {
+            return bad(format!("channel {i} is {kind}; {first} comes first and once"));
         }
-        if std::mem::replace(&mut seen[usize::from(kind.tag())], true) {
+        if h.channels[..i].iter().any(|o| o.tag == c.tag) {
             return bad(format!("channel {i}: a second {kind} channel"));
         }
-        if c.components != kind.components() {
-            return bad(format!("channel {i}: {kind} has {} components, not {}", kind.components(), c.components));
+        if let Some(def) = kind.def()
+            && c.components != def.components
+        {
+            return bad(format!("channel {i}: {kind} has {} components, not {}", def.components, c.components));
+        }
+        if kind == ChannelKind::GRID && (c.payload_len, c.bits) != (12, 16) {
+            return bad(format!(
+                "channel {i}: the grid has 16 bits and 12 bytes, not {} and {}",
+                c.bits, c.payload_len
+            ));
         }
         let allowed: &[Predictor] = match (h.mode, kind, delta) {
-            (Mode::Unordered, ChannelKind::Position, _) => &[Predictor::Morton],
+            (Mode::Grid, ChannelKind::GRID, _) => &[Predictor::None],
+            (Mode::Grid, _, _) => &[Predictor::None, Predictor::Previous],
+            (Mode::Unordered, ChannelKind::POSITION, _) => &[Predictor::Morton],
             (Mode::Unordered, _, _) => &[Predictor::None, Predictor::Previous],
-            (Mode::IdentityOrdered, ChannelKind::Position, true) => &[Predictor::Base, Predictor::Linear],
+            (Mode::IdentityOrdered, ChannelKind::POSITION, true) => &[Predictor::Base, Predictor::Linear],
             (Mode::IdentityOrdered, _, true) => &[Predictor::None, Predictor::Previous, Predictor::Base],
             (Mode::IdentityOrdered, _, false) => &[Predictor::None, Predictor::Previous],
         };

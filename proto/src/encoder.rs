@@ -1,12 +1,16 @@
 //! The encoder: turns particle data into frames, one stream per encoder.
 
-use crate::codes::{self, ChannelBits, ChannelCodes};
+use crate::channels::ChannelKind;
+use crate::codes::{self, ChannelCodes};
 use crate::error::EncodeError;
-use crate::frame::FrameInput;
-use crate::header::{ChannelInfo, ChannelKind, FIXED_HEADER_LEN, Header, Mode, Predictor, VERSION};
+use crate::frame::{FrameInput, GridInfo, ValuesRef};
+use crate::header::{ChannelInfo, ComponentRange, FIXED_HEADER_LEN, Header, Mode, Predictor, VERSION};
 use crate::predict::{self, Reference};
 use crate::quantize::Quantizer;
 use crate::unordered;
+
+/// Bits of a float channel the table does not define.
+const DEFAULT_BITS: u8 = 10;
 
 /// The box positions are quantised over (m). Particles outside it are clamped to its faces.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,33 +41,27 @@ pub struct EncoderConfig {
     /// Bits per position axis, 8 to 16. All three axes share one step, the longest axis's
     /// span over `2^bits - 1`: at 16 bits over a 2 m box the error is 15 µm in every direction.
     pub position_bits: u8,
-    /// Bits per velocity component, over the frame's own range (1 to 16).
-    pub velocity_bits: u8,
-    /// Bits of density, over the frame's own range (1 to 16).
-    pub density_bits: u8,
-    /// Bits of pressure, over the frame's own range (1 to 16).
-    pub pressure_bits: u8,
-    /// Bits of temperature, over the frame's own range (1 to 16).
-    pub temperature_bits: u8,
+    /// Bits per component of other float channels, over the frame's own range (1 to 16),
+    /// where they differ from the channel table's default (10 for channels it lacks).
+    pub channel_bits: Vec<(ChannelKind, u8)>,
     /// Identity-ordered mode: a keyframe at least every this many frames (1 = all keyframes),
     /// so a client that joins or loses a frame waits at most this long.
     pub keyframe_interval: u32,
 }
 
 impl EncoderConfig {
-    /// 16-bit positions, 10-bit other channels (0.05 % of the frame's range, finer than a
-    /// colour map shows), a keyframe every 30 frames (half a second at 60 frames/s).
+    /// 16-bit positions, the table's bits for other channels (10 bits, 0.05 % of the
+    /// frame's range, finer than a colour map shows), a keyframe every 30 frames (half a
+    /// second at 60 frames/s).
     pub fn new(mode: Mode, scene_id: u64, bounds: Bounds) -> Self {
-        Self {
-            mode,
-            scene_id,
-            bounds,
-            position_bits: 16,
-            velocity_bits: 10,
-            density_bits: 10,
-            pressure_bits: 10,
-            temperature_bits: 10,
-            keyframe_interval: 30,
+        Self { mode, scene_id, bounds, position_bits: 16, channel_bits: Vec::new(), keyframe_interval: 30 }
+    }
+
+    /// Bits per component of channel `kind`.
+    pub fn bits(&self, kind: ChannelKind) -> u8 {
+        match self.channel_bits.iter().find(|(k, _)| *k == kind) {
+            Some(&(_, b)) => b,
+            None => kind.def().map_or(DEFAULT_BITS, |d| d.bits),
         }
     }
 
@@ -72,14 +70,9 @@ impl EncoderConfig {
         if !(8..=16).contains(&self.position_bits) {
             return bad(format!("position_bits = {} (8 to 16 allowed)", self.position_bits));
         }
-        for (name, b) in [
-            ("velocity_bits", self.velocity_bits),
-            ("density_bits", self.density_bits),
-            ("pressure_bits", self.pressure_bits),
-            ("temperature_bits", self.temperature_bits),
-        ] {
+        for &(kind, b) in &self.channel_bits {
             if !(1..=16).contains(&b) {
-                return bad(format!("{name} = {b} (1 to 16 allowed)"));
+                return bad(format!("{kind} bits = {b} (1 to 16 allowed)"));
             }
         }
         let Bounds { min, max } = self.bounds;
@@ -185,17 +178,11 @@ impl Encoder {
         input: &FrameInput<'_>,
         out: &mut Vec<u8>,
     ) -> Result<(), EncodeError> {
-        let n = check_input(input)?;
+        let n = check_input(input, self.config.mode)?;
         if !time.is_finite() {
             return Err(EncodeError::NonFiniteTime(time));
         }
         let c = &self.config;
-        let bits = ChannelBits {
-            velocity: c.velocity_bits,
-            density: c.density_bits,
-            pressure: c.pressure_bits,
-            temperature: c.temperature_bits,
-        };
         let base = match self.base.take() {
             Some(b) if !self.force_keyframe && self.since_keyframe < c.keyframe_interval && b.particles() == n => {
                 Some(b)
@@ -206,7 +193,8 @@ impl Encoder {
             }
             None => None,
         };
-        let channels = codes::quantise(input, c.position_quantizers(), &bits, &mut self.spare_codes)?;
+        let position = (c.mode != Mode::Grid).then(|| c.position_quantizers());
+        let channels = codes::quantise(input, position, |k| c.bits(k), &mut self.spare_codes)?;
         let sequence = self.next_sequence;
         let keyframe = base.is_none();
 
@@ -218,20 +206,29 @@ impl Encoder {
             frame_len: 0,
             particle_count: n as u32,
             scene_id: self.config.scene_id,
+            set: input.set,
             sequence,
             base_sequence: base.as_ref().map_or(sequence, |b| b.sequence),
             step,
             time,
             channels: Vec::with_capacity(channels.len()),
         };
-        let header_len = FIXED_HEADER_LEN + channels.iter().map(|ch| 8 + 12 * ch.codes.len()).sum::<usize>();
+        let grid_entry = input.grid.map_or(0, |_| 8 + 12 * 3);
+        let header_len =
+            FIXED_HEADER_LEN + grid_entry + channels.iter().map(|ch| 8 + 12 * ch.codes.len()).sum::<usize>();
         out.resize(header_len, 0);
+        if let Some(grid) = input.grid {
+            header.channels.push(write_grid(out, &grid));
+        }
         // Positions of a delta frame extrapolate from the last two frames when the decoder
         // holds both, that is when the base frame was itself a delta frame.
         let linear = base.as_ref().and_then(|b| b.before.as_ref().map(|before| (&b.channels[0], before)));
         for (i, ch) in channels.iter().enumerate() {
             let at = out.len();
             let predictor = match (self.config.mode, i, linear) {
+                (Mode::Grid, _, _) => {
+                    predict::write(out, &ch.codes, ch.bits(), |_| Reference::Previous(None), &mut self.predict)
+                }
                 (Mode::Unordered, 0, _) => {
                     unordered::write_positions(out, ch, channels.len() > 1, &mut self.unordered);
                     Predictor::Morton
@@ -294,28 +291,82 @@ impl Encoder {
                 });
                 self.base = Some(Base { sequence, channels, before });
             }
-            Mode::Unordered => self.spare_codes.extend(channels.into_iter().flat_map(|ch| ch.codes)),
+            Mode::Unordered | Mode::Grid => self.spare_codes.extend(channels.into_iter().flat_map(|ch| ch.codes)),
         }
         Ok(())
     }
 }
 
-/// Checks that every channel has one value per position; returns the particle count.
-fn check_input(input: &FrameInput<'_>) -> Result<usize, EncodeError> {
-    let n = input.positions.len();
+/// Appends the grid channel's payload (the cell counts) and returns its table entry.
+fn write_grid(out: &mut Vec<u8>, grid: &GridInfo) -> ChannelInfo {
+    for d in grid.dims {
+        out.extend_from_slice(&d.to_le_bytes());
+    }
+    let ranges = (0..3)
+        .map(|k| ComponentRange { min: grid.origin[k], max: grid.origin[k] + grid.size[k], max_error: 0.0 })
+        .collect();
+    ChannelInfo {
+        tag: ChannelKind::GRID.tag(),
+        components: 3,
+        bits: 16,
+        predictor: Predictor::None,
+        payload_len: 12,
+        ranges,
+    }
+}
+
+/// Checks the input against the mode: positions or a grid, every channel once, with
+/// the table's component count and form, one value per particle or cell. Returns the
+/// particle (or cell) count.
+fn check_input(input: &FrameInput<'_>, mode: Mode) -> Result<usize, EncodeError> {
+    let bad = |what: String| Err(EncodeError::InvalidInput(what));
+    let n = match (mode, &input.grid) {
+        (Mode::Grid, Some(g)) => {
+            if !input.positions.is_empty() {
+                return bad("a grid frame has no positions".into());
+            }
+            if g.dims.contains(&0) || (0..3).any(|k| !(g.origin[k].is_finite() && g.size[k].is_finite())) {
+                return bad(format!("grid {g:?}: dims at least 1, finite origin and size"));
+            }
+            usize::try_from(g.cells()).map_err(|_| EncodeError::TooManyParticles { count: usize::MAX })?
+        }
+        (Mode::Grid, None) => return bad("a grid frame needs a grid".into()),
+        (_, Some(_)) => return bad("only grid frames carry a grid".into()),
+        (_, None) => input.positions.len(),
+    };
     if u32::try_from(n).is_err() {
         return Err(EncodeError::TooManyParticles { count: n });
     }
-    let lengths = [
-        (ChannelKind::Velocity, input.velocities.map(<[_]>::len)),
-        (ChannelKind::Density, input.densities.map(<[_]>::len)),
-        (ChannelKind::Pressure, input.pressures.map(<[_]>::len)),
-        (ChannelKind::Temperature, input.temperatures.map(<[_]>::len)),
-        (ChannelKind::Phase, input.phases.map(<[_]>::len)),
-    ];
-    for (channel, len) in lengths {
-        if let Some(got) = len.filter(|&l| l != n) {
-            return Err(EncodeError::LengthMismatch { channel, expected: n, got });
+    if 1 + input.channels.len() > crate::header::MAX_CHANNELS {
+        return bad(format!(
+            "{} channels, at most {} besides the first",
+            input.channels.len(),
+            crate::header::MAX_CHANNELS - 1
+        ));
+    }
+    for (i, &(kind, values)) in input.channels.iter().enumerate() {
+        if input.channels[..i].iter().any(|(k, _)| *k == kind) {
+            return bad(format!("{kind} is given twice"));
+        }
+        let (exact, components) = match (kind.def(), values) {
+            (Some(d), _) if kind == ChannelKind::POSITION || kind == ChannelKind::GRID => {
+                return bad(format!("{} is not a channel to give", d.name));
+            }
+            (Some(d), _) => (d.exact, d.components),
+            (None, _) if !kind.is_dynamic() => return bad(format!("tag {} is not in the channel table", kind.tag())),
+            (None, v) => (false, v.components()),
+        };
+        match values {
+            ValuesRef::Exact(_) if !exact => return bad(format!("{kind} takes floats, not raw u8 values")),
+            ValuesRef::Float { .. } if exact => return bad(format!("{kind} takes raw u8 values")),
+            _ => {}
+        }
+        if values.components() != components || !(1..=4).contains(&components) {
+            return bad(format!("{kind} has {components} components, given {}", values.components()));
+        }
+        match values.particles() {
+            Some(got) if got == n => {}
+            got => return Err(EncodeError::LengthMismatch { channel: kind, expected: n, got: got.unwrap_or(0) }),
         }
     }
     Ok(n)

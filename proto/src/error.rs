@@ -1,6 +1,6 @@
 //! Errors of encoding and decoding frames.
 
-use crate::header::ChannelKind;
+use crate::channels::ChannelKind;
 
 /// Why a frame could not be decoded. The decoder returns one of these for any input it
 /// cannot use; it never panics.
@@ -21,12 +21,14 @@ pub enum DecodeError {
         what: String,
     },
     /// The frame uses a format version this decoder does not read.
-    #[error("unsupported frame format version {found} (this decoder reads version {supported})")]
+    #[error("unsupported frame format version {found} (this decoder reads versions {oldest} to {newest})")]
     UnsupportedVersion {
         /// Version in the frame.
         found: u16,
-        /// Version this decoder reads.
-        supported: u16,
+        /// Oldest version this decoder reads.
+        oldest: u16,
+        /// Newest version this decoder reads.
+        newest: u16,
     },
     /// A delta frame predicts from a frame this decoder does not hold; decode a keyframe first.
     #[error("frame {sequence} predicts from frame {base}, but the decoder holds {held:?}: a keyframe is needed")]
@@ -60,7 +62,7 @@ impl DecodeError {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EncodeError {
     /// A channel has a different number of particles than the positions.
-    #[error("{channel} has {got} values but there are {expected} positions")]
+    #[error("{channel} has {got} values but there are {expected} particles")]
     LengthMismatch {
         /// The channel.
         channel: ChannelKind,
@@ -90,4 +92,7 @@ pub enum EncodeError {
     /// The encoder configuration is invalid.
     #[error("invalid encoder configuration: {0}")]
     InvalidConfig(String),
+    /// The input does not fit the channel table or the encoder's mode.
+    #[error("invalid frame input: {0}")]
+    InvalidInput(String),
 }

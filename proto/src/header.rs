@@ -21,13 +21,14 @@
 //! | 40 | 8 | u64 | simulation step |
 //! | 48 | 8 | f64 | simulated time (s) |
 //! | 56 | 1 | u8 | channel count (1 to 16) |
-//! | 57 | 7 | | reserved, zero |
+//! | 57 | 1 | u8 | particle set: which of the scene's sets (or grids) the frame carries (version 4; zero in version 3) |
+//! | 58 | 6 | | reserved, zero |
 //!
 //! Channel-table entry (`8 + 12 c` bytes for `c` components):
 //!
 //! | offset | size | type | field |
 //! |---:|---:|---|---|
-//! | 0 | 1 | u8 | kind tag ([`ChannelKind`]); a decoder skips kinds it does not know |
+//! | 0 | 1 | u8 | kind tag ([`ChannelKind`], `proto/channels.json`); a tag the decoder's table lacks decodes as floats |
 //! | 1 | 1 | u8 | component count `c` (1 to 4) |
 //! | 2 | 1 | u8 | quantisation bits `b` (1 to 16) |
 //! | 3 | 1 | u8 | predictor ([`Predictor`]) |
@@ -36,16 +37,22 @@
 //! | 12 + 12 k | 4 | f32 | component k: range maximum |
 //! | 16 + 12 k | 4 | f32 | component k: maximum absolute error, half a quantisation step |
 //!
-//! The first channel is always positions. How payloads are laid out is in [`crate::stream`],
+//! The first channel is positions, or in a grid frame the grid (tag 6: its ranges are the grid's
+//! extent per axis, its payload the three u32 cell counts). How payloads are laid out is in [`crate::stream`],
 //! how values are quantised in [`crate::quantize`], and the predictors in [`Predictor`].
 
+use crate::channels::ChannelKind;
 use crate::error::DecodeError;
+use crate::quantize::RangeForm;
 use crate::reader::Reader;
 
 /// Identifies a Floe frame: the first four bytes.
 pub const MAGIC: [u8; 4] = *b"FLOF";
-/// The format version this crate writes and reads.
-pub const VERSION: u16 = 3;
+/// The format version this crate writes. Version 4 added the particle set byte, grid frames
+/// and per-scene channel tags; version 3 frames (set 0, particle modes only) still decode.
+pub const VERSION: u16 = 4;
+/// The oldest format version this crate reads.
+pub const MIN_VERSION: u16 = 3;
 /// Bytes of the fixed header, before the channel table.
 pub const FIXED_HEADER_LEN: usize = 64;
 /// Most channels a frame may declare, so a header's size stays bounded.
@@ -62,6 +69,9 @@ pub enum Mode {
     Unordered = 0,
     /// Index `i` is particle `i` in every frame; delta frames predict from the previous frame.
     IdentityOrdered = 1,
+    /// A field on a regular grid (version 4): the first channel describes the grid, the
+    /// others hold one value per cell, x fastest; every frame stands alone.
+    Grid = 2,
 }
 
 impl Mode {
@@ -69,76 +79,9 @@ impl Mode {
         match tag {
             0 => Some(Mode::Unordered),
             1 => Some(Mode::IdentityOrdered),
+            2 => Some(Mode::Grid),
             _ => None,
         }
-    }
-}
-
-/// What a channel holds. Tags are fixed forever; a new kind takes the next free tag,
-/// and decoders that predate it skip its channel.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[repr(u8)]
-#[non_exhaustive]
-pub enum ChannelKind {
-    /// Position (m), 3 components, quantised over the scene bounds.
-    Position = 0,
-    /// Velocity (m/s), 3 components.
-    Velocity = 1,
-    /// Density (kg/m^3).
-    Density = 2,
-    /// Pressure (Pa).
-    Pressure = 3,
-    /// Temperature (K).
-    Temperature = 4,
-    /// Phase or material index, a raw u8 (range 0..255, 8 bits, exact).
-    Phase = 5,
-}
-
-impl ChannelKind {
-    /// Every kind this crate knows, in tag order.
-    pub const ALL: [ChannelKind; 6] = [
-        ChannelKind::Position,
-        ChannelKind::Velocity,
-        ChannelKind::Density,
-        ChannelKind::Pressure,
-        ChannelKind::Temperature,
-        ChannelKind::Phase,
-    ];
-
-    /// The kind with this tag, if this crate knows it.
-    pub fn from_tag(tag: u8) -> Option<Self> {
-        Self::ALL.get(usize::from(tag)).copied()
-    }
-
-    /// The numeric tag written in the channel table.
-    pub fn tag(self) -> u8 {
-        self as u8
-    }
-
-    /// Components per particle.
-    pub fn components(self) -> u8 {
-        match self {
-            ChannelKind::Position | ChannelKind::Velocity => 3,
-            _ => 1,
-        }
-    }
-
-    /// Lower-case name, as in the golden sidecars.
-    pub fn name(self) -> &'static str {
-        match self {
-            ChannelKind::Position => "position",
-            ChannelKind::Velocity => "velocity",
-            ChannelKind::Density => "density",
-            ChannelKind::Pressure => "pressure",
-            ChannelKind::Temperature => "temperature",
-            ChannelKind::Phase => "phase",
-        }
-    }
-}
-
-impl std::fmt::Display for ChannelKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
     }
 }
 
@@ -218,8 +161,8 @@ pub struct ChannelInfo {
 
 impl ChannelInfo {
     /// The kind, if this crate knows the tag.
-    pub fn kind(&self) -> Option<ChannelKind> {
-        ChannelKind::from_tag(self.tag)
+    pub fn kind(&self) -> ChannelKind {
+        ChannelKind(self.tag)
     }
 
     /// Bytes of this entry in the channel table.
@@ -243,6 +186,8 @@ pub struct Header {
     pub particle_count: u32,
     /// Which scene the frame belongs to.
     pub scene_id: u64,
+    /// Which of the scene's particle sets (or grids) the frame carries (0 in version 3).
+    pub set: u8,
     /// Position of the frame in its encoder's stream.
     pub sequence: u64,
     /// The frame a delta frame predicts from (equal to `sequence` otherwise).
@@ -270,7 +215,8 @@ impl Header {
         out.extend_from_slice(&self.time.to_le_bytes());
         // The encoder never builds more than MAX_CHANNELS channels.
         out.push(self.channels.len() as u8);
-        out.extend_from_slice(&[0; 7]);
+        out.push(self.set);
+        out.extend_from_slice(&[0; 6]);
         for c in &self.channels {
             out.extend_from_slice(&[c.tag, c.components, c.bits, c.predictor as u8]);
             out.extend_from_slice(&c.payload_len.to_le_bytes());
@@ -312,7 +258,8 @@ impl Header {
         if !(1..=MAX_CHANNELS).contains(&count) {
             return Err(DecodeError::malformed(format!("{count} channels (1 to {MAX_CHANNELS} allowed)")));
         }
-        if r.take(7)?.iter().any(|&b| b != 0) {
+        let set = r.u8()?;
+        if r.take(6)?.iter().any(|&b| b != 0) || (version < 4 && set != 0) {
             return Err(DecodeError::malformed("reserved header bytes are not zero"));
         }
         let mut channels = Vec::with_capacity(count);
@@ -326,6 +273,7 @@ impl Header {
             frame_len,
             particle_count,
             scene_id,
+            set,
             sequence,
             base_sequence,
             step,
@@ -350,8 +298,12 @@ fn read_channel(r: &mut Reader<'_>, index: usize) -> Result<ChannelInfo, DecodeE
     let mut ranges = Vec::with_capacity(usize::from(components));
     for k in 0..components {
         let range = ComponentRange { min: r.f32()?, max: r.f32()?, max_error: r.f32()? };
-        crate::quantize::check_range(&range, bits, tag == ChannelKind::Phase.tag())
-            .map_err(|what| bad(format!("component {k}: {what}")))?;
+        let form = match ChannelKind(tag) {
+            ChannelKind::GRID => RangeForm::Extent,
+            k if k.exact() => RangeForm::ExactU8,
+            _ => RangeForm::Quantised,
+        };
+        crate::quantize::check_range(&range, bits, form).map_err(|what| bad(format!("component {k}: {what}")))?;
         ranges.push(range);
     }
     Ok(ChannelInfo { tag, components, bits, predictor, payload_len, ranges })

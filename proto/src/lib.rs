@@ -41,13 +41,17 @@
 //! ```
 
 mod bits;
+pub mod channels;
 mod codes;
 mod decoder;
 mod encoder;
 mod error;
+pub mod export;
 mod frame;
 pub mod header;
 mod morton;
+mod particles;
+#[cfg(feature = "grpc")]
 pub mod pb;
 mod predict;
 pub mod quantize;
@@ -56,8 +60,10 @@ pub mod stream;
 mod unordered;
 mod zigzag;
 
+pub use channels::{CHANNELS, ChannelDef, ChannelKind};
 pub use decoder::{Decoder, Limits, read_header};
 pub use encoder::{Bounds, Encoder, EncoderConfig};
 pub use error::{DecodeError, EncodeError};
-pub use frame::{Frame, FrameInput};
-pub use header::{ChannelInfo, ChannelKind, ComponentRange, Header, Mode, Predictor};
+pub use frame::{Frame, FrameInput, GridInfo, Values, ValuesRef};
+pub use header::{ChannelInfo, ComponentRange, Header, Mode, Predictor};
+pub use particles::Particles;

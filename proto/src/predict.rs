@@ -10,7 +10,7 @@ use crate::zigzag::{apply_residual, zigzag_residual};
 #[derive(Debug, Default)]
 pub(crate) struct Scratch {
     /// Residuals of each component.
-    residuals: [Vec<u16>; 3],
+    residuals: [Vec<u16>; 4],
     /// The second and third components' streams while they are written.
     streams: [Vec<u8>; 2],
 }
@@ -49,9 +49,10 @@ const GAIN_ONE: i16 = 1 << GAIN_BITS;
 /// thousands of particles in a large frame still pin it to well under 1 %.
 const FIT_STRIDE: usize = 4;
 
-/// Appends the streams of a channel's components, `codes` (1 or 3 of them, `bits` bits
-/// each), component `k` predicted from `reference(k)`; returns the predictor. With
-/// [`Reference::Linear`] the payload starts with each component's gain (i16).
+/// Appends the streams of a channel's components, `codes` (1 to 4 of them, `bits` bits
+/// each), component `k` predicted from `reference(k)`; returns the predictor. Three
+/// components are written side by side ([`stream::write_each`]), any other count one stream
+/// after another. With [`Reference::Linear`] the payload starts with each component's gain (i16).
 pub(crate) fn write<'a>(
     out: &mut Vec<u8>,
     codes: &[Vec<u16>],
@@ -156,7 +157,7 @@ fn extrapolate(base: u16, before: u16, gain: i16) -> u16 {
 }
 
 /// Reads the streams of a channel's components, `n` codes of `bits` bits each, predicted by
-/// `predictor`, into `codes` (one vector per component, 1 or 3). `reference(k)` gives, for
+/// `predictor`, into `codes` (one vector per component, 1 to 4). `reference(k)` gives, for
 /// component `k`, the base frame's codes for [`Predictor::Base`], and the codes of the frame
 /// before it as well for [`Predictor::Linear`], whose gains are read from the payload's start.
 pub(crate) fn read<'a>(
@@ -177,8 +178,11 @@ pub(crate) fn read<'a>(
     }
     match codes {
         [x, y, z] => stream::read_each(r, n, max_width, [x, y, z])?,
-        [c] => stream::read_each(r, n, max_width, [c])?,
-        _ => return Err(DecodeError::malformed(format!("{} components (1 or 3 allowed)", codes.len()))),
+        _ => {
+            for c in codes.iter_mut() {
+                stream::read_each(r, n, max_width, [c])?;
+            }
+        }
     }
     for (k, codes) in codes.iter_mut().enumerate() {
         match (predictor, reference(k)) {

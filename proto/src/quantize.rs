@@ -95,13 +95,32 @@ pub(crate) fn finite_range(values: impl Iterator<Item = f32>) -> (f32, f32) {
     if lo > hi { (0.0, 0.0) } else { (lo, hi) }
 }
 
+/// What a channel-table range describes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum RangeForm {
+    /// Quantised floats: the error is half a step.
+    Quantised,
+    /// Raw u8 values: exactly `[0, 255]`, 8 bits, error 0.
+    ExactU8,
+    /// A grid's extent on one axis: finite, ordered, error 0.
+    Extent,
+}
+
 /// Checks one channel-table range on its own: finite ends, `min <= max`, a finite step,
 /// and the stated maximum error equal to half a step (or exactly the raw u8 range
-/// `[0, 255]`, 8 bits, error 0, for the phase channel). The redundant error field
-/// catches most corruptions of the range.
-pub(crate) fn check_range(range: &ComponentRange, bits: u8, exact_u8: bool) -> Result<(), String> {
+/// `[0, 255]`, 8 bits, error 0, for an exact channel; or error 0 for a grid's extent).
+/// The redundant error field catches most corruptions of the range.
+pub(crate) fn check_range(range: &ComponentRange, bits: u8, form: RangeForm) -> Result<(), String> {
     let ComponentRange { min, max, max_error } = *range;
-    if exact_u8 {
+    if form == RangeForm::Extent {
+        if !(min.is_finite() && max.is_finite() && min <= max && max_error == 0.0) {
+            return Err(format!(
+                "a grid extent is finite and ordered with error 0, not [{min}, {max}], error {max_error}"
+            ));
+        }
+        return Ok(());
+    }
+    if form == RangeForm::ExactU8 {
         if (min, max, max_error, bits) != (0.0, 255.0, 0.0, 8) {
             return Err(format!(
                 "a raw u8 channel has range [0, 255], 8 bits and error 0, not [{min}, {max}], {bits} bits, error {max_error}"
@@ -153,16 +172,19 @@ mod tests {
     #[test]
     fn ranges_are_checked() {
         let good = Quantizer { min: 0.0, max: 2.0, bits: 16 }.range();
-        assert!(check_range(&good, 16, false).is_ok());
-        assert!(check_range(&good, 15, false).is_err(), "error must match the bits");
-        assert!(check_range(&Quantizer { min: 2.0, max: 2.0, bits: 16 }.range(), 16, false).is_ok());
-        assert!(check_range(&ComponentRange { min: 3.0, ..good }, 16, false).is_err());
-        assert!(check_range(&ComponentRange { max: f32::NAN, ..good }, 16, false).is_err());
+        assert!(check_range(&good, 16, RangeForm::Quantised).is_ok());
+        assert!(check_range(&good, 15, RangeForm::Quantised).is_err(), "error must match the bits");
+        assert!(check_range(&Quantizer { min: 2.0, max: 2.0, bits: 16 }.range(), 16, RangeForm::Quantised).is_ok());
+        assert!(check_range(&ComponentRange { min: 3.0, ..good }, 16, RangeForm::Quantised).is_err());
+        assert!(check_range(&ComponentRange { max: f32::NAN, ..good }, 16, RangeForm::Quantised).is_err());
         let wide = Quantizer { min: -3e38, max: 3e38, bits: 1 }.range();
-        assert!(check_range(&wide, 1, false).is_err());
+        assert!(check_range(&wide, 1, RangeForm::Quantised).is_err());
         let phase = ComponentRange { min: 0.0, max: 255.0, max_error: 0.0 };
-        assert!(check_range(&phase, 8, true).is_ok());
-        assert!(check_range(&phase, 8, false).is_err());
+        assert!(check_range(&phase, 8, RangeForm::ExactU8).is_ok());
+        assert!(check_range(&phase, 8, RangeForm::Quantised).is_err());
+        let extent = ComponentRange { min: -1.0, max: 3.0, max_error: 0.0 };
+        assert!(check_range(&extent, 16, RangeForm::Extent).is_ok());
+        assert!(check_range(&ComponentRange { max: -2.0, ..extent }, 16, RangeForm::Extent).is_err());
     }
 
     #[test]

@@ -3,13 +3,15 @@
 //! decoder in another language can be tested against the same files.
 //!
 //! Regenerate (only when the format changes on purpose, with a version bump):
-//! `FLOE_REGEN_GOLDEN=1 cargo test -p floe-proto --test golden`.
+//! `FLOE_REGEN_GOLDEN=1 cargo test -p floe-proto --test golden`. Frames of older versions
+//! live in `testdata/v3/`: they are only decoded, to show old recordings still read.
 
 mod common;
 
 use common::{Particles, Rng, tolerance};
 use floe_proto::{
-    Bounds, ChannelInfo, ChannelKind, Decoder, Encoder, EncoderConfig, Frame, Header, Limits, Mode, Predictor,
+    Bounds, ChannelInfo, ChannelKind, Decoder, Encoder, EncoderConfig, Frame, GridInfo, Header, Limits, Mode,
+    Predictor, Values,
 };
 use serde_json::{Value, json};
 use std::path::PathBuf;
@@ -21,7 +23,8 @@ struct Golden {
     decode_after: &'static [&'static str],
 }
 
-const GOLDEN: [Golden; 5] = [
+/// Frames of the current format version, which today's encoder reproduces.
+const GOLDEN: [Golden; 6] = [
     Golden {
         name: "unordered_positions",
         description: "Unordered, 200 particles, 16-bit positions only (Morton predictor).",
@@ -29,19 +32,20 @@ const GOLDEN: [Golden; 5] = [
     },
     Golden {
         name: "unordered_channels",
-        description: "Unordered, 300 particles, 12-bit positions, velocity (10 bits), density (12), pressure (8), \
-                      temperature (16) and phase; the other channels use the previous-particle predictor.",
+        description: "Unordered, 300 particles of particle set 1, 12-bit positions, velocity (10 bits), density (12), \
+                      pressure (8), temperature (16), material, and a per-scene channel (tag 64, 2 components, 9 bits); \
+                      the other channels use the previous-particle predictor.",
         decode_after: &[],
     },
     Golden {
         name: "identity_keyframe",
-        description: "Identity-ordered keyframe, 256 particles, 16-bit positions, velocity (10 bits) and phase, \
+        description: "Identity-ordered keyframe, 256 particles, 16-bit positions, velocity (10 bits) and material, \
                       each predicted from the previous particle.",
         decode_after: &[],
     },
     Golden {
         name: "identity_delta",
-        description: "Identity-ordered delta frame after identity_keyframe: positions and phase use the base \
+        description: "Identity-ordered delta frame after identity_keyframe: positions and material use the base \
                       predictor, velocity (new per-frame range) the previous-particle one.",
         decode_after: &["identity_keyframe"],
     },
@@ -50,6 +54,25 @@ const GOLDEN: [Golden; 5] = [
         description: "Identity-ordered delta frame after identity_delta: positions use the linear predictor, over an \
                       interval twice the previous one (gains near 2).",
         decode_after: &["identity_keyframe", "identity_delta"],
+    },
+    Golden {
+        name: "grid_field",
+        description: "Grid frame of grid set 2: 8 x 1 x 6 cells over [0, 2] x [0, 0.1] x [0, 1.5] m, a per-scene \
+                      channel (tag 70, 1 component, 12 bits, a snow depth map) and temperature.",
+        decode_after: &[],
+    },
+];
+
+/// Frames of format version 3, decoded (never re-encoded) to show old frames still decode.
+const VERSION_3: [Golden; 5] = [
+    Golden { name: "v3/unordered_positions", description: "", decode_after: &[] },
+    Golden { name: "v3/unordered_channels", description: "", decode_after: &[] },
+    Golden { name: "v3/identity_keyframe", description: "", decode_after: &[] },
+    Golden { name: "v3/identity_delta", description: "", decode_after: &["v3/identity_keyframe"] },
+    Golden {
+        name: "v3/identity_linear",
+        description: "",
+        decode_after: &["v3/identity_keyframe", "v3/identity_delta"],
     },
 ];
 
@@ -67,16 +90,23 @@ fn encode_all() -> Vec<(Vec<u8>, Particles)> {
     let mut enc = Encoder::new(EncoderConfig::new(Mode::Unordered, 1, bounds)).unwrap();
     out.push((enc.encode(120, 0.5, &p.input()).unwrap(), p));
 
-    let p = Particles::random(&mut rng, 300, &bounds, 1.0);
+    let mut p = Particles::random(&mut rng, 300, &bounds, 1.0);
+    p.set = 1;
+    p.extra = Some((ChannelKind(64), 2, (0..600).map(|_| rng.range(-1.0, 1.0)).collect()));
     let mut config = EncoderConfig::new(Mode::Unordered, 2, bounds);
-    (config.position_bits, config.velocity_bits, config.density_bits) = (12, 10, 12);
-    (config.pressure_bits, config.temperature_bits) = (8, 16);
+    config.position_bits = 12;
+    config.channel_bits = vec![
+        (ChannelKind::DENSITY, 12),
+        (ChannelKind::PRESSURE, 8),
+        (ChannelKind::TEMPERATURE, 16),
+        (ChannelKind(64), 9),
+    ];
     let mut enc = Encoder::new(config).unwrap();
     out.push((enc.encode(7, 0.125, &p.input()).unwrap(), p));
 
     let mut p = Particles::random(&mut rng, 256, &bounds, 0.0);
     p.velocities = Some((0..256).map(|_| std::array::from_fn(|_| rng.range(-2.0, 2.0))).collect());
-    p.phases = Some((0..256).map(|i| (i % 3) as u8).collect());
+    p.materials = Some((0..256).map(|i| (i % 3) as u8).collect());
     let mut enc = Encoder::new(EncoderConfig::new(Mode::IdentityOrdered, 3, bounds)).unwrap();
     // Frames 10 and then 20 steps apart (a subscriber that skipped one), so the linear
     // predictor's gains are near 2, not 1.
@@ -89,6 +119,15 @@ fn encode_all() -> Vec<(Vec<u8>, Particles)> {
         p.advance(&mut rng, &bounds, 0.001);
         time += f64::from(dt);
     }
+
+    let grid = GridInfo { origin: [0.0; 3], size: [2.0, 0.1, 1.5], dims: [8, 1, 6] };
+    let mut p = Particles { set: 2, grid: Some(grid), ..Default::default() };
+    p.temperatures = Some((0..48).map(|_| rng.range(260.0, 275.0)).collect());
+    p.extra = Some((ChannelKind(70), 1, (0..48).map(|i| 0.02 * (i % 8) as f32 + rng.range(0.0, 0.01)).collect()));
+    let mut config = EncoderConfig::new(Mode::Grid, 4, bounds);
+    config.channel_bits = vec![(ChannelKind(70), 12)];
+    let mut enc = Encoder::new(config).unwrap();
+    out.push((enc.encode(300, 2.5, &p.input()).unwrap(), p));
     out
 }
 
@@ -96,6 +135,7 @@ fn mode_name(mode: Mode) -> &'static str {
     match mode {
         Mode::Unordered => "unordered",
         Mode::IdentityOrdered => "identity_ordered",
+        Mode::Grid => "grid",
     }
 }
 
@@ -111,7 +151,7 @@ fn predictor_name(p: Predictor) -> &'static str {
 
 fn channel_json(c: &ChannelInfo) -> Value {
     json!({
-        "kind": c.kind().map_or("unknown", ChannelKind::name),
+        "kind": c.kind().name(),
         "tag": c.tag,
         "components": c.components,
         "bits": c.bits,
@@ -130,6 +170,7 @@ fn header_json(h: &Header) -> Value {
         "frame_len": h.frame_len,
         "particle_count": h.particle_count,
         "scene_id": h.scene_id,
+        "set": h.set,
         "sequence": h.sequence,
         "base_sequence": h.base_sequence,
         "step": h.step,
@@ -140,25 +181,29 @@ fn header_json(h: &Header) -> Value {
 
 /// The sidecar: header fields and every decoded value (f32 values written exactly).
 fn sidecar(g: &Golden, frame: &Frame) -> Value {
+    let channels: serde_json::Map<String, Value> = frame
+        .channels
+        .iter()
+        .map(|(kind, values)| {
+            let per_particle: Vec<Value> = match values {
+                Values::Exact(v) => v.iter().map(|&x| json!(x)).collect(),
+                Values::Float { components: 1, data } => data.iter().map(|&x| json!(x)).collect(),
+                Values::Float { components, data } => {
+                    data.chunks_exact(usize::from(*components)).map(|c| json!(c)).collect()
+                }
+            };
+            (kind.name(), Value::Array(per_particle))
+        })
+        .collect();
     let mut v = json!({
         "description": g.description,
-        "decode_after": g.decode_after.iter().map(|n| format!("{n}.bin")).collect::<Vec<_>>(),
+        "decode_after": g.decode_after.iter().map(|n| format!("{}.bin", n.rsplit('/').next().unwrap_or(n))).collect::<Vec<_>>(),
         "header": header_json(&frame.header),
         "positions": frame.positions,
+        "channels": channels,
     });
-    let o = v.as_object_mut().expect("an object");
-    if let Some(x) = &frame.velocities {
-        o.insert("velocities".into(), json!(x));
-    }
-    for (key, x) in
-        [("densities", &frame.densities), ("pressures", &frame.pressures), ("temperatures", &frame.temperatures)]
-    {
-        if let Some(x) = x {
-            o.insert(key.into(), json!(x));
-        }
-    }
-    if let Some(x) = &frame.phases {
-        o.insert("phases".into(), json!(x));
+    if let Some(grid) = &frame.grid {
+        v["grid"] = json!({"origin": grid.origin, "size": grid.size, "dims": grid.dims});
     }
     v
 }
@@ -173,16 +218,26 @@ fn decode_golden(g: &Golden, bytes: &[u8]) -> Frame {
 
 /// The sidecar as text: the header indented, each particle's values on one line.
 fn render(sidecar: &Value) -> String {
+    let list = |items: &[Value], indent: &str| {
+        let lines: Vec<String> = items.iter().map(|x| format!("{indent}  {x}")).collect();
+        if lines.is_empty() { "[]".to_string() } else { format!("[\n{}\n{indent}]", lines.join(",\n")) }
+    };
     let fields: Vec<String> = sidecar
         .as_object()
         .expect("an object")
         .iter()
         .map(|(key, v)| {
-            let value = match v.as_array() {
-                Some(items) if key != "decode_after" => {
-                    let lines: Vec<String> = items.iter().map(|x| format!("    {x}")).collect();
-                    format!("[\n{}\n  ]", lines.join(",\n"))
+            let value = match (key.as_str(), v) {
+                ("channels", Value::Object(channels)) if !channels.is_empty() => {
+                    let parts: Vec<String> = channels
+                        .iter()
+                        .map(|(name, values)| {
+                            format!("    {}: {}", Value::from(name.as_str()), list(values.as_array().unwrap(), "    "))
+                        })
+                        .collect();
+                    format!("{{\n{}\n  }}", parts.join(",\n"))
                 }
+                (k, Value::Array(items)) if k != "decode_after" => list(items, "  "),
                 _ => serde_json::to_string_pretty(v).unwrap().replace('\n', "\n  "),
             };
             format!("  {}: {value}", Value::from(key.as_str()))
@@ -241,13 +296,17 @@ fn read_sidecar(g: &Golden) -> Value {
 #[test]
 fn golden_frames_decode_to_their_sidecars() {
     regenerate_if_asked();
-    for g in &GOLDEN {
+    for g in GOLDEN.iter().chain(&VERSION_3) {
         let bytes = std::fs::read(path(g.name, "bin")).unwrap_or_else(|e| panic!("{}.bin: {e}", g.name));
         let frame = decode_golden(g, &bytes);
         assert_eq!(frame.header.frame_len as usize, bytes.len(), "{}", g.name);
+        let (mut got, want) = (sidecar(g, &frame), read_sidecar(g));
+        if g.description.is_empty() {
+            got["description"] = want["description"].clone();
+        }
         // Exact comparison: f32 values are written as the f64 of the same value, which
         // reads back exactly, so any change in the format or its arithmetic shows.
-        if let Some(d) = first_difference(g.name, &sidecar(g, &frame), &read_sidecar(g)) {
+        if let Some(d) = first_difference(g.name, &got, &want) {
             panic!("golden frame differs: {d}");
         }
     }

@@ -5,7 +5,9 @@ mod common;
 
 use common::{Particles, Rng};
 use floe_proto::header::{FIXED_HEADER_LEN, VERSION};
-use floe_proto::{Bounds, DecodeError, Decoder, Encoder, EncoderConfig, Frame, Limits, Mode, read_header};
+use floe_proto::{
+    Bounds, ChannelKind, DecodeError, Decoder, Encoder, EncoderConfig, Frame, GridInfo, Limits, Mode, read_header,
+};
 
 const BOUNDS: Bounds = Bounds { min: [-1.0, 0.0, 0.0], max: [1.0, 1.0, 0.3] };
 
@@ -34,21 +36,21 @@ fn samples() -> Vec<Sample> {
         decoder.decode(&bytes).unwrap();
         p.advance(&mut rng, &BOUNDS, 0.01);
     }
+    let grid = GridInfo { origin: [0.0; 3], size: [1.0, 0.1, 1.0], dims: [10, 1, 12] };
+    let mut g = Particles { grid: Some(grid), set: 3, ..Default::default() };
+    g.temperatures = Some((0..120).map(|_| rng.range(250.0, 300.0)).collect());
+    g.extra = Some((ChannelKind(64), 1, (0..120).map(|_| rng.range(0.0, 2.0)).collect()));
+    let bytes = Encoder::new(EncoderConfig::new(Mode::Grid, 7, BOUNDS)).unwrap().encode(2, 1.5, &g.input()).unwrap();
+    out.push(Sample { name: "grid", bytes, decoder: Decoder::new(Limits::default()) });
     out
 }
 
 /// Checks that a frame the decoder accepted is internally consistent.
 fn assert_consistent(frame: &Frame, what: &str) {
     let n = frame.header.particle_count as usize;
-    assert_eq!(frame.positions.len(), n, "{what}");
-    let lengths = [
-        frame.velocities.as_ref().map(Vec::len),
-        frame.densities.as_ref().map(Vec::len),
-        frame.pressures.as_ref().map(Vec::len),
-        frame.temperatures.as_ref().map(Vec::len),
-        frame.phases.as_ref().map(Vec::len),
-    ];
-    assert!(lengths.iter().flatten().all(|&l| l == n), "{what}: channel lengths {lengths:?} for {n} particles");
+    assert_eq!(frame.positions.len(), if frame.grid.is_some() { 0 } else { n }, "{what}");
+    let lengths: Vec<usize> = frame.channels.iter().map(|(_, v)| v.len()).collect();
+    assert!(lengths.iter().all(|&l| l == n), "{what}: channel lengths {lengths:?} for {n} particles");
 }
 
 #[test]
@@ -147,7 +149,7 @@ fn corrupted_header_fields_are_refused() {
     type Edit = fn(&Sample, &mut Vec<u8>);
     let malformed: &[(&str, Edit)] = &[
         ("magic", |_, b| b[0] = b'X'),
-        ("mode", |_, b| b[MODE] = 2),
+        ("mode", |_, b| b[MODE] = 3),
         ("reserved flag", |_, b| b[FLAGS] |= 2),
         ("frame length short by one", |s, b| put(b, FRAME_LEN, &(frame_len(s) - 1).to_le_bytes())),
         ("frame length below the header", |_, b| put(b, FRAME_LEN, &10u32.to_le_bytes())),
@@ -174,8 +176,14 @@ fn corrupted_header_fields_are_refused() {
             put(b, TABLE + 16, &(2.0 * e).to_le_bytes());
         }),
     ];
+    // A grid's extent carries no redundant error field (it is not quantised), so a moved
+    // extent is a different grid, not a malformed one.
+    let quantised_only = ["one bit fewer", "range minimum moved", "stated error doubled"];
     for s in &all {
         for (what, edit) in malformed {
+            if s.name == "grid" && quantised_only.contains(what) {
+                continue;
+            }
             let mut bytes = s.bytes.clone();
             edit(s, &mut bytes);
             let got = s.decoder.clone().decode(&bytes);
@@ -184,7 +192,8 @@ fn corrupted_header_fields_are_refused() {
         let mut bytes = s.bytes.clone();
         put(&mut bytes, 4, &(VERSION + 1).to_le_bytes());
         let got = s.decoder.clone().decode(&bytes);
-        assert_eq!(got, Err(DecodeError::UnsupportedVersion { found: VERSION + 1, supported: VERSION }), "{}", s.name);
+        let unsupported = DecodeError::UnsupportedVersion { found: VERSION + 1, oldest: 3, newest: VERSION };
+        assert_eq!(got, Err(unsupported), "{}", s.name);
         let mut bytes = s.bytes.clone();
         put(&mut bytes, FRAME_LEN, &(frame_len(s) + 1).to_le_bytes());
         let got = s.decoder.clone().decode(&bytes);
@@ -203,7 +212,8 @@ fn corrupted_header_fields_are_refused() {
             brief(&got)
         );
     }
-    for s in &all[0..3] {
+    // Keyframes: both unordered samples, the identity keyframe and the grid frame.
+    for s in all[0..3].iter().chain(&all[5..]) {
         let mut bytes = s.bytes.clone();
         bytes[FLAGS] = 0;
         let got = s.decoder.clone().decode(&bytes);
@@ -214,7 +224,8 @@ fn corrupted_header_fields_are_refused() {
             brief(&got)
         );
     }
-    for s in &all[3..] {
+    // Delta frames.
+    for s in &all[3..5] {
         let mut bytes = s.bytes.clone();
         put(&mut bytes, BASE, &77u64.to_le_bytes());
         let got = s.decoder.clone().decode(&bytes);

@@ -5,14 +5,17 @@ mod common;
 
 use common::{Particles, Rng, channel, random_bounds, tolerance};
 use floe_proto::quantize::Quantizer;
-use floe_proto::{ChannelKind, Decoder, Encoder, EncoderConfig, Frame, FrameInput, Limits, Mode, Predictor};
+use floe_proto::{
+    ChannelKind, Decoder, Encoder, EncoderConfig, Frame, FrameInput, Limits, Mode, Predictor, Values, ValuesRef,
+};
 
 fn random_config(rng: &mut Rng, mode: Mode) -> EncoderConfig {
     let mut c = EncoderConfig::new(mode, rng.next_u64(), random_bounds(rng));
     c.position_bits = rng.int(8, 16) as u8;
-    c.velocity_bits = rng.int(1, 16) as u8;
-    c.density_bits = rng.int(1, 16) as u8;
-    c.pressure_bits = rng.int(1, 16) as u8;
+    c.channel_bits = [ChannelKind::VELOCITY, ChannelKind::DENSITY, ChannelKind::PRESSURE, ChannelKind(64)]
+        .into_iter()
+        .map(|k| (k, rng.int(1, 16) as u8))
+        .collect();
     c.keyframe_interval = rng.int(1, 6) as u32;
     c
 }
@@ -24,45 +27,37 @@ fn random_count(rng: &mut Rng) -> usize {
     }
 }
 
-/// Asserts that `got[i]` is within the channel's tolerance of `want[i]`, component by component.
-fn assert_close<const C: usize>(frame: &Frame, kind: ChannelKind, want: &[[f32; C]], got: &[[f32; C]], map: &[usize]) {
-    let info = channel(frame, kind.tag());
-    assert_eq!(want.len(), got.len(), "{kind}: particle count");
-    for (i, g) in got.iter().enumerate() {
-        let w = want[map[i]];
-        for k in 0..C {
-            let err = (g[k] - w[k]).abs();
-            assert!(err <= tolerance(info, k), "{kind} particle {i} component {k}: {} vs {}, error {err}", g[k], w[k]);
-        }
-    }
-}
-
-fn scalars(v: &Option<Vec<f32>>) -> Option<Vec<[f32; 1]>> {
-    v.as_ref().map(|v| v.iter().map(|&x| [x]).collect())
-}
-
-/// Checks every channel of `frame` against `p`; `map[i]` is the input index of decoded particle `i`.
+/// Checks every channel of `frame` against `p`; `map[i]` is the input index of decoded
+/// particle `i`: exact channels equal, float channels within their stated error.
 fn assert_frame_matches(frame: &Frame, p: &Particles, map: &[usize]) {
-    assert_close(frame, ChannelKind::Position, &p.positions, &frame.positions, map);
-    match (&p.velocities, &frame.velocities) {
-        (Some(want), Some(got)) => assert_close(frame, ChannelKind::Velocity, want, got, map),
-        (want, got) => assert_eq!(want.is_some(), got.is_some(), "velocity presence"),
-    }
-    for (kind, want, got) in [
-        (ChannelKind::Density, &p.densities, &frame.densities),
-        (ChannelKind::Pressure, &p.pressures, &frame.pressures),
-        (ChannelKind::Temperature, &p.temperatures, &frame.temperatures),
-    ] {
-        match (scalars(want), scalars(got)) {
-            (Some(w), Some(g)) => assert_close(frame, kind, &w, &g, map),
-            (w, g) => assert_eq!(w.is_some(), g.is_some(), "{kind} presence"),
+    let input = p.input();
+    assert_eq!(frame.positions.len(), p.positions.len(), "particle count");
+    let info = channel(frame, ChannelKind::POSITION.tag());
+    for (i, got) in frame.positions.iter().enumerate() {
+        for (k, x) in got.iter().enumerate() {
+            let err = (x - p.positions[map[i]][k]).abs();
+            assert!(err <= tolerance(info, k), "position of particle {i}, component {k}: error {err}");
         }
     }
-    match (&p.phases, &frame.phases) {
-        (Some(want), Some(got)) => {
-            assert!(got.iter().enumerate().all(|(i, &g)| g == want[map[i]]), "phases are exact");
+    assert_eq!(frame.channels.len(), input.channels.len(), "channels present");
+    for (kind, want) in &input.channels {
+        let got = frame.channel(*kind).unwrap_or_else(|| panic!("{kind} missing"));
+        match (want, got) {
+            (ValuesRef::Exact(w), Values::Exact(g)) => {
+                assert!(g.iter().enumerate().all(|(i, &x)| x == w[map[i]]), "{kind} is exact");
+            }
+            (ValuesRef::Float { components, data }, Values::Float { components: c, data: g }) => {
+                assert_eq!(components, c, "{kind} components");
+                let (info, c) = (channel(frame, kind.tag()), usize::from(*c));
+                for (i, values) in g.chunks_exact(c).enumerate() {
+                    for (k, &x) in values.iter().enumerate() {
+                        let err = (x - data[map[i] * c + k]).abs();
+                        assert!(err <= tolerance(info, k), "{kind} particle {i} component {k}: error {err}");
+                    }
+                }
+            }
+            _ => panic!("{kind}: decoded as another form"),
         }
-        (want, got) => assert_eq!(want.is_some(), got.is_some(), "phase presence"),
     }
 }
 
@@ -141,7 +136,7 @@ fn unordered_frames_round_trip_within_max_error() {
         let mut config = random_config(&mut rng, Mode::Unordered);
         // The particle index travels in the temperature channel (16 bits over [0, n - 1],
         // so it rounds back exactly) to match decoded particles with their inputs.
-        config.temperature_bits = 16;
+        config.channel_bits.push((ChannelKind::TEMPERATURE, 16));
         let bounds = config.bounds;
         let mut encoder = Encoder::new(config).unwrap();
         let mut decoder = Decoder::new(Limits::default());
@@ -155,7 +150,8 @@ fn unordered_frames_round_trip_within_max_error() {
             let bytes = encoder.encode(f, 0.5, &p.input()).unwrap();
             let frame = decoder.decode(&bytes).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
             assert!(frame.header.keyframe);
-            let map: Vec<usize> = frame.temperatures.as_ref().unwrap().iter().map(|&t| t.round() as usize).collect();
+            let temperatures = frame.channel(ChannelKind::TEMPERATURE).and_then(Values::as_scalars).unwrap();
+            let map: Vec<usize> = temperatures.iter().map(|&t| t.round() as usize).collect();
             let mut seen = vec![false; map.len()];
             for &i in &map {
                 assert!(!std::mem::replace(&mut seen[i], true), "seed {seed}: particle {i} twice");
@@ -213,6 +209,6 @@ fn stated_errors_are_half_a_step() {
         assert_eq!(pos.ranges[k].min, config.bounds.min[k]);
         assert!((pos.ranges[k].max_error - half_step).abs() <= half_step * 1e-5, "axis {k}");
     }
-    let phase = channel(&frame, ChannelKind::Phase.tag());
+    let phase = channel(&frame, ChannelKind::MATERIAL.tag());
     assert_eq!((phase.bits, phase.ranges[0].max_error), (8, 0.0));
 }

@@ -2,11 +2,9 @@
 //! and the mapping of service errors to gRPC codes.
 
 use crate::service::ServiceError;
-use crate::service::frames::FrameOptions;
+use crate::service::options::FrameRequest;
 use crate::service::{Event, Shared, State};
-use floe_engine::Channel;
 use floe_engine::scene::load::Format;
-use floe_proto::Mode;
 use floe_proto::pb;
 use std::sync::atomic::Ordering;
 use tonic::Status;
@@ -54,7 +52,42 @@ pub fn scene_info(shared: &Shared) -> pb::SceneInfo {
         halt_reason: s.halt_reason.unwrap_or_default(),
         scene_json: shared.scene_json(),
         backend: shared.backend.to_string(),
+        channels: shared
+            .channels
+            .iter()
+            .map(|c| pb::ChannelDescription {
+                name: c.spec.name.into(),
+                tag: c.kind.tag().into(),
+                unit: c.spec.unit.into(),
+                components: c.spec.components.into(),
+                set: c.spec.set.into(),
+                exact: c.spec.exact,
+                about: c.spec.about.into(),
+                module: c.spec.module.into(),
+            })
+            .collect(),
+        sets: sets(shared),
+        tunables: floe_engine::scene::tunable::TUNABLE
+            .iter()
+            .map(|t| pb::Tunable {
+                path: t.path.into(),
+                unit: t.unit.into(),
+                min: t.min,
+                max: t.max,
+                about: t.about.into(),
+                module: t.module.into(),
+            })
+            .collect(),
     }
+}
+
+fn sets(shared: &Shared) -> Vec<pb::ParticleSet> {
+    let set = |(i, s): (usize, &crate::service::shared::SceneSet)| pb::ParticleSet {
+        name: s.name.into(),
+        count: s.count as u64,
+        index: i as u32,
+    };
+    shared.sets.iter().enumerate().map(set).collect()
 }
 
 /// The `SceneStats` of a scene.
@@ -71,40 +104,38 @@ pub fn scene_stats(shared: &Shared) -> pb::SceneStats {
         subscribers: shared.subscribers.load(Ordering::Relaxed),
         dropped_frames: shared.dropped_frames(),
         frames_published: shared.published.load(Ordering::Relaxed),
+        sets: sets(shared),
+        measures: Vec::new(),
     }
 }
 
-/// Frame options of a stream request, checked.
-pub fn frame_options(r: &pb::StreamFramesRequest) -> Result<FrameOptions, Status> {
+/// The frame options a stream request states (checked against the scene by the service).
+pub fn frame_request(r: &pb::StreamFramesRequest) -> Result<FrameRequest, Status> {
     let mut channels = Vec::new();
     for (i, &c) in r.channels.iter().enumerate() {
-        let c = match pb::Channel::try_from(c) {
-            Ok(pb::Channel::Velocity) => Channel::Velocity,
-            Ok(pb::Channel::Density) => Channel::Density,
-            Ok(pb::Channel::Pressure) => Channel::Pressure,
+        let name = match pb::Channel::try_from(c) {
+            Ok(pb::Channel::Velocity) => "velocity",
+            Ok(pb::Channel::Density) => "density",
+            Ok(pb::Channel::Pressure) => "pressure",
             _ => return Err(Status::invalid_argument(format!("channels[{i}]: unknown channel {c}"))),
         };
-        if !channels.contains(&c) {
-            channels.push(c);
-        }
+        channels.push(name.to_string());
     }
-    let max_fps = if r.max_fps == 0.0 { 30.0 } else { r.max_fps };
-    if !(max_fps.is_finite() && max_fps > 0.0 && max_fps <= 240.0) {
-        return Err(Status::invalid_argument(format!("max_fps: must be between 0 and 240, got {}", r.max_fps)));
-    }
-    let position_bits = if r.position_bits == 0 { 16 } else { r.position_bits };
-    if !(8..=16).contains(&position_bits) {
-        return Err(Status::invalid_argument(format!("position_bits: must be 8 to 16, got {}", r.position_bits)));
-    }
+    channels.extend(r.channel_names.iter().cloned());
     let mode = match pb::FrameMode::try_from(r.mode) {
-        Ok(pb::FrameMode::Unordered) => Mode::Unordered,
-        Ok(pb::FrameMode::Identity) => Mode::IdentityOrdered,
+        Ok(pb::FrameMode::Unordered) => "unordered",
+        Ok(pb::FrameMode::Identity) => "identity",
         Err(_) => return Err(Status::invalid_argument(format!("mode: unknown frame mode {}", r.mode))),
     };
-    if r.decimation > 1000 {
-        return Err(Status::invalid_argument(format!("decimation: must be 0 to 1000, got {}", r.decimation)));
-    }
-    Ok(FrameOptions { channels, max_fps, position_bits: position_bits as u8, mode, decimation: r.decimation.max(1) })
+    let set = |s: u32| (s != 0).then_some(s);
+    Ok(FrameRequest {
+        channels,
+        max_fps: (r.max_fps != 0.0).then_some(r.max_fps),
+        position_bits: set(r.position_bits),
+        mode: Some(mode.into()),
+        decimation: set(r.decimation),
+        set: Some(r.particle_set.clone()),
+    })
 }
 
 /// A scene event as a message.

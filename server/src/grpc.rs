@@ -3,7 +3,6 @@
 //! not see them.
 
 use crate::convert::{self, status};
-use crate::service::frames::FrameOptions;
 use crate::service::{CommandError, Event, MAX_STEPS_PER_REQUEST};
 use crate::service::{Registry, SceneSource, ServiceError};
 use floe_proto::pb::scene_service_server::SceneService;
@@ -162,8 +161,8 @@ impl SceneService for Grpc {
         request: Request<pb::StreamFramesRequest>,
     ) -> Result<Response<Self::StreamFramesStream>, Status> {
         let r = request.into_inner();
-        let options: FrameOptions = convert::frame_options(&r)?;
-        let mut subscription = self.registry.subscribe(r.scene_id, options).map_err(status)?;
+        let request = convert::frame_request(&r)?;
+        let mut subscription = self.registry.subscribe(r.scene_id, &request).map_err(status)?;
         // Capacity 1: a frame waits for the reader only while the next one is made,
         // so a slow reader skips snapshots instead of queueing them.
         let (tx, rx) = mpsc::channel(1);

@@ -3,10 +3,10 @@
 use crate::cli::{ExportFormat, RunArgs};
 use crate::progress::Progress;
 use anyhow::{Context, bail};
-use floe_engine::export::{self, Format};
+use floe_engine::Simulation;
 use floe_engine::scene::load;
 use floe_engine::summary::Summary;
-use floe_engine::{Channel, Simulation};
+use floe_proto::export::{self, Format};
 use std::time::Instant;
 
 /// Runs `args.scene` until `args.until`.
@@ -38,7 +38,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let mut write_frame = |sim: &Simulation| -> anyhow::Result<()> {
         if let Some(dir) = &args.export {
             let path = dir.join(format!("frame_{frame:05}.{}", format.extension()));
-            export::write(&path, format, &sim.read(Channel::FLUID), sim.time())
+            let all: Vec<&str> = sim.channels().iter().map(|c| c.name).collect();
+            export::write(&path, format, &sim.read(&all), sim.time())
                 .with_context(|| format!("cannot write {}", path.display()))?;
             frame += 1;
         }

@@ -1,4 +1,4 @@
-//! The WebSocket of a scene (`/api/v1/scenes/{id}/ws?channels=velocity&max_fps=30&bits=16&mode=unordered&decimation=1`):
+//! The WebSocket of a scene (`/api/v1/scenes/{id}/ws?channels=velocity&max_fps=30&bits=16&mode=unordered&decimation=1&set=particles`):
 //! binary messages carry encoded frames (latest-frame semantics, as over gRPC);
 //! text messages are JSON both ways.
 //!
@@ -13,14 +13,12 @@
 
 use crate::http::{ApiError, Params, RunBody, SceneId, SceneView, StepBody};
 use crate::service::Registry;
-use crate::service::frames::{EncodedFrame, FrameOptions};
+use crate::service::frames::EncodedFrame;
+use crate::service::options::FrameRequest;
 use crate::service::{Event, SceneHandle};
 use axum::extract::State;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
-use axum::http::StatusCode;
 use axum::response::Response;
-use floe_engine::Channel;
-use floe_proto::Mode;
 use serde::Deserialize;
 use std::sync::Arc;
 use tokio::sync::{broadcast, mpsc};
@@ -29,7 +27,7 @@ use tokio::sync::{broadcast, mpsc};
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WsQuery {
-    /// Comma-separated channels: velocity, density, pressure.
+    /// Comma-separated channel names (the scene's info lists them).
     #[serde(default)]
     channels: String,
     /// Most frames per second (default 30).
@@ -40,40 +38,21 @@ pub struct WsQuery {
     mode: Option<String>,
     /// Send every n-th particle (default 1: all).
     decimation: Option<u32>,
+    /// The particle set (default `particles`).
+    set: Option<String>,
 }
 
 impl WsQuery {
-    fn options(&self) -> Result<FrameOptions, String> {
-        let mut channels = Vec::new();
-        for name in self.channels.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-            let c = match name {
-                "velocity" => Channel::Velocity,
-                "density" => Channel::Density,
-                "pressure" => Channel::Pressure,
-                other => return Err(format!("channels: unknown channel {other:?} (velocity, density, pressure)")),
-            };
-            if !channels.contains(&c) {
-                channels.push(c);
-            }
+    /// The frame options the query states (checked against the scene by the service).
+    fn request(&self) -> FrameRequest {
+        FrameRequest {
+            channels: self.channels.split(',').map(str::to_string).collect(),
+            max_fps: self.max_fps,
+            position_bits: self.bits.map(u32::from),
+            mode: self.mode.clone(),
+            decimation: self.decimation,
+            set: self.set.clone(),
         }
-        let max_fps = self.max_fps.unwrap_or(30.0);
-        if !(max_fps.is_finite() && max_fps > 0.0 && max_fps <= 240.0) {
-            return Err(format!("max_fps: must be between 0 and 240, got {max_fps}"));
-        }
-        let bits = self.bits.unwrap_or(16);
-        if !(8..=16).contains(&bits) {
-            return Err(format!("bits: must be 8 to 16, got {bits}"));
-        }
-        let mode = match self.mode.as_deref() {
-            None | Some("unordered") => Mode::Unordered,
-            Some("identity") => Mode::IdentityOrdered,
-            Some(other) => return Err(format!("mode: must be \"unordered\" or \"identity\", got {other:?}")),
-        };
-        let decimation = self.decimation.unwrap_or(1);
-        if !(1..=1000).contains(&decimation) {
-            return Err(format!("decimation: must be 1 to 1000, got {decimation}"));
-        }
-        Ok(FrameOptions { channels, max_fps, position_bits: bits, mode, decimation })
     }
 }
 
@@ -84,9 +63,8 @@ pub async fn upgrade(
     Params(q): Params<WsQuery>,
     ws: WebSocketUpgrade,
 ) -> Result<Response, ApiError> {
-    let options = q.options().map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))?;
     let handle = registry.get(id)?;
-    let subscription = registry.subscribe(id, options)?;
+    let subscription = registry.subscribe(id, &q.request())?;
     let (tx, frames) = mpsc::channel(1);
     // Frames are made in a task of their own, so a pending encode is never
     // cancelled by the socket loop below; capacity 1 keeps latest-frame semantics.
@@ -190,7 +168,14 @@ async fn session(
                 Some(Err(e)) => {
                     let _ = socket.send(json(serde_json::json!({ "type": "error", "message": e.to_string() }))).await;
                 }
-                None => break,
+                None => {
+                    // Frames end when the scene is deleted, after its Deleted event was sent:
+                    // pass on what is queued so the client hears why the socket closes.
+                    while let Ok(e) = events.try_recv() {
+                        let _ = socket.send(event_message(&e)).await;
+                    }
+                    break;
+                }
             },
             msg = socket.recv() => match msg {
                 Some(Ok(Message::Text(t))) => {

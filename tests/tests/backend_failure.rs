@@ -1,7 +1,7 @@
 //! A backend that fails unexpectedly (a bug, a lost GPU) halts its own scene
 //! with the reason; the scene still answers and the server's other scenes go on.
 
-use floe_engine::backend::{Backend, Channel, Particles};
+use floe_engine::backend::{Backend, Particles};
 use floe_engine::cpu::CpuBackend;
 use floe_engine::guard::Measures;
 use floe_engine::model::Model;
@@ -58,7 +58,7 @@ impl Backend for Faulty {
     fn restore_state(&mut self, state: SortedState) {
         self.0.restore_state(state)
     }
-    fn read(&self, channels: &[Channel]) -> Particles {
+    fn read(&self, channels: &[&str]) -> Particles {
         self.0.read(channels)
     }
     fn retune(&mut self, scene: &Scene) {

@@ -60,7 +60,7 @@ fn run_exports_frames_and_a_summary() {
     assert_eq!(frames.len(), 3, "{frames:?}"); // t = 0, 0.01, 0.02
     let csv = std::fs::read_to_string(out.join("frame_00002.csv")).unwrap();
     let mut lines = csv.lines();
-    assert_eq!(lines.next(), Some("id,x,y,z,vx,vy,vz,density,pressure"));
+    assert_eq!(lines.next(), Some("id,x,y,z,velocity_x,velocity_y,velocity_z,density,pressure"));
     assert_eq!(lines.count(), 1000); // 10 x 20 x 5 particles at a/10
     let s: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
     assert_eq!(s["particles"], 1000);

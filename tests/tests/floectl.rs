@@ -59,7 +59,7 @@ async fn floectl_drives_a_scene_through_every_command() {
     let live = dir.path().join("live");
     floectl(&url, &["export", &id, "--out", text(&live), "--format", "csv"]).await.unwrap();
     let csv = std::fs::read_to_string(&files(&live)[0]).unwrap();
-    assert!(csv.starts_with("id,x,y,z,vx,vy,vz,density,pressure\n"), "{}", &csv[..60]);
+    assert!(csv.starts_with("id,x,y,z,velocity_x,velocity_y,velocity_z,density,pressure\n"), "{}", &csv[..60]);
     assert_eq!(csv.lines().count(), n + 1, "a header and one row per particle");
 
     floectl(&url, &["delete", &id]).await.unwrap();

@@ -3,9 +3,9 @@
 //! scene's snapshot restores on the CPU. Skipped (saying why) without a GPU;
 //! CI runs it on Mesa's lavapipe.
 
-use floe_engine::{Channel, Simulation};
-use floe_proto::{Decoder, Limits, Mode};
-use floe_server::service::frames::FrameOptions;
+use floe_engine::Simulation;
+use floe_proto::{Decoder, Limits};
+use floe_server::service::options::FrameRequest;
 use floe_server::service::{Registry, SceneSource};
 
 #[tokio::test]
@@ -19,18 +19,17 @@ async fn frames_of_a_gpu_scene_decode_within_their_stated_error() {
     let scene = registry.create(SceneSource::Preset("dam_break".into()), &["particle_spacing=0.05".into()]).unwrap();
     assert_eq!(scene.shared.backend, "gpu");
     scene.step(25, None).await.unwrap();
-    let options = FrameOptions {
-        channels: vec![Channel::Velocity],
-        max_fps: 1000.0,
-        position_bits: 16,
-        mode: Mode::IdentityOrdered,
-        decimation: 1,
+    let request = FrameRequest {
+        channels: vec!["velocity".into()],
+        max_fps: Some(240.0),
+        mode: Some("identity".into()),
+        ..FrameRequest::default()
     };
-    let mut frames = registry.subscribe(scene.shared.id, options).unwrap();
+    let mut frames = registry.subscribe(scene.shared.id, &request).unwrap();
     let frame = frames.next().await.unwrap().unwrap();
     let decoded = Decoder::new(Limits::default()).decode(&frame.data).unwrap();
     // The scene's exact state, through a snapshot restored on the CPU backend.
-    let state = Simulation::restore(&scene.save().await.unwrap()).unwrap().read(&[Channel::Velocity]);
+    let state = Simulation::restore(&scene.save().await.unwrap()).unwrap().read(&["velocity"]);
     assert_eq!(decoded.header.step, 25);
     assert_eq!(decoded.positions.len(), state.positions.len());
     let max_error = decoded.header.channels[0].ranges.iter().map(|r| r.max_error).fold(0.0, f32::max);
@@ -41,7 +40,7 @@ async fn frames_of_a_gpu_scene_decode_within_their_stated_error() {
         .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs()))
         .fold(0.0, f32::max);
     assert!(worst <= max_error * 1.01, "decoded positions off by {worst} m; the header states {max_error} m");
-    let v = decoded.velocities.expect("velocity channel");
+    let v = decoded.named("velocity").expect("velocity channel");
     assert_eq!(v.len(), state.positions.len());
     registry.shutdown();
 }

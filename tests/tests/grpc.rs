@@ -53,13 +53,14 @@ async fn create_step_and_stream_a_dam_break() {
         position_bits: 16,
         mode: pb::FrameMode::Unordered as i32,
         decimation: 1,
+        ..Default::default()
     };
     let mut frames = s.client.stream_frames(request).await.unwrap().into_inner();
     let frame = frames.message().await.unwrap().expect("a frame");
     let decoded = Decoder::new(Limits::default()).decode(&frame.data).unwrap();
     assert_eq!(decoded.positions.len(), 1000);
     assert_eq!(decoded.header.step, 20);
-    assert!(decoded.velocities.is_some() && decoded.densities.is_none());
+    assert!(decoded.named("velocity").is_some() && decoded.named("density").is_none());
     let (lo, hi) = (&info.bounds_min, &info.bounds_max);
     for p in &decoded.positions {
         for k in 0..3 {
@@ -75,6 +76,7 @@ async fn create_step_and_stream_a_dam_break() {
         position_bits: 16,
         mode: pb::FrameMode::Identity as i32,
         decimation: 1,
+        ..Default::default()
     };
     let mut frames = s.client.stream_frames(request).await.unwrap().into_inner();
     s.client.run(pb::RunRequest { scene_id: id, real_time_factor: 0.0 }).await.unwrap();
@@ -216,5 +218,55 @@ async fn snapshot_then_restore_reproduces_the_state_bit_for_bit() {
     assert_eq!((e.code(), e.message()), (Code::InvalidArgument, "state: the snapshot is of a different scene"));
     let unchanged = s.client.get_scene(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
     assert_eq!(unchanged.steps, 40);
+    s.shutdown().await;
+}
+
+#[tokio::test]
+async fn channels_are_named_by_the_scene_and_streamed_by_name() {
+    let mut s = start().await;
+    let info = s.client.create_scene(preset("dam_break", &["particle_spacing=0.05"])).await.unwrap().into_inner();
+    let described: Vec<(String, u32, String, u32)> =
+        info.channels.iter().map(|c| (c.name.clone(), c.tag, c.unit.clone(), c.components)).collect();
+    assert_eq!(
+        described,
+        [
+            ("velocity".into(), 1, "m/s".into(), 3),
+            ("density".into(), 2, "kg/m^3".into(), 1),
+            ("pressure".into(), 3, "Pa".into(), 1)
+        ]
+    );
+    assert_eq!(info.sets.len(), 1);
+    assert_eq!((info.sets[0].name.as_str(), info.sets[0].count, info.sets[0].index), ("particles", 1000, 0));
+    assert!(info.tunables.iter().any(|t| t.path == "fluids[*].xsph" && t.max == Some(1.0)));
+
+    let request = pb::StreamFramesRequest {
+        scene_id: info.scene_id,
+        channel_names: vec!["pressure".into(), "density".into()],
+        max_fps: 60.0,
+        ..Default::default()
+    };
+    let mut frames = s.client.stream_frames(request).await.unwrap().into_inner();
+    let frame = frames.message().await.unwrap().expect("a frame");
+    let decoded = Decoder::new(Limits::default()).decode(&frame.data).unwrap();
+    let tags: Vec<u8> = decoded.channels.iter().map(|(k, _)| k.tag()).collect();
+    assert_eq!(tags, [3, 2], "the channels asked for, in that order");
+    assert_eq!(decoded.header.set, 0);
+
+    // A channel the scene lacks is refused with the list of those it has.
+    let request = pb::StreamFramesRequest {
+        scene_id: info.scene_id,
+        channel_names: vec!["temperature".into()],
+        ..Default::default()
+    };
+    let e = s.client.stream_frames(request).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert_eq!(
+        e.message(),
+        "channels: the scene has no channel \"temperature\" in set particles; it has velocity, density, pressure"
+    );
+    let request =
+        pb::StreamFramesRequest { scene_id: info.scene_id, particle_set: "flakes".into(), ..Default::default() };
+    let e = s.client.stream_frames(request).await.unwrap_err();
+    assert_eq!(e.message(), "particle_set: the scene has no set \"flakes\"; it has particles");
     s.shutdown().await;
 }

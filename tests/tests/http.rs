@@ -37,6 +37,9 @@ async fn rest_mirrors_the_control_calls() {
     assert_eq!(v["particles"], 1000);
     assert_eq!(v["backend"], "cpu");
     assert_eq!(v["state"], "paused");
+    assert_eq!(v["channels"][0]["name"], "velocity");
+    assert_eq!(v["channels"][2]["unit"], "Pa");
+    assert_eq!(v["sets"][0], serde_json::json!({"name": "particles", "count": 1000, "index": 0}));
     let id = v["scene_id"].as_u64().unwrap();
 
     let (s, v) = call(&app, "POST", &format!("/api/v1/scenes/{id}/step"), Some(r#"{"steps": 5}"#.into())).await;
@@ -124,6 +127,20 @@ async fn websocket_streams_frames_and_survives_garbage() {
         .registry
         .create(floe_server::service::SceneSource::Preset("dam_break".into()), &["particle_spacing=0.05".into()])
         .unwrap();
+    // A channel the scene lacks is refused at the handshake, naming those it has.
+    let url = format!("ws://{addr}/api/v1/scenes/{}/ws?channels=velocity,temperature", scene.shared.id);
+    match tokio_tungstenite::connect_async(url).await {
+        Err(tokio_tungstenite::tungstenite::Error::Http(response)) => {
+            assert_eq!(response.status(), StatusCode::BAD_REQUEST);
+            let body: serde_json::Value = serde_json::from_slice(&response.body().clone().unwrap_or_default()).unwrap();
+            let message = body["error"].as_str().unwrap_or_default();
+            assert!(
+                message.ends_with("no channel \"temperature\" in set particles; it has velocity, density, pressure"),
+                "{body}"
+            );
+        }
+        other => panic!("expected a refused handshake, got {:?}", other.map(|_| ())),
+    }
     let url = format!("ws://{addr}/api/v1/scenes/{}/ws?channels=velocity&max_fps=60", scene.shared.id);
     let (mut ws, _) = tokio_tungstenite::connect_async(url).await.unwrap();
 
@@ -136,7 +153,7 @@ async fn websocket_streams_frames_and_survives_garbage() {
             Message::Binary(b) => {
                 let f = decoder.decode(&b).unwrap();
                 assert_eq!(f.positions.len(), 1000);
-                assert!(f.velocities.is_some());
+                assert!(f.named("velocity").is_some());
                 frames += 1;
             }
             Message::Text(t) => texts.push(serde_json::from_str::<serde_json::Value>(&t).unwrap()),

@@ -48,6 +48,7 @@ async fn a_subscriber_that_never_reads_does_not_slow_stepping() {
         position_bits: 16,
         mode: pb::FrameMode::Identity as i32,
         decimation: 1,
+        ..Default::default()
     };
     let never_read = other.stream_frames(request).await.unwrap().into_inner();
     // Until the transport's flow-control windows fill (about 1 MiB), frames still

@@ -132,13 +132,13 @@ worker.onmessage = ({ data }) => {
   state.frames += 1;
   state.decodeMs = data.decodeMs ?? 0;
   const mode = $('colour').value;
+  const channel = (name) => data.channels.find((c) => c.name === name);
   let values = null;
-  if (mode === 'speed' && data.velocities) {
-    const v = data.velocities;
+  if (mode === 'speed' && channel('velocity')) {
+    const v = channel('velocity').values;
     values = new Float32Array(v.length / 3);
     for (let i = 0; i < values.length; i++) values[i] = Math.hypot(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-  } else if (mode === 'density' && data.densities) values = data.densities;
-  else if (mode === 'pressure' && data.pressures) values = data.pressures;
+  } else if (channel(mode)?.components === 1) values = Float32Array.from(channel(mode).values);
   if (values) {
     let lo = Infinity, hi = -Infinity;
     for (const x of values) { if (x < lo) lo = x; if (x > hi) hi = x; }

@@ -4,12 +4,15 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import test from 'node:test';
 import {
-  DecodeError, Decoder, FIXED_HEADER_LEN, IncompleteError, MalformedError, NeedKeyframeError, TooLargeError,
-  extrapolate, maxErrorOf, readHeader,
+  CHANNELS, DecodeError, Decoder, FIXED_HEADER_LEN, IncompleteError, MalformedError, NeedKeyframeError, TooLargeError,
+  extrapolate, readHeader,
 } from '../js/codec/index.js';
 
 const DATA = new URL('../../proto/testdata/', import.meta.url);
-const NAMES = ['unordered_positions', 'unordered_channels', 'identity_keyframe', 'identity_delta', 'identity_linear'];
+const CURRENT = ['unordered_positions', 'unordered_channels', 'identity_keyframe', 'identity_delta', 'identity_linear', 'grid_field'];
+// Format version 3 frames, decoded to show old recordings still read.
+const V3 = ['unordered_positions', 'unordered_channels', 'identity_keyframe', 'identity_delta', 'identity_linear'].map((n) => `v3/${n}`);
+const NAMES = [...CURRENT, ...V3];
 const bin = (name) => new Uint8Array(readFileSync(new URL(`${name}.bin`, DATA)));
 // u64 fields as strings before parsing, so values past 2^53 would compare exactly too.
 const sidecarText = (name) =>
@@ -21,12 +24,12 @@ const SIDECARS = new Map(NAMES.map((n) => [n, sidecarText(n)]));
 const sidecar = (name) => structuredClone(SIDECARS.get(name));
 const BINS = new Map(NAMES.map((n) => [n, bin(n)]));
 const put32 = (b, at, v) => new DataView(b.buffer, b.byteOffset).setUint32(at, v, true);
-const FIELDS = ['positions', 'velocities', 'densities', 'pressures', 'temperatures', 'phases'];
 
 /** A decoder holding what `name` predicts from (the sidecar's `decode_after`, in order). */
 function primed(name, limits) {
   const d = new Decoder(limits);
-  for (const before of SIDECARS.get(name).decode_after) d.decode(BINS.get(before.replace(/\.bin$/, '')));
+  const dir = name.includes('/') ? `${name.slice(0, name.lastIndexOf('/') + 1)}` : '';
+  for (const before of SIDECARS.get(name).decode_after) d.decode(BINS.get(dir + before.replace(/\.bin$/, '')));
   return d;
 }
 
@@ -36,7 +39,7 @@ function sidecarShape(frame) {
   const out = {
     header: {
       version: h.version, mode: h.mode, keyframe: h.keyframe, frame_len: h.frameLen,
-      particle_count: h.particleCount, scene_id: h.sceneId, sequence: h.sequence,
+      particle_count: h.particleCount, scene_id: h.sceneId, set: h.set, sequence: h.sequence,
       base_sequence: h.baseSequence, step: h.step, time: h.time,
       channels: h.channels.map((c) => ({
         kind: c.kind, tag: c.tag, components: c.components, bits: c.bits, predictor: c.predictor,
@@ -45,12 +48,10 @@ function sidecarShape(frame) {
       })),
     },
   };
-  for (const f of FIELDS) {
-    const v = frame[f];
-    if (v === undefined) continue;
-    const vector = f === 'positions' || f === 'velocities';
-    out[f] = vector ? Array.from({ length: v.length / 3 }, (_, i) => [v[3 * i], v[3 * i + 1], v[3 * i + 2]]) : Array.from(v);
-  }
+  const perParticle = (v, c) => (c === 1 ? Array.from(v) : Array.from({ length: v.length / c }, (_, i) => Array.from(v.subarray(c * i, c * i + c))));
+  out.positions = perParticle(frame.positions, 3);
+  out.channels = Object.fromEntries(frame.channels.map((ch) => [ch.name, perParticle(ch.values, ch.components)]));
+  if (frame.grid) out.grid = frame.grid;
   return out;
 }
 
@@ -87,7 +88,7 @@ for (const name of NAMES) {
     assert.equal(frame.header.magic, 'FLOF');
     assert.equal(frame.header.frameLen, bytes.length);
     assert.ok(frame.positions instanceof Float32Array);
-    if (frame.phases) assert.ok(frame.phases instanceof Uint8Array);
+    for (const ch of frame.channels) assert.ok(ch.values instanceof (ch.name === 'material' ? Uint8Array : Float32Array));
     delete want.description;
     delete want.decode_after;
     assert.equal(firstDifference(name, sidecarShape(frame), want), null);
@@ -111,12 +112,12 @@ test('one decoder follows the identity stream, and keeps its state when a frame 
   d.decode(bin('identity_keyframe'));
   const good = bin('identity_delta');
   const h = readHeader(good);
-  // Damage the stream width of the last channel (phase): the refusal comes after positions
+  // Damage the stream width of the last channel (material): the refusal comes after positions
   // and velocities have been decoded.
   const last = good.slice();
   last[h.frameLen - h.channels.at(-1).payloadLen] = 9;
   assert.throws(() => d.decode(last), (e) => e instanceof MalformedError &&
-    /channel 2 \(phase\): stream width 9 bits \(at most 8 allowed\)/.test(e.what));
+    /channel 2 \(material\): stream width 9 bits \(at most 8 allowed\)/.test(e.what));
   assert.equal(d.heldSequence, 0n);
   assert.equal(d.lastSequence, 0n);
   const delta = d.decode(good);
@@ -132,27 +133,24 @@ test('one decoder follows the identity stream, and keeps its state when a frame 
   assert.deepEqual([d.heldSequence, d.lastSequence], [null, null]);
 });
 
-test('a channel of a kind this decoder does not know is skipped', () => {
-  const real = bin('unordered_positions');
-  const h = readHeader(real);
-  const entry = new Uint8Array(20);
-  const view = new DataView(entry.buffer);
-  entry.set([9, 1, 8, 0]); // tag 9, 1 component, 8 bits, predictor none
-  view.setUint32(4, 3, true); // payload: 3 bytes
-  view.setFloat32(8, 0, true);
-  view.setFloat32(12, 1, true);
-  view.setFloat32(16, maxErrorOf(0, 1, 8), true);
-  const bytes = new Uint8Array(real.length + entry.length + 3);
-  bytes.set(real.subarray(0, h.headerLen));
-  bytes.set(entry, h.headerLen);
-  bytes.set(real.subarray(h.headerLen), h.headerLen + entry.length);
-  bytes.set([1, 2, 3], real.length + entry.length);
-  put32(bytes, 8, bytes.length);
-  bytes[56] = 2;
-  const frame = new Decoder().decode(bytes);
-  assert.deepEqual(frame.header.channels.map((c) => c.kind), ['position', 'unknown']);
-  assert.equal(firstDifference('positions', sidecarShape(frame).positions, sidecar('unordered_positions').positions), null);
-  assert.deepEqual(Object.keys(frame), ['header', 'positions']);
+test('a channel whose tag the table lacks decodes as floats under its tag', () => {
+  const frame = new Decoder().decode(bin('unordered_channels'));
+  const extra = frame.channels.find((ch) => ch.tag === 64);
+  assert.deepEqual([extra.name, extra.components, extra.values.length], ['channel 64', 2, 600]);
+  assert.ok(extra.values instanceof Float32Array);
+  assert.deepEqual(frame.header.channels.map((c) => c.kind),
+    ['position', 'velocity', 'density', 'pressure', 'temperature', 'material', 'channel 64']);
+  assert.equal(frame.header.set, 1);
+  const grid = new Decoder().decode(bin('grid_field'));
+  assert.deepEqual([grid.header.mode, grid.header.set, grid.grid.dims, grid.positions.length], ['grid', 2, [8, 1, 6], 0]);
+});
+
+test('the channel table is a byte-for-byte copy of proto/channels.json', () => {
+  const json = readFileSync(new URL('../../proto/channels.json', import.meta.url), 'utf8');
+  const copy = readFileSync(new URL('../js/codec/channels.js', import.meta.url), 'utf8');
+  const start = copy.indexOf('export const TABLE =\n') + 'export const TABLE =\n'.length;
+  assert.equal(copy.slice(start, copy.lastIndexOf(';')), json);
+  assert.deepEqual(CHANNELS.map((c) => c.name), JSON.parse(json).channels.map((c) => c.name));
 });
 
 test('every truncated prefix of every golden frame is Incomplete', () => {
@@ -168,7 +166,8 @@ test('every truncated prefix of every golden frame is Incomplete', () => {
         return true;
       });
     }
-    assert.equal(d.decode(bytes).positions.length, 3 * readHeader(bytes).particleCount);
+    const h = readHeader(bytes);
+    assert.equal(d.decode(bytes).positions.length, h.mode === 'grid' ? 0 : 3 * h.particleCount);
   }
 });
 

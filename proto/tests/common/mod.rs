@@ -3,7 +3,7 @@
 
 #![allow(dead_code)]
 
-use floe_proto::{Bounds, ChannelInfo, Frame, FrameInput};
+use floe_proto::{Bounds, ChannelInfo, ChannelKind, Frame, FrameInput, GridInfo, ValuesRef};
 
 /// xorshift64*: deterministic, seeded, good enough to vary test inputs.
 #[derive(Debug, Clone)]
@@ -45,23 +45,39 @@ impl Rng {
 #[derive(Debug, Clone, Default)]
 pub struct Particles {
     pub positions: Vec<[f32; 3]>,
+    pub set: u8,
+    pub grid: Option<GridInfo>,
     pub velocities: Option<Vec<[f32; 3]>>,
     pub densities: Option<Vec<f32>>,
     pub pressures: Option<Vec<f32>>,
     pub temperatures: Option<Vec<f32>>,
-    pub phases: Option<Vec<u8>>,
+    pub materials: Option<Vec<u8>>,
+    /// A per-scene channel: its tag, components and values.
+    pub extra: Option<(ChannelKind, u8, Vec<f32>)>,
 }
 
 impl Particles {
     pub fn input(&self) -> FrameInput<'_> {
-        FrameInput {
-            positions: &self.positions,
-            velocities: self.velocities.as_deref(),
-            densities: self.densities.as_deref(),
-            pressures: self.pressures.as_deref(),
-            temperatures: self.temperatures.as_deref(),
-            phases: self.phases.as_deref(),
+        let mut channels = Vec::new();
+        if let Some(v) = &self.velocities {
+            channels.push((ChannelKind::VELOCITY, ValuesRef::Float { components: 3, data: v.as_flattened() }));
         }
+        for (kind, v) in [
+            (ChannelKind::DENSITY, &self.densities),
+            (ChannelKind::PRESSURE, &self.pressures),
+            (ChannelKind::TEMPERATURE, &self.temperatures),
+        ] {
+            if let Some(v) = v {
+                channels.push((kind, ValuesRef::Float { components: 1, data: v }));
+            }
+        }
+        if let Some(v) = &self.materials {
+            channels.push((ChannelKind::MATERIAL, ValuesRef::Exact(v)));
+        }
+        if let Some((kind, components, v)) = &self.extra {
+            channels.push((*kind, ValuesRef::Float { components: *components, data: v }));
+        }
+        FrameInput { positions: &self.positions, grid: self.grid, set: self.set, channels }
     }
 
     /// `n` particles inside `bounds`, with each other channel present with probability `p`.
@@ -81,7 +97,10 @@ impl Particles {
             out.temperatures = Some((0..n).map(|_| rng.range(250.0, 380.0)).collect());
         }
         if rng.chance(p) {
-            out.phases = Some((0..n).map(|_| rng.int(0, 3) as u8).collect());
+            out.materials = Some((0..n).map(|_| rng.int(0, 3) as u8).collect());
+        }
+        if rng.chance(p) {
+            out.extra = Some((ChannelKind(64), 2, (0..2 * n).map(|_| rng.range(-5.0, 5.0)).collect()));
         }
         out
     }
@@ -107,10 +126,11 @@ impl Particles {
         if let Some(v) = &mut self.velocities {
             v.iter_mut().flatten().for_each(|x| *x += rng.range(-0.1, 0.1));
         }
-        for s in [&mut self.densities, &mut self.pressures, &mut self.temperatures].into_iter().flatten() {
+        let extra = self.extra.as_mut().map(|(_, _, v)| v);
+        for s in [&mut self.densities, &mut self.pressures, &mut self.temperatures].into_iter().flatten().chain(extra) {
             s.iter_mut().for_each(|x| *x *= rng.range(0.99, 1.01));
         }
-        if let Some(ph) = &mut self.phases {
+        if let Some(ph) = &mut self.materials {
             ph.iter_mut().filter(|_| rng.chance(0.01)).for_each(|x| *x = x.wrapping_add(1));
         }
     }

@@ -1,48 +1,9 @@
-//! What every backend (CPU now, GPU next) offers the rest of Floe.
+//! What every backend (the CPU's and the GPU's) offers the rest of Floe.
 
 use crate::guard::Halted;
 use crate::quantize::PositionGrid;
 use crate::stepping::{Clock, Passes, SortedState};
-use serde::{Deserialize, Serialize};
-
-/// A per-particle quantity a frame or export can carry besides position.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Channel {
-    /// Velocity (m/s), 3 components.
-    Velocity,
-    /// Density (kg/m^3).
-    Density,
-    /// Pressure (Pa).
-    Pressure,
-}
-
-impl Channel {
-    /// Every channel of the fluid module.
-    pub const FLUID: &'static [Channel] = &[Channel::Velocity, Channel::Density, Channel::Pressure];
-
-    /// Name as used in exports (`density`) and components (`vx`, `vy`, `vz`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Channel::Velocity => "velocity",
-            Channel::Density => "density",
-            Channel::Pressure => "pressure",
-        }
-    }
-}
-
-/// A copy of particle state for output, in identity order (index = particle id).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Particles {
-    /// Positions (m).
-    pub positions: Vec<[f32; 3]>,
-    /// Velocities (m/s), when asked for.
-    pub velocities: Option<Vec<[f32; 3]>>,
-    /// Densities (kg/m^3), when asked for.
-    pub densities: Option<Vec<f32>>,
-    /// Pressures (Pa), when asked for.
-    pub pressures: Option<Vec<f32>>,
-}
+pub use floe_proto::Particles;
 
 /// What one step did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -116,8 +77,9 @@ pub trait Backend: Passes + Send {
         self.restore_state(state);
         Ok(())
     }
-    /// Copies out positions and the requested channels.
-    fn read(&self, channels: &[Channel]) -> Particles;
+    /// Copies out positions and the requested channels (names of
+    /// [`crate::channels::ChannelSpec`]s the scene has), in identity order.
+    fn read(&self, channels: &[&str]) -> Particles;
     /// Per kernel: label, total device seconds and dispatches so far, when the
     /// backend was asked to profile (`floe bench --profile`); empty otherwise.
     fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
@@ -132,7 +94,7 @@ pub trait Backend: Passes + Send {
     /// same codes as the exact ones: all a frame encoder quantising to `grid`
     /// needs. The exact positions qualify (this default, no extra work); a GPU
     /// quantises on the device, copies back 16-bit codes and returns their values.
-    fn read_on_grid(&self, channels: &[Channel], _grid: &PositionGrid) -> Particles {
+    fn read_on_grid(&self, channels: &[&str], _grid: &PositionGrid) -> Particles {
         self.read(channels)
     }
     /// Takes new tunable settings (see [`crate::scene::tunable`]) from `scene`.

@@ -8,7 +8,7 @@
 //! scene (TOML/JSON/preset + overrides) ──scene::load──► Scene (validated)
 //!     ──Model::build──► Model (mass, kernel, c, particles, walls)
 //!     ──CpuBackend::new──► Backend ──Simulation::step──► StepReport | Halted
-//!     ──Simulation::read──► Particles ──export──► VTK / CSV
+//!     ──Simulation::read──► Particles ──floe_proto::export──► VTK / CSV
 //! ```
 //!
 //! Modules:
@@ -22,14 +22,14 @@
 //! - [`backend`], [`cpu`]: the backend trait and the rayon CPU backend.
 //! - [`simulation`], [`summary`]: a running scene and its run summary.
 //! - [`snapshot`]: a scene's full state as bytes, restored bit for bit.
-//! - [`export`]: VTK and CSV writers.
+//! - [`channels`]: the per-particle quantities frames and exports carry.
 //! - [`validation`]: reference solutions and error measures.
 
 pub mod backend;
 pub mod boundary;
+pub mod channels;
 pub mod cpu;
 pub mod eos;
-pub mod export;
 pub mod guard;
 pub mod kernel;
 pub mod math;
@@ -46,6 +46,6 @@ pub mod timestep;
 pub mod validation;
 pub mod viscosity;
 
-pub use backend::{Backend, Channel, Particles, StepReport};
+pub use backend::{Backend, Particles, StepReport};
 pub use guard::Halted;
 pub use simulation::Simulation;

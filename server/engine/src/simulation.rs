@@ -1,6 +1,6 @@
 //! A scene being simulated: a backend plus the run's statistics and halt state.
 
-use crate::backend::{Backend, Channel, Particles, StepReport};
+use crate::backend::{Backend, Particles, StepReport};
 use crate::cpu::CpuBackend;
 use crate::guard::Halted;
 use crate::model::{BuildError, Model};
@@ -122,8 +122,19 @@ impl Simulation {
         &self.stats
     }
 
+    /// The channels this scene offers, in the order clients are told about them.
+    pub fn channels(&self) -> Vec<crate::channels::ChannelSpec> {
+        use crate::channels::{DENSITY, PRESSURE, VELOCITY};
+        vec![VELOCITY, DENSITY, PRESSURE]
+    }
+
+    /// The scene's particle sets with their counts.
+    pub fn sets(&self) -> Vec<(&'static str, usize)> {
+        vec![(crate::channels::PARTICLES, self.particle_count())]
+    }
+
     /// Copies out positions and the requested channels, in identity order.
-    pub fn read(&self, channels: &[Channel]) -> Particles {
+    pub fn read(&self, channels: &[&str]) -> Particles {
         self.backend.read(channels)
     }
 
@@ -138,7 +149,7 @@ impl Simulation {
     }
 
     /// [`Simulation::read`] with positions on `grid` (see [`Backend::read_on_grid`]).
-    pub fn read_on_grid(&self, channels: &[Channel], grid: &crate::quantize::PositionGrid) -> Particles {
+    pub fn read_on_grid(&self, channels: &[&str], grid: &crate::quantize::PositionGrid) -> Particles {
         self.backend.read_on_grid(channels, grid)
     }
 

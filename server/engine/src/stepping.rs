@@ -11,7 +11,7 @@
 //! XSPH is applied with the kick that follows an evaluation; damping multiplies
 //! velocities by `exp(-rate dt)` until its end time.
 
-use crate::backend::{Channel, Particles, StepReport};
+use crate::backend::{Particles, StepReport};
 use crate::eos::Eos;
 use crate::guard::{Halted, Measures};
 use crate::math::{Real, Vec3};
@@ -19,6 +19,7 @@ use crate::model::Model;
 use crate::scene::Integrator;
 use crate::snapshot::{Reader, SnapshotError, Writer};
 use crate::timestep::{Limits, StepControl};
+use floe_proto::Values;
 
 /// The particle passes of one backend. Calls may be queued (a GPU records them
 /// into a command buffer); [`Passes::evaluate`] returns once its measures are known.
@@ -246,7 +247,7 @@ pub struct SortedState {
 /// `vel` must be given when `channels` has velocity, `rho` when it has density
 /// or pressure (which comes from density through `eos`).
 pub fn by_identity(
-    channels: &[Channel],
+    channels: &[&str],
     ids: &[u32],
     pos: &[Vec3],
     vel: Option<&[Vec3]>,
@@ -260,16 +261,18 @@ pub fn by_identity(
         }
         out
     }
-    let want = |c| channels.contains(&c);
-    fn given(what: &str) -> ! {
-        panic!("by_identity: {what} was asked for but not given")
+    fn given<T>(what: &str, v: Option<T>) -> T {
+        v.unwrap_or_else(|| panic!("by_identity: {what} was asked for but not given"))
     }
-    let rho_for = |c| want(c).then(|| rho.unwrap_or_else(|| given("density")));
+    let values = |name: &str| match name {
+        "velocity" => Values::vectors(scatter(ids, given("velocity", vel), |v| v.to_array())),
+        "density" => Values::scalars(scatter(ids, given("density", rho), |r| r)),
+        "pressure" => Values::scalars(scatter(ids, given("density", rho), |r| eos.pressure(r))),
+        other => panic!("by_identity: no channel {other}"),
+    };
     Particles {
+        set: crate::channels::PARTICLES.into(),
         positions: scatter(ids, pos, |v| v.to_array()),
-        velocities: want(Channel::Velocity)
-            .then(|| scatter(ids, vel.unwrap_or_else(|| given("velocity")), |v| v.to_array())),
-        densities: rho_for(Channel::Density).map(|r| scatter(ids, r, |r| r)),
-        pressures: rho_for(Channel::Pressure).map(|r| scatter(ids, r, |r| eos.pressure(r))),
+        channels: channels.iter().map(|&c| (c.to_string(), values(c))).collect(),
     }
 }

@@ -7,7 +7,6 @@
 //! The checksum covers every particle's position, velocity and density in
 //! identity order (FNV-1a over the f32 bits), plus time and step count.
 
-use floe_engine::Channel;
 use floe_engine::Simulation;
 use floe_engine::scene::load::from_preset;
 
@@ -24,11 +23,11 @@ fn checksum(preset: &str, overrides: &[&str], steps: usize) -> u64 {
     for _ in 0..steps {
         sim.step().unwrap();
     }
-    let p = sim.read(&[Channel::Velocity, Channel::Density]);
+    let p = sim.read(&["velocity", "density"]);
+    let (vel, rho) = (p.channel("velocity").unwrap().as_vectors().unwrap(), p.channel("density").unwrap());
     let mut h = 0xcbf2_9ce4_8422_2325;
     for (i, x) in p.positions.iter().enumerate() {
-        let v = p.velocities.as_ref().unwrap()[i];
-        for c in x.iter().chain(&v).chain(std::iter::once(&p.densities.as_ref().unwrap()[i])) {
+        for c in x.iter().chain(&vel[i]).chain(&rho.as_scalars().unwrap()[i..=i]) {
             fnv(&mut h, c.to_bits());
         }
     }

@@ -1,7 +1,6 @@
 //! Physics checks of the CPU backend against analytic and experimental
 //! references (VALIDATION.md cases 1 and 2) and conservation laws.
 
-use floe_engine::Channel;
 use floe_engine::Simulation;
 use floe_engine::scene::load::from_preset;
 use floe_engine::scene::presets::DAM_BREAK_A;
@@ -16,7 +15,7 @@ fn preset(name: &str, overrides: &[&str]) -> Simulation {
 fn hydrostatic_column_settles_to_rho_g_h() {
     let mut sim = preset("hydrostatic", &[]);
     sim.run_until(1.0, |_, _| {}).unwrap();
-    let p = sim.read(&[Channel::Density, Channel::Pressure]);
+    let p = sim.read(&["density", "pressure"]);
     let e = hydrostatic::measure(&p, 1000.0, 9.81, 0.9, sim.scene().particle_spacing as f64);
     eprintln!("{} particles, {} steps: {e:?}", sim.particle_count(), sim.steps());
     assert!(e.pressure_l2 < 0.05, "pressure L2 error {:.4}", e.pressure_l2);
@@ -73,8 +72,9 @@ fn momentum_is_conserved_without_walls() {
     let scene = floe_engine::scene::load::from_str(text, floe_engine::scene::load::Format::Toml, &[]).unwrap();
     let mut sim = Simulation::new_cpu(scene).unwrap();
     let momentum = |s: &Simulation| {
-        let p = s.read(&[Channel::Velocity]);
-        p.velocities
+        let p = s.read(&["velocity"]);
+        p.channel("velocity")
+            .and_then(|v| v.as_vectors())
             .unwrap()
             .iter()
             .fold([0.0f64; 3], |m, v| [m[0] + v[0] as f64, m[1] + v[1] as f64, m[2] + v[2] as f64])
@@ -142,7 +142,7 @@ fn a_restored_snapshot_steps_on_bit_for_bit() {
             restored.step().unwrap();
         }
         assert_eq!(restored.snapshot(), sim.snapshot(), "{integrator}");
-        let all = [Channel::Velocity, Channel::Density, Channel::Pressure];
+        let all = ["velocity", "density", "pressure"];
         assert_eq!(restored.read(&all), sim.read(&all), "{integrator}");
     }
     // Damaged snapshots are refused with a reason, never a panic.
@@ -167,7 +167,8 @@ fn gravity_changed_on_a_running_scene_takes_effect() {
     for _ in 0..100 {
         sim.step().unwrap();
     }
-    let v = sim.read(&[Channel::Velocity]).velocities.unwrap();
+    let p = sim.read(&["velocity"]);
+    let v = p.channel("velocity").and_then(|v| v.as_vectors()).unwrap();
     let mean_vy = v.iter().map(|v| v[1] as f64).sum::<f64>() / v.len() as f64;
     assert!(mean_vy > 0.1, "mean vertical velocity {mean_vy}");
     assert_eq!(sim.scene().gravity, [0.0, 9.81, 0.0]);

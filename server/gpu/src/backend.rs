@@ -12,7 +12,7 @@ use crate::layout::{Measures, Params, QuantGrid, Step};
 use crate::passes::measure::PER_PARTIAL;
 use crate::program::Recorder;
 use crate::timer::Timer;
-use floe_engine::backend::{Backend, Channel, Particles};
+use floe_engine::backend::{Backend, Particles};
 use floe_engine::math::{Real, Vec3};
 use floe_engine::model::{BuildError, Model};
 use floe_engine::neighbors::Grid;
@@ -196,11 +196,11 @@ impl GpuBackend {
 impl GpuBackend {
     /// Positions (f32, or quantised on the GPU to `grid`) and `channels`, in
     /// identity order, copied back in one submission.
-    fn read_with(&self, channels: &[Channel], grid: Option<&PositionGrid>) -> Particles {
+    fn read_with(&self, channels: &[&str], grid: Option<&PositionGrid>) -> Particles {
         let (b, n) = (&self.buffers, self.n as u64);
         let want = |c| channels.contains(&c);
-        let vel = want(Channel::Velocity);
-        let rho = want(Channel::Density) || want(Channel::Pressure);
+        let vel = want("velocity");
+        let rho = want("density") || want("pressure");
         // Sorted-order data needs the ids; quantised positions come in identity order.
         let sorted = vel || rho || grid.is_none();
         if let Some(g) = grid {
@@ -329,7 +329,7 @@ impl Backend for GpuBackend {
         self.flush();
     }
 
-    fn read(&self, channels: &[Channel]) -> Particles {
+    fn read(&self, channels: &[&str]) -> Particles {
         self.read_with(channels, None)
     }
 
@@ -341,7 +341,7 @@ impl Backend for GpuBackend {
         Some(self.buffers.bytes() + self.binds.scan.bytes())
     }
 
-    fn read_on_grid(&self, channels: &[Channel], grid: &PositionGrid) -> Particles {
+    fn read_on_grid(&self, channels: &[&str], grid: &PositionGrid) -> Particles {
         self.read_with(channels, Some(grid))
     }
 

@@ -4,7 +4,6 @@
 
 mod common;
 
-use floe_engine::Channel;
 use floe_engine::Simulation;
 use floe_engine::backend::Backend;
 use floe_engine::model::Model;
@@ -54,7 +53,7 @@ fn hydrostatic_column_passes_the_cpu_bounds() {
     let Some(gpu) = common::gpu("hydrostatic_column_passes_the_cpu_bounds") else { return };
     let mut sim = on_gpu(gpu, "hydrostatic", &[]);
     sim.run_until(1.0, |_, _| {}).unwrap();
-    let p = sim.read(&[Channel::Density, Channel::Pressure]);
+    let p = sim.read(&["density", "pressure"]);
     let e = hydrostatic::measure(&p, 1000.0, 9.81, 0.9, sim.scene().particle_spacing as f64);
     eprintln!("GPU: {} particles, {} steps: {e:?}", sim.particle_count(), sim.steps());
     // The bounds of the CPU test (engine tests/physics.rs).
@@ -90,7 +89,7 @@ fn a_gpu_snapshot_steps_on_bit_for_bit() {
     for _ in 0..30 {
         assert_eq!(sim.step().unwrap(), restored.step().unwrap());
     }
-    let all = [Channel::Velocity, Channel::Density];
+    let all = ["velocity", "density"];
     assert_eq!(sim.read(&all), restored.read(&all));
     // A CPU snapshot loads onto the GPU too (the format is the backends' shared one).
     let mut cpu = Simulation::new_cpu(sim.scene().clone()).unwrap();
@@ -108,7 +107,8 @@ fn gravity_changed_on_a_gpu_scene_takes_effect() {
     for _ in 0..50 {
         sim.step().unwrap();
     }
-    let v = sim.read(&[Channel::Velocity]).velocities.unwrap();
+    let p = sim.read(&["velocity"]);
+    let v = p.channel("velocity").and_then(|v| v.as_vectors()).unwrap();
     let fastest = v.iter().map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()).fold(0.0, f32::max);
     assert!(fastest < 0.05, "without gravity the column stays put; fastest particle {fastest} m/s");
 }

@@ -119,6 +119,72 @@ pub struct SceneView {
     pub scene: serde_json::Value,
     /// Snapshots published.
     pub frames_published: u64,
+    /// The channels the scene offers for frames, with wire tags and units.
+    pub channels: Vec<ChannelView>,
+    /// The scene's particle sets, with counts and the index frames carry.
+    pub sets: Vec<SetView>,
+    /// The settings `parameters` may change.
+    pub tunables: Vec<TunableView>,
+    /// What the scheme and modules measured at the last step, by name.
+    pub measures: std::collections::BTreeMap<String, MeasureView>,
+}
+
+/// A channel a scene offers.
+#[derive(Debug, Serialize)]
+pub struct ChannelView {
+    /// Name to ask for.
+    pub name: &'static str,
+    /// Wire tag.
+    pub tag: u8,
+    /// SI unit.
+    pub unit: &'static str,
+    /// Values per particle.
+    pub components: u8,
+    /// Particle set.
+    pub set: &'static str,
+    /// Sent exactly (raw u8).
+    pub exact: bool,
+    /// What it holds.
+    pub about: &'static str,
+    /// Declaring module.
+    pub module: &'static str,
+}
+
+/// A particle set of a scene.
+#[derive(Debug, Serialize)]
+pub struct SetView {
+    /// Name.
+    pub name: &'static str,
+    /// Particles in it.
+    pub count: usize,
+    /// Its frames' set byte.
+    pub index: usize,
+}
+
+/// A setting that may change while the scene exists.
+#[derive(Debug, Serialize)]
+pub struct TunableView {
+    /// Override path (`[*]`: any index).
+    pub path: &'static str,
+    /// SI unit.
+    pub unit: &'static str,
+    /// Lower bound, for a number.
+    pub min: Option<f64>,
+    /// Upper bound, for a number.
+    pub max: Option<f64>,
+    /// What it does.
+    pub about: &'static str,
+    /// Owning module.
+    pub module: &'static str,
+}
+
+/// A value a scene reports.
+#[derive(Debug, Serialize)]
+pub struct MeasureView {
+    /// The value.
+    pub value: f64,
+    /// Its SI unit.
+    pub unit: &'static str,
 }
 
 /// Name of a state in JSON.
@@ -153,6 +219,38 @@ impl SceneView {
             dropped_frames: shared.dropped_frames(),
             frames_published: shared.published.load(Ordering::Relaxed),
             scene: serde_json::from_str(&shared.scene_json()).unwrap_or_default(),
+            channels: shared
+                .channels
+                .iter()
+                .map(|c| ChannelView {
+                    name: c.spec.name,
+                    tag: c.kind.tag(),
+                    unit: c.spec.unit,
+                    components: c.spec.components,
+                    set: c.spec.set,
+                    exact: c.spec.exact,
+                    about: c.spec.about,
+                    module: c.spec.module,
+                })
+                .collect(),
+            sets: shared
+                .sets
+                .iter()
+                .enumerate()
+                .map(|(index, s)| SetView { name: s.name, count: s.count, index })
+                .collect(),
+            tunables: floe_engine::scene::tunable::TUNABLE
+                .iter()
+                .map(|t| TunableView {
+                    path: t.path,
+                    unit: t.unit,
+                    min: t.min,
+                    max: t.max,
+                    about: t.about,
+                    module: t.module,
+                })
+                .collect(),
+            measures: Default::default(),
         }
     }
 }

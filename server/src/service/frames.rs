@@ -9,29 +9,14 @@
 //! so it has an encoder of its own.
 
 use super::handle::SceneHandle;
+use super::options::FrameOptions;
 use super::shared::{Published, Shared, State};
 use floe_engine::quantize::PositionGrid;
-use floe_engine::{Channel, Particles};
-use floe_proto::{Bounds, EncodeError, Encoder, EncoderConfig, FrameInput, Mode};
+use floe_proto::{Bounds, EncodeError, Encoder, EncoderConfig, FrameInput, Mode, Particles};
 use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use tokio::sync::watch;
-
-/// What a subscriber asked for.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FrameOptions {
-    /// Channels besides positions.
-    pub channels: Vec<Channel>,
-    /// Most frames per second.
-    pub max_fps: f64,
-    /// Bits per position axis (8 to 16).
-    pub position_bits: u8,
-    /// Unordered or identity-ordered.
-    pub mode: Mode,
-    /// Send every n-th particle (particles 0, n, 2n, ...); 1 sends all.
-    pub decimation: u32,
-}
 
 /// One frame for one subscriber.
 #[derive(Debug, Clone)]
@@ -71,37 +56,25 @@ fn position_grid(c: &EncoderConfig) -> PositionGrid {
     PositionGrid { min: q.map(|q| q.min), max: q.map(|q| q.max), bits: q[0].bits }
 }
 
-fn input<'a>(p: &'a Particles, channels: &[Channel]) -> FrameInput<'a> {
-    let want = |c| channels.contains(&c);
-    FrameInput {
-        positions: &p.positions,
-        velocities: p.velocities.as_deref().filter(|_| want(Channel::Velocity)),
-        densities: p.densities.as_deref().filter(|_| want(Channel::Density)),
-        pressures: p.pressures.as_deref().filter(|_| want(Channel::Pressure)),
-        ..FrameInput::default()
-    }
+/// The frame input of `p`'s channels `channels`, under their tags in `shared`.
+fn input<'a>(shared: &Shared, p: &'a Particles, o: &FrameOptions) -> FrameInput<'a> {
+    let channels = o
+        .channels
+        .iter()
+        .filter_map(|&name| {
+            let kind = shared.channels.iter().find(|c| c.spec.name == name)?.kind;
+            Some((kind, p.channel(name)?.as_ref()))
+        })
+        .collect();
+    FrameInput { positions: &p.positions, grid: None, set: o.set, channels }
 }
 
-/// Every `k`-th particle (0, k, 2k, ...): the same particles in every frame, so
-/// identity-ordered streams of a decimated scene stay consistent.
-fn decimate(p: &Particles, k: usize) -> Particles {
-    fn every<T: Copy>(v: &[T], k: usize) -> Vec<T> {
-        v.iter().step_by(k).copied().collect()
-    }
-    Particles {
-        positions: every(&p.positions, k),
-        velocities: p.velocities.as_deref().map(|v| every(v, k)),
-        densities: p.densities.as_deref().map(|v| every(v, k)),
-        pressures: p.pressures.as_deref().map(|v| every(v, k)),
-    }
-}
-
-/// Encodes snapshot `s` with `o`'s channels and decimation.
-fn encode(encoder: &mut Encoder, s: &Published, o: &FrameOptions) -> Result<Vec<u8>, EncodeError> {
+/// Encodes published state `s` with `o`'s channels and decimation.
+fn encode(encoder: &mut Encoder, shared: &Shared, s: &Published, o: &FrameOptions) -> Result<Vec<u8>, EncodeError> {
     if o.decimation > 1 {
-        encoder.encode(s.step, s.time, &input(&decimate(&s.particles, o.decimation as usize), &o.channels))
+        encoder.encode(s.step, s.time, &input(shared, &s.particles.every(o.decimation as usize), o))
     } else {
-        encoder.encode(s.step, s.time, &input(&s.particles, &o.channels))
+        encoder.encode(s.step, s.time, &input(shared, &s.particles, o))
     }
 }
 
@@ -126,7 +99,7 @@ impl FrameCache {
         {
             return Ok(data.clone());
         }
-        let data = Arc::new(encode(&mut e.encoder, s, options)?);
+        let data = Arc::new(encode(&mut e.encoder, shared, s, options)?);
         e.last = Some((s.sequence, data.clone()));
         Ok(data)
     }
@@ -153,7 +126,7 @@ impl Subscription {
     pub fn new(scene: Arc<SceneHandle>, cache: Arc<FrameCache>, options: FrameOptions) -> Result<Self, EncodeError> {
         let own = match options.mode {
             Mode::IdentityOrdered => Some(Encoder::new(config(&scene.shared, &options))?),
-            Mode::Unordered => {
+            Mode::Unordered | Mode::Grid => {
                 // Checks the options now rather than at the first frame.
                 Encoder::new(config(&scene.shared, &options))?;
                 None
@@ -205,9 +178,9 @@ impl Subscription {
         // Encoding a large frame takes milliseconds: keep it off the async workers.
         let data = match self.own.take() {
             Some(mut enc) => {
-                let options = self.options.clone();
+                let (options, scene) = (self.options.clone(), self.scene.clone());
                 let (enc, data) = tokio::task::spawn_blocking(move || {
-                    let data = encode(&mut enc, &s, &options);
+                    let data = encode(&mut enc, &scene.shared, &s, &options);
                     (enc, data)
                 })
                 .await

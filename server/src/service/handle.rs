@@ -4,9 +4,9 @@
 
 use super::shared::{Shared, Status};
 use super::worker::Worker;
+use floe_engine::Simulation;
 use floe_engine::quantize::PositionGrid;
 use floe_engine::simulation::BackendFactory;
-use floe_engine::{Channel, Simulation};
 use std::sync::atomic::Ordering;
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
@@ -138,7 +138,7 @@ impl SceneHandle {
 
     /// Registers a frame subscriber wanting `channels` on `grid` and has the
     /// worker publish a fresh snapshot for it. Undo with [`Shared::unsubscribe`].
-    pub fn subscribe(&self, channels: &[Channel], grid: PositionGrid) {
+    pub fn subscribe(&self, channels: &[&'static str], grid: PositionGrid) {
         self.shared.subscribe(channels, grid);
         let _ = self.send(Command::Publish);
     }

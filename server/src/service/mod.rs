@@ -8,14 +8,16 @@
 
 pub mod frames;
 pub mod handle;
+pub mod options;
 pub mod shared;
 mod worker;
 
 use floe_engine::Simulation;
 use floe_engine::scene::load::{self, Format};
 use floe_engine::simulation::BackendFactory;
-use frames::{FrameCache, FrameOptions, Subscription};
+use frames::{FrameCache, Subscription};
 pub use handle::{CommandError, MAX_STEPS_PER_REQUEST, SceneHandle};
+use options::FrameRequest;
 pub use shared::{Event, Published, Shared, State, Status};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -36,6 +38,16 @@ pub enum ServiceError {
     /// A server limit was reached.
     #[error("{0}")]
     ResourceExhausted(String),
+}
+
+/// At most the first 64 characters of `text`, for echoing client input in an error
+/// message without letting a huge input make a huge message.
+pub fn clip(text: &str) -> std::borrow::Cow<'_, str> {
+    const MAX: usize = 64;
+    match text.char_indices().nth(MAX) {
+        Some((at, _)) => format!("{}... ({} bytes)", &text[..at], text.len()).into(),
+        None => text.into(),
+    }
 }
 
 /// Where a new scene comes from.
@@ -148,13 +160,14 @@ impl Registry {
         Ok(entry.handle)
     }
 
-    /// A frame subscription to scene `id`.
-    pub fn subscribe(&self, id: u64, options: FrameOptions) -> Result<Subscription, ServiceError> {
+    /// A frame subscription to scene `id` with the options `request` asks for.
+    pub fn subscribe(&self, id: u64, request: &FrameRequest) -> Result<Subscription, ServiceError> {
         let (handle, cache) = {
             let scenes = self.scenes.read().expect("lock");
             let e = scenes.get(&id).ok_or(ServiceError::NotFound(id))?;
             (e.handle.clone(), e.cache.clone())
         };
+        let options = request.check(&handle.shared)?;
         Subscription::new(handle, cache, options).map_err(|e| ServiceError::InvalidArgument(e.to_string()))
     }
 

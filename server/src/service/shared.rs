@@ -2,8 +2,10 @@
 //! status, the latest particle state published for frame subscribers, its
 //! events, and the subscribers' bookkeeping.
 
+use floe_engine::Simulation;
+use floe_engine::channels::ChannelSpec;
 use floe_engine::quantize::PositionGrid;
-use floe_engine::{Channel, Particles, Simulation};
+use floe_proto::{ChannelKind, Particles};
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use tokio::sync::{broadcast, watch};
@@ -74,6 +76,10 @@ pub struct Shared {
     pub(super) scene_json: Mutex<String>,
     /// Fluid particles.
     pub particles: usize,
+    /// The channels the scene offers, with the tags its frames carry them under.
+    pub channels: Vec<SceneChannel>,
+    /// The scene's particle sets; a frame's set byte is an index into this list.
+    pub sets: Vec<SceneSet>,
     /// Particle spacing (m).
     pub particle_spacing: f32,
     /// The backend stepping the scene (`gpu`, `cpu`); resets and restores keep it.
@@ -89,7 +95,7 @@ pub struct Shared {
     /// Open frame streams, and how many of them asked for each channel and
     /// each position grid.
     pub subscribers: AtomicU32,
-    wanted: Mutex<(Tally<Channel>, Tally<PositionGrid>)>,
+    wanted: Mutex<(Tally<&'static str>, Tally<PositionGrid>)>,
     /// Frames skipped by subscribers that went on to a later frame.
     dropped_frames: AtomicU64,
     /// Per live subscription, the sequence of the last snapshot it received (or
@@ -113,6 +119,8 @@ impl Shared {
             name: sim.scene().name.clone(),
             scene_json: Mutex::new(serde_json::to_string(sim.scene()).expect("scenes serialise")),
             particles: sim.particle_count(),
+            channels: scene_channels(sim.channels()),
+            sets: sim.sets().into_iter().map(|(name, count)| SceneSet { name, count }).collect(),
             particle_spacing: sim.scene().particle_spacing,
             backend: sim.backend_name(),
             bounds: (domain.min.to_array(), domain.max.to_array()),
@@ -137,7 +145,7 @@ impl Shared {
 
     /// Registers a subscriber wanting `channels` with positions quantised to
     /// `grid`; undone by [`Shared::unsubscribe`].
-    pub fn subscribe(&self, channels: &[Channel], grid: PositionGrid) {
+    pub fn subscribe(&self, channels: &[&'static str], grid: PositionGrid) {
         self.subscribers.fetch_add(1, Ordering::Relaxed);
         let mut wanted = self.wanted.lock().expect("lock");
         channels.iter().for_each(|&c| wanted.0.add(c));
@@ -145,7 +153,7 @@ impl Shared {
     }
 
     /// Removes a subscriber registered with `channels` and `grid`.
-    pub fn unsubscribe(&self, channels: &[Channel], grid: PositionGrid) {
+    pub fn unsubscribe(&self, channels: &[&'static str], grid: PositionGrid) {
         self.subscribers.fetch_sub(1, Ordering::Relaxed);
         let mut wanted = self.wanted.lock().expect("lock");
         channels.iter().for_each(|&c| wanted.0.remove(c));
@@ -182,7 +190,7 @@ impl Shared {
     /// The union of the channels subscribers want (the only ones read back),
     /// and the position grid when every subscriber quantises to the same one
     /// (positions are then quantised where they live: on a GPU, on the device).
-    pub(super) fn wanted(&self) -> (Vec<Channel>, Option<PositionGrid>) {
+    pub(super) fn wanted(&self) -> (Vec<&'static str>, Option<PositionGrid>) {
         let wanted = self.wanted.lock().expect("lock");
         let grids: Vec<PositionGrid> = wanted.1.values().collect();
         (wanted.0.values().collect(), (grids.len() == 1).then(|| grids[0]))
@@ -197,6 +205,38 @@ impl Shared {
     pub fn status(&self) -> Status {
         self.status.lock().expect("lock").clone()
     }
+}
+
+/// A channel of a scene: what the engine declares, and its tag on the wire.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneChannel {
+    /// Name, unit, components, set and owner.
+    pub spec: ChannelSpec,
+    /// The table's tag for a name it has, else one of the per-scene tags.
+    pub kind: ChannelKind,
+}
+
+/// A particle set of a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneSet {
+    /// Name (`particles`).
+    pub name: &'static str,
+    /// Particles in it.
+    pub count: usize,
+}
+
+/// The wire tags of a scene's channels: the table's tag where `proto/channels.json`
+/// names the channel, else the next free per-scene tag, in declaration order.
+pub fn scene_channels(specs: Vec<ChannelSpec>) -> Vec<SceneChannel> {
+    let mut dynamic = floe_proto::channels::DYNAMIC_TAGS;
+    specs
+        .into_iter()
+        .map(|spec| {
+            let kind = ChannelKind::named(spec.name)
+                .unwrap_or_else(|| ChannelKind(dynamic.next().expect("fewer channels than per-scene tags (192)")));
+            SceneChannel { spec, kind }
+        })
+        .collect()
 }
 
 /// How many open subscriptions want each value.

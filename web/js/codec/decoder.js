@@ -5,25 +5,30 @@
  */
 
 import { MalformedError, NeedKeyframeError } from './errors.js';
-import { ChannelKind, DEFAULT_LIMITS, KIND_NAMES, Mode, readHeader } from './header.js';
+import { CHANNELS, ChannelKind, DEFAULT_LIMITS, Mode, readHeader } from './header.js';
 import { Predictor, readCodes, readGains } from './predict.js';
 import { dequantiseInto, sameQuantizer } from './quantize.js';
 import { Reader } from './reader.js';
 import { Scratch } from './stream.js';
 import { readMortonPositions } from './unordered.js';
 
-/** Output field of each kind tag. */
-const FIELDS = ['positions', 'velocities', 'densities', 'pressures', 'temperatures', 'phases'];
+/**
+ * @typedef {object} Channel
+ * @property {number} tag the channel's tag
+ * @property {string} name its name in the channel table, or `channel <tag>` for a per-scene
+ *   channel (whose name the scene's info gives)
+ * @property {number} components values per particle
+ * @property {Float32Array|Uint8Array} values `components * n` values, interleaved; a
+ *   `Uint8Array` for exact channels (material indices)
+ */
 
 /**
  * @typedef {object} Frame
  * @property {import('./header.js').Header} header the header and channel table
- * @property {Float32Array} positions `3 n` values (m), x, y, z interleaved
- * @property {Float32Array} [velocities] `3 n` values (m/s), interleaved, if sent
- * @property {Float32Array} [densities] `n` values (kg/m^3), if sent
- * @property {Float32Array} [pressures] `n` values (Pa), if sent
- * @property {Float32Array} [temperatures] `n` values (K), if sent
- * @property {Uint8Array} [phases] `n` phase or material indices, if sent
+ * @property {Float32Array} positions `3 n` values (m), x, y, z interleaved (empty in a grid frame)
+ * @property {{origin: number[], size: number[], dims: number[]}} [grid] a grid frame's grid (m,
+ *   cells per axis; cells x fastest)
+ * @property {Channel[]} channels the other channels, in the frame's order
  */
 
 /**
@@ -116,15 +121,23 @@ export class Decoder {
     }
     const r = new Reader(frame, 'channel payloads');
     r.skip(header.headerLen);
-    const out = { header, positions: new Float32Array(0) };
+    const out = { header, positions: new Float32Array(0), channels: [] };
     const kept = [];
     header.channels.forEach((info, i) => {
       const payload = r.take(info.payloadLen);
-      if (info.tag >= KIND_NAMES.length) return; // a kind this decoder does not know
       const p = new Reader(payload, 'channel payload');
       const inChannel = (e) =>
         e instanceof MalformedError ? new MalformedError(`channel ${i} (${info.kind}): ${e.what}`) : e;
-      if (info.predictorTag === Predictor.MORTON) {
+      if (info.tag === ChannelKind.GRID) {
+        const dims = [p.u32(), p.u32(), p.u32()];
+        if (dims[0] * dims[1] * dims[2] !== n) {
+          throw inChannel(new MalformedError(`cell counts [${dims.join(', ')}] do not make the frame's ${n} cells`));
+        }
+        const rg = info.ranges;
+        out.grid = {
+          origin: rg.map((x) => x.min), size: rg.map((x) => Math.fround(x.max - x.min)), dims,
+        };
+      } else if (info.predictorTag === Predictor.MORTON) {
         try {
           out.positions = readMortonPositions(p, n, info.ranges, info.bits, this.#scratch);
         } catch (e) {
@@ -180,15 +193,15 @@ function references(header, info, i, base) {
   return [prev, before];
 }
 
-/** De-quantises a channel's codes into the frame's field for its kind (Rust `codes::store`). */
+/** De-quantises a channel's codes into positions or a channel of the frame (Rust `codes::values`). */
 function store(out, info, codes, n) {
-  const field = FIELDS[info.tag];
-  if (info.tag === ChannelKind.PHASE) {
-    out[field] = Uint8Array.from(codes[0]);
+  if (CHANNELS[info.tag]?.exact) {
+    out.channels.push({ tag: info.tag, name: info.kind, components: 1, values: Uint8Array.from(codes[0]) });
     return;
   }
   const c = codes.length;
   const values = new Float32Array(c * n);
   for (let k = 0; k < c; k++) dequantiseInto(codes[k], info.ranges[k], info.bits, values, k, c);
-  out[field] = values;
+  if (info.tag === ChannelKind.POSITION) out.positions = values;
+  else out.channels.push({ tag: info.tag, name: info.kind, components: c, values });
 }

@@ -48,14 +48,18 @@ export class MalformedError extends DecodeError {
 
 /** The frame uses a format version this decoder does not read. */
 export class UnsupportedVersionError extends DecodeError {
-  /** @param {number} found version in the frame @param {number} supported version read here */
-  constructor(found, supported) {
+  /**
+   * @param {number} found version in the frame
+   * @param {number} oldest oldest version read here @param {number} newest newest version read here
+   */
+  constructor(found, oldest, newest) {
     super(
       'UnsupportedVersion',
-      `unsupported frame format version ${found} (this decoder reads version ${supported})`,
+      `unsupported frame format version ${found} (this decoder reads versions ${oldest} to ${newest})`,
     );
     this.found = found;
-    this.supported = supported;
+    this.oldest = oldest;
+    this.newest = newest;
   }
 }
 

@@ -5,22 +5,26 @@
  * Fixed header (64 bytes): magic `FLOF` (0), version u16 (4), mode u8 (6), flags u8 (7, bit 0
  * keyframe), frame length u32 (8), particle count u32 (12), scene id u64 (16), sequence u64
  * (24), base sequence u64 (32), step u64 (40), time f64 (48), channel count u8 (56, 1 to 16),
- * 7 reserved zero bytes (57). Then per channel (`8 + 12 c` bytes): kind tag u8, components u8
- * (1 to 4), bits u8 (1 to 16), predictor u8, payload length u32, and per component range min
- * f32, max f32, max error f32.
+ * particle set u8 (57; version 4, zero in version 3), 6 reserved zero bytes (58). Then per
+ * channel (`8 + 12 c` bytes): kind tag u8 (`proto/channels.json`, copied in `channels.js`),
+ * components u8 (1 to 4), bits u8 (1 to 16), predictor u8, payload length u32, and per
+ * component range min f32, max f32, max error f32.
  * @module
  */
 
 import { IncompleteError, MalformedError, TooLargeError, UnsupportedVersionError } from './errors.js';
 import { PREDICTOR_DEBUG_NAMES, PREDICTOR_NAMES, Predictor } from './predict.js';
-import { checkRange } from './quantize.js';
+import { RangeForm, checkRange } from './quantize.js';
+import { TABLE } from './channels.js';
 import { Reader } from './reader.js';
 
 /** The first four bytes of every frame. */
 export const MAGIC = 'FLOF';
 const MAGIC_BYTES = [0x46, 0x4c, 0x4f, 0x46];
-/** The format version this decoder reads. */
-export const VERSION = 3;
+/** The newest format version this decoder reads. */
+export const VERSION = 4;
+/** The oldest format version this decoder reads. */
+export const MIN_VERSION = 3;
 /** Bytes of the fixed header. */
 export const FIXED_HEADER_LEN = 64;
 /** Most channels a frame may declare. */
@@ -29,17 +33,15 @@ export const MAX_CHANNELS = 16;
 export const MAX_COMPONENTS = 4;
 
 /** Mode tags. */
-export const Mode = Object.freeze({ UNORDERED: 0, IDENTITY_ORDERED: 1 });
-const MODE_NAMES = ['unordered', 'identity_ordered'];
+export const Mode = Object.freeze({ UNORDERED: 0, IDENTITY_ORDERED: 1, GRID: 2 });
+const MODE_NAMES = ['unordered', 'identity_ordered', 'grid'];
 
-/** Channel kind tags; tags above 5 are unknown kinds, skipped by the decoder. */
-export const ChannelKind = Object.freeze({
-  POSITION: 0, VELOCITY: 1, DENSITY: 2, PRESSURE: 3, TEMPERATURE: 4, PHASE: 5,
-});
-/** Kind names by tag, as in the golden sidecars. */
-export const KIND_NAMES = Object.freeze(['position', 'velocity', 'density', 'pressure', 'temperature', 'phase']);
-/** Components per particle, by kind tag. */
-export const KIND_COMPONENTS = Object.freeze([3, 3, 1, 1, 1, 1]);
+/** The channel table's rows, by tag. */
+export const CHANNELS = Object.freeze(TABLE.channels.map((c) => Object.freeze({ ...c })));
+/** Tags of the table's channels, by upper-case name (`ChannelKind.VELOCITY`). */
+export const ChannelKind = Object.freeze(Object.fromEntries(CHANNELS.map((c) => [c.name.toUpperCase(), c.tag])));
+/** The table's name of `tag`, or `channel <tag>` for a tag it lacks (a per-scene channel). */
+export const kindName = (tag) => CHANNELS[tag]?.name ?? `channel ${tag}`;
 
 /**
  * Default limits, as Rust's `Limits::default()`: 16 Mi particles and 1 GiB per frame.
@@ -50,7 +52,7 @@ export const DEFAULT_LIMITS = Object.freeze({ maxParticles: 1 << 24, maxFrameByt
 /**
  * @typedef {object} ChannelInfo
  * @property {number} tag kind tag
- * @property {string} kind kind name (`'position'`, ...), or `'unknown'` for a tag this decoder does not know
+ * @property {string} kind kind name (`'position'`, ...), or `'channel <tag>'` for a tag the table lacks
  * @property {number} components components per particle
  * @property {number} bits quantisation bits per component
  * @property {number} predictorTag predictor tag (see `Predictor`)
@@ -64,8 +66,9 @@ export const DEFAULT_LIMITS = Object.freeze({ maxParticles: 1 << 24, maxFrameByt
  * @typedef {object} Header
  * @property {string} magic always `'FLOF'`
  * @property {number} version format version
- * @property {string} mode `'unordered'` or `'identity_ordered'`
- * @property {number} modeTag 0 or 1
+ * @property {string} mode `'unordered'`, `'identity_ordered'` or `'grid'`
+ * @property {number} modeTag 0, 1 or 2
+ * @property {number} set which of the scene's particle sets (or grids) the frame carries
  * @property {boolean} keyframe whether the frame decodes on its own
  * @property {number} frameLen bytes of the whole frame
  * @property {number} particleCount particles in the frame
@@ -75,7 +78,7 @@ export const DEFAULT_LIMITS = Object.freeze({ maxParticles: 1 << 24, maxFrameByt
  * @property {bigint} step u64, a BigInt: the simulation step
  * @property {number} time simulated time (s)
  * @property {number} headerLen bytes of the fixed header and channel table
- * @property {ChannelInfo[]} channels positions first
+ * @property {ChannelInfo[]} channels positions (or the grid) first
  */
 
 /**
@@ -94,7 +97,7 @@ export function readHeader(bytes, limits = DEFAULT_LIMITS) {
   }
   if (available >= 6) {
     const found = bytes[4] | (bytes[5] << 8);
-    if (found !== VERSION) throw new UnsupportedVersionError(found, VERSION);
+    if (found < MIN_VERSION || found > VERSION) throw new UnsupportedVersionError(found, MIN_VERSION, VERSION);
   }
   if (available < FIXED_HEADER_LEN) throw new IncompleteError(FIXED_HEADER_LEN, available);
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
@@ -117,7 +120,7 @@ function parse(frame) {
   r.skip(4);
   const version = r.u16();
   const modeTag = r.u8();
-  if (modeTag > 1) throw new MalformedError(`unknown mode ${modeTag}`);
+  if (modeTag > 2) throw new MalformedError(`unknown mode ${modeTag}`);
   const flags = r.u8();
   if ((flags & ~1) !== 0) {
     throw new MalformedError(`reserved flag bits set: 0x${flags.toString(16).padStart(2, '0')}`);
@@ -134,12 +137,15 @@ function parse(frame) {
   if (count < 1 || count > MAX_CHANNELS) {
     throw new MalformedError(`${count} channels (1 to ${MAX_CHANNELS} allowed)`);
   }
-  if (r.take(7).some((b) => b !== 0)) throw new MalformedError('reserved header bytes are not zero');
+  const set = r.u8();
+  if (r.take(6).some((b) => b !== 0) || (version < 4 && set !== 0)) {
+    throw new MalformedError('reserved header bytes are not zero');
+  }
   const channels = [];
   for (let i = 0; i < count; i++) channels.push(readChannel(r, i));
   return {
     magic: MAGIC, version, mode: MODE_NAMES[modeTag], modeTag, keyframe: (flags & 1) !== 0,
-    frameLen, particleCount, sceneId, sequence, baseSequence, step, time, headerLen: r.pos, channels,
+    frameLen, particleCount, sceneId, set, sequence, baseSequence, step, time, headerLen: r.pos, channels,
   };
 }
 
@@ -158,18 +164,21 @@ function readChannel(r, index) {
   const ranges = [];
   for (let k = 0; k < components; k++) {
     const range = { min: r.f32(), max: r.f32(), maxError: r.f32() };
-    const what = checkRange(range, bits, tag === ChannelKind.PHASE);
+    const form = tag === ChannelKind.GRID ? RangeForm.EXTENT : CHANNELS[tag]?.exact ? RangeForm.EXACT_U8 : RangeForm.QUANTISED;
+    const what = checkRange(range, bits, form);
     if (what !== null) throw bad(`component ${k}: ${what}`);
     ranges.push(range);
   }
   return {
-    tag, kind: KIND_NAMES[tag] ?? 'unknown', components, bits,
+    tag, kind: kindName(tag), components, bits,
     predictorTag, predictor: PREDICTOR_NAMES[predictorTag], payloadLen, ranges,
   };
 }
 
 /** Predictors allowed by mode, kind and keyframe flag (Rust `check`). */
-function allowed(modeTag, isPosition, delta) {
+function allowed(modeTag, tag, delta) {
+  if (modeTag === Mode.GRID) return tag === ChannelKind.GRID ? [Predictor.NONE] : [Predictor.NONE, Predictor.PREVIOUS];
+  const isPosition = tag === ChannelKind.POSITION;
   if (modeTag === Mode.UNORDERED) return isPosition ? [Predictor.MORTON] : [Predictor.NONE, Predictor.PREVIOUS];
   if (!delta) return [Predictor.NONE, Predictor.PREVIOUS];
   return isPosition ? [Predictor.BASE, Predictor.LINEAR] : [Predictor.NONE, Predictor.PREVIOUS, Predictor.BASE];
@@ -178,29 +187,35 @@ function allowed(modeTag, isPosition, delta) {
 /** Checks how the header's fields fit together (Rust `check` in `decoder.rs`). */
 function check(h) {
   const delta = h.modeTag === Mode.IDENTITY_ORDERED && !h.keyframe;
-  if (h.modeTag === Mode.UNORDERED && !h.keyframe) throw new MalformedError('unordered frames are all keyframes');
+  if (h.modeTag !== Mode.IDENTITY_ORDERED && !h.keyframe) {
+    throw new MalformedError('unordered and grid frames are all keyframes');
+  }
+  if (h.modeTag === Mode.GRID && h.version < 4) {
+    throw new MalformedError(`grid frames need format version 4, not ${h.version}`);
+  }
   if (!delta && h.baseSequence !== h.sequence) {
     throw new MalformedError(`keyframe ${h.sequence} names base frame ${h.baseSequence}`);
   }
   if (delta && h.baseSequence === h.sequence) throw new MalformedError(`delta frame ${h.sequence} predicts from itself`);
-  const seen = new Array(KIND_NAMES.length).fill(false);
+  const first = h.modeTag === Mode.GRID ? ChannelKind.GRID : ChannelKind.POSITION;
+  const seen = new Set();
   let total = h.headerLen;
   h.channels.forEach((c, i) => {
     total += c.payloadLen;
-    if (c.tag >= KIND_NAMES.length) {
-      if (i === 0) throw new MalformedError('the first channel is not positions');
-      return;
+    const leading = c.tag === ChannelKind.POSITION || c.tag === ChannelKind.GRID;
+    if ((i === 0) !== (c.tag === first) || (i > 0 && leading)) {
+      throw new MalformedError(`channel ${i} is ${c.kind}; ${kindName(first)} comes first and once`);
     }
-    const isPosition = c.tag === ChannelKind.POSITION;
-    if ((i === 0) !== isPosition) {
-      throw new MalformedError(`channel ${i} is ${c.kind}; positions come first and once`);
+    if (seen.has(c.tag)) throw new MalformedError(`channel ${i}: a second ${c.kind} channel`);
+    seen.add(c.tag);
+    const def = CHANNELS[c.tag];
+    if (def !== undefined && c.components !== def.components) {
+      throw new MalformedError(`channel ${i}: ${c.kind} has ${def.components} components, not ${c.components}`);
     }
-    if (seen[c.tag]) throw new MalformedError(`channel ${i}: a second ${c.kind} channel`);
-    seen[c.tag] = true;
-    if (c.components !== KIND_COMPONENTS[c.tag]) {
-      throw new MalformedError(`channel ${i}: ${c.kind} has ${KIND_COMPONENTS[c.tag]} components, not ${c.components}`);
+    if (c.tag === ChannelKind.GRID && (c.payloadLen !== 12 || c.bits !== 16)) {
+      throw new MalformedError(`channel ${i}: the grid has 16 bits and 12 bytes, not ${c.bits} and ${c.payloadLen}`);
     }
-    if (!allowed(h.modeTag, isPosition, delta).includes(c.predictorTag)) {
+    if (!allowed(h.modeTag, c.tag, delta).includes(c.predictorTag)) {
       throw new MalformedError(`channel ${i}: predictor ${PREDICTOR_DEBUG_NAMES[c.predictorTag]} is not allowed for ${c.kind} in this frame`);
     }
   });

@@ -6,7 +6,7 @@
  * ```js
  * import { Decoder } from './codec/index.js';
  * const decoder = new Decoder({ maxParticles: 1 << 22 });
- * const frame = decoder.decode(arrayBuffer); // frame.header, frame.positions (Float32Array x,y,z), ...
+ * const frame = decoder.decode(arrayBuffer); // frame.header, frame.positions (Float32Array x,y,z), frame.channels
  * ```
  * @module
  */
@@ -16,12 +16,12 @@ export {
   DecodeError, IncompleteError, MalformedError, NeedKeyframeError, TooLargeError, UnsupportedVersionError,
 } from './errors.js';
 export {
-  ChannelKind, DEFAULT_LIMITS, FIXED_HEADER_LEN, KIND_COMPONENTS, KIND_NAMES, MAGIC, MAX_CHANNELS, MAX_COMPONENTS,
-  Mode, VERSION, readHeader,
+  CHANNELS, ChannelKind, DEFAULT_LIMITS, FIXED_HEADER_LEN, MAGIC, MAX_CHANNELS, MAX_COMPONENTS, MIN_VERSION, Mode,
+  VERSION, kindName, readHeader,
 } from './header.js';
 export { decodeKey, encodeKey } from './morton.js';
 export { PREDICTOR_NAMES, Predictor, extrapolate, readCodes } from './predict.js';
-export { checkRange, dequantise, maxErrorOf, stepOf } from './quantize.js';
+export { RangeForm, checkRange, dequantise, maxErrorOf, stepOf } from './quantize.js';
 export { Reader } from './reader.js';
 export { BLOCK, ESCAPE, Scratch, ZERO_BLOCK, readStream } from './stream.js';
 export { readMortonPositions } from './unordered.js';

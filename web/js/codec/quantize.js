@@ -86,19 +86,26 @@ export function formatF32(v) {
   return v < 0 ? `-${out}` : out;
 }
 
+/** What a channel-table range describes (Rust `RangeForm`). */
+export const RangeForm = Object.freeze({ QUANTISED: 0, EXACT_U8: 1, EXTENT: 2 });
+
 /**
- * Checks one channel-table range on its own, as `quantize::check_range` does: finite ends,
- * `min <= max`, a finite step, and the stated maximum error bit-identical to half a step; or,
- * for the raw u8 phase channel, exactly `[0, 255]`, 8 bits, error 0.
+ * Checks one channel-table range on its own, as Rust's `check_range`: finite ends, `min <= max`,
+ * a finite step and the stated maximum error equal to half a step; exactly `[0, 255]`, 8 bits,
+ * error 0 for an exact channel; error 0 for a grid's extent.
  * @param {{min: number, max: number, maxError: number}} range
  * @param {number} bits
- * @param {boolean} exactU8 whether this is the raw u8 (phase) channel
- * @returns {string|null} what is wrong, or null if the range is valid
+ * @param {number} form a {@link RangeForm}
+ * @returns {string|null} what is wrong, or null
  */
-export function checkRange(range, bits, exactU8) {
+export function checkRange(range, bits, form) {
   const { min, max, maxError } = range;
   const [a, b, e] = [() => formatF32(min), () => formatF32(max), () => formatF32(maxError)]; // only on errors
-  if (exactU8) {
+  if (form === RangeForm.EXTENT) {
+    if (Number.isFinite(min) && Number.isFinite(max) && min <= max && maxError === 0) return null;
+    return `a grid extent is finite and ordered with error 0, not [${a()}, ${b()}], error ${e()}`;
+  }
+  if (form === RangeForm.EXACT_U8) {
     if (min === 0 && max === 255 && maxError === 0 && bits === 8) return null;
     return `a raw u8 channel has range [0, 255], 8 bits and error 0, not [${a()}, ${b()}], ${bits} bits, error ${e()}`;
   }

@@ -6,8 +6,7 @@
  *
  * Messages in (an optional `id` is echoed back in the reply):
  * - `{ bytes: ArrayBuffer }` (transfer it): decode one frame. Reply: `{ id, header, positions,
- *   velocities?, densities?, pressures?, temperatures?, phases?, decodeMs }`, the arrays'
- *   buffers transferred; or `{ id, error: { kind, name, message, ...fields } }` where `kind` is
+ *   grid?, channels, decodeMs }` (see the decoder's `Frame`), the arrays' buffers transferred; or `{ id, error: { kind, name, message, ...fields } }` where `kind` is
  *   the `DecodeError` variant (`'Incomplete'`, `'Malformed'`, `'UnsupportedVersion'`,
  *   `'NeedKeyframe'`, `'TooLarge'`), `'TypeError'` for a message without bytes, or `'Internal'`.
  * - `{ limits: { maxParticles, maxFrameBytes } }`: a fresh decoder with these limits. Reply `{ id, ok: true }`.
@@ -21,7 +20,6 @@
 import { Decoder } from './decoder.js';
 import { DecodeError } from './errors.js';
 
-const FIELDS = ['positions', 'velocities', 'densities', 'pressures', 'temperatures', 'phases'];
 const now = () => (typeof performance !== 'undefined' ? performance.now() : Date.now());
 
 /**
@@ -48,14 +46,8 @@ export function handleMessage(state, data) {
     const t0 = now();
     const frame = state.decoder.decode(bytes);
     const decodeMs = now() - t0;
-    const message = { id, header: frame.header, decodeMs };
-    const transfer = [];
-    for (const f of FIELDS) {
-      if (frame[f] !== undefined) {
-        message[f] = frame[f];
-        transfer.push(frame[f].buffer);
-      }
-    }
+    const message = { id, ...frame, decodeMs };
+    const transfer = [frame.positions.buffer, ...frame.channels.map((c) => c.values.buffer)];
     return { message, transfer };
   } catch (e) {
     const error = e instanceof DecodeError ? e.toJSON() : { kind: 'Internal', message: String(e?.message ?? e) };

@@ -7,7 +7,7 @@
 
 mod passes;
 
-use crate::backend::{Backend, Channel, Particles};
+use crate::backend::{Backend, Particles};
 use crate::guard::Measures;
 use crate::math::{Real, Vec3};
 use crate::model::Model;
@@ -162,7 +162,7 @@ impl Backend for CpuBackend {
         self.sort_and_density();
     }
 
-    fn read(&self, channels: &[Channel]) -> Particles {
+    fn read(&self, channels: &[&str]) -> Particles {
         by_identity(channels, &self.ids, &self.pos, Some(&self.vel), Some(&self.rho), &self.model.fluid.eos)
     }
 }

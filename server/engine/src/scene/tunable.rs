@@ -1,51 +1,138 @@
 //! Which scene fields may change while a scene runs, and applying such changes.
 //!
-//! Tunable: `gravity`, `fluids[0].viscosity`, `fluids[0].xsph`,
-//! `solver.time_step`, `solver.damping`, `solver.damping_until` and `guard`.
-//! Everything else (resolution, geometry, kernel, equation of state, ...) shapes
-//! the particles and buffers themselves and needs a new scene.
+//! Each tunable is a path into the scene document (`[*]` stands for any index of a
+//! list), declared once with its unit and bounds. Everything else (resolution,
+//! geometry, kernel, equation of state, ...) shapes the particles and buffers
+//! themselves and needs a new scene. Applying overrides is generic: the new
+//! document with every tunable path taken back from the current one must equal the
+//! current one, or a field that cannot change was changed.
 
 use super::Scene;
 use super::load::{SceneError, apply_overrides, from_value};
+use serde_json::Value;
 
-/// The tunable fields, as written in overrides.
-pub const TUNABLE: &[&str] = &[
-    "gravity",
-    "fluids[0].viscosity",
-    "fluids[0].xsph",
-    "solver.time_step",
-    "solver.damping",
-    "solver.damping_until",
-    "guard",
+/// A setting that may change while a scene exists.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tunable {
+    /// Path in the scene document, as in overrides; `[*]` matches any index.
+    pub path: &'static str,
+    /// SI unit of the value (empty for a table or a dimensionless number).
+    pub unit: &'static str,
+    /// Lower bound of a numeric value, as validation checks it.
+    pub min: Option<f64>,
+    /// Upper bound of a numeric value.
+    pub max: Option<f64>,
+    /// What it does.
+    pub about: &'static str,
+    /// The module that owns it (`core` for the scene's own fields).
+    pub module: &'static str,
+}
+
+/// The tunable fields.
+pub const TUNABLE: &[Tunable] = &[
+    Tunable {
+        path: "gravity",
+        unit: "m/s^2",
+        min: None,
+        max: None,
+        about: "Gravitational acceleration vector.",
+        module: "core",
+    },
+    Tunable {
+        path: "fluids[*].viscosity",
+        unit: "",
+        min: None,
+        max: None,
+        about: "A fluid's viscosity model and its constant.",
+        module: "fluid",
+    },
+    Tunable {
+        path: "fluids[*].xsph",
+        unit: "",
+        min: Some(0.0),
+        max: Some(1.0),
+        about: "A fluid's XSPH velocity correction factor.",
+        module: "fluid",
+    },
+    Tunable {
+        path: "solver.time_step",
+        unit: "",
+        min: None,
+        max: None,
+        about: "Time step control: adaptive (cfl, min, max in s) or fixed (dt in s).",
+        module: "core",
+    },
+    Tunable {
+        path: "solver.damping",
+        unit: "1/s",
+        min: Some(0.0),
+        max: None,
+        about: "Velocity damping rate while t < damping_until.",
+        module: "core",
+    },
+    Tunable {
+        path: "solver.damping_until",
+        unit: "s",
+        min: Some(0.0),
+        max: None,
+        about: "Simulated time at which damping stops.",
+        module: "core",
+    },
+    Tunable {
+        path: "guard",
+        unit: "",
+        min: None,
+        max: None,
+        about: "Stability guard bounds (max_compression, max_speed in m/s).",
+        module: "core",
+    },
 ];
 
-/// `next` with every tunable field taken from `current`.
-fn structure(next: &Scene, current: &Scene) -> Scene {
-    let mut s = next.clone();
-    s.gravity = current.gravity;
-    if let (Some(a), Some(b)) = (s.fluids.get_mut(0), current.fluids.first()) {
-        a.viscosity = b.viscosity;
-        a.xsph = b.xsph;
+/// Copies the value at `path` (segments; `*` for any index) from `from` into `into`,
+/// where both documents have it.
+fn copy_path(into: &mut Value, from: &Value, path: &[&str]) {
+    let Some((head, rest)) = path.split_first() else {
+        *into = from.clone();
+        return;
+    };
+    match (*head, into, from) {
+        ("*", Value::Array(a), Value::Array(b)) => {
+            for (x, y) in a.iter_mut().zip(b) {
+                copy_path(x, y, rest);
+            }
+        }
+        (key, Value::Object(a), Value::Object(b)) => {
+            if let (Some(x), Some(y)) = (a.get_mut(key), b.get(key)) {
+                copy_path(x, y, rest);
+            }
+        }
+        _ => {}
     }
-    s.solver.time_step = current.solver.time_step;
-    s.solver.damping = current.solver.damping;
-    s.solver.damping_until = current.solver.damping_until;
-    s.guard = current.guard;
-    s
+}
+
+/// The segments of a tunable path: `fluids[*].xsph` is `fluids`, `*`, `xsph`.
+fn segments(path: &str) -> Vec<&str> {
+    path.split('.').flat_map(|part| part.split('[').map(|s| s.trim_end_matches(']'))).collect()
 }
 
 /// Applies `key=value` overrides to a running scene: the new scene, validated,
 /// or an error naming a field that cannot change while the scene runs.
 pub fn apply(current: &Scene, overrides: &[String]) -> Result<Scene, SceneError> {
-    let mut value = serde_json::to_value(current).expect("scenes serialise");
+    let now = serde_json::to_value(current).expect("scenes serialise");
+    let mut value = now.clone();
     apply_overrides(&mut value, overrides)?;
     let next = from_value(value)?;
-    if structure(&next, current) != *current {
+    let mut kept = serde_json::to_value(&next).expect("scenes serialise");
+    for t in TUNABLE {
+        copy_path(&mut kept, &now, &segments(t.path));
+    }
+    if kept != now {
         let keys: Vec<&str> = overrides.iter().map(|o| o.split('=').next().unwrap_or(o).trim()).collect();
+        let paths: Vec<&str> = TUNABLE.iter().map(|t| t.path).collect();
         return Err(SceneError::Invalid(vec![format!(
             "{}: cannot change while the scene exists; tunable fields are {}",
             keys.join(", "),
-            TUNABLE.join(", ")
+            paths.join(", ")
         )]));
     }
     Ok(next)

@@ -2,10 +2,10 @@
 //! one variant of the solver options, timed, with the case's error norms.
 
 use super::{dam_break, hydrostatic, run_probed};
+use crate::Simulation;
 use crate::scene::load::{SceneError, from_preset};
 use crate::scene::presets::DAM_BREAK_A;
 use crate::simulation::BackendFactory;
-use crate::{Channel, Simulation};
 use serde::Serialize;
 
 /// A validation case this engine supports.
@@ -138,9 +138,9 @@ type Measured = (f64, Option<crate::Halted>, Vec<(&'static str, f64)>);
 /// with `rho0 g (H - y)` for H = 0.9 m (Adami et al. 2012).
 fn run_hydrostatic(sim: &mut Simulation, spacing: f64) -> Measured {
     let (wall, halted) = run_probed(sim, 1.0, 1.0, |_| {});
-    let p = sim.read(&[Channel::Velocity, Channel::Density, Channel::Pressure]);
+    let p = sim.read(&["velocity", "density", "pressure"]);
     let e = hydrostatic::measure(&p, 1000.0, 9.81, 0.9, spacing);
-    let v = p.velocities.as_ref().expect("velocities requested");
+    let v = p.channel("velocity").and_then(|v| v.as_vectors()).expect("velocities requested");
     let ke = v.iter().map(|v| 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) as f64).sum::<f64>() / v.len() as f64;
     let errors = vec![
         ("pressure_l2", e.pressure_l2),

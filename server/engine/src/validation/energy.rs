@@ -7,7 +7,7 @@ use crate::backend::Particles;
 
 /// Mechanical energy (J) of particles of mass `mass` (kg) under gravity `g` (m/s^2).
 pub fn mechanical(p: &Particles, mass: f64, g: [f32; 3]) -> f64 {
-    let v = p.velocities.as_ref().expect("velocities requested");
+    let v = p.channel("velocity").and_then(|v| v.as_vectors()).expect("velocities requested");
     p.positions
         .iter()
         .zip(v)
@@ -27,7 +27,7 @@ mod tests {
     fn energy_of_a_falling_pair() {
         let p = Particles {
             positions: vec![[0.0, 2.0, 0.0], [1.0, 0.0, 0.0]],
-            velocities: Some(vec![[0.0, -3.0, 0.0], [4.0, 0.0, 0.0]]),
+            channels: vec![("velocity".into(), floe_proto::Values::vectors(vec![[0.0, -3.0, 0.0], [4.0, 0.0, 0.0]]))],
             ..Default::default()
         };
         // m (9/2 + 9.81*2) + m (16/2)

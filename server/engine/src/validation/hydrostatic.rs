@@ -20,8 +20,8 @@ pub struct HydrostaticError {
 /// column of height `h` (m) resting on `y = 0`. Particles within two spacings of
 /// the surface are left out of the density mean: summation density is deficient there.
 pub fn measure(p: &Particles, rho0: f64, g: f64, h: f64, spacing: f64) -> HydrostaticError {
-    let pressures = p.pressures.as_ref().expect("pressures requested");
-    let densities = p.densities.as_ref().expect("densities requested");
+    let pressures = p.channel("pressure").and_then(|v| v.as_scalars()).expect("pressures requested");
+    let densities = p.channel("density").and_then(|v| v.as_scalars()).expect("densities requested");
     let (mut num, mut den, mut worst, mut peak, mut dev, mut count) = (0.0, 0.0, 0.0f64, 0.0f64, 0.0, 0);
     for ((x, &pr), &rho) in p.positions.iter().zip(pressures).zip(densities) {
         let y = x[1] as f64;

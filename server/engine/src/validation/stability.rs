@@ -7,10 +7,10 @@
 //! largest a scene accepts).
 
 use super::{energy, run_probed};
+use crate::Simulation;
 use crate::scene::load::{SceneError, from_preset};
 use crate::scene::presets::DAM_BREAK_A;
 use crate::simulation::BackendFactory;
-use crate::{Channel, Simulation};
 use serde::Serialize;
 
 /// What a case must do to pass.
@@ -153,12 +153,11 @@ pub fn trial(case: &StabilityCase, full: bool, extra: &[String], make: &BackendF
     let mut energies = Vec::new();
     let until = if full { case.until.1 } else { case.until.0 };
     let (wall, halted) = run_probed(&mut sim, until, until / 50.0, |s| {
-        energies.push(energy::mechanical(&s.read(&[Channel::Velocity]), mass, g));
+        energies.push(energy::mechanical(&s.read(&["velocity"]), mass, g));
     });
-    let last = sim.read(&[Channel::Velocity, Channel::Density]);
-    let finite =
-        last.positions.iter().flatten().chain(last.velocities.iter().flatten().flatten()).all(|v| v.is_finite())
-            && last.densities.iter().flatten().all(|v| v.is_finite());
+    let last = sim.read(&["velocity", "density"]);
+    let finite = last.positions.iter().flatten().all(|v| v.is_finite())
+        && last.channels.iter().all(|(_, v)| (0..v.len()).flat_map(|i| v.get(i)).all(f32::is_finite));
     let e0 = energies.first().copied().unwrap_or(0.0);
     let e_max = energies.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     Ok(Trial {

@@ -1,8 +1,9 @@
 //! Legacy VTK (version 3.0) binary polydata: one vertex per particle, point data
-//! `id`, `velocity` and every scalar channel. Binary legacy VTK is big-endian.
+//! `id` and every channel (three components as VECTORS, others as SCALARS).
+//! Binary legacy VTK is big-endian.
 
-use super::scalars;
-use crate::backend::Particles;
+use crate::frame::Values;
+use crate::particles::Particles;
 use std::io::{Result, Write};
 
 fn be_floats(out: &mut impl Write, values: impl Iterator<Item = f32>) -> Result<()> {
@@ -16,7 +17,7 @@ fn be_floats(out: &mut impl Write, values: impl Iterator<Item = f32>) -> Result<
 pub fn write_vtk(out: &mut impl Write, p: &Particles, time: f64) -> Result<()> {
     let n = p.positions.len();
     writeln!(out, "# vtk DataFile Version 3.0")?;
-    writeln!(out, "floe particles t={time:.6} s")?;
+    writeln!(out, "floe {} t={time:.6} s", p.set)?;
     writeln!(out, "BINARY\nDATASET POLYDATA\nPOINTS {n} float")?;
     be_floats(out, p.positions.iter().flatten().copied())?;
     writeln!(out, "VERTICES {n} {}", 2 * n)?;
@@ -30,13 +31,24 @@ pub fn write_vtk(out: &mut impl Write, p: &Particles, time: f64) -> Result<()> {
         out.write_all(&i.to_be_bytes())?;
     }
     writeln!(out)?;
-    if let Some(v) = &p.velocities {
-        writeln!(out, "VECTORS velocity float")?;
-        be_floats(out, v.iter().flatten().copied())?;
-    }
-    for (name, values) in scalars(p) {
-        writeln!(out, "SCALARS {name} float 1\nLOOKUP_TABLE default")?;
-        be_floats(out, values.iter().copied())?;
+    for (name, values) in &p.channels {
+        // VTK names may not contain spaces.
+        let name = name.replace(' ', "_");
+        match values {
+            Values::Float { components: 3, data } => {
+                writeln!(out, "VECTORS {name} float")?;
+                be_floats(out, data.iter().copied())?;
+            }
+            Values::Float { components, data } => {
+                writeln!(out, "SCALARS {name} float {components}\nLOOKUP_TABLE default")?;
+                be_floats(out, data.iter().copied())?;
+            }
+            Values::Exact(v) => {
+                writeln!(out, "SCALARS {name} unsigned_char 1\nLOOKUP_TABLE default")?;
+                out.write_all(v)?;
+                writeln!(out)?;
+            }
+        }
     }
     Ok(())
 }
@@ -48,10 +60,13 @@ mod tests {
     #[test]
     fn header_and_sizes_are_consistent() {
         let p = Particles {
+            set: "particles".into(),
             positions: vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]],
-            velocities: Some(vec![[0.5; 3]; 2]),
-            densities: Some(vec![1000.0, 1001.0]),
-            pressures: None,
+            channels: vec![
+                ("velocity".into(), Values::vectors(vec![[0.5; 3]; 2])),
+                ("density".into(), Values::scalars(vec![1000.0, 1001.0])),
+                ("material".into(), Values::Exact(vec![0, 1])),
+            ],
         };
         let mut buf = Vec::new();
         write_vtk(&mut buf, &p, 0.25).unwrap();
@@ -60,6 +75,7 @@ mod tests {
         assert!(text.contains("POINTS 2 float\n"));
         assert!(text.contains("VECTORS velocity float\n"));
         assert!(text.contains("SCALARS density float 1\n"));
+        assert!(text.contains("SCALARS material unsigned_char 1\nLOOKUP_TABLE default\n\u{0}\u{1}\n"));
         assert!(!text.contains("pressure"));
         // The first point follows the POINTS line as 3 big-endian f32.
         let at = buf.windows(15).position(|w| w == b"POINTS 2 float\n").unwrap() + 15;

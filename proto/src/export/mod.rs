@@ -1,4 +1,5 @@
-//! Writing particle state to files for ParaView (VTK) and spreadsheets (CSV).
+//! Writing particle state to files for ParaView (VTK) and spreadsheets (CSV), with
+//! every channel the particles carry.
 
 mod csv;
 mod vtk;
@@ -6,9 +7,9 @@ mod vtk;
 pub use csv::write_csv;
 pub use vtk::write_vtk;
 
-use crate::backend::Particles;
+use crate::particles::Particles;
 
-/// File formats of `floe run --export`.
+/// File formats of exports.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
     /// Legacy VTK polydata, binary (opens in ParaView).
@@ -27,7 +28,7 @@ impl Format {
     }
 }
 
-/// Writes `particles` in `format` to `path`.
+/// Writes `particles` in `format` to `path`; `time` (s) goes in the VTK title.
 pub fn write(path: &std::path::Path, format: Format, particles: &Particles, time: f64) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     match format {
@@ -37,10 +38,11 @@ pub fn write(path: &std::path::Path, format: Format, particles: &Particles, time
     std::io::Write::flush(&mut out)
 }
 
-/// Scalar channels present in `p`, as (name, values).
-fn scalars(p: &Particles) -> Vec<(&'static str, &[f32])> {
-    [("density", &p.densities), ("pressure", &p.pressures)]
-        .into_iter()
-        .filter_map(|(n, v)| v.as_deref().map(|v| (n, v)))
-        .collect()
+/// Column names of a channel's components: the name itself for one component, else
+/// `name_x`, `name_y`, `name_z`, `name_w`.
+fn component_names(name: &str, components: u8) -> Vec<String> {
+    match components {
+        1 => vec![name.to_string()],
+        c => ["x", "y", "z", "w"].iter().take(usize::from(c)).map(|axis| format!("{name}_{axis}")).collect(),
+    }
 }

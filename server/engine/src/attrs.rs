@@ -1,0 +1,432 @@
+//! The attribute store: every per-particle (or per-wall, per-cell, ...) quantity a
+//! scene holds, as a typed column declared once with its name, element type, unit,
+//! role and owning module.
+//!
+//! A module declares its attributes as [`AttrSpec`]s and allocates them through the
+//! model builder ([`crate::model::ModelBuilder::attr`]): that is the only way a
+//! backend allocates scene data, so a module a scene does not use allocates nothing,
+//! and `Backend::allocations` can say what each module costs. The CPU backend keeps
+//! the columns here ([`Attrs`]); the GPU backend makes one buffer per attribute from
+//! the same specs.
+//!
+//! Roles decide what the core does with a column without knowing what it means:
+//! sorting permutes every [`Role::State`] column of the sorted space, snapshots save
+//! them, and the guard checks them for non-finite values; [`Role::Derived`] columns
+//! are recomputed from state every step (after a sort or a restore) and never saved.
+
+use crate::math::{Real, Vec3};
+use std::marker::PhantomData;
+
+/// Element type of an attribute.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Elem {
+    /// One f32.
+    F32,
+    /// One u32 (ids, indices, flags).
+    U32,
+    /// Three f32 (12 bytes on the CPU; a vec4 on the GPU, for alignment).
+    Vec3,
+    /// Four f32.
+    Vec4,
+    /// A symmetric 3x3 tensor: xx, yy, zz, xy, xz, yz.
+    Sym3,
+}
+
+impl Elem {
+    /// Bytes per element in the CPU store.
+    pub fn cpu_bytes(self) -> usize {
+        match self {
+            Elem::F32 | Elem::U32 => 4,
+            Elem::Vec3 => 12,
+            Elem::Vec4 => 16,
+            Elem::Sym3 => 24,
+        }
+    }
+
+    /// 32-bit words per element in a GPU buffer (vec3 padded to a vec4).
+    pub fn gpu_words(self) -> usize {
+        match self {
+            Elem::F32 | Elem::U32 => 1,
+            Elem::Vec3 | Elem::Vec4 => 4,
+            Elem::Sym3 => 6,
+        }
+    }
+
+    /// Floats (or u32 words) per element in a snapshot.
+    pub fn components(self) -> usize {
+        match self {
+            Elem::F32 | Elem::U32 => 1,
+            Elem::Vec3 => 3,
+            Elem::Vec4 => 4,
+            Elem::Sym3 => 6,
+        }
+    }
+
+    /// The tag of this type in snapshots.
+    pub fn tag(self) -> u8 {
+        match self {
+            Elem::F32 => 0,
+            Elem::U32 => 1,
+            Elem::Vec3 => 2,
+            Elem::Vec4 => 3,
+            Elem::Sym3 => 4,
+        }
+    }
+}
+
+/// What the core does with an attribute.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Role {
+    /// Evolves from step to step: sorted with its space, saved in snapshots, checked by
+    /// the guard.
+    State,
+    /// Recomputed from state every step; neither sorted nor saved.
+    Derived,
+    /// Set when the scene is built and never changed (e.g. a wall's temperature);
+    /// rebuilt from the scene on restore, not saved.
+    Constant,
+}
+
+/// An attribute's declaration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AttrSpec {
+    /// Name, unique in a scene (`x`, `v`, `rho`, `temperature`).
+    pub name: &'static str,
+    /// Element type.
+    pub elem: Elem,
+    /// SI unit of the values (`m/s`); empty when dimensionless.
+    pub unit: &'static str,
+    /// What the core does with it.
+    pub role: Role,
+    /// The index space it belongs to (`particles`, `walls`, or one a module declares).
+    pub space: &'static str,
+    /// The module that declares it (`core`, a scheme's name, or a module's).
+    pub module: &'static str,
+    /// What it holds.
+    pub about: &'static str,
+}
+
+/// The particle space: SPH particles, sorted by cell every step.
+pub const PARTICLES: &str = "particles";
+/// The wall space: boundary particles, fixed.
+pub const WALLS: &str = "walls";
+
+/// One attribute's values in the CPU store.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Column {
+    /// f32 values.
+    F32(Vec<f32>),
+    /// u32 values.
+    U32(Vec<u32>),
+    /// 3-vectors.
+    Vec3(Vec<Vec3>),
+    /// 4-vectors.
+    Vec4(Vec<[f32; 4]>),
+    /// Symmetric tensors.
+    Sym3(Vec<[f32; 6]>),
+}
+
+impl Column {
+    /// `n` zeros of type `elem`.
+    pub fn zeros(elem: Elem, n: usize) -> Self {
+        match elem {
+            Elem::F32 => Column::F32(vec![0.0; n]),
+            Elem::U32 => Column::U32(vec![0; n]),
+            Elem::Vec3 => Column::Vec3(vec![Vec3::ZERO; n]),
+            Elem::Vec4 => Column::Vec4(vec![[0.0; 4]; n]),
+            Elem::Sym3 => Column::Sym3(vec![[0.0; 6]; n]),
+        }
+    }
+
+    /// Element type.
+    pub fn elem(&self) -> Elem {
+        match self {
+            Column::F32(_) => Elem::F32,
+            Column::U32(_) => Elem::U32,
+            Column::Vec3(_) => Elem::Vec3,
+            Column::Vec4(_) => Elem::Vec4,
+            Column::Sym3(_) => Elem::Sym3,
+        }
+    }
+
+    /// Elements.
+    pub fn len(&self) -> usize {
+        match self {
+            Column::F32(v) => v.len(),
+            Column::U32(v) => v.len(),
+            Column::Vec3(v) => v.len(),
+            Column::Vec4(v) => v.len(),
+            Column::Sym3(v) => v.len(),
+        }
+    }
+
+    /// Whether there are no elements.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The values as 32-bit words, element by element (f32 by their bits).
+    pub fn words(&self) -> Vec<u32> {
+        match self {
+            Column::F32(v) => v.iter().map(|x| x.to_bits()).collect(),
+            Column::U32(v) => v.clone(),
+            Column::Vec3(v) => v.iter().flat_map(|x| x.to_array()).map(f32::to_bits).collect(),
+            Column::Vec4(v) => v.iter().flatten().map(|x| x.to_bits()).collect(),
+            Column::Sym3(v) => v.iter().flatten().map(|x| x.to_bits()).collect(),
+        }
+    }
+
+    /// A column of `elem` from words as [`Column::words`] writes them; `None` when the
+    /// word count is not a whole number of elements.
+    pub fn from_words(elem: Elem, words: &[u32]) -> Option<Self> {
+        let c = elem.components();
+        if !words.len().is_multiple_of(c) {
+            return None;
+        }
+        let f = |w: &[u32]| w.iter().map(|&x| f32::from_bits(x)).collect::<Vec<f32>>();
+        Some(match elem {
+            Elem::F32 => Column::F32(f(words)),
+            Elem::U32 => Column::U32(words.to_vec()),
+            Elem::Vec3 => Column::Vec3(words.chunks_exact(3).map(|w| Vec3::from_slice(&f(w))).collect()),
+            Elem::Vec4 => Column::Vec4(words.chunks_exact(4).map(|w| std::array::from_fn(|k| f32::from_bits(w[k]))).collect()),
+            Elem::Sym3 => Column::Sym3(words.chunks_exact(6).map(|w| std::array::from_fn(|k| f32::from_bits(w[k]))).collect()),
+        })
+    }
+
+    /// Whether every value is finite (u32 values always are).
+    pub fn all_finite(&self) -> bool {
+        self.first_non_finite().is_none()
+    }
+
+    /// The first element with a non-finite value.
+    pub fn first_non_finite(&self) -> Option<usize> {
+        match self {
+            Column::F32(v) => v.iter().position(|x| !x.is_finite()),
+            Column::U32(_) => None,
+            Column::Vec3(v) => v.iter().position(|x| !x.is_finite()),
+            Column::Vec4(v) => v.iter().position(|x| x.iter().any(|c| !c.is_finite())),
+            Column::Sym3(v) => v.iter().position(|x| x.iter().any(|c| !c.is_finite())),
+        }
+    }
+
+    fn permute(&mut self, order: &[u32], scratch: &mut Scratch) {
+        use crate::neighbors::permute;
+        match self {
+            Column::F32(v) => permute(v, &mut scratch.f32, order),
+            Column::U32(v) => permute(v, &mut scratch.u32, order),
+            Column::Vec3(v) => permute(v, &mut scratch.vec3, order),
+            Column::Vec4(v) => permute(v, &mut scratch.vec4, order),
+            Column::Sym3(v) => permute(v, &mut scratch.sym3, order),
+        }
+    }
+}
+
+/// A Rust type stored in a [`Column`].
+pub trait Element: Copy + Send + Sync + 'static {
+    /// Its element type.
+    const ELEM: Elem;
+    /// The column's values, if it holds this type.
+    fn slice(c: &Column) -> Option<&[Self]>;
+    /// The column's values, mutable.
+    fn slice_mut(c: &mut Column) -> Option<&mut Vec<Self>>;
+}
+
+macro_rules! element {
+    ($t:ty, $variant:ident) => {
+        impl Element for $t {
+            const ELEM: Elem = Elem::$variant;
+            fn slice(c: &Column) -> Option<&[Self]> {
+                match c {
+                    Column::$variant(v) => Some(v),
+                    _ => None,
+                }
+            }
+            fn slice_mut(c: &mut Column) -> Option<&mut Vec<Self>> {
+                match c {
+                    Column::$variant(v) => Some(v),
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+element!(Real, F32);
+element!(u32, U32);
+element!(Vec3, Vec3);
+element!([f32; 4], Vec4);
+element!([f32; 6], Sym3);
+
+/// A typed handle on a column, resolved once from the attribute's name.
+#[derive(Debug)]
+pub struct Attr<T> {
+    index: usize,
+    _type: PhantomData<T>,
+}
+
+impl<T> Clone for Attr<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<T> Copy for Attr<T> {}
+
+/// What one attribute takes, for `Backend::allocations`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Allocation {
+    /// Attribute name.
+    pub name: &'static str,
+    /// Owning module.
+    pub module: &'static str,
+    /// Index space.
+    pub space: &'static str,
+    /// Bytes.
+    pub bytes: u64,
+}
+
+/// Scratch vectors the permutation swaps in, one per element type.
+#[derive(Debug, Default)]
+struct Scratch {
+    f32: Vec<f32>,
+    u32: Vec<u32>,
+    vec3: Vec<Vec3>,
+    vec4: Vec<[f32; 4]>,
+    sym3: Vec<[f32; 6]>,
+}
+
+/// The CPU store: one column per declared attribute.
+#[derive(Debug, Default)]
+pub struct Attrs {
+    specs: Vec<&'static AttrSpec>,
+    columns: Vec<Column>,
+    scratch: Scratch,
+}
+
+impl Attrs {
+    /// A store holding `columns`, each with its declaration.
+    pub fn new(columns: Vec<(&'static AttrSpec, Column)>) -> Self {
+        let (specs, columns) = columns.into_iter().unzip();
+        Self { specs, columns, scratch: Scratch::default() }
+    }
+
+    /// The declarations, in store order.
+    pub fn specs(&self) -> &[&'static AttrSpec] {
+        &self.specs
+    }
+
+    /// Whether the store has an attribute called `name`.
+    pub fn has(&self, name: &str) -> bool {
+        self.specs.iter().any(|s| s.name == name)
+    }
+
+    /// The handle of attribute `name` of type `T`, if the scene has it.
+    pub fn find<T: Element>(&self, name: &str) -> Option<Attr<T>> {
+        let index = self.specs.iter().position(|s| s.name == name)?;
+        assert_eq!(self.specs[index].elem, T::ELEM, "attribute {name} is not a {:?}", T::ELEM);
+        Some(Attr { index, _type: PhantomData })
+    }
+
+    /// The handle of attribute `name` of type `T`; panics if the scene lacks it (the
+    /// plan checks that every pass's inputs exist before a backend runs it).
+    pub fn handle<T: Element>(&self, name: &str) -> Attr<T> {
+        self.find(name).unwrap_or_else(|| panic!("no attribute {name} in this scene"))
+    }
+
+    /// The values of `a`.
+    pub fn get<T: Element>(&self, a: Attr<T>) -> &[T] {
+        T::slice(&self.columns[a.index]).expect("handles are typed")
+    }
+
+    /// The values of `a`, mutable.
+    pub fn get_mut<T: Element>(&mut self, a: Attr<T>) -> &mut Vec<T> {
+        T::slice_mut(&mut self.columns[a.index]).expect("handles are typed")
+    }
+
+    /// Takes `a`'s values out (to write them while reading other columns); give them
+    /// back with [`Attrs::put`].
+    pub fn take<T: Element>(&mut self, a: Attr<T>) -> Vec<T> {
+        std::mem::take(self.get_mut(a))
+    }
+
+    /// Puts back values taken with [`Attrs::take`].
+    pub fn put<T: Element>(&mut self, a: Attr<T>, values: Vec<T>) {
+        *self.get_mut(a) = values;
+    }
+
+    /// The column called `name`.
+    pub fn column(&self, name: &str) -> Option<&Column> {
+        self.specs.iter().position(|s| s.name == name).map(|i| &self.columns[i])
+    }
+
+    /// Replaces the column called `name` (same type and length expected by the caller).
+    pub fn set_column(&mut self, name: &str, column: Column) {
+        let i = self.specs.iter().position(|s| s.name == name).unwrap_or_else(|| panic!("no attribute {name}"));
+        self.columns[i] = column;
+    }
+
+    /// Every column with its declaration.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static AttrSpec, &Column)> {
+        self.specs.iter().copied().zip(&self.columns)
+    }
+
+    /// Applies the permutation `order` to every state column of `space`.
+    pub fn permute(&mut self, space: &str, order: &[u32]) {
+        for (spec, column) in self.specs.iter().zip(&mut self.columns) {
+            if spec.space == space && spec.role == Role::State {
+                column.permute(order, &mut self.scratch);
+            }
+        }
+    }
+
+    /// What each column takes.
+    pub fn allocations(&self) -> Vec<Allocation> {
+        self.iter()
+            .map(|(s, c)| Allocation {
+                name: s.name,
+                module: s.module,
+                space: s.space,
+                bytes: (c.len() * s.elem.cpu_bytes()) as u64,
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const X: AttrSpec = AttrSpec {
+        name: "x",
+        elem: Elem::Vec3,
+        unit: "m",
+        role: Role::State,
+        space: PARTICLES,
+        module: "core",
+        about: "",
+    };
+    const T: AttrSpec = AttrSpec { name: "t", elem: Elem::F32, unit: "K", ..X };
+    const R: AttrSpec = AttrSpec { name: "r", elem: Elem::F32, unit: "", role: Role::Derived, ..X };
+
+    #[test]
+    fn permute_moves_state_columns_only() {
+        let mut a = Attrs::new(vec![
+            (&X, Column::Vec3(vec![Vec3::X, Vec3::Y, Vec3::Z])),
+            (&T, Column::F32(vec![1.0, 2.0, 3.0])),
+            (&R, Column::F32(vec![7.0, 8.0, 9.0])),
+        ]);
+        a.permute(PARTICLES, &[2, 0, 1]);
+        assert_eq!(a.get(a.handle::<Vec3>("x")), &[Vec3::Z, Vec3::X, Vec3::Y]);
+        assert_eq!(a.get(a.handle::<f32>("t")), &[3.0, 1.0, 2.0]);
+        assert_eq!(a.get(a.handle::<f32>("r")), &[7.0, 8.0, 9.0], "derived columns stay");
+        let bytes: u64 = a.allocations().iter().map(|x| x.bytes).sum();
+        assert_eq!(bytes, 3 * 12 + 3 * 4 + 3 * 4);
+    }
+
+    #[test]
+    fn words_round_trip() {
+        let c = Column::Sym3(vec![[1.0, 2.0, 3.0, 4.0, 5.0, f32::NAN]]);
+        let back = Column::from_words(Elem::Sym3, &c.words()).unwrap();
+        assert_eq!(back.words(), c.words());
+        assert_eq!(back.first_non_finite(), Some(0));
+        assert!(Column::from_words(Elem::Vec3, &[1, 2]).is_none());
+    }
+}

@@ -1,0 +1,200 @@
+//! The pass plan: every pass a scene's step runs, in order, for both backends.
+//!
+//! The core, the scene's scheme and each of its modules declare their passes
+//! ([`PassSpec`]: a name both backends implement, a stage, and the attributes it
+//! reads, writes and accumulates into). [`Plan::build`] orders them by stage, then
+//! by declaration order (core, scheme, modules in registry order) within a stage,
+//! so both backends run the same sequence and sums happen in the same order. It
+//! refuses a scene whose passes conflict (two writers of one attribute that do not
+//! both accumulate into it) or read what nothing provides, naming both sides.
+//! `floe plan SCENE` prints the plan.
+
+/// When in a step a pass runs. A scheme runs the stages in its own order (WCSPH:
+/// sort, density, pre-force, force, measure, kick, drift, post-step).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Stage {
+    /// Particles re-sorted by grid cell (state permuted).
+    Sort,
+    /// Density, and the neighbour lists on the CPU.
+    Density,
+    /// What forces need: pressure terms, wall pressures, per-particle viscosity.
+    PreForce,
+    /// Accelerations.
+    Force,
+    /// Velocity-level updates after the kick that follows an evaluation (XSPH), and
+    /// fields integrated once per step (temperature).
+    Kick,
+    /// Position-level corrections after the drift.
+    Drift,
+    /// After the step: deposits, bookkeeping.
+    PostStep,
+}
+
+impl Stage {
+    /// Every stage, in the order a step goes through them.
+    pub const ALL: [Stage; 7] =
+        [Stage::Sort, Stage::Density, Stage::PreForce, Stage::Force, Stage::Kick, Stage::Drift, Stage::PostStep];
+
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Sort => "sort",
+            Stage::Density => "density",
+            Stage::PreForce => "pre-force",
+            Stage::Force => "force",
+            Stage::Kick => "kick",
+            Stage::Drift => "drift",
+            Stage::PostStep => "post-step",
+        }
+    }
+}
+
+/// A pass: the unit both backends implement under the same name.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PassSpec {
+    /// `module.pass` (`fluid.forces`).
+    pub name: &'static str,
+    /// The module (or `core`, or the scheme) that declares it.
+    pub module: &'static str,
+    /// When it runs.
+    pub stage: Stage,
+    /// Attributes it reads.
+    pub reads: &'static [&'static str],
+    /// Attributes it writes (overwrites).
+    pub writes: &'static [&'static str],
+    /// Attributes it adds into (after their writer; several passes may).
+    pub accumulates: &'static [&'static str],
+    /// Largest difference between the GPU's and the CPU's results of what it writes,
+    /// relative to the largest magnitude (f32 rounding and fused multiply-adds).
+    pub tolerance: f32,
+}
+
+/// Why a scene's passes cannot form a plan.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlanError {
+    /// Two passes write the same attribute.
+    #[error("passes {first} and {second} both write {attr}; one of them must accumulate into it instead")]
+    Conflict {
+        /// The attribute.
+        attr: &'static str,
+        /// The pass that writes it first.
+        first: &'static str,
+        /// The other.
+        second: &'static str,
+    },
+    /// A pass reads an attribute nothing provides.
+    #[error("{pass} reads {attr}, which no attribute of this scene holds and no pass of it writes")]
+    Missing {
+        /// The pass.
+        pass: &'static str,
+        /// The attribute.
+        attr: &'static str,
+    },
+    /// A pass accumulates into an attribute that no earlier pass writes.
+    #[error("{pass} accumulates into {attr} before any pass writes it")]
+    Unwritten {
+        /// The pass.
+        pass: &'static str,
+        /// The attribute.
+        attr: &'static str,
+    },
+}
+
+/// The ordered passes of one scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    passes: Vec<&'static PassSpec>,
+}
+
+impl Plan {
+    /// Orders `passes` (in declaration order) by stage and checks them against the
+    /// attributes the scene allocates, `attrs`.
+    pub fn build(passes: Vec<&'static PassSpec>, attrs: &[&str]) -> Result<Plan, PlanError> {
+        let mut ordered = passes;
+        // A stable sort: declaration order within a stage.
+        ordered.sort_by_key(|p| p.stage);
+        let mut writer: Vec<(&'static str, &'static str)> = Vec::new();
+        for p in &ordered {
+            for &attr in p.writes {
+                if let Some(&(_, first)) = writer.iter().find(|(a, _)| *a == attr) {
+                    return Err(PlanError::Conflict { attr, first, second: p.name });
+                }
+                writer.push((attr, p.name));
+            }
+        }
+        for (i, p) in ordered.iter().enumerate() {
+            for &attr in p.reads {
+                let written = writer.iter().any(|(a, _)| *a == attr);
+                if !written && !attrs.contains(&attr) {
+                    return Err(PlanError::Missing { pass: p.name, attr });
+                }
+            }
+            for &attr in p.accumulates {
+                let before = ordered[..i].iter().any(|q| q.writes.contains(&attr));
+                if !before {
+                    return Err(PlanError::Unwritten { pass: p.name, attr });
+                }
+            }
+        }
+        Ok(Plan { passes: ordered })
+    }
+
+    /// Every pass, in order.
+    pub fn passes(&self) -> &[&'static PassSpec] {
+        &self.passes
+    }
+
+    /// The passes of `stage`, in order.
+    pub fn stage(&self, stage: Stage) -> impl Iterator<Item = &'static PassSpec> + '_ {
+        self.passes.iter().copied().filter(move |p| p.stage == stage)
+    }
+
+    /// The pass called `name`.
+    pub fn pass(&self, name: &str) -> Option<&'static PassSpec> {
+        self.passes.iter().copied().find(|p| p.name == name)
+    }
+
+    /// The plan as a table, for `floe plan`.
+    pub fn table(&self) -> String {
+        let mut out = String::from("stage      pass                       reads -> writes (+ accumulates)\n");
+        for p in &self.passes {
+            let plus: Vec<String> = p.accumulates.iter().map(|a| format!("+{a}")).collect();
+            let writes = [p.writes.join(", "), plus.join(", ")].iter().filter(|s| !s.is_empty()).cloned().collect::<Vec<_>>();
+            out += &format!("{:<10} {:<26} {} -> {}\n", p.stage.name(), p.name, p.reads.join(", "), writes.join(", "));
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const fn pass(name: &'static str, stage: Stage, reads: &'static [&'static str], writes: &'static [&'static str]) -> PassSpec {
+        PassSpec { name, module: "test", stage, reads, writes, accumulates: &[], tolerance: 0.0 }
+    }
+
+    static A: PassSpec = pass("a.force", Stage::Force, &["x"], &["acc"]);
+    static B: PassSpec = pass("b.density", Stage::Density, &["x"], &["rho"]);
+    static C: PassSpec = pass("c.force", Stage::Force, &["rho"], &["acc"]);
+    static D: PassSpec = PassSpec { accumulates: &["acc"], writes: &[], ..pass("d.force", Stage::Force, &["t"], &[]) };
+    static E: PassSpec = PassSpec { accumulates: &["acc"], writes: &[], ..pass("e.pre", Stage::PreForce, &[], &[]) };
+
+    #[test]
+    fn orders_by_stage_then_declaration() {
+        let plan = Plan::build(vec![&A, &B, &D], &["x", "t"]).unwrap();
+        let names: Vec<&str> = plan.passes().iter().map(|p| p.name).collect();
+        assert_eq!(names, ["b.density", "a.force", "d.force"]);
+        assert!(plan.table().contains("force      d.force"));
+    }
+
+    #[test]
+    fn refuses_conflicts_and_missing_inputs_naming_both_sides() {
+        let e = Plan::build(vec![&A, &B, &C], &["x"]).unwrap_err();
+        assert_eq!(e.to_string(), "passes a.force and c.force both write acc; one of them must accumulate into it instead");
+        let e = Plan::build(vec![&A, &D], &["x"]).unwrap_err();
+        assert_eq!(e.to_string(), "d.force reads t, which no attribute of this scene holds and no pass of it writes");
+        let e = Plan::build(vec![&E, &A], &["x"]).unwrap_err();
+        assert_eq!(e.to_string(), "e.pre accumulates into acc before any pass writes it");
+    }
+}

@@ -1,0 +1,100 @@
+//! Frame options: what a subscriber asks for, checked once for every transport.
+//! gRPC, REST and the WebSocket each turn their request into a [`FrameRequest`]
+//! and [`FrameRequest::check`] it against the scene, so the rules, defaults and
+//! messages are the same everywhere.
+
+use super::ServiceError;
+use super::shared::Shared;
+use floe_proto::Mode;
+
+/// Most frames per second a subscriber may ask for.
+pub const MAX_FPS: f64 = 240.0;
+/// Most particles a decimated stream may skip between two it sends.
+pub const MAX_DECIMATION: u32 = 1000;
+
+/// Frame options as a request states them; `None` takes the default.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FrameRequest {
+    /// Channels besides positions, by name (`SceneInfo.channels`).
+    pub channels: Vec<String>,
+    /// Most frames per second (default 30).
+    pub max_fps: Option<f64>,
+    /// Bits per position axis, 8 to 16 (default 16).
+    pub position_bits: Option<u32>,
+    /// `unordered` (default) or `identity`.
+    pub mode: Option<String>,
+    /// Send every n-th particle, 1 to 1000 (default 1: all).
+    pub decimation: Option<u32>,
+    /// The particle set (default `particles`).
+    pub set: Option<String>,
+}
+
+/// Checked frame options.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameOptions {
+    /// Channels besides positions, as the scene names them, each once.
+    pub channels: Vec<&'static str>,
+    /// Most frames per second.
+    pub max_fps: f64,
+    /// Bits per position axis (8 to 16).
+    pub position_bits: u8,
+    /// Unordered or identity-ordered.
+    pub mode: Mode,
+    /// Send every n-th particle (particles 0, n, 2n, ...); 1 sends all.
+    pub decimation: u32,
+    /// Index of the particle set in the scene's sets (the frames' set byte).
+    pub set: u8,
+}
+
+impl FrameRequest {
+    /// The options, or an error naming the first bad field (channel names the scene
+    /// lacks are refused with the list of those it has).
+    pub fn check(&self, scene: &Shared) -> Result<FrameOptions, ServiceError> {
+        let bad = |m: String| Err(ServiceError::InvalidArgument(m));
+        let set_name = self.set.as_deref().filter(|s| !s.is_empty()).unwrap_or(floe_engine::channels::PARTICLES);
+        let Some(set) = scene.sets.iter().position(|s| s.name == set_name) else {
+            let names: Vec<&str> = scene.sets.iter().map(|s| s.name).collect();
+            return bad(format!("particle_set: the scene has no set {set_name:?}; it has {}", names.join(", ")));
+        };
+        let mut channels = Vec::new();
+        for name in self.channels.iter().map(|c| c.trim()).filter(|c| !c.is_empty()) {
+            let found = scene.channels.iter().find(|c| c.spec.name == name && c.spec.set == set_name);
+            match found {
+                Some(c) if !channels.contains(&c.spec.name) => channels.push(c.spec.name),
+                Some(_) => {}
+                None => {
+                    let has: Vec<&str> =
+                        scene.channels.iter().filter(|c| c.spec.set == set_name).map(|c| c.spec.name).collect();
+                    return bad(format!(
+                        "channels: the scene has no channel {:?} in set {set_name}; it has {}",
+                        crate::service::clip(name),
+                        has.join(", ")
+                    ));
+                }
+            }
+        }
+        let max_fps = self.max_fps.unwrap_or(30.0);
+        if !(max_fps.is_finite() && max_fps > 0.0 && max_fps <= MAX_FPS) {
+            return bad(format!("max_fps: must be above 0 and at most {MAX_FPS}, got {max_fps}"));
+        }
+        let position_bits = self.position_bits.unwrap_or(16);
+        if !(8..=16).contains(&position_bits) {
+            return bad(format!("position_bits: must be 8 to 16, got {position_bits}"));
+        }
+        let mode = match self.mode.as_deref() {
+            None | Some("") | Some("unordered") => Mode::Unordered,
+            Some("identity") => Mode::IdentityOrdered,
+            Some(other) => {
+                return bad(format!(
+                    "mode: must be \"unordered\" or \"identity\", got {:?}",
+                    crate::service::clip(other)
+                ));
+            }
+        };
+        let decimation = self.decimation.unwrap_or(1);
+        if !(1..=MAX_DECIMATION).contains(&decimation) {
+            return bad(format!("decimation: must be 1 to {MAX_DECIMATION}, got {decimation}"));
+        }
+        Ok(FrameOptions { channels, max_fps, position_bits: position_bits as u8, mode, decimation, set: set as u8 })
+    }
+}
