@@ -23,6 +23,8 @@ pub enum Command {
     Serve(ServeArgs),
     /// Run the validation cases and the stability battery; write a report.
     Validate(ValidateArgs),
+    /// Print a scene's plan: scheme, modules, materials, attributes, passes, channels.
+    Plan(PlanArgs),
     /// Print the JSON Schema of scene files.
     Schema,
     /// List the built-in presets.
@@ -89,6 +91,16 @@ pub struct RunArgs {
     /// Never draw the progress bar (it is drawn only on a terminal anyway).
     #[arg(long)]
     pub quiet: bool,
+}
+
+/// `floe plan`.
+#[derive(Debug, Args)]
+pub struct PlanArgs {
+    /// A preset name (`floe presets`) or a scene file (.toml or .json).
+    pub scene: String,
+    /// Override a scene field (repeatable), as in `floe run`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub overrides: Vec<String>,
 }
 
 /// `floe bench`.

@@ -67,7 +67,8 @@ pub fn scene_info(shared: &Shared) -> pb::SceneInfo {
             })
             .collect(),
         sets: sets(shared),
-        tunables: floe_engine::scene::tunable::TUNABLE
+        tunables: shared
+            .tunables
             .iter()
             .map(|t| pb::Tunable {
                 path: t.path.into(),

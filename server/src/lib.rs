@@ -7,6 +7,7 @@
 //! - [`run`]: `floe run`, an offline simulation with progress, exports and a summary.
 //! - [`bench`]: `floe bench`, throughput, memory and time to solution.
 //! - [`codec_bench`]: `floe bench --codec`, frame size and codec throughput.
+//! - [`plan`]: `floe plan`, what a scene allocates and runs.
 //! - [`progress`]: the progress display.
 //! - [`validate`]: `floe validate`, the validation report and stability battery.
 //! - [`serve`]: `floe serve`, the server: listeners, health, reflection, shutdown.
@@ -20,6 +21,7 @@ pub mod codec_bench;
 pub mod convert;
 pub mod grpc;
 pub mod http;
+pub mod plan;
 pub mod progress;
 pub mod run;
 pub mod serve;
@@ -34,13 +36,17 @@ pub fn execute(cli: cli::Cli) -> anyhow::Result<()> {
         cli::Command::Bench(args) => bench::bench(args),
         cli::Command::Validate(args) => validate::validate(args),
         cli::Command::Serve(args) => serve::serve(args),
+        cli::Command::Plan(args) => {
+            print!("{}", plan::describe(&args.scene, &args.overrides)?);
+            Ok(())
+        }
         cli::Command::Schema => {
             println!("{}", serde_json::to_string_pretty(&floe_engine::scene::json_schema())?);
             Ok(())
         }
         cli::Command::Presets => {
-            for name in floe_engine::scene::presets::NAMES {
-                println!("{name}");
+            for p in floe_engine::modules::presets() {
+                println!("{:<14} {}", p.name, p.about);
             }
             Ok(())
         }

@@ -1,35 +1,46 @@
 //! A backend that fails unexpectedly (a bug, a lost GPU) halts its own scene
 //! with the reason; the scene still answers and the server's other scenes go on.
 
-use floe_engine::backend::{Backend, Particles};
+use floe_engine::attrs::{Allocation, Column};
+use floe_engine::backend::Backend;
 use floe_engine::cpu::CpuBackend;
 use floe_engine::guard::Measures;
 use floe_engine::model::Model;
-use floe_engine::scene::Scene;
+use floe_engine::plan::Stage;
+use floe_engine::schemes::{Reduction, Stages};
 use floe_engine::simulation::BackendFactory;
-use floe_engine::stepping::{Clock, Passes, SortedState};
 use floe_server::service::{CommandError, State};
 use floe_server::service::{Registry, SceneSource};
 use std::sync::Arc;
 
 /// The CPU backend, except that it panics in its 5th evaluation when it holds
 /// exactly `FAULTY_PARTICLES` particles.
-struct Faulty(CpuBackend);
+struct Faulty(CpuBackend, u32);
 
 const FAULTY_PARTICLES: usize = 1000;
 
-impl Passes for Faulty {
+impl Stages for Faulty {
     fn model(&self) -> &Model {
         self.0.model()
     }
-    fn evaluate(&mut self) -> Result<Measures, String> {
-        if self.0.particle_count() == FAULTY_PARTICLES && self.0.clock().steps() == 4 {
+    fn run(&mut self, stage: Stage, dt: f32) {
+        self.0.run(stage, dt)
+    }
+    fn run_pass(&mut self, name: &str, dt: f32) {
+        self.0.run_pass(name, dt)
+    }
+    fn measure(&mut self) -> Result<Measures, String> {
+        self.1 += 1;
+        if self.0.particle_count() == FAULTY_PARTICLES && self.1 == 5 {
             panic!("simulated driver failure");
         }
-        self.0.evaluate()
+        self.0.measure()
     }
-    fn kick(&mut self, dt: f32, keep: f32, with_xsph: bool) {
-        self.0.kick(dt, keep, with_xsph)
+    fn reduce(&mut self, r: &Reduction) -> Result<f64, String> {
+        self.0.reduce(r)
+    }
+    fn kick(&mut self, dt: f32, keep: f32) {
+        self.0.kick(dt, keep)
     }
     fn drift(&mut self, dt: f32) {
         self.0.drift(dt)
@@ -43,33 +54,33 @@ impl Backend for Faulty {
     fn name(&self) -> &'static str {
         "faulty"
     }
-    fn clock(&self) -> &Clock {
-        self.0.clock()
+    fn download(&self, names: &[&str]) -> Vec<Column> {
+        self.0.download(names)
     }
-    fn clock_mut(&mut self) -> &mut Clock {
-        self.0.clock_mut()
+    fn upload(&mut self, name: &str, column: Column) {
+        self.0.upload(name, column)
     }
-    fn particle_count(&self) -> usize {
-        self.0.particle_count()
+    fn restored(&mut self) {
+        self.0.restored()
     }
-    fn sorted_state(&self) -> SortedState {
-        self.0.sorted_state()
+    fn retuned(&mut self) {
+        self.0.retuned()
     }
-    fn restore_state(&mut self, state: SortedState) {
-        self.0.restore_state(state)
+    fn model_mut(&mut self) -> &mut Model {
+        self.0.model_mut()
     }
-    fn read(&self, channels: &[&str]) -> Particles {
-        self.0.read(channels)
+    fn allocations(&self) -> Vec<Allocation> {
+        self.0.allocations()
     }
-    fn retune(&mut self, scene: &Scene) {
-        self.0.retune(scene)
+    fn passes_run(&self) -> Vec<&'static str> {
+        self.0.passes_run()
     }
 }
 
 #[tokio::test]
 async fn a_panicking_backend_halts_its_scene_and_the_others_go_on() {
     let factory: Arc<BackendFactory> =
-        Arc::new(|model| Ok(Box::new(Faulty(CpuBackend::new(model))) as Box<dyn Backend>));
+        Arc::new(|model| Ok(Box::new(Faulty(CpuBackend::new(model), 0)) as Box<dyn Backend>));
     let registry = Registry::new(Default::default(), factory);
     let preset = || SceneSource::Preset("dam_break".into());
     let faulty = registry.create(preset(), &["particle_spacing=0.05".into()]).unwrap();

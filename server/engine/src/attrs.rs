@@ -188,8 +188,12 @@ impl Column {
             Elem::F32 => Column::F32(f(words)),
             Elem::U32 => Column::U32(words.to_vec()),
             Elem::Vec3 => Column::Vec3(words.chunks_exact(3).map(|w| Vec3::from_slice(&f(w))).collect()),
-            Elem::Vec4 => Column::Vec4(words.chunks_exact(4).map(|w| std::array::from_fn(|k| f32::from_bits(w[k]))).collect()),
-            Elem::Sym3 => Column::Sym3(words.chunks_exact(6).map(|w| std::array::from_fn(|k| f32::from_bits(w[k]))).collect()),
+            Elem::Vec4 => {
+                Column::Vec4(words.chunks_exact(4).map(|w| std::array::from_fn(|k| f32::from_bits(w[k]))).collect())
+            }
+            Elem::Sym3 => {
+                Column::Sym3(words.chunks_exact(6).map(|w| std::array::from_fn(|k| f32::from_bits(w[k]))).collect())
+            }
         })
     }
 
@@ -306,6 +310,11 @@ impl Attrs {
     pub fn new(columns: Vec<(&'static AttrSpec, Column)>) -> Self {
         let (specs, columns) = columns.into_iter().unzip();
         Self { specs, columns, scratch: Scratch::default() }
+    }
+
+    /// The columns with their declarations, the store given up.
+    pub fn into_columns(self) -> Vec<(&'static AttrSpec, Column)> {
+        self.specs.into_iter().zip(self.columns).collect()
     }
 
     /// The declarations, in store order.

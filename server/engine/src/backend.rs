@@ -1,85 +1,50 @@
 //! What every backend (the CPU's and the GPU's) offers the rest of Floe.
+//!
+//! A backend holds a scene's attributes and runs its plan's passes; it offers a
+//! scheme the [`Stages`] of a step, and the server its state: snapshot sections,
+//! channels for frames and exports, what it allocated and which passes it ran.
 
-use crate::guard::Halted;
+use crate::attrs::{Allocation, Column};
+use crate::channels::{SetSpec, Source};
+use crate::model::Model;
 use crate::quantize::PositionGrid;
-use crate::stepping::{Clock, Passes, SortedState};
+use crate::schemes::Stages;
+pub use crate::schemes::StepReport;
 pub use floe_proto::Particles;
+use floe_proto::Values;
 
-/// What one step did.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct StepReport {
-    /// Time step taken (s).
-    pub dt: f32,
-    /// Largest speed (m/s).
-    pub max_speed: f32,
-    /// Largest compression `(rho - rho0)/rho0`.
-    pub max_compression: f32,
-    /// Mean compression over particles (surface deficits count as 0).
-    pub mean_compression: f32,
+/// One attribute's values in a snapshot, in slot order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Section {
+    /// The attribute.
+    pub name: String,
+    /// Its values.
+    pub column: Column,
 }
 
-/// A simulation backend: owns the physics state and steps it.
-///
-/// A backend supplies its particle passes ([`Passes`]), its state and its
-/// [`Clock`]; the step sequence, the clock's queries and snapshots are provided
-/// here once for every backend.
-pub trait Backend: Passes + Send {
+/// A simulation backend: owns the attributes and steps them.
+pub trait Backend: Stages + Send {
     /// Short name (`cpu`, `gpu`).
     fn name(&self) -> &'static str;
-    /// Where the run stands.
-    fn clock(&self) -> &Clock;
-    /// Where the run stands, to advance it.
-    fn clock_mut(&mut self) -> &mut Clock;
-    /// Number of fluid particles.
-    fn particle_count(&self) -> usize;
-    /// The particle state in sorted-slot order, for snapshots.
-    fn sorted_state(&self) -> SortedState;
-    /// Takes a state from a snapshot (then sorts and computes densities, so
-    /// output is right at once).
-    fn restore_state(&mut self, state: SortedState);
+    /// The values of attributes `names` in slot order (a GPU copies them back in one
+    /// submission).
+    fn download(&self, names: &[&str]) -> Vec<Column>;
+    /// Replaces attribute `name`'s values (same type and length).
+    fn upload(&mut self, name: &str, column: Column);
+    /// Takes restored state: every state attribute's section was uploaded; the
+    /// backend re-sorts and recomputes derived attributes so output is right at once.
+    fn restored(&mut self);
+    /// Takes new tunable settings of the scene (the model is retuned by the caller's
+    /// [`Backend::retune`] default); follows attributes and passes that came or went.
+    fn retuned(&mut self);
+    /// The model, mutable (to retune).
+    fn model_mut(&mut self) -> &mut Model;
+    /// What each attribute takes (bytes), with the module that declared it.
+    fn allocations(&self) -> Vec<Allocation>;
+    /// The names of every pass this backend has run (core, scheme and modules), in
+    /// the order each first ran.
+    fn passes_run(&self) -> Vec<&'static str>;
 
-    /// Advances one step.
-    fn step(&mut self) -> Result<StepReport, Halted> {
-        let mut clock = self.clock().clone();
-        let n = self.particle_count();
-        let r = clock.step(self, n);
-        *self.clock_mut() = clock;
-        r
-    }
-    /// Simulated time (s).
-    fn time(&self) -> f64 {
-        self.clock().time()
-    }
-    /// Steps taken.
-    fn steps(&self) -> u64 {
-        self.clock().steps()
-    }
-    /// Steps taken beyond one per fixed interval (fixed time-step mode).
-    fn substeps(&self) -> u64 {
-        self.clock().substeps()
-    }
-    /// Mass of one fluid particle (kg).
-    fn particle_mass(&self) -> f32 {
-        self.model().fluid.mass
-    }
-    /// The simulation domain (m): particles leaving it halt the scene.
-    fn domain(&self) -> crate::math::Aabb {
-        self.model().domain
-    }
-    /// Writes the complete stepping state (see [`crate::snapshot`]).
-    fn save(&self, out: &mut crate::snapshot::Writer) {
-        self.clock().save(out, &self.sorted_state());
-    }
-    /// Loads a state written by [`Backend::save`] for the same scene.
-    fn load(&mut self, r: &mut crate::snapshot::Reader<'_>) -> Result<(), crate::snapshot::SnapshotError> {
-        let n = self.particle_count();
-        let state = self.clock_mut().load(r, n)?;
-        self.restore_state(state);
-        Ok(())
-    }
-    /// Copies out positions and the requested channels (names of
-    /// [`crate::channels::ChannelSpec`]s the scene has), in identity order.
-    fn read(&self, channels: &[&str]) -> Particles;
     /// Per kernel: label, total device seconds and dispatches so far, when the
     /// backend was asked to profile (`floe bench --profile`); empty otherwise.
     fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
@@ -90,13 +55,128 @@ pub trait Backend: Passes + Send {
     fn device_memory(&self) -> Option<u64> {
         None
     }
-    /// Like [`Backend::read`], with positions that quantise on `grid` to the
-    /// same codes as the exact ones: all a frame encoder quantising to `grid`
-    /// needs. The exact positions qualify (this default, no extra work); a GPU
-    /// quantises on the device, copies back 16-bit codes and returns their values.
-    fn read_on_grid(&self, channels: &[&str], _grid: &PositionGrid) -> Particles {
-        self.read(channels)
-    }
     /// Takes new tunable settings (see [`crate::scene::tunable`]) from `scene`.
-    fn retune(&mut self, scene: &crate::scene::Scene);
+    fn retune(&mut self, scene: &crate::scene::Scene) {
+        self.model_mut().retune(scene);
+        self.retuned();
+    }
+    /// Number of SPH particles.
+    fn particle_count(&self) -> usize {
+        self.model().particle_count()
+    }
+    /// Every state attribute's values, in slot order (a snapshot's sections).
+    fn state(&self) -> Vec<Section> {
+        let names: Vec<&'static str> =
+            self.model().layout.specs().filter(|s| s.role == crate::attrs::Role::State).map(|s| s.name).collect();
+        names.iter().zip(self.download(&names)).map(|(n, column)| Section { name: n.to_string(), column }).collect()
+    }
+    /// Positions and the channels `channels` of particle set `set`, in identity order.
+    fn read_set(&self, set: &SetSpec, channels: &[&str]) -> Particles {
+        read(self, set, channels, None)
+    }
+    /// Like [`Backend::read_set`], with positions that quantise on `grid` to the same
+    /// codes as the exact ones: all a frame encoder quantising to `grid` needs. The
+    /// exact positions qualify (this default, no extra work); a GPU quantises on the
+    /// device, copies back 16-bit codes and returns their values.
+    fn read_on_grid(&self, set: &SetSpec, channels: &[&str], grid: &PositionGrid) -> Particles {
+        let _ = grid;
+        self.read_set(set, channels)
+    }
+}
+
+/// Reads set `set`'s channels from `b`, positions from `positions` when given (a
+/// GPU's quantised ones, already in identity order) or else from the set's position
+/// attribute.
+pub fn read<B: Backend + ?Sized>(
+    b: &B,
+    set: &SetSpec,
+    channels: &[&str],
+    positions: Option<Vec<[f32; 3]>>,
+) -> Particles {
+    let model = b.model();
+    let has_material = model.layout.spec("material").is_some() && set.space == crate::attrs::PARTICLES;
+    let specs: Vec<_> = channels
+        .iter()
+        .map(|&c| {
+            model.channels.iter().find(|s| s.name == c && s.set == set.name).unwrap_or_else(|| panic!("no channel {c}"))
+        })
+        .collect();
+    // Every attribute needed, once: ids, positions, each channel's sources.
+    let mut names: Vec<&str> = set.id.into_iter().collect();
+    if positions.is_none() {
+        names.push(set.position);
+    }
+    for s in &specs {
+        match s.source {
+            Source::Attr(a) => names.push(a),
+            Source::Derived { from, .. } => {
+                names.extend(from);
+                if has_material {
+                    names.push("material");
+                }
+            }
+        }
+    }
+    names.dedup();
+    let mut unique: Vec<&str> = Vec::new();
+    for n in names {
+        if !unique.contains(&n) {
+            unique.push(n);
+        }
+    }
+    let columns = b.download(&unique);
+    let column = |name: &str| &columns[unique.iter().position(|&n| n == name).expect("downloaded")];
+    let ids: Option<&[u32]> = set.id.map(|id| match column(id) {
+        Column::U32(v) => v.as_slice(),
+        _ => panic!("ids are u32"),
+    });
+    let order = |values: Vec<f32>, components: usize| -> Vec<f32> {
+        match ids {
+            None => values,
+            Some(ids) => {
+                let mut out = vec![0.0; values.len()];
+                for (k, &id) in ids.iter().enumerate() {
+                    let (to, from) = (id as usize * components, k * components);
+                    out[to..to + components].copy_from_slice(&values[from..from + components]);
+                }
+                out
+            }
+        }
+    };
+    let floats = |c: &Column| -> (Vec<f32>, usize) {
+        match c {
+            Column::F32(v) => (v.clone(), 1),
+            Column::U32(v) => (v.iter().map(|&x| x as f32).collect(), 1),
+            Column::Vec3(v) => (v.iter().flat_map(|x| x.to_array()).collect(), 3),
+            Column::Vec4(v) => (v.iter().flatten().copied().collect(), 4),
+            Column::Sym3(v) => (v.iter().flatten().copied().collect(), 6),
+        }
+    };
+    let positions = positions.unwrap_or_else(|| {
+        let (p, _) = floats(column(set.position));
+        order(p, 3).chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+    });
+    let channels = specs
+        .iter()
+        .map(|s| {
+            let (values, components) = match s.source {
+                Source::Attr(a) => floats(column(a)),
+                Source::Derived { from, values } => {
+                    let mut inputs: Vec<Column> = from.iter().map(|&f| column(f).clone()).collect();
+                    if has_material {
+                        inputs.push(column("material").clone());
+                    }
+                    (values(model, &inputs), usize::from(s.components))
+                }
+            };
+            let values = order(values, components);
+            let values = if s.exact {
+                Values::Exact(values.iter().map(|&v| v.clamp(0.0, 255.0) as u8).collect())
+            } else {
+                Values::Float { components: s.components, data: values }
+            };
+            (s.name.to_string(), values)
+        })
+        .collect();
+    Particles { set: set.name.to_string(), positions, channels }
 }

@@ -4,6 +4,8 @@
 //! Each wall particle b carries a pseudo-mass `psi_b = rho0 V_b` with
 //! `V_b = 1 / sum_k W(x_b - x_k)` over wall particles k (eqs. 4-5), so an uneven
 //! or single-layer sampling still contributes the right density near a wall.
+//! `rho0` is the rest density of the fluid particle the wall acts on, so there is
+//! one pseudo-mass per wall particle and material.
 //!
 //! Floe rescales that volume by `gamma = S_slab / S_lattice`: the kernel sum a wall
 //! particle sees inside a flat wall of `layers` lattice layers, over the sum a
@@ -23,19 +25,20 @@ use rayon::prelude::*;
 pub struct BoundaryParticles {
     /// Positions (m), sorted by cell of `grid`.
     pub positions: Vec<Vec3>,
-    /// Pseudo-masses `psi_b = rho0 V_b` (kg).
-    pub psi: Vec<Real>,
+    /// Pseudo-masses `psi_b = rho0 V_b` (kg), per material (index: material).
+    pub psi: Vec<Vec<Real>>,
     /// Neighbour grid over `positions` (built once: walls do not move).
     pub grid: Grid,
 }
 
 impl BoundaryParticles {
-    /// Sorts `positions` into a grid over `bounds` and computes their pseudo-masses;
-    /// `spacing` and `layers` describe the lattice the walls were sampled on.
+    /// Sorts `positions` into a grid over `bounds` and computes their pseudo-masses
+    /// for each material's rest density in `rho0`; `spacing` and `layers` describe the
+    /// lattice the walls were sampled on.
     pub fn new(
         mut positions: Vec<Vec3>,
         kernel: &Kernel,
-        rho0: Real,
+        rho0: &[Real],
         bounds: Aabb,
         spacing: Real,
         layers: u32,
@@ -46,7 +49,7 @@ impl BoundaryParticles {
         grid.sort(&positions, &mut cells, &mut order);
         permute(&mut positions, &mut scratch, &order);
         let h2 = kernel.support() * kernel.support();
-        let psi = positions
+        let sums: Vec<Real> = positions
             .par_iter()
             .map(|&x| {
                 let mut sum = 0.0;
@@ -58,9 +61,10 @@ impl BoundaryParticles {
                         }
                     }
                 });
-                rho0 * gamma / sum
+                sum
             })
             .collect();
+        let psi = rho0.iter().map(|&rho0| sums.iter().map(|&sum| rho0 * gamma / sum).collect()).collect();
         Self { positions, psi, grid }
     }
 
@@ -246,12 +250,13 @@ mod tests {
                 &Boundary::Box { min: [-1.0; 3], max: [1.0; 3], open: vec![], layers: 1 },
                 d,
             );
-            let walls = BoundaryParticles::new(floor, &k, 1000.0, Aabb::new(Vec3::splat(-1.2), Vec3::splat(1.2)), d, 1);
+            let walls =
+                BoundaryParticles::new(floor, &k, &[1000.0], Aabb::new(Vec3::splat(-1.2), Vec3::splat(1.2)), d, 1);
             let x = Vec3::new(0.05, -0.95, 0.05);
             let mass = 1000.0 / full;
             let mut rho = 0.0;
             for (i, &b) in walls.positions.iter().enumerate() {
-                rho += walls.psi[i] * k.w_r2((x - b).length_squared());
+                rho += walls.psi[0][i] * k.w_r2((x - b).length_squared());
             }
             // Fluid: the half lattice above the floor, the particle's own layer included.
             for jy in 0..3 {

@@ -1,10 +1,29 @@
 //! The per-particle quantities a scene can send in frames and write in exports:
-//! each declared once by the module that owns it, with its unit. Names are those of
-//! `proto/channels.json` (the wire table) where it has a row; a channel without a row
-//! travels under a per-scene tag the server assigns and lists in the scene's info.
+//! each declared once by the module that owns it, with its unit and where its
+//! values come from. Names are those of `proto/channels.json` (the wire table)
+//! where it has a row; a channel without a row travels under a per-scene tag the
+//! server assigns and lists in the scene's info.
+
+use crate::attrs::Column;
+use crate::model::Model;
+
+/// Where a channel's values come from.
+#[derive(Debug, Clone, Copy)]
+pub enum Source {
+    /// An attribute's values, as they are.
+    Attr(&'static str),
+    /// Computed from attributes (in the order given, one element each) and the model,
+    /// e.g. pressure from density through each material's equation of state.
+    Derived {
+        /// The attributes it needs.
+        from: &'static [&'static str],
+        /// The computation: one value per element, `components` floats each.
+        values: fn(&Model, &[Column]) -> Vec<f32>,
+    },
+}
 
 /// A channel a module offers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy)]
 pub struct ChannelSpec {
     /// Name (`velocity`), as clients ask for it.
     pub name: &'static str,
@@ -20,10 +39,37 @@ pub struct ChannelSpec {
     pub module: &'static str,
     /// What it holds.
     pub about: &'static str,
+    /// Its values.
+    pub source: Source,
+}
+
+impl PartialEq for ChannelSpec {
+    fn eq(&self, other: &Self) -> bool {
+        (self.name, self.unit, self.components, self.exact, self.set, self.module)
+            == (other.name, other.unit, other.components, other.exact, other.set, other.module)
+    }
+}
+
+/// A set of particles a frame can carry: its space and the attributes that place
+/// and identify its particles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SetSpec {
+    /// Name, as stream requests give it.
+    pub name: &'static str,
+    /// The index space of its attributes.
+    pub space: &'static str,
+    /// The attribute holding positions (a vec3).
+    pub position: &'static str,
+    /// The attribute holding each slot's stable id, for a space that is re-sorted
+    /// (values come out in id order); `None` when slots never move.
+    pub id: Option<&'static str>,
 }
 
 /// The set every SPH scene has: its fluid (and later solid) particles.
 pub const PARTICLES: &str = "particles";
+
+/// The SPH particle set.
+pub const PARTICLE_SET: SetSpec = SetSpec { name: PARTICLES, space: PARTICLES, position: "x", id: Some("id") };
 
 /// Velocity (core: every particle set that moves has one).
 pub const VELOCITY: ChannelSpec = ChannelSpec {
@@ -34,26 +80,41 @@ pub const VELOCITY: ChannelSpec = ChannelSpec {
     set: PARTICLES,
     module: "core",
     about: "Particle velocity.",
+    source: Source::Attr("v"),
 };
 
-/// Density (the fluid module's).
+/// Density by summation.
 pub const DENSITY: ChannelSpec = ChannelSpec {
     name: "density",
     unit: "kg/m^3",
     components: 1,
     exact: false,
     set: PARTICLES,
-    module: "fluid",
+    module: "core",
     about: "SPH density.",
+    source: Source::Attr("rho"),
 };
 
-/// Pressure (the fluid module's), from density through the material's equation of state.
+/// Material index (scenes with more than one material).
+pub const MATERIAL: ChannelSpec = ChannelSpec {
+    name: "material",
+    unit: "",
+    components: 1,
+    exact: true,
+    set: PARTICLES,
+    module: "core",
+    about: "Index of the particle's material in the scene's material table.",
+    source: Source::Attr("material"),
+};
+
+/// Pressure from density through each material's equation of state (WCSPH).
 pub const PRESSURE: ChannelSpec = ChannelSpec {
     name: "pressure",
     unit: "Pa",
     components: 1,
     exact: false,
     set: PARTICLES,
-    module: "fluid",
+    module: "wcsph",
     about: "Pressure from the equation of state.",
+    source: Source::Derived { from: &["rho"], values: crate::schemes::wcsph::pressures },
 };

@@ -9,7 +9,8 @@
 //! - [`KernelKind::CubicSpline`]: Monaghan's M4 cubic B-spline (Monaghan 1992,
 //!   Annu. Rev. Astron. Astrophys. 30, eq. 2.6) normalised in 3D for support `h`
 //!   (as in SPlisHSPlasH); its Laplacian uses Brookshaw's approximation
-//!   `lap = -2 W'(r) / r` (Brookshaw 1985; Morris, Fox & Zhu 1997, eq. 8).
+//!   `lap = -2 W'(r) r / (r^2 + 0.01 h^2)` (Brookshaw 1985; Morris, Fox & Zhu 1997,
+//!   eq. 8, with their regularisation of `-2 W'(r) / r` at small r).
 
 use crate::math::{Real, Vec3};
 use serde::{Deserialize, Serialize};

@@ -25,26 +25,29 @@
 //! - [`channels`]: the per-particle quantities frames and exports carry.
 //! - [`validation`]: reference solutions and error measures.
 
+pub mod attrs;
 pub mod backend;
 pub mod boundary;
 pub mod channels;
+pub mod clock;
 pub mod cpu;
-pub mod eos;
 pub mod guard;
 pub mod kernel;
+pub mod materials;
 pub mod math;
 pub mod model;
+pub mod modules;
 pub mod neighbors;
+pub mod plan;
 pub mod quantize;
 pub mod sampling;
 pub mod scene;
+pub mod schemes;
 pub mod simulation;
 pub mod snapshot;
-pub mod stepping;
 pub mod summary;
 pub mod timestep;
 pub mod validation;
-pub mod viscosity;
 
 pub use backend::{Backend, Particles, StepReport};
 pub use guard::Halted;

@@ -81,9 +81,10 @@ impl Materials {
 
     /// The largest ratio of rest densities, for reports and stability checks.
     pub fn density_ratio(&self) -> Real {
-        let (lo, hi) = self.list.iter().fold((Real::INFINITY, 0.0 as Real), |(lo, hi), m| {
-            (lo.min(m.rest_density), hi.max(m.rest_density))
-        });
+        let (lo, hi) = self
+            .list
+            .iter()
+            .fold((Real::INFINITY, 0.0 as Real), |(lo, hi), m| (lo.min(m.rest_density), hi.max(m.rest_density)));
         hi / lo
     }
 }

@@ -90,7 +90,8 @@ pub enum PlanError {
         /// The attribute.
         attr: &'static str,
     },
-    /// A pass accumulates into an attribute that no earlier pass writes.
+    /// A pass accumulates into an attribute that no earlier pass writes and the
+    /// scene does not hold.
     #[error("{pass} accumulates into {attr} before any pass writes it")]
     Unwritten {
         /// The pass.
@@ -130,8 +131,10 @@ impl Plan {
                 }
             }
             for &attr in p.accumulates {
+                // Into a state attribute the integrator keeps (velocity), or one an
+                // earlier pass wrote this step.
                 let before = ordered[..i].iter().any(|q| q.writes.contains(&attr));
-                if !before {
+                if !before && !attrs.contains(&attr) {
                     return Err(PlanError::Unwritten { pass: p.name, attr });
                 }
             }
@@ -159,7 +162,8 @@ impl Plan {
         let mut out = String::from("stage      pass                       reads -> writes (+ accumulates)\n");
         for p in &self.passes {
             let plus: Vec<String> = p.accumulates.iter().map(|a| format!("+{a}")).collect();
-            let writes = [p.writes.join(", "), plus.join(", ")].iter().filter(|s| !s.is_empty()).cloned().collect::<Vec<_>>();
+            let writes =
+                [p.writes.join(", "), plus.join(", ")].iter().filter(|s| !s.is_empty()).cloned().collect::<Vec<_>>();
             out += &format!("{:<10} {:<26} {} -> {}\n", p.stage.name(), p.name, p.reads.join(", "), writes.join(", "));
         }
         out
@@ -170,7 +174,12 @@ impl Plan {
 mod tests {
     use super::*;
 
-    const fn pass(name: &'static str, stage: Stage, reads: &'static [&'static str], writes: &'static [&'static str]) -> PassSpec {
+    const fn pass(
+        name: &'static str,
+        stage: Stage,
+        reads: &'static [&'static str],
+        writes: &'static [&'static str],
+    ) -> PassSpec {
         PassSpec { name, module: "test", stage, reads, writes, accumulates: &[], tolerance: 0.0 }
     }
 
@@ -191,7 +200,10 @@ mod tests {
     #[test]
     fn refuses_conflicts_and_missing_inputs_naming_both_sides() {
         let e = Plan::build(vec![&A, &B, &C], &["x"]).unwrap_err();
-        assert_eq!(e.to_string(), "passes a.force and c.force both write acc; one of them must accumulate into it instead");
+        assert_eq!(
+            e.to_string(),
+            "passes a.force and c.force both write acc; one of them must accumulate into it instead"
+        );
         let e = Plan::build(vec![&A, &D], &["x"]).unwrap_err();
         assert_eq!(e.to_string(), "d.force reads t, which no attribute of this scene holds and no pass of it writes");
         let e = Plan::build(vec![&E, &A], &["x"]).unwrap_err();

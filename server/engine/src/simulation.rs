@@ -1,15 +1,19 @@
-//! A scene being simulated: a backend plus the run's statistics and halt state.
+//! A scene being simulated: a backend, the scheme stepping it and the clock, plus
+//! the run's statistics and halt state.
 
 use crate::backend::{Backend, Particles, StepReport};
+use crate::channels::{ChannelSpec, PARTICLE_SET, SetSpec};
+use crate::clock::Clock;
 use crate::cpu::CpuBackend;
 use crate::guard::Halted;
 use crate::model::{BuildError, Model};
 use crate::scene::Scene;
-use crate::snapshot::{MAGIC, Reader, SnapshotError, VERSION, Writer};
-use serde::Serialize;
+use crate::snapshot::{self, SnapshotError};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 /// Statistics over every step taken so far.
-#[derive(Debug, Clone, Default, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct RunStats {
     /// Smallest dt (s).
     pub dt_min: f64,
@@ -23,15 +27,44 @@ pub struct RunStats {
     pub mean_density_deviation: f64,
     /// Largest speed seen (m/s).
     pub max_speed: f64,
+    /// Per iterative solve of the scheme: iterations and residuals.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub solves: BTreeMap<String, SolveStats>,
+    /// Sum of dt over steps (s), for the mean.
+    #[serde(skip)]
+    dt_sum: f64,
+    /// Sum of the per-step mean compressions, for the mean.
+    #[serde(skip)]
+    compression_sum: f64,
+}
+
+/// Iterations and residuals of one iterative solve over the run.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct SolveStats {
+    /// Mean iterations per step.
+    pub mean_iterations: f64,
+    /// Most iterations in one step.
+    pub max_iterations: u32,
+    /// The residual the last step reached.
+    pub last_residual: f64,
+    /// Total iterations.
+    pub total_iterations: u64,
+}
+
+/// The statistics with the running sums behind the means, as a snapshot saves them.
+#[derive(Debug, Serialize, Deserialize)]
+struct SavedStats {
+    stats: RunStats,
+    dt_sum: f64,
+    compression_sum: f64,
 }
 
 /// A running scene.
 pub struct Simulation {
     scene: Scene,
     backend: Box<dyn Backend>,
+    clock: Clock,
     stats: RunStats,
-    dt_sum: f64,
-    compression_sum: f64,
     halted: Option<Halted>,
 }
 
@@ -40,7 +73,7 @@ impl std::fmt::Debug for Simulation {
         f.debug_struct("Simulation")
             .field("scene", &self.scene.name)
             .field("backend", &self.backend.name())
-            .field("time", &self.backend.time())
+            .field("time", &self.clock.time())
             .field("halted", &self.halted)
             .finish()
     }
@@ -69,12 +102,28 @@ impl Simulation {
 
     /// Wraps an already built backend.
     pub fn with_backend(scene: Scene, backend: Box<dyn Backend>) -> Self {
-        Self { scene, backend, stats: RunStats::default(), dt_sum: 0.0, compression_sum: 0.0, halted: None }
+        let clock = Clock::new(backend.model());
+        Self { scene, backend, clock, stats: RunStats::default(), halted: None }
     }
 
     /// The scene as given.
     pub fn scene(&self) -> &Scene {
         &self.scene
+    }
+
+    /// The model being stepped.
+    pub fn model(&self) -> &Model {
+        self.backend.model()
+    }
+
+    /// The backend (to compare backends pass by pass, or to inspect allocations).
+    pub fn backend(&self) -> &dyn Backend {
+        &*self.backend
+    }
+
+    /// The backend, to drive its stages directly (tests that compare backends pass by pass).
+    pub fn backend_mut(&mut self) -> &mut dyn Backend {
+        &mut *self.backend
     }
 
     /// The backend's name.
@@ -84,32 +133,42 @@ impl Simulation {
 
     /// Simulated time (s).
     pub fn time(&self) -> f64 {
-        self.backend.time()
+        self.clock.time()
     }
 
     /// Steps taken.
     pub fn steps(&self) -> u64 {
-        self.backend.steps()
+        self.clock.steps()
     }
 
     /// Sub-steps taken by fixed time-step mode.
     pub fn substeps(&self) -> u64 {
-        self.backend.substeps()
+        self.clock.substeps()
     }
 
-    /// Number of fluid particles.
+    /// Number of SPH particles.
     pub fn particle_count(&self) -> usize {
         self.backend.particle_count()
     }
 
-    /// Mass of one fluid particle (kg).
+    /// Mass of a particle of material 0 (kg).
     pub fn particle_mass(&self) -> f32 {
-        self.backend.particle_mass()
+        self.model().materials.get(0).mass
     }
 
     /// The simulation domain (m).
     pub fn domain(&self) -> crate::math::Aabb {
-        self.backend.domain()
+        self.model().domain
+    }
+
+    /// The channels this scene offers, in the order clients are told about them.
+    pub fn channels(&self) -> Vec<ChannelSpec> {
+        self.model().channels.clone()
+    }
+
+    /// The scene's particle sets with their counts.
+    pub fn sets(&self) -> Vec<(SetSpec, usize)> {
+        self.model().sets.iter().map(|s| (*s, self.model().layout.count(s.space))).collect()
     }
 
     /// Why the scene stopped, if it did.
@@ -122,20 +181,15 @@ impl Simulation {
         &self.stats
     }
 
-    /// The channels this scene offers, in the order clients are told about them.
-    pub fn channels(&self) -> Vec<crate::channels::ChannelSpec> {
-        use crate::channels::{DENSITY, PRESSURE, VELOCITY};
-        vec![VELOCITY, DENSITY, PRESSURE]
-    }
-
-    /// The scene's particle sets with their counts.
-    pub fn sets(&self) -> Vec<(&'static str, usize)> {
-        vec![(crate::channels::PARTICLES, self.particle_count())]
-    }
-
-    /// Copies out positions and the requested channels, in identity order.
+    /// Copies out positions and the requested channels of the SPH particles, in
+    /// identity order.
     pub fn read(&self, channels: &[&str]) -> Particles {
-        self.backend.read(channels)
+        self.backend.read_set(&PARTICLE_SET, channels)
+    }
+
+    /// Copies out positions and the requested channels of particle set `set`.
+    pub fn read_set(&self, set: &SetSpec, channels: &[&str]) -> Particles {
+        self.backend.read_set(set, channels)
     }
 
     /// Per-kernel device time (see [`Backend::kernel_times`]).
@@ -148,9 +202,9 @@ impl Simulation {
         self.backend.device_memory()
     }
 
-    /// [`Simulation::read`] with positions on `grid` (see [`Backend::read_on_grid`]).
-    pub fn read_on_grid(&self, channels: &[&str], grid: &crate::quantize::PositionGrid) -> Particles {
-        self.backend.read_on_grid(channels, grid)
+    /// [`Simulation::read_set`] with positions on `grid` (see [`Backend::read_on_grid`]).
+    pub fn read_on_grid(&self, set: &SetSpec, channels: &[&str], grid: &crate::quantize::PositionGrid) -> Particles {
+        self.backend.read_on_grid(set, channels, grid)
     }
 
     /// One step. After a halt every call returns the same [`Halted`].
@@ -158,7 +212,8 @@ impl Simulation {
         if let Some(h) = &self.halted {
             return Err(h.clone());
         }
-        match self.backend.step() {
+        let step = self.backend.model().scheme.step;
+        match step(&mut self.clock, self.backend.as_mut()) {
             Ok(r) => {
                 self.record(&r);
                 Ok(r)
@@ -192,25 +247,25 @@ impl Simulation {
     pub fn set_parameters(&mut self, overrides: &[String]) -> Result<(), crate::scene::load::SceneError> {
         let next = crate::scene::tunable::apply(&self.scene, overrides)?;
         self.backend.retune(&next);
+        self.clock.retune(self.backend.model());
         self.scene = next;
         Ok(())
     }
 
     /// The complete state as bytes (see [`crate::snapshot`]).
     pub fn snapshot(&self) -> Vec<u8> {
-        let mut w = Writer(Vec::new());
-        w.0.extend_from_slice(MAGIC);
-        w.u32(VERSION);
-        w.bytes(serde_json::to_string(&self.scene).expect("scenes serialise").as_bytes());
-        let s = &self.stats;
-        for v in [s.dt_min, s.dt_mean, s.dt_max, s.max_density_deviation, s.mean_density_deviation, s.max_speed] {
-            w.f64(v);
-        }
-        w.f64(self.dt_sum);
-        w.f64(self.compression_sum);
-        w.bytes(serde_json::to_string(&self.halted).expect("halts serialise").as_bytes());
-        self.backend.save(&mut w);
-        w.0
+        let stats = SavedStats {
+            stats: self.stats.clone(),
+            dt_sum: self.stats.dt_sum,
+            compression_sum: self.stats.compression_sum,
+        };
+        snapshot::write(&snapshot::Parts {
+            scene: serde_json::to_string(&self.scene).expect("scenes serialise"),
+            stats: serde_json::to_string(&stats).expect("statistics serialise"),
+            halt: serde_json::to_string(&self.halted).expect("halts serialise"),
+            clock: self.clock.state(),
+            sections: self.backend.state(),
+        })
     }
 
     /// Rebuilds a scene from a snapshot, on the CPU backend.
@@ -221,40 +276,24 @@ impl Simulation {
     /// Rebuilds a scene from a snapshot, on the backend `make` builds.
     pub fn restore_on(bytes: &[u8], make: &BackendFactory) -> Result<Self, SnapshotError> {
         let bad = |m: String| SnapshotError::Malformed(m);
-        if bytes.len() < MAGIC.len() || &bytes[..MAGIC.len()] != MAGIC {
-            return Err(bad("it does not start with FLOESNAP".into()));
-        }
-        let mut r = Reader::new(&bytes[MAGIC.len()..]);
-        let version = r.u32("version")?;
-        if version != VERSION {
-            return Err(SnapshotError::UnsupportedVersion(version));
-        }
-        let scene_json = r.bytes("scene")?;
-        let value: serde_json::Value = serde_json::from_slice(scene_json).map_err(|e| bad(format!("scene: {e}")))?;
+        let parts = snapshot::read(bytes)?;
+        let value: serde_json::Value = serde_json::from_str(&parts.scene).map_err(|e| bad(format!("scene: {e}")))?;
         let scene = crate::scene::load::from_value(value).map_err(|e| bad(format!("scene: {e}")))?;
         let mut sim = Self::new(scene, make).map_err(|e| bad(format!("scene: {e}")))?;
-        let mut f = [0.0; 6];
-        for v in &mut f {
-            *v = r.f64("statistics")?;
+        let saved: SavedStats = serde_json::from_str(&parts.stats).map_err(|e| bad(format!("statistics: {e}")))?;
+        sim.stats = RunStats { dt_sum: saved.dt_sum, compression_sum: saved.compression_sum, ..saved.stats };
+        sim.halted = serde_json::from_str(&parts.halt).map_err(|e| bad(format!("halt: {e}")))?;
+        sim.clock.restore(&parts.clock);
+        snapshot::check_sections(sim.backend.model(), &parts.sections)?;
+        for s in parts.sections {
+            sim.backend.upload(&s.name, s.column);
         }
-        sim.stats = RunStats {
-            dt_min: f[0],
-            dt_mean: f[1],
-            dt_max: f[2],
-            max_density_deviation: f[3],
-            mean_density_deviation: f[4],
-            max_speed: f[5],
-        };
-        sim.dt_sum = r.f64("statistics")?;
-        sim.compression_sum = r.f64("statistics")?;
-        sim.halted = serde_json::from_slice(r.bytes("halt")?).map_err(|e| bad(format!("halt: {e}")))?;
-        sim.backend.load(&mut r)?;
-        r.finish()?;
+        sim.backend.restored();
         Ok(sim)
     }
 
     fn record(&mut self, r: &StepReport) {
-        let n = self.backend.steps() as f64;
+        let n = self.clock.steps() as f64;
         let s = &mut self.stats;
         let dt = r.dt as f64;
         if n == 1.0 {
@@ -263,11 +302,18 @@ impl Simulation {
         }
         s.dt_min = s.dt_min.min(dt);
         s.dt_max = s.dt_max.max(dt);
-        self.dt_sum += dt;
-        s.dt_mean = self.dt_sum / n;
+        s.dt_sum += dt;
+        s.dt_mean = s.dt_sum / n;
         s.max_density_deviation = s.max_density_deviation.max(r.max_compression as f64);
-        self.compression_sum += r.mean_compression as f64;
-        s.mean_density_deviation = self.compression_sum / n;
+        s.compression_sum += r.mean_compression as f64;
+        s.mean_density_deviation = s.compression_sum / n;
         s.max_speed = s.max_speed.max(r.max_speed as f64);
+        for solve in &r.solves {
+            let e = s.solves.entry(solve.name.to_string()).or_default();
+            e.total_iterations += u64::from(solve.iterations);
+            e.max_iterations = e.max_iterations.max(solve.iterations);
+            e.mean_iterations = e.total_iterations as f64 / n;
+            e.last_residual = solve.residual;
+        }
     }
 }

@@ -2,8 +2,10 @@
 //!
 //! The stable limit is the smallest of (Monaghan 1992, section 10; Morris, Fox &
 //! Zhu 1997, eqs. 19-20; with h the smoothing length, half the kernel support):
-//! - CFL: `lambda h / (c + v_max)`;
-//! - viscous: `0.125 h^2 / nu`;
+//! - CFL: `lambda h / (c + v_max)`, c the scheme's signal speed (WCSPH: the speed
+//!   of sound);
+//! - the modules' own limits (the fluid's viscous `0.125 h^2 / nu`, a heat
+//!   module's diffusion limit, ...);
 //! - force: `0.25 sqrt(h / |a|_max)`.
 //!
 //! Adaptive mode steps at that limit clamped to `[min, max]`; a limit below
@@ -19,25 +21,35 @@ use crate::scene::TimeStep;
 pub struct Limits {
     /// Smoothing length (m): half the kernel support radius.
     pub h: Real,
-    /// Speed of sound (m/s).
+    /// Signal speed of the CFL condition (m/s): the speed of sound for WCSPH.
     pub c: Real,
     /// Largest particle speed (m/s).
     pub v_max: Real,
     /// Largest acceleration (m/s^2).
     pub a_max: Real,
-    /// (Effective) kinematic viscosity (m^2/s).
-    pub nu: Real,
+    /// The smallest of the modules' limits (s) and its name, if any module limits dt.
+    pub module: Option<(&'static str, Real)>,
 }
 
 impl Limits {
     /// The stable limit (s) for CFL number `cfl`.
     pub fn stable_dt(&self, cfl: Real) -> Real {
-        let mut dt = cfl * self.h / (self.c + self.v_max);
-        if self.nu > 0.0 {
-            dt = dt.min(0.125 * self.h * self.h / self.nu);
+        self.binding(cfl).1
+    }
+
+    /// The limit that binds and its value (s): `cfl`, a module's limit, or `force`.
+    pub fn binding(&self, cfl: Real) -> (&'static str, Real) {
+        let mut dt = ("cfl", cfl * self.h / (self.c + self.v_max));
+        if let Some((name, limit)) = self.module
+            && limit < dt.1
+        {
+            dt = (name, limit);
         }
         if self.a_max > 0.0 {
-            dt = dt.min(0.25 * (self.h / self.a_max).sqrt());
+            let force = 0.25 * (self.h / self.a_max).sqrt();
+            if force < dt.1 {
+                dt = ("force", force);
+            }
         }
         dt
     }
@@ -79,10 +91,10 @@ impl StepControl {
     pub fn next_dt(&mut self, limits: &Limits) -> Result<Real, String> {
         match self.mode {
             TimeStep::Adaptive { cfl, min, max } => {
-                let stable = limits.stable_dt(cfl);
+                let (binding, stable) = limits.binding(cfl);
                 if stable.is_nan() || stable < min {
                     return Err(format!(
-                        "stable time step {stable:.3e} s fell below solver.time_step.min = {min:.3e} s \
+                        "stable time step {stable:.3e} s ({binding} limit) fell below solver.time_step.min = {min:.3e} s \
                          (max speed {:.3} m/s, max acceleration {:.3e} m/s^2)",
                         limits.v_max, limits.a_max
                     ));
@@ -120,15 +132,16 @@ mod tests {
     use super::*;
 
     fn limits(v_max: Real) -> Limits {
-        Limits { h: 0.02, c: 40.0, v_max, a_max: 10.0, nu: 1e-6 }
+        Limits { h: 0.02, c: 40.0, v_max, a_max: 10.0, module: Some(("viscosity", 0.125 * 0.02 * 0.02 / 1e-6)) }
     }
 
     #[test]
     fn stable_dt_takes_the_smallest_limit() {
         let l = limits(0.0);
         assert!((l.stable_dt(0.25) - 0.25 * 0.02 / 40.0).abs() < 1e-9);
-        let viscous = Limits { nu: 1.0, ..l };
+        let viscous = Limits { module: Some(("viscosity", 0.125 * 0.02 * 0.02)), ..l };
         assert!((viscous.stable_dt(0.25) - 0.125 * 0.02 * 0.02).abs() < 1e-9);
+        assert_eq!(viscous.binding(0.25).0, "viscosity");
         let forced = Limits { a_max: 1e6, ..l };
         assert!((forced.stable_dt(0.25) - 0.25 * (0.02f32 / 1e6).sqrt()).abs() < 1e-9);
     }

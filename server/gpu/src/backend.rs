@@ -1,27 +1,56 @@
-//! [`GpuBackend`]: the engine's [`Backend`] with every particle pass on the GPU.
+//! [`GpuBackend`]: the engine's [`Backend`] with every pass of the plan on the GPU.
 //!
-//! A step records its passes into one command buffer per evaluation and waits
-//! only for the 32-byte measures the time step and guard need (the kick and
-//! drift that follow are submitted without waiting). The step sequence itself
-//! (integrators, dt, guard, snapshots) is the engine's [`Clock`], shared with
-//! the CPU backend.
+//! A scheme's stages are recorded into one command buffer per evaluation; the
+//! backend waits only for the 32-byte measures the time step and guard need (and,
+//! for an iterative solve, a 4-byte residual per check). Kicks and drifts are
+//! submitted without waiting. Each plan pass is bound by name ([`crate::pass`]), so
+//! this file knows no module.
 
-use crate::buffers::{Binds, Buffers, STEP_SLOTS, vec4s};
+use crate::buffers::{Buffers, PACKED, STEP_SLOTS, from_gpu_words, gpu_words};
 use crate::context::GpuContext;
-use crate::layout::{Measures, Params, QuantGrid, Step};
-use crate::passes::measure::PER_PARTIAL;
-use crate::program::Recorder;
+use crate::layout::{Measures, Params, QuantGrid, Step, Words};
+use crate::passes::PER_PARTIAL;
+use crate::passes::scan::ScanPlan;
+use crate::program::{Kernel, Recorder};
 use crate::timer::Timer;
+use floe_engine::attrs::{Allocation, Column, PARTICLES, WALLS};
 use floe_engine::backend::{Backend, Particles};
-use floe_engine::math::{Real, Vec3};
+use floe_engine::channels::SetSpec;
+use floe_engine::math::Real;
 use floe_engine::model::{BuildError, Model};
 use floe_engine::neighbors::Grid;
+use floe_engine::plan::{PassSpec, Stage};
 use floe_engine::quantize::PositionGrid;
-use floe_engine::scene::Scene;
-use floe_engine::stepping::{Clock, Passes, SortedState, by_identity};
-use wgpu::Buffer;
+use floe_engine::schemes::{ReduceOp, Reduction, Stages};
+use std::sync::Arc;
+use wgpu::{BindGroup, Buffer};
 
-/// One scene's fluid on the GPU.
+/// A plan pass ready to record: its kernel and bind group, or none for the core's
+/// sort (several kernels, recorded by [`GpuBackend::record_sort`]).
+#[derive(Debug)]
+struct PlanPass {
+    spec: &'static PassSpec,
+    kernel: Option<(Arc<Kernel>, BindGroup)>,
+    /// Elements of the pass's space (threads).
+    threads: u32,
+}
+
+/// The bind groups of the core's own kernels.
+#[derive(Debug)]
+struct CoreBinds {
+    grid: BindGroup,
+    scan: ScanPlan,
+    /// Per state attribute of the particle space: its name, words per element and
+    /// the permutation's bind group (into the scratch buffer).
+    permutes: Vec<(&'static str, u32, BindGroup)>,
+    slots: BindGroup,
+    measure: BindGroup,
+    /// One per step slot (kick and drift share a layout).
+    integrate: Vec<BindGroup>,
+    quantize: BindGroup,
+}
+
+/// One scene on the GPU.
 #[derive(Debug)]
 pub struct GpuBackend {
     gpu: GpuContext,
@@ -29,36 +58,59 @@ pub struct GpuBackend {
     grid: Grid,
     n: u32,
     buffers: Buffers,
-    binds: Binds,
-    clock: Clock,
+    core: CoreBinds,
+    passes: Vec<PlanPass>,
+    /// Reduction bind groups, by attribute.
+    reductions: Vec<(&'static str, BindGroup)>,
     /// Kicks and drifts recorded since the last submission.
     pending: Option<Recorder>,
     /// Per-kernel GPU time, when profiling (held by `pending` while recording).
     timer: Option<Timer>,
     /// Next free step uniform of `buffers.steps`.
     slot: usize,
+    /// Every pass recorded so far, in the order first recorded.
+    ran: Vec<&'static str>,
 }
 
 impl GpuBackend {
     /// Uploads `model`'s initial state to the GPU of `gpu`.
     pub fn new(gpu: &GpuContext, mut model: Model) -> Result<Self, BuildError> {
         let grid = Grid::new(model.domain, model.kernel.support());
+        // Every pass of the plan needs a GPU kernel, or the scene is refused by name.
+        for p in model.plan.passes() {
+            if p.name != "core.sort" && crate::pass::find(p.name, &model).is_none() {
+                return Err(BuildError::Backend(format!(
+                    "pass {} (module {}) has no GPU implementation; run this scene on the CPU backend",
+                    p.name, p.module
+                )));
+            }
+        }
         // A scene too large for the device's memory is refused, not a panic.
         let oom = gpu.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let invalid = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let buffers = Buffers::new(gpu, &model, &grid)?;
-        let binds = buffers.bind(gpu, grid.cell_count() as u32);
+        let buffers = Buffers::new(gpu, &mut model, &grid)?;
+        let n = model.particle_count() as u32;
+        let core = core_binds(gpu, &buffers, &grid);
+        let passes = plan_passes(gpu, &model, &buffers);
         let refused = pollster::block_on(invalid.pop()).or(pollster::block_on(oom.pop()));
         if let Some(e) = refused {
             return Err(BuildError::Backend(format!("the GPU cannot hold this scene: {e}")));
         }
-        let n = model.particle_count() as u32;
-        // The GPU holds the state from here on.
-        model.positions = Vec::new();
-        model.velocities = Vec::new();
-        let clock = Clock::new(&model);
         let timer = gpu.profiling().then(|| Timer::new(&gpu.device, gpu.queue.get_timestamp_period()));
-        Ok(Self { gpu: gpu.clone(), model, grid, n, buffers, binds, clock, pending: None, timer, slot: 0 })
+        Ok(Self {
+            gpu: gpu.clone(),
+            model,
+            grid,
+            n,
+            buffers,
+            core,
+            passes,
+            reductions: Vec::new(),
+            pending: None,
+            timer,
+            slot: 0,
+            ran: Vec::new(),
+        })
     }
 
     /// The recorder being filled (taken out; put it back in `pending` or submit it).
@@ -79,14 +131,12 @@ impl GpuBackend {
         self.gpu.queue.submit([encoder.finish()]);
         self.slot = 0;
         if let (Some(t), Some((buffer, len))) = (timer.as_mut(), stamps) {
-            t.add(&self.download(&[(&buffer, 0, len)])[0]);
+            t.add(&self.download_words(&[(&buffer, 0, len)])[0]);
         }
         self.timer = timer;
     }
 
     /// Submits the kicks and drifts recorded so far, without waiting.
-    /// [`Backend::step`] does this itself; callers driving [`Passes`] directly
-    /// flush before reading the state.
     pub fn flush(&mut self) {
         if let Some(rec) = self.pending.take() {
             self.submit(rec);
@@ -94,27 +144,36 @@ impl GpuBackend {
         self.slot = 0;
     }
 
-    /// Records the stable counting sort by cell, the permutation of the state
-    /// and the density pass.
-    fn record_sort_and_density(&mut self) {
+    /// Records the stable counting sort by cell and the permutation of every state
+    /// attribute of the particle space (through the scratch buffer), then the slot
+    /// of each id.
+    fn record_sort(&mut self, e: &mut Recorder) {
         let (n, cells) = (self.n, self.grid.cell_count() as u32);
-        let mut e = self.take_recorder();
         let p = &self.gpu.programs;
-        let (b, binds) = (&self.buffers, &self.binds);
-        let copies = [(&b.pos2, &b.pos, 16), (&b.vel2, &b.vel, 16), (&b.acc2, &b.acc, 16), (&b.ids2, &b.ids, 4)];
-        e.encoder.clear_buffer(&b.counts, 0, None);
-        p.grid.count.dispatch(&mut e, &binds.grid, n);
-        p.scan.record(&mut e, &binds.scan);
-        p.grid.scatter.dispatch(&mut e, &binds.grid, n);
-        p.grid.settle.dispatch(&mut e, &binds.grid, cells);
-        for bind in [&binds.reorder_pos, &binds.reorder_vel, &binds.reorder_acc] {
-            p.reorder.state.dispatch(&mut e, bind, n);
+        let (b, c) = (&self.buffers, &self.core);
+        e.encoder.clear_buffer(b.get("starts"), 0, Some(4 * (cells as u64 + 1)));
+        p.grid_count.dispatch(e, &c.grid, n);
+        p.scan.record(e, &c.scan);
+        p.grid_scatter.dispatch(e, &c.grid, n);
+        p.grid_settle.dispatch(e, &c.grid, cells);
+        let scratch = b.get("sort_scratch");
+        for (name, words, bind) in &c.permutes {
+            p.permute.dispatch(e, bind, n * words);
+            e.encoder.copy_buffer_to_buffer(scratch, 0, b.get(name), 0, 4 * (n * words) as u64);
         }
-        p.reorder.ids.dispatch(&mut e, &binds.reorder_ids, n);
-        for (from, to, size) in copies {
-            e.encoder.copy_buffer_to_buffer(from, 0, to, 0, size * n as u64);
+        p.slots.dispatch(e, &c.slots, n);
+    }
+
+    fn record_pass(&mut self, i: usize) {
+        let mut e = self.take_recorder();
+        let pass = &self.passes[i];
+        if !self.ran.contains(&pass.spec.name) {
+            self.ran.push(pass.spec.name);
         }
-        p.density.dispatch(&mut e, &binds.density, n);
+        match &pass.kernel {
+            Some((kernel, bind)) => kernel.dispatch(&mut e, bind, pass.threads),
+            None => self.record_sort(&mut e),
+        }
         self.pending = Some(e);
     }
 
@@ -127,13 +186,13 @@ impl GpuBackend {
     }
 
     /// Copies byte ranges (multiples of 4 bytes) of buffers back to the CPU, one
-    /// submission and one wait, as 4-byte words (aligned for any of the state's
-    /// types). Panics if the device is lost (see [`GpuBackend::try_download`]).
-    fn download(&self, ranges: &[(&Buffer, u64, u64)]) -> Vec<Vec<u32>> {
+    /// submission and one wait, as 4-byte words. Panics if the device is lost (a
+    /// scene's worker turns that into a halt).
+    fn download_words(&self, ranges: &[(&Buffer, u64, u64)]) -> Vec<Vec<u32>> {
         self.try_download(ranges).unwrap_or_else(|e| panic!("{e}"))
     }
 
-    /// [`GpuBackend::download`], or why the GPU could not deliver.
+    /// [`GpuBackend::download_words`], or why the GPU could not deliver.
     fn try_download(&self, ranges: &[(&Buffer, u64, u64)]) -> Result<Vec<Vec<u32>>, String> {
         let device = &self.gpu.device;
         let mut e = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("floe readback") });
@@ -188,95 +247,143 @@ impl GpuBackend {
             .collect()
     }
 
-    fn vec3s(words: &[u32]) -> Vec<Vec3> {
-        bytemuck::cast_slice::<u32, [f32; 4]>(words).iter().map(|v| Vec3::new(v[0], v[1], v[2])).collect()
+    /// Elements of `space`.
+    fn count(&self, space: &str) -> u64 {
+        self.model.layout.count(space) as u64
+    }
+
+    /// The reduction bind group of attribute `attr`, made on first use.
+    fn reduction(&mut self, attr: &'static str) -> &BindGroup {
+        if !self.reductions.iter().any(|(a, _)| *a == attr) {
+            let b = &self.buffers;
+            let bind = self
+                .gpu
+                .programs
+                .reduce_partials
+                .bind(&self.gpu.device, &[b.get("reduce_words"), b.get(attr), b.get("reduce_partials")]);
+            self.reductions.push((attr, bind));
+        }
+        &self.reductions.iter().find(|(a, _)| *a == attr).expect("made above").1
     }
 }
 
-impl GpuBackend {
-    /// Positions (f32, or quantised on the GPU to `grid`) and `channels`, in
-    /// identity order, copied back in one submission.
-    fn read_with(&self, channels: &[&str], grid: Option<&PositionGrid>) -> Particles {
-        let (b, n) = (&self.buffers, self.n as u64);
-        let want = |c| channels.contains(&c);
-        let vel = want("velocity");
-        let rho = want("density") || want("pressure");
-        // Sorted-order data needs the ids; quantised positions come in identity order.
-        let sorted = vel || rho || grid.is_none();
-        if let Some(g) = grid {
-            self.gpu.queue.write_buffer(&b.quant_grid, 0, bytemuck::bytes_of(&QuantGrid::from(g)));
-            let encoder =
-                self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("quantize") });
-            let mut e = Recorder { encoder, timer: None };
-            self.gpu.programs.quantize.dispatch(&mut e, &self.binds.quantize, self.n.div_ceil(2));
-            self.gpu.queue.submit([e.encoder.finish()]);
-        }
-        let size = |on: bool, bytes: u64| if on { bytes * n } else { 0 };
-        let got = self.download(&[
-            (&b.ids, 0, size(sorted, 4)),
-            (&b.pos, 0, size(grid.is_none(), 16)),
-            (&b.vel, 0, size(vel, 16)),
-            (&b.dens, 0, size(rho, 8)),
-            (&b.codes, 0, if grid.is_some() { 12 * n.div_ceil(2) } else { 0 }),
-        ]);
-        let velocities = vel.then(|| Self::vec3s(&got[2]));
-        let densities: Option<Vec<Real>> =
-            rho.then(|| bytemuck::cast_slice::<u32, [f32; 2]>(&got[3]).iter().map(|d| d[0]).collect());
-        let mut p = by_identity(
-            channels,
-            &got[0],
-            &Self::vec3s(&got[1]),
-            velocities.as_deref(),
-            densities.as_deref(),
-            &self.model.fluid.eos,
-        );
-        if let Some(g) = grid {
-            let codes: &[u16] = bytemuck::cast_slice(&got[4]);
-            p.positions = codes
-                .chunks_exact(3)
-                .take(self.n as usize)
-                .map(|c| std::array::from_fn(|k| g.value(c[k], k)))
-                .collect();
-        }
-        p
+/// Binds the core's kernels to a scene's buffers.
+fn core_binds(gpu: &GpuContext, b: &Buffers, grid: &Grid) -> CoreBinds {
+    let (d, p) = (&gpu.device, &gpu.programs);
+    let stride = |s: u32| &b.strides.iter().find(|(t, _)| *t == s).expect("a uniform per stride").1;
+    let permutes = b
+        .attrs()
+        .iter()
+        .filter(|(s, _)| s.space == PARTICLES && s.role == floe_engine::attrs::Role::State)
+        .map(|(s, buffer)| {
+            let words = s.elem.gpu_words() as u32;
+            let bind = p.permute.bind(d, &[stride(words), b.get("order"), buffer, b.get("sort_scratch")]);
+            (s.name, words, bind)
+        })
+        .collect();
+    CoreBinds {
+        grid: p.grid_count.bind(d, &[b.get("params"), b.get("x"), b.get("cell_rank"), b.get("starts"), b.get("order")]),
+        scan: p.scan.plan(d, b.get("starts"), grid.cell_count() as u32 + 1),
+        permutes,
+        slots: p.slots.bind(d, &[stride(1), b.get("order"), b.get("id"), b.get("slot_of")]),
+        measure: p
+            .measure_partials
+            .bind(d, &[b.get("params"), b.get("x"), b.get("v"), b.get("a"), b.get("rho"), b.get("partials")]),
+        integrate: b
+            .steps
+            .iter()
+            .map(|s| p.kick.bind(d, &[b.get("params"), s, b.get("x"), b.get("v"), b.get("a"), b.get("constraints")]))
+            .collect(),
+        quantize: p
+            .quantize
+            .bind(d, &[b.get("params"), b.get("quant_grid"), b.get("x"), b.get("slot_of"), b.get("codes")]),
     }
 }
 
-impl Passes for GpuBackend {
+/// Binds every plan pass (but the core's sort, recorded by hand) to its buffers.
+fn plan_passes(gpu: &GpuContext, model: &Model, b: &Buffers) -> Vec<PlanPass> {
+    model
+        .plan
+        .passes()
+        .iter()
+        .map(|&spec| {
+            if spec.name == "core.sort" {
+                return PlanPass { spec, kernel: None, threads: model.particle_count() as u32 };
+            }
+            let pass = crate::pass::find(spec.name, model).expect("checked at creation");
+            let kernel = gpu.kernel(pass);
+            let buffers: Vec<&Buffer> = pass.bindings.iter().map(|(_, name)| b.get(name)).collect();
+            let bind = kernel.bind(&gpu.device, &buffers);
+            PlanPass { spec, kernel: Some((kernel, bind)), threads: model.layout.count(pass.space) as u32 }
+        })
+        .collect()
+}
+
+impl Stages for GpuBackend {
     fn model(&self) -> &Model {
         &self.model
     }
 
-    fn evaluate(&mut self) -> Result<floe_engine::guard::Measures, String> {
-        self.record_sort_and_density();
-        let mut e = self.take_recorder();
-        let (p, b) = (&self.gpu.programs, &self.binds);
-        let walls = self.model.boundary.len() as u32;
-        if walls > 0 {
-            p.wall_pressure.dispatch(&mut e, &b.wall_pressure, walls);
+    fn run(&mut self, stage: Stage, _dt: Real) {
+        for i in 0..self.passes.len() {
+            if self.passes[i].spec.stage == stage {
+                self.record_pass(i);
+            }
         }
-        p.forces.dispatch(&mut e, &b.forces, self.n);
-        p.measure.partials.dispatch(&mut e, &b.measure, self.n);
-        p.measure.total.dispatch(&mut e, &b.measure, PER_PARTIAL);
-        let (size, readback) = (std::mem::size_of::<Measures>() as u64, &self.buffers.measures_readback);
-        e.encoder.copy_buffer_to_buffer(&self.buffers.partials, 0, readback, 0, size);
-        let readback = readback.clone();
+    }
+
+    fn run_pass(&mut self, name: &str, _dt: Real) {
+        let i = self.passes.iter().position(|p| p.spec.name == name).unwrap_or_else(|| panic!("no pass {name}"));
+        self.record_pass(i);
+    }
+
+    fn measure(&mut self) -> Result<floe_engine::guard::Measures, String> {
+        let mut e = self.take_recorder();
+        let p = &self.gpu.programs;
+        p.measure_partials.dispatch(&mut e, &self.core.measure, self.n);
+        p.measure_total.dispatch(&mut e, &self.core.measure, PER_PARTIAL);
+        let size = std::mem::size_of::<Measures>() as u64;
+        let readback = self.buffers.get("measures_readback").clone();
+        e.encoder.copy_buffer_to_buffer(self.buffers.get("partials"), 0, &readback, 0, size);
         self.submit(e);
         let got = self.read_mapped(&[(&readback, size)])?;
         Ok(bytemuck::pod_read_unaligned::<Measures>(bytemuck::cast_slice(&got[0])).into())
     }
 
-    fn kick(&mut self, dt: Real, keep: Real, with_xsph: bool) {
-        let slot = self.write_step(Step { kick_dt: dt, keep, with_xsph: with_xsph as u32, drift_dt: 0.0 });
+    fn reduce(&mut self, r: &Reduction) -> Result<f64, String> {
+        let spec = self.model.layout.spec(r.attr).ok_or_else(|| format!("no attribute {}", r.attr))?;
+        let n = self.count(spec.space) as u32;
+        let op = match r.op {
+            ReduceOp::Sum | ReduceOp::Mean => 0,
+            ReduceOp::Max => 1,
+            ReduceOp::MaxAbs => 2,
+        };
+        let words = Words { n, stride: 1, op, _pad: 0 };
+        self.gpu.queue.write_buffer(self.buffers.get("reduce_words"), 0, bytemuck::bytes_of(&words));
+        let bind = self.reduction(spec.name).clone();
         let mut e = self.take_recorder();
-        self.gpu.programs.integrate.kick.dispatch(&mut e, &self.binds.integrate[slot], self.n);
+        let p = &self.gpu.programs;
+        p.reduce_partials.dispatch(&mut e, &bind, n);
+        p.reduce_total.dispatch(&mut e, &bind, PER_PARTIAL);
+        let readback = self.buffers.get("reduce_readback").clone();
+        e.encoder.copy_buffer_to_buffer(self.buffers.get("reduce_partials"), 0, &readback, 0, 4);
+        self.submit(e);
+        let got = self.read_mapped(&[(&readback, 4)])?;
+        let value = f64::from(f32::from_bits(got[0][0]));
+        Ok(if r.op == ReduceOp::Mean { value / f64::from(n.max(1)) } else { value })
+    }
+
+    fn kick(&mut self, dt: Real, keep: Real) {
+        let slot = self.write_step(Step { kick_dt: dt, keep, drift_dt: 0.0, _pad: 0.0 });
+        let mut e = self.take_recorder();
+        self.gpu.programs.kick.dispatch(&mut e, &self.core.integrate[slot], self.n);
         self.pending = Some(e);
     }
 
     fn drift(&mut self, dt: Real) {
-        let slot = self.write_step(Step { kick_dt: 0.0, keep: 1.0, with_xsph: 0, drift_dt: dt });
+        let slot = self.write_step(Step { kick_dt: 0.0, keep: 1.0, drift_dt: dt, _pad: 0.0 });
         let mut e = self.take_recorder();
-        self.gpu.programs.integrate.drift.dispatch(&mut e, &self.binds.integrate[slot], self.n);
+        self.gpu.programs.drift.dispatch(&mut e, &self.core.integrate[slot], self.n);
         self.pending = Some(e);
     }
 
@@ -286,7 +393,7 @@ impl Passes for GpuBackend {
 
     fn particle_id(&mut self, slot: u32) -> u32 {
         self.flush();
-        self.download(&[(&self.buffers.ids, 4 * slot as u64, 4)])[0][0]
+        self.download_words(&[(self.buffers.get("id"), 4 * slot as u64, 4)])[0][0]
     }
 }
 
@@ -295,42 +402,111 @@ impl Backend for GpuBackend {
         "gpu"
     }
 
-    fn clock(&self) -> &Clock {
-        &self.clock
+    /// (Recorded but unsubmitted work is not included: a step ends with a submission,
+    /// and callers driving passes directly end them with [`Stages::end_step`].)
+    fn download(&self, names: &[&str]) -> Vec<Column> {
+        let stored: Vec<&str> =
+            names.iter().map(|n| PACKED.iter().find(|(a, _)| a == n).map_or(*n, |(_, into)| *into)).collect();
+        let ranges: Vec<(&Buffer, u64, u64)> = stored
+            .iter()
+            .map(|n| {
+                let spec = self.model.layout.spec(n).unwrap_or_else(|| panic!("no attribute {n}"));
+                (self.buffers.get(n), 0, 4 * spec.elem.gpu_words() as u64 * self.count(spec.space))
+            })
+            .collect();
+        let words = self.download_words(&ranges);
+        names
+            .iter()
+            .zip(words)
+            .map(|(name, w)| match *name {
+                "material" => Column::U32(w.chunks_exact(4).map(|v| f32::from_bits(v[3]) as u32).collect()),
+                name => from_gpu_words(self.model.layout.spec(name).expect("checked above").elem, &w),
+            })
+            .collect()
     }
 
-    fn clock_mut(&mut self) -> &mut Clock {
-        &mut self.clock
-    }
-
-    fn particle_count(&self) -> usize {
-        self.n as usize
-    }
-
-    fn sorted_state(&self) -> SortedState {
-        let (b, n) = (&self.buffers, self.n as u64);
-        let got = self.download(&[(&b.pos, 0, 16 * n), (&b.vel, 0, 16 * n), (&b.acc, 0, 16 * n), (&b.ids, 0, 4 * n)]);
-        SortedState {
-            pos: Self::vec3s(&got[0]),
-            vel: Self::vec3s(&got[1]),
-            acc: Self::vec3s(&got[2]),
-            ids: got[3].clone(),
+    fn upload(&mut self, name: &str, column: Column) {
+        // Work recorded before must run before the new values land.
+        self.flush();
+        let q = &self.gpu.queue;
+        match name {
+            // The material index is the w of each position.
+            "material" => {
+                let Column::U32(m) = column else { panic!("materials are u32") };
+                let mut words = self.download_words(&[(self.buffers.get("x"), 0, 16 * self.n as u64)]).remove(0);
+                for (k, &id) in m.iter().enumerate() {
+                    words[4 * k + 3] = (id as f32).to_bits();
+                }
+                q.write_buffer(self.buffers.get("x"), 0, bytemuck::cast_slice(&words));
+            }
+            "x" if self.model.layout.spec("material").is_some() => {
+                let old = self.download_words(&[(self.buffers.get("x"), 0, 16 * self.n as u64)]).remove(0);
+                let mut words = gpu_words(&column);
+                for k in 0..self.n as usize {
+                    words[4 * k + 3] = old[4 * k + 3];
+                }
+                q.write_buffer(self.buffers.get("x"), 0, bytemuck::cast_slice(&words));
+            }
+            _ => q.write_buffer(self.buffers.get(name), 0, bytemuck::cast_slice(&gpu_words(&column))),
         }
     }
 
-    fn restore_state(&mut self, s: SortedState) {
-        let (q, b) = (&self.gpu.queue, &self.buffers);
-        q.write_buffer(&b.pos, 0, bytemuck::cast_slice(&vec4s(&s.pos)));
-        q.write_buffer(&b.vel, 0, bytemuck::cast_slice(&vec4s(&s.vel)));
-        q.write_buffer(&b.acc, 0, bytemuck::cast_slice(&vec4s(&s.acc)));
-        q.write_buffer(&b.ids, 0, bytemuck::cast_slice(&s.ids));
-        // Densities for output right away; the next step recomputes them identically.
-        self.record_sort_and_density();
+    fn restored(&mut self) {
+        // Densities (and anything else derived) for output right away; the next step
+        // recomputes them identically.
+        self.run(Stage::Sort, 0.0);
+        self.run(Stage::Density, 0.0);
         self.flush();
     }
 
-    fn read(&self, channels: &[&str]) -> Particles {
-        self.read_with(channels, None)
+    fn retuned(&mut self) {
+        let (gpu, b) = (&self.gpu, &mut self.buffers);
+        gpu.queue.write_buffer(b.get("params"), 0, bytemuck::bytes_of(&Params::new(&self.model, &self.grid)));
+        for (name, make) in crate::pass::uniforms() {
+            if let (Some(buffer), Some(bytes)) = (b.find(name), make(&self.model)) {
+                gpu.queue.write_buffer(buffer, 0, &bytes);
+            }
+        }
+        // Attributes that came or went with a setting (XSPH), then the plan's bindings.
+        let layout = &self.model.layout;
+        b.retain(|name| layout.spec(name).is_some());
+        for spec in layout.specs() {
+            if b.find(spec.name).is_none() && !PACKED.iter().any(|(a, _)| *a == spec.name) {
+                b.add(&gpu.device, spec, layout.count(spec.space) as u64);
+            }
+        }
+        self.reductions.clear();
+        self.passes = plan_passes(&self.gpu, &self.model, &self.buffers);
+    }
+
+    fn model_mut(&mut self) -> &mut Model {
+        &mut self.model
+    }
+
+    fn allocations(&self) -> Vec<Allocation> {
+        let attrs = self.buffers.attrs().iter().map(|(s, buffer)| Allocation {
+            name: s.name,
+            module: s.module,
+            space: s.space,
+            bytes: buffer.size(),
+        });
+        let core = self.buffers.core_sizes().into_iter().map(|(name, bytes)| Allocation {
+            name,
+            module: "core",
+            space: if name == "walls" { WALLS } else { PARTICLES },
+            bytes,
+        });
+        let uniforms = self.buffers.uniforms().iter().map(|(name, buffer)| Allocation {
+            name,
+            module: name,
+            space: "uniform",
+            bytes: buffer.size(),
+        });
+        attrs.chain(core).chain(uniforms).collect()
+    }
+
+    fn passes_run(&self) -> Vec<&'static str> {
+        self.ran.clone()
     }
 
     fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
@@ -338,17 +514,24 @@ impl Backend for GpuBackend {
     }
 
     fn device_memory(&self) -> Option<u64> {
-        Some(self.buffers.bytes() + self.binds.scan.bytes())
+        Some(self.buffers.bytes() + self.core.scan.bytes())
     }
 
-    fn read_on_grid(&self, channels: &[&str], grid: &PositionGrid) -> Particles {
-        self.read_with(channels, Some(grid))
-    }
-
-    fn retune(&mut self, scene: &Scene) {
-        self.model.retune(scene);
-        self.clock.retune(&self.model);
-        let params = Params::new(&self.model, &self.grid);
-        self.gpu.queue.write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&params));
+    fn read_on_grid(&self, set: &SetSpec, channels: &[&str], grid: &PositionGrid) -> Particles {
+        if set.space != PARTICLES {
+            return self.read_set(set, channels);
+        }
+        let b = &self.buffers;
+        self.gpu.queue.write_buffer(b.get("quant_grid"), 0, bytemuck::bytes_of(&QuantGrid::from(grid)));
+        let encoder =
+            self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("quantize") });
+        let mut e = Recorder { encoder, timer: None };
+        self.gpu.programs.quantize.dispatch(&mut e, &self.core.quantize, self.n.div_ceil(2));
+        self.gpu.queue.submit([e.encoder.finish()]);
+        let got = self.download_words(&[(b.get("codes"), 0, 12 * (self.n as u64).div_ceil(2))]);
+        let codes: &[u16] = bytemuck::cast_slice(&got[0]);
+        let positions =
+            codes.chunks_exact(3).take(self.n as usize).map(|c| std::array::from_fn(|k| grid.value(c[k], k))).collect();
+        floe_engine::backend::read(self, set, channels, Some(positions))
     }
 }

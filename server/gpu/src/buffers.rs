@@ -1,72 +1,39 @@
-//! One scene's GPU memory and the bind groups that tie it to the kernels.
-//!
-//! Per fluid particle: positions, velocities (vec4, w unused), accelerations
-//! with the XSPH corrections behind them, the sort's scratch copies, ids and
-//! their inverse, (density, p/rho^2), (cell, rank) and the permutation: about
-//! 150 bytes, plus 4 bytes per grid cell.
+//! One scene's GPU memory: a buffer per attribute of the scene's layout (the
+//! engine's declarations: a vec3 is stored as a vec4, and a particle's material
+//! index rides in the w of its position instead of a buffer of its own), the
+//! core's buffers (grid, sort, walls, reductions, frames), and the module uniforms.
+//! Kernels bind them by name ([`Buffers::get`]).
 
 use crate::context::GpuContext;
-use crate::layout::{Constraint, Params, QuantGrid, Step};
-use crate::passes::scan::{MAX_LEN, ScanPlan};
-use bytemuck::Pod;
+use crate::layout::{Constraint, MAX_MATERIALS, Measures, Params, QuantGrid, Step, Words};
+use crate::passes::scan::MAX_LEN;
+use floe_engine::attrs::{AttrSpec, Column, Elem};
 use floe_engine::model::{BuildError, Model};
 use floe_engine::neighbors::Grid;
 use wgpu::util::DeviceExt;
-use wgpu::{BindGroup, Buffer, BufferUsages as U, Device};
+use wgpu::{Buffer, BufferUsages as U, Device};
 
 /// Kicks and drifts recorded between two submissions, at most (a leap-frog
 /// step records kick and drift before its evaluation).
 pub const STEP_SLOTS: usize = 4;
 
+/// Attributes stored in another attribute's buffer: the material index is the w of
+/// the position.
+pub const PACKED: &[(&str, &str)] = &[("material", "x")];
+
 /// Buffers of one scene.
 #[derive(Debug)]
 pub struct Buffers {
-    pub params: Buffer,
+    /// The core's buffers by name.
+    core: Vec<(&'static str, Buffer)>,
+    /// One buffer per attribute (packed ones excepted).
+    attrs: Vec<(&'static AttrSpec, Buffer)>,
+    /// Module uniforms by name.
+    uniforms: Vec<(&'static str, Buffer)>,
+    /// Step uniforms, one per slot.
     pub steps: Vec<Buffer>,
-    pub pos: Buffer,
-    pub vel: Buffer,
-    /// Accelerations in `[0, n)`, XSPH corrections in `[n, 2n)`.
-    pub acc: Buffer,
-    pub pos2: Buffer,
-    pub vel2: Buffer,
-    pub acc2: Buffer,
-    pub ids: Buffer,
-    pub ids2: Buffer,
-    pub slot_of: Buffer,
-    pub dens: Buffer,
-    pub cell_rank: Buffer,
-    /// Per-cell counts, then (after the scan) run starts; `cells + 1` entries.
-    pub counts: Buffer,
-    pub order: Buffer,
-    pub walls: Buffer,
-    pub wall_start: Buffer,
-    pub wall_p: Buffer,
-    pub constraints: Buffer,
-    pub partials: Buffer,
-    /// The frame position grid, and positions quantised to it (16-bit codes,
-    /// identity order, 6 bytes per particle).
-    pub quant_grid: Buffer,
-    pub codes: Buffer,
-    /// Where each step's measures are copied for the CPU to map.
-    pub measures_readback: Buffer,
-}
-
-/// Bind groups of one scene, one per kernel use.
-#[derive(Debug)]
-pub struct Binds {
-    pub grid: BindGroup,
-    pub scan: ScanPlan,
-    pub reorder_pos: BindGroup,
-    pub reorder_vel: BindGroup,
-    pub reorder_acc: BindGroup,
-    pub reorder_ids: BindGroup,
-    pub density: BindGroup,
-    pub wall_pressure: BindGroup,
-    pub forces: BindGroup,
-    pub measure: BindGroup,
-    /// One per step slot.
-    pub integrate: Vec<BindGroup>,
-    pub quantize: BindGroup,
+    /// `Words` uniforms of the permutation, by stride.
+    pub strides: Vec<(u32, Buffer)>,
 }
 
 fn storage(device: &Device, label: &str, size: u64, extra: U) -> Buffer {
@@ -78,156 +45,191 @@ fn storage(device: &Device, label: &str, size: u64, extra: U) -> Buffer {
     })
 }
 
-fn init<T: Pod>(device: &Device, label: &str, data: &[T], usage: U) -> Buffer {
+fn init<T: bytemuck::Pod>(device: &Device, label: &str, data: &[T], usage: U) -> Buffer {
     let bytes: &[u8] = bytemuck::cast_slice(data);
     // Bindings may not be empty: pad to one vec4.
-    let padded;
-    let contents = if bytes.is_empty() {
-        padded = [0u8; 16];
-        &padded[..]
-    } else {
-        bytes
-    };
+    let padded = [0u8; 16];
+    let contents = if bytes.is_empty() { &padded[..] } else { bytes };
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
 }
 
-/// Positions or velocities as vec4 with `w = 0`.
-pub fn vec4s(v: &[glam::Vec3]) -> Vec<[f32; 4]> {
-    v.iter().map(|p| [p.x, p.y, p.z, 0.0]).collect()
+/// An attribute's values as the GPU stores them: 32-bit words, vec3 padded to vec4.
+pub fn gpu_words(column: &Column) -> Vec<u32> {
+    match column {
+        Column::Vec3(v) => v.iter().flat_map(|x| [x.x, x.y, x.z, 0.0]).map(f32::to_bits).collect(),
+        other => other.words(),
+    }
+}
+
+/// An attribute of type `elem` from its GPU words.
+pub fn from_gpu_words(elem: Elem, words: &[u32]) -> Column {
+    match elem {
+        Elem::Vec3 => Column::Vec3(
+            words
+                .chunks_exact(4)
+                .map(|w| glam::Vec3::new(f32::from_bits(w[0]), f32::from_bits(w[1]), f32::from_bits(w[2])))
+                .collect(),
+        ),
+        other => Column::from_words(other, words).expect("whole elements"),
+    }
 }
 
 impl Buffers {
-    /// Uploads `model`'s initial state; fails when the scene exceeds the device's limits.
-    pub fn new(gpu: &GpuContext, model: &Model, grid: &Grid) -> Result<Self, BuildError> {
+    /// Uploads `model`'s initial state (its columns, taken out of its layout); fails
+    /// when the scene exceeds the device's limits, naming what does not fit.
+    pub fn new(gpu: &GpuContext, model: &mut Model, grid: &Grid) -> Result<Self, BuildError> {
         let device = &gpu.device;
         let n = model.particle_count() as u64;
         let cells = grid.cell_count() as u64;
-        let biggest = 32 * n;
-        if biggest > gpu.max_binding() {
-            return Err(BuildError::Backend(format!(
-                "{n} particles need a {biggest}-byte buffer; this GPU binds at most {} bytes",
+        let too_big = |what: &str, bytes: u64| {
+            BuildError::Backend(format!(
+                "{what} needs a {bytes}-byte buffer; this GPU binds at most {} bytes",
                 gpu.max_binding()
-            )));
-        }
+            ))
+        };
         if cells + 1 > MAX_LEN {
             return Err(BuildError::Backend(format!(
                 "the neighbour grid has {cells} cells, more than the GPU sort handles ({MAX_LEN}); \
                  shrink the domain or enlarge the particle spacing"
             )));
         }
-        let walls = &model.boundary;
+        if model.materials.len() > MAX_MATERIALS {
+            return Err(BuildError::Backend(format!(
+                "the scene has {} materials; the GPU backend holds at most {MAX_MATERIALS} (run it on the CPU)",
+                model.materials.len()
+            )));
+        }
+        let columns = model.layout.take_columns();
+        let material: Option<Vec<u32>> = columns.iter().find_map(|(s, c)| match (s.name, c) {
+            ("material", Column::U32(m)) => Some(m.clone()),
+            _ => None,
+        });
+        let mut attrs = Vec::new();
+        let mut widest = 1;
+        for (spec, column) in &columns {
+            if PACKED.iter().any(|(a, _)| *a == spec.name) {
+                continue;
+            }
+            let mut words = gpu_words(column);
+            if spec.name == "x"
+                && let Some(m) = &material
+            {
+                for (k, &id) in m.iter().enumerate() {
+                    words[4 * k + 3] = (id as f32).to_bits();
+                }
+            }
+            let bytes = 4 * words.len() as u64;
+            if bytes > gpu.max_binding() {
+                return Err(too_big(&format!("attribute {} ({})", spec.name, spec.module), bytes));
+            }
+            widest = widest.max(spec.elem.gpu_words() as u32);
+            let buffer = init(device, spec.name, &words, U::STORAGE | U::COPY_SRC | U::COPY_DST);
+            attrs.push((*spec, buffer));
+        }
+        let walls = &model.wall_particles;
         let wall_data: Vec<[f32; 4]> =
-            walls.positions.iter().zip(&walls.psi).map(|(p, &psi)| [p.x, p.y, p.z, psi]).collect();
-        let constraints: Vec<Constraint> = model.walls.iter().map(Constraint::from).collect();
-        let ids: Vec<u32> = (0..n as u32).collect();
-        let zeros4 = vec![[0.0f32; 4]; 2 * n as usize];
+            walls.positions.iter().zip(&walls.psi[0]).map(|(p, &psi)| [p.x, p.y, p.z, psi]).collect();
+        // Particle run starts (counts before the scan), then the wall grid's fixed starts.
+        let mut starts = vec![0u32; cells as usize + 1];
+        starts.extend_from_slice(walls.grid.starts());
+        let constraints: Vec<Constraint> = model.wall_constraints.iter().map(Constraint::from).collect();
+        let scratch = 4 * widest as u64 * n;
+        if scratch > gpu.max_binding() {
+            return Err(too_big("the sort", scratch));
+        }
+        let core = vec![
+            ("params", init(device, "params", &[Params::new(model, grid)], U::UNIFORM | U::COPY_DST)),
+            ("starts", init(device, "cell and wall run starts", &starts, U::STORAGE | U::COPY_DST | U::COPY_SRC)),
+            ("cell_rank", storage(device, "cell and rank", 8 * n, U::empty())),
+            ("order", storage(device, "sort order", 4 * n, U::empty())),
+            ("sort_scratch", storage(device, "sort scratch", scratch, U::empty())),
+            ("walls", init(device, "wall particles", &wall_data, U::STORAGE)),
+            ("constraints", init(device, "wall constraints", &constraints, U::STORAGE)),
+            ("partials", storage(device, "measure partials", 32 * n.div_ceil(256), U::empty())),
+            ("reduce_partials", storage(device, "reduction partials", 4 * n.div_ceil(256), U::empty())),
+            ("reduce_words", init(device, "reduction", &[Words::default()], U::UNIFORM | U::COPY_DST)),
+            ("quant_grid", init(device, "frame position grid", &[QuantGrid::default()], U::UNIFORM | U::COPY_DST)),
+            ("codes", storage(device, "frame position codes", 12 * n.div_ceil(2), U::empty())),
+            ("measures_readback", readback(device, "measures readback", std::mem::size_of::<Measures>() as u64)),
+            ("reduce_readback", readback(device, "reduction readback", 4)),
+        ];
+        let uniforms = crate::pass::uniforms()
+            .into_iter()
+            .filter_map(|(name, make)| {
+                make(model).map(|bytes| (name, init(device, name, &bytes, U::UNIFORM | U::COPY_DST)))
+            })
+            .collect();
+        let mut strides: Vec<(u32, Buffer)> = Vec::new();
+        for (spec, _) in &attrs {
+            let s = spec.elem.gpu_words() as u32;
+            if !strides.iter().any(|(t, _)| *t == s) {
+                let words = Words { n: n as u32, stride: s, op: 0, _pad: 0 };
+                strides.push((s, init(device, "permutation", &[words], U::UNIFORM)));
+            }
+        }
         Ok(Self {
-            params: init(device, "params", &[Params::new(model, grid)], U::UNIFORM | U::COPY_DST),
+            core,
+            attrs,
+            uniforms,
             steps: (0..STEP_SLOTS)
                 .map(|_| init(device, "step", &[Step::default()], U::UNIFORM | U::COPY_DST))
                 .collect(),
-            pos: init(device, "positions", &vec4s(&model.positions), U::STORAGE | U::COPY_SRC | U::COPY_DST),
-            vel: init(device, "velocities", &vec4s(&model.velocities), U::STORAGE | U::COPY_SRC | U::COPY_DST),
-            acc: init(device, "accelerations and XSPH", &zeros4, U::STORAGE | U::COPY_SRC | U::COPY_DST),
-            pos2: storage(device, "positions (sorted)", 16 * n, U::empty()),
-            vel2: storage(device, "velocities (sorted)", 16 * n, U::empty()),
-            acc2: storage(device, "accelerations (sorted)", 16 * n, U::empty()),
-            ids: init(device, "ids", &ids, U::STORAGE | U::COPY_SRC | U::COPY_DST),
-            ids2: storage(device, "ids (sorted)", 4 * n, U::empty()),
-            slot_of: init(device, "slot of id", &ids, U::STORAGE | U::COPY_SRC | U::COPY_DST),
-            dens: storage(device, "density and p/rho^2", 8 * n, U::empty()),
-            cell_rank: storage(device, "cell and rank", 8 * n, U::empty()),
-            counts: storage(device, "cell counts and starts", 4 * (cells + 1), U::empty()),
-            order: storage(device, "sort order", 4 * n, U::empty()),
-            walls: init(device, "wall particles", &wall_data, U::STORAGE),
-            wall_start: init(device, "wall cell starts", walls.grid.starts(), U::STORAGE),
-            wall_p: storage(device, "wall pressures", 4 * walls.len() as u64, U::empty()),
-            constraints: init(device, "wall constraints", &constraints, U::STORAGE),
-            partials: storage(device, "measure partials", 32 * n.div_ceil(256), U::empty()),
-            quant_grid: init(device, "frame position grid", &[QuantGrid::default()], U::UNIFORM | U::COPY_DST),
-            codes: storage(device, "frame position codes", 12 * n.div_ceil(2), U::empty()),
-            measures_readback: device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("measures readback"),
-                size: std::mem::size_of::<crate::layout::Measures>() as u64,
-                usage: U::MAP_READ | U::COPY_DST,
-                mapped_at_creation: false,
-            }),
+            strides,
         })
+    }
+
+    /// The buffer called `name`: an attribute, a module uniform or a core buffer.
+    pub fn get(&self, name: &str) -> &Buffer {
+        self.find(name).unwrap_or_else(|| panic!("no GPU buffer {name}"))
+    }
+
+    /// The buffer called `name`, if the scene has one.
+    pub fn find(&self, name: &str) -> Option<&Buffer> {
+        let attr = self.attrs.iter().find(|(s, _)| s.name == name).map(|(_, b)| b);
+        let uniform = || self.uniforms.iter().find(|(n, _)| *n == name).map(|(_, b)| b);
+        let core = || self.core.iter().find(|(n, _)| *n == name).map(|(_, b)| b);
+        attr.or_else(uniform).or_else(core)
+    }
+
+    /// The attributes with their buffers.
+    pub fn attrs(&self) -> &[(&'static AttrSpec, Buffer)] {
+        &self.attrs
+    }
+
+    /// The module uniforms with their names.
+    pub fn uniforms(&self) -> &[(&'static str, Buffer)] {
+        &self.uniforms
+    }
+
+    /// Adds a zeroed buffer for attribute `spec` (a setting switched a feature on).
+    pub fn add(&mut self, device: &Device, spec: &'static AttrSpec, n: u64) {
+        let buffer = storage(device, spec.name, 4 * spec.elem.gpu_words() as u64 * n, U::empty());
+        self.attrs.push((spec, buffer));
+    }
+
+    /// Drops the buffers of attributes `keep` does not name.
+    pub fn retain(&mut self, keep: impl Fn(&str) -> bool) {
+        self.attrs.retain(|(s, _)| keep(s.name));
     }
 
     /// Bytes of every buffer.
     pub fn bytes(&self) -> u64 {
-        let all = [
-            &self.params,
-            &self.pos,
-            &self.vel,
-            &self.acc,
-            &self.pos2,
-            &self.vel2,
-            &self.acc2,
-            &self.ids,
-            &self.ids2,
-            &self.slot_of,
-            &self.dens,
-            &self.cell_rank,
-            &self.counts,
-            &self.order,
-            &self.walls,
-            &self.wall_start,
-            &self.wall_p,
-            &self.constraints,
-            &self.partials,
-            &self.quant_grid,
-            &self.codes,
-            &self.measures_readback,
-        ];
-        all.iter().chain(&self.steps.iter().collect::<Vec<_>>()).map(|b| b.size()).sum()
+        let all = self.core.iter().map(|(_, b)| b).chain(self.attrs.iter().map(|(_, b)| b));
+        let more = self.uniforms.iter().map(|(_, b)| b).chain(&self.steps).chain(self.strides.iter().map(|(_, b)| b));
+        all.chain(more).map(|b| b.size()).sum()
     }
 
-    /// Every bind group the step needs.
-    pub fn bind(&self, gpu: &GpuContext, cells: u32) -> Binds {
-        let d = &gpu.device;
-        let p = &gpu.programs;
-        let reorder = |src: &Buffer, dst: &Buffer| p.reorder.state.bind(d, &[&self.params, &self.order, src, dst]);
-        Binds {
-            grid: p.grid.count.bind(d, &[&self.params, &self.pos, &self.cell_rank, &self.counts, &self.order]),
-            scan: p.scan.plan(d, &self.counts, cells + 1),
-            reorder_pos: reorder(&self.pos, &self.pos2),
-            reorder_vel: reorder(&self.vel, &self.vel2),
-            reorder_acc: reorder(&self.acc, &self.acc2),
-            reorder_ids: p.reorder.ids.bind(d, &[&self.params, &self.order, &self.ids, &self.ids2, &self.slot_of]),
-            density: p
-                .density
-                .bind(d, &[&self.params, &self.pos, &self.counts, &self.walls, &self.wall_start, &self.dens]),
-            wall_pressure: p
-                .wall_pressure
-                .bind(d, &[&self.params, &self.pos, &self.counts, &self.walls, &self.dens, &self.wall_p]),
-            forces: p.forces.bind(
-                d,
-                &[
-                    &self.params,
-                    &self.pos,
-                    &self.vel,
-                    &self.dens,
-                    &self.counts,
-                    &self.walls,
-                    &self.wall_start,
-                    &self.wall_p,
-                    &self.acc,
-                ],
-            ),
-            measure: p
-                .measure
-                .partials
-                .bind(d, &[&self.params, &self.pos, &self.vel, &self.acc, &self.dens, &self.partials]),
-            integrate: self
-                .steps
-                .iter()
-                .map(|s| {
-                    p.integrate.kick.bind(d, &[&self.params, s, &self.pos, &self.vel, &self.acc, &self.constraints])
-                })
-                .collect(),
-            quantize: p.quantize.bind(d, &[&self.params, &self.quant_grid, &self.pos, &self.slot_of, &self.codes]),
-        }
+    /// Bytes of the core's buffers, by name.
+    pub fn core_sizes(&self) -> Vec<(&'static str, u64)> {
+        self.core.iter().map(|(n, b)| (*n, b.size())).collect()
     }
+}
+
+fn readback(device: &Device, label: &str, size: u64) -> Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size,
+        usage: U::MAP_READ | U::COPY_DST,
+        mapped_at_creation: false,
+    })
 }

@@ -1,8 +1,10 @@
 //! Finding a GPU: the adapter, its device and queue, and the compiled kernels,
 //! shared by every scene on it.
 
+use crate::pass::GpuPass;
 use crate::passes::Programs;
-use std::sync::Arc;
+use crate::program::Kernel;
+use std::sync::{Arc, Mutex};
 
 /// Why no GPU backend could be started.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -34,12 +36,17 @@ pub enum Adapters {
     Any,
 }
 
+/// Plan passes compiled on a device, with their kernels.
+type Compiled = Vec<(&'static GpuPass, Arc<Kernel>)>;
+
 /// A device with Floe's kernels compiled on it. Cheap to clone.
 #[derive(Debug, Clone)]
 pub struct GpuContext {
     pub(crate) device: wgpu::Device,
     pub(crate) queue: wgpu::Queue,
     pub(crate) programs: Arc<Programs>,
+    /// Plan passes compiled so far, shared by every scene on the device.
+    passes: Arc<Mutex<Compiled>>,
     info: wgpu::AdapterInfo,
     profile: bool,
 }
@@ -76,7 +83,7 @@ impl GpuContext {
         }))
         .map_err(|e| GpuError::Device { adapter: info.name.clone(), reason: e.to_string() })?;
         let programs = Arc::new(Programs::new(&device));
-        Ok(Self { device, queue, programs, info, profile })
+        Ok(Self { device, queue, programs, passes: Arc::default(), info, profile })
     }
 
     /// The adapter's name and kind, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (software)`.
@@ -99,6 +106,18 @@ impl GpuContext {
     /// Whether the adapter is a software rasteriser.
     pub fn is_software(&self) -> bool {
         self.info.device_type == wgpu::DeviceType::Cpu
+    }
+
+    /// The compiled kernel of plan pass `pass`, compiled on its first use on this device.
+    pub(crate) fn kernel(&self, pass: &'static GpuPass) -> Arc<Kernel> {
+        let mut cache = self.passes.lock().expect("kernel cache");
+        if let Some((_, k)) = cache.iter().find(|(p, _)| std::ptr::eq(*p, pass)) {
+            return k.clone();
+        }
+        let access: Vec<crate::program::Access> = pass.bindings.iter().map(|(a, _)| *a).collect();
+        let kernel = Arc::new(Kernel::single(&self.device, pass.name, pass.source, pass.entry, &access));
+        cache.push((pass, kernel.clone()));
+        kernel
     }
 
     /// Largest storage buffer binding (bytes).

@@ -4,17 +4,18 @@
 
 use bytemuck::{Pod, Zeroable};
 use floe_engine::boundary::WallConstraint;
-use floe_engine::eos::Eos;
 use floe_engine::kernel::KernelKind;
 use floe_engine::model::Model;
 use floe_engine::neighbors::Grid;
-use floe_engine::viscosity::ViscosityModel;
+
+/// Materials a GPU scene may hold (the material table lives in the scene uniform).
+pub const MAX_MATERIALS: usize = 16;
 
 /// Scene constants of every particle kernel (`Params` in common.wgsl).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 pub struct Params {
-    /// Fluid particles.
+    /// SPH particles.
     pub n: u32,
     /// Wall particles.
     pub n_walls: u32,
@@ -22,12 +23,13 @@ pub struct Params {
     pub n_constraints: u32,
     /// 0 Müller, 1 cubic spline.
     pub kernel_kind: u32,
-    /// Fluid grid: origin (m), inverse cell edge (1/m), cells per axis, cell count.
+    /// Particle grid: origin (m), inverse cell edge (1/m), cells per axis, cell count.
     pub grid_origin: [f32; 3],
     pub inv_cell: f32,
     pub grid_dims: [u32; 3],
     pub cell_count: u32,
-    /// Wall grid, likewise.
+    /// Wall grid, likewise; its run starts follow the particle grid's in `starts`,
+    /// from index `wall_start`.
     pub wall_origin: [f32; 3],
     pub wall_inv_cell: f32,
     pub wall_dims: [u32; 3],
@@ -40,47 +42,33 @@ pub struct Params {
     pub h2: f32,
     pub domain_max: [f32; 3],
     pub inv_h: f32,
-    /// Kernel normalisations, particle mass (kg), rest density (kg/m^3).
+    /// Kernel normalisations, materials, where wall starts begin in `starts`.
     pub w_norm: f32,
     pub g_norm: f32,
-    pub mass: f32,
-    pub rho0: f32,
-    /// Equation of state: 0 Tait (`eos_a` = b, Pa), 1 linear (`eos_a` = k, m^2/s^2).
-    pub eos_kind: u32,
-    pub eos_a: f32,
-    pub eos_gamma: f32,
-    /// Viscosity: 0 none, 1 Laplacian (`visc_a` = mu, Pa s), 2 artificial
-    /// (`visc_a` = alpha c h, m^2/s; `visc_b` = 0.01 h^2, m^2).
-    pub visc_kind: u32,
-    pub visc_a: f32,
-    pub visc_b: f32,
-    /// XSPH epsilon and `1 / rho0^2`.
-    pub xsph: f32,
-    pub inv_rho0_2: f32,
+    pub n_materials: u32,
+    pub wall_start: u32,
+    /// Per material: rest density (kg/m^3), mass (kg), `1 / rho0^2`, and the ratio
+    /// of its rest density to material 0's (wall pseudo-masses scale by it).
+    pub materials: [[f32; 4]; MAX_MATERIALS],
 }
-const _: () = assert!(std::mem::size_of::<Params>() == 176);
+const _: () = assert!(std::mem::size_of::<Params>() == 144 + 16 * MAX_MATERIALS);
 
 impl Params {
-    /// The constants of `model` on the fluid grid `grid`.
+    /// The constants of `model` on the particle grid `grid`.
     pub fn new(model: &Model, grid: &Grid) -> Self {
         let k = &model.kernel;
         let (w_norm, g_norm) = k.norms();
-        let f = &model.fluid;
-        let (eos_kind, eos_a, eos_gamma) = match f.eos {
-            Eos::Tait { b, gamma, .. } => (0, b, gamma),
-            Eos::Linear { k, .. } => (1, k, 1.0),
-        };
-        let (visc_kind, visc_a, visc_b) = match f.viscosity {
-            ViscosityModel::None => (0, 0.0, 0.0),
-            ViscosityModel::Laplacian { mu } => (1, mu, 0.0),
-            ViscosityModel::Artificial { alpha_c_h, eps_h2 } => (2, alpha_c_h, eps_h2),
-        };
-        let walls = &model.boundary.grid;
+        let walls = &model.wall_particles.grid;
         let h = k.support();
+        let rho00 = model.materials.get(0).rest_density;
+        let mut materials = [[0.0; 4]; MAX_MATERIALS];
+        for (slot, m) in materials.iter_mut().zip(model.materials.iter()) {
+            *slot = [m.rest_density, m.mass, 1.0 / (m.rest_density * m.rest_density), m.rest_density / rho00];
+        }
         Self {
             n: model.particle_count() as u32,
-            n_walls: model.boundary.len() as u32,
-            n_constraints: model.walls.len() as u32,
+            n_walls: model.wall_particles.len() as u32,
+            n_constraints: model.wall_constraints.len() as u32,
             kernel_kind: match k.kind() {
                 KernelKind::Mueller => 0,
                 KernelKind::CubicSpline => 1,
@@ -101,16 +89,9 @@ impl Params {
             inv_h: 1.0 / h,
             w_norm,
             g_norm,
-            mass: f.mass,
-            rho0: f.rho0,
-            eos_kind,
-            eos_a,
-            eos_gamma,
-            visc_kind,
-            visc_a,
-            visc_b,
-            xsph: f.xsph,
-            inv_rho0_2: 1.0 / (f.rho0 * f.rho0),
+            n_materials: model.materials.len() as u32,
+            wall_start: grid.cell_count() as u32 + 1,
+            materials,
         }
     }
 }
@@ -123,10 +104,9 @@ pub struct Step {
     pub kick_dt: f32,
     /// Damping factor applied with the kick.
     pub keep: f32,
-    /// 1 when the kick adds the XSPH correction.
-    pub with_xsph: u32,
     /// dt of the drift (s).
     pub drift_dt: f32,
+    pub _pad: f32,
 }
 const _: () = assert!(std::mem::size_of::<Step>() == 16);
 
@@ -246,3 +226,17 @@ pub struct ScanParams {
     pub _pad: [u32; 3],
 }
 const _: () = assert!(std::mem::size_of::<ScanParams>() == 16);
+
+/// A strided copy or a reduction over one buffer (`Words` in reorder.wgsl and reduce.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, Pod, Zeroable)]
+pub struct Words {
+    /// Elements.
+    pub n: u32,
+    /// 32-bit words per element.
+    pub stride: u32,
+    /// Reduction: 0 sum, 1 max, 2 max of magnitudes.
+    pub op: u32,
+    pub _pad: u32,
+}
+const _: () = assert!(std::mem::size_of::<Words>() == 16);

@@ -7,7 +7,8 @@
 //!
 //! - [`context`]: adapter choice (hardware first; software such as Mesa's
 //!   lavapipe when allowed), device, compiled kernels.
-//! - [`passes`]: one `.wgsl` per kernel and the `.rs` owning its pipelines.
+//! - [`passes`]: the core's kernels, one `.wgsl` each; [`pass`]: plan passes bound by
+//!   name, with the schemes' and modules' halves in [`schemes`] and [`modules`].
 //! - [`layout`]: the `#[repr(C)]` structs shared with WGSL.
 //! - [`buffers`], [`backend`]: one scene's GPU memory and its `Backend`.
 //! - [`select`]: `auto | gpu | cpu` for the server and the CLI.
@@ -16,8 +17,11 @@ pub mod backend;
 pub mod buffers;
 pub mod context;
 pub mod layout;
+pub mod modules;
+pub mod pass;
 pub mod passes;
 pub mod program;
+pub mod schemes;
 pub mod select;
 pub mod timer;
 

@@ -28,21 +28,22 @@ pub enum Access {
 /// Largest workgroup count per dispatch dimension (WebGPU's guaranteed limit).
 const MAX_GROUPS: u32 = 65_535;
 
-/// A bind group layout with its bindings; kernels sharing one accept each
-/// other's bind groups.
+/// A bind group layout with its bindings (binding `k` is the `k`-th entry); kernels
+/// sharing one accept each other's bind groups.
 #[derive(Debug, Clone)]
 pub struct Layout {
     layout: wgpu::BindGroupLayout,
-    bindings: &'static [(u32, Access)],
+    bindings: usize,
 }
 
 impl Layout {
-    /// The layout of group 0 with `bindings`.
-    pub fn new(device: &Device, label: &'static str, bindings: &'static [(u32, Access)]) -> Self {
+    /// The layout of group 0 with `bindings`, numbered from 0.
+    pub fn new(device: &Device, label: &'static str, bindings: &[Access]) -> Self {
         let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
             .iter()
-            .map(|&(binding, access)| wgpu::BindGroupLayoutEntry {
-                binding,
+            .enumerate()
+            .map(|(binding, &access)| wgpu::BindGroupLayoutEntry {
+                binding: binding as u32,
                 visibility: wgpu::ShaderStages::COMPUTE,
                 ty: wgpu::BindingType::Buffer {
                     ty: match access {
@@ -58,7 +59,7 @@ impl Layout {
             .collect();
         let layout =
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries });
-        Self { layout, bindings }
+        Self { layout, bindings: bindings.len() }
     }
 }
 
@@ -98,27 +99,31 @@ impl Kernel {
         Self { label, pipeline, layout: layout.clone(), workgroup }
     }
 
-    /// The kernel of a WGSL file with one entry point, `main`, on its own layout
+    /// The kernel of a WGSL source with one entry point, `entry`, on its own layout
     /// with `bindings` and workgroups of 128 threads (`WG` in common.wgsl).
-    pub fn main(
+    pub fn single(
         device: &Device,
-        file: &'static str,
-        source: &'static str,
         label: &'static str,
-        bindings: &'static [(u32, Access)],
+        source: &'static str,
+        entry: &'static str,
+        bindings: &[Access],
     ) -> Self {
-        let m = module(device, file, source);
-        Self::new(device, &m, label, "main", &Layout::new(device, label, bindings), 128)
+        let m = module(device, label, source);
+        Self::new(device, &m, label, entry, &Layout::new(device, label, bindings), 128)
+    }
+
+    /// The kernel's label.
+    pub fn label(&self) -> &'static str {
+        self.label
     }
 
     /// A bind group with `buffers` in the order of the kernel's bindings.
     pub fn bind(&self, device: &Device, buffers: &[&Buffer]) -> BindGroup {
-        let bindings = self.layout.bindings;
-        assert_eq!(buffers.len(), bindings.len(), "{}: wrong number of buffers", self.label);
-        let entries: Vec<wgpu::BindGroupEntry> = bindings
+        assert_eq!(buffers.len(), self.layout.bindings, "{}: wrong number of buffers", self.label);
+        let entries: Vec<wgpu::BindGroupEntry> = buffers
             .iter()
-            .zip(buffers)
-            .map(|(&(binding, _), b)| wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() })
+            .enumerate()
+            .map(|(binding, b)| wgpu::BindGroupEntry { binding: binding as u32, resource: b.as_entire_binding() })
             .collect();
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(self.label),

@@ -1,48 +1,86 @@
-//! Each GPU pass against the CPU backend (the oracle) on the same input.
+//! Every GPU pass against the CPU backend (the oracle), pass by pass from the
+//! scene's plan: both backends reach the pass on their own, then get the CPU's
+//! values of everything the pass reads, run the pass, and must agree on what it
+//! writes within the pass's stated tolerance (relative to the largest magnitude).
+//! The passes compute the same sums in the same order, so only f32 rounding
+//! (fused multiply-adds on the GPU) separates them.
 //!
 //! Both backends start from one CPU state 40 steps into a dam break (a moving,
-//! splashing fluid against walls), so every term is non-trivial. Tolerances are
-//! stated relative to each quantity's scale: the passes compute the same sums
-//! in the same order, so only f32 rounding (fused multiply-adds on the GPU)
-//! separates them.
+//! splashing fluid against walls), so every term is non-trivial.
 
 mod common;
 
+use floe_engine::Simulation;
+use floe_engine::attrs::Column;
 use floe_engine::backend::Backend;
-use floe_engine::cpu::CpuBackend;
-use floe_engine::guard::Measures;
 use floe_engine::model::Model;
+use floe_engine::plan::{PassSpec, Stage};
 use floe_engine::quantize::PositionGrid;
 use floe_engine::scene::load::from_preset;
-use floe_engine::snapshot::{Reader, Writer};
-use floe_engine::stepping::{Clock, Passes, SortedState};
 use floe_gpu::GpuBackend;
 
-/// A CPU and a GPU backend holding the same state, `steps` CPU steps into `preset`.
-fn pair(gpu: &floe_gpu::GpuContext, preset: &str, overrides: &[&str], steps: usize) -> (CpuBackend, GpuBackend, Model) {
+/// A CPU and a GPU simulation holding the same state, `steps` CPU steps into `preset`.
+fn pair(gpu: &floe_gpu::GpuContext, preset: &str, overrides: &[&str], steps: usize) -> (Simulation, Simulation) {
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    let model = Model::build(&from_preset(preset, &o).unwrap()).unwrap();
-    let mut cpu = CpuBackend::new(model.clone());
+    let mut cpu = Simulation::new_cpu(from_preset(preset, &o).unwrap()).unwrap();
     for _ in 0..steps {
         cpu.step().unwrap();
     }
-    let mut w = Writer::default();
-    cpu.save(&mut w);
-    let mut g = GpuBackend::new(gpu, model.clone()).unwrap();
-    g.load(&mut Reader::new(&w.0)).unwrap();
-    (cpu, g, model)
+    let bytes = cpu.snapshot();
+    let gpu = gpu.clone();
+    let on_gpu = move |model: Model| GpuBackend::new(&gpu, model).map(|b| Box::new(b) as Box<dyn Backend>);
+    let g = Simulation::restore_on(&bytes, &on_gpu).unwrap();
+    (Simulation::restore(&bytes).unwrap(), g)
 }
 
-fn state(b: &dyn Backend, model: &Model) -> SortedState {
-    let mut w = Writer::default();
-    b.save(&mut w);
-    Clock::new(model).load(&mut Reader::new(&w.0), b.particle_count()).unwrap()
+/// Largest component difference and largest magnitude of two columns.
+fn diff(a: &Column, b: &Column) -> (f64, f64) {
+    let (wa, wb) = (a.words(), b.words());
+    assert_eq!(wa.len(), wb.len());
+    if let (Column::U32(x), Column::U32(y)) = (a, b) {
+        let differ = x.iter().zip(y).filter(|(p, q)| p != q).count();
+        return (differ as f64, 1.0);
+    }
+    let f = |w: &u32| f64::from(f32::from_bits(*w));
+    let d = wa.iter().zip(&wb).map(|(p, q)| (f(p) - f(q)).abs()).fold(0.0, f64::max);
+    (d, wa.iter().map(|p| f(p).abs()).fold(0.0, f64::max))
 }
 
-/// Largest `|a - b|` over components, and the largest `|a|` (the scale).
-fn diff(a: &[glam::Vec3], b: &[glam::Vec3]) -> (f32, f32) {
-    let d = a.iter().zip(b).map(|(x, y)| (*x - *y).abs().max_element()).fold(0.0, f32::max);
-    (d, a.iter().map(|x| x.abs().max_element()).fold(0.0, f32::max))
+/// Runs both backends up to `pass` (every earlier stage, then the earlier passes of
+/// its stage), gives the GPU the CPU's values of what `pass` reads, runs it on both
+/// and compares what it writes.
+fn check_pass(cpu: &mut Simulation, gpu: &mut Simulation, pass: &'static PassSpec, label: &str) {
+    for sim in [&mut *cpu, &mut *gpu] {
+        let b = sim.backend_mut();
+        for stage in Stage::ALL.iter().copied().filter(|s| *s < pass.stage) {
+            b.run(stage, 1e-3);
+        }
+        let earlier: Vec<&str> =
+            b.model().plan.stage(pass.stage).take_while(|p| p.name != pass.name).map(|p| p.name).collect();
+        for p in earlier {
+            b.run_pass(p, 1e-3);
+        }
+        b.end_step();
+    }
+    let inputs: Vec<&str> = pass.reads.iter().chain(pass.accumulates).copied().collect();
+    for (name, column) in inputs.iter().zip(cpu.backend().download(&inputs)) {
+        gpu.backend_mut().upload(name, column);
+    }
+    for sim in [&mut *cpu, &mut *gpu] {
+        sim.backend_mut().run_pass(pass.name, 1e-3);
+        sim.backend_mut().end_step();
+    }
+    let outputs: Vec<&str> = pass.writes.iter().chain(pass.accumulates).copied().collect();
+    let (c, g) = (cpu.backend().download(&outputs), gpu.backend().download(&outputs));
+    for ((name, a), b) in outputs.iter().zip(&c).zip(&g) {
+        let (d, scale) = diff(a, b);
+        let bound = f64::from(pass.tolerance) * scale.max(1e-12);
+        assert!(
+            d <= bound,
+            "{label}: {} writes {name} {d:e} away from the CPU (scale {scale:e}, bound {bound:e})",
+            pass.name
+        );
+    }
 }
 
 const VARIANTS: &[&[&str]] = &[
@@ -57,30 +95,52 @@ const VARIANTS: &[&[&str]] = &[
 ];
 
 #[test]
-fn sort_density_wall_pressure_forces_and_measures_match_the_cpu() {
-    let Some(gpu) = common::gpu("sort_density_wall_pressure_forces_and_measures_match_the_cpu") else { return };
+fn every_pass_of_the_plan_matches_the_cpu() {
+    let Some(gpu) = common::gpu("every_pass_of_the_plan_matches_the_cpu") else { return };
     for overrides in VARIANTS {
-        let (mut cpu, mut g, model) = pair(gpu, "dam_break", overrides, 40);
-        let (mc, mg): (Measures, Measures) = (cpu.evaluate().unwrap(), g.evaluate().unwrap());
-        let (sc, sg) = (state(&cpu, &model), state(&g, &model));
-        // The sort: both are stable counting sorts of the same order, so the
-        // permutation (and the permuted state) is identical.
-        assert_eq!(sc.ids, sg.ids, "{overrides:?}: sort order");
-        assert_eq!(sc.pos, sg.pos, "{overrides:?}: sorted positions");
-        assert_eq!(sc.vel, sg.vel, "{overrides:?}: sorted velocities");
-        // Density: relative 1e-5 (rho ~ 1000 kg/m^3, ~30 neighbours).
-        let (rc, rg) = (cpu.read(&["density"]), g.read(&["density"]));
-        let (rc, rg) = (
-            rc.channel("density").unwrap().as_scalars().unwrap(),
-            rg.channel("density").unwrap().as_scalars().unwrap(),
-        );
-        let worst = rc.iter().zip(rg).map(|(a, b)| ((a - b) / a).abs()).fold(0.0, f32::max);
-        assert!(worst < 1e-5, "{overrides:?}: density differs by {worst:e} (relative)");
-        // Accelerations (pressure with wall pressures, viscosity, gravity):
-        // 1e-4 of the largest. XSPH is checked through the kick below.
-        let (d, scale) = diff(&sc.acc, &sg.acc);
-        assert!(d <= 1e-4 * scale, "{overrides:?}: accelerations differ by {d:e} of {scale:e}");
-        // Measures.
+        let (cpu, _) = pair(gpu, "dam_break", overrides, 40);
+        let passes: Vec<&'static PassSpec> = cpu.model().plan.passes().to_vec();
+        for pass in passes.into_iter().filter(|p| p.name != "core.sort") {
+            let (mut cpu, mut g) = pair(gpu, "dam_break", overrides, 40);
+            check_pass(&mut cpu, &mut g, pass, &format!("{overrides:?}"));
+        }
+    }
+}
+
+#[test]
+fn the_sort_gives_the_same_order_and_one_step_runs_the_plan_in_order() {
+    let Some(gpu) = common::gpu("the_sort_gives_the_same_order_and_one_step_runs_the_plan_in_order") else { return };
+    for overrides in VARIANTS {
+        let (mut cpu, mut g) = pair(gpu, "dam_break", overrides, 40);
+        for sim in [&mut cpu, &mut g] {
+            sim.backend_mut().run(Stage::Sort, 0.0);
+            sim.backend_mut().end_step();
+        }
+        // Both are stable counting sorts of the same order: identical permutations.
+        let names = ["id", "x", "v", "a", "slot_of"];
+        assert_eq!(cpu.backend().download(&names), g.backend().download(&names), "{overrides:?}");
+        cpu.step().unwrap();
+        g.step().unwrap();
+        let plan: Vec<&str> = cpu.model().plan.passes().iter().map(|p| p.name).collect();
+        assert_eq!(cpu.backend().passes_run(), plan, "{overrides:?}: CPU");
+        assert_eq!(g.backend().passes_run(), plan, "{overrides:?}: GPU");
+    }
+}
+
+#[test]
+fn measures_kick_and_drift_match_the_cpu() {
+    let Some(gpu) = common::gpu("measures_kick_and_drift_match_the_cpu") else { return };
+    for overrides in VARIANTS {
+        let (mut cpu, mut g) = pair(gpu, "dam_break", overrides, 40);
+        let mut measures = Vec::new();
+        for sim in [&mut cpu, &mut g] {
+            let b = sim.backend_mut();
+            for stage in [Stage::Sort, Stage::Density, Stage::PreForce, Stage::Force] {
+                b.run(stage, 0.0);
+            }
+            measures.push(b.measure().unwrap());
+        }
+        let (mc, mg) = (measures[0], measures[1]);
         assert_eq!(mc.max_speed2, mg.max_speed2, "{overrides:?}");
         assert!((mc.max_accel2 - mg.max_accel2).abs() <= 2e-4 * mc.max_accel2, "{overrides:?}: {mc:?} {mg:?}");
         assert!((mc.max_compression.0 - mg.max_compression.0).abs() < 1e-5, "{overrides:?}: {mc:?} {mg:?}");
@@ -89,60 +149,53 @@ fn sort_density_wall_pressure_forces_and_measures_match_the_cpu() {
             "{mc:?} {mg:?}"
         );
         assert_eq!((mg.non_finite, mg.outside), (None, None));
-    }
-}
-
-#[test]
-fn kick_and_drift_match_the_cpu() {
-    let Some(gpu) = common::gpu("kick_and_drift_match_the_cpu") else { return };
-    for overrides in VARIANTS {
-        let (mut cpu, mut g, model) = pair(gpu, "dam_break", overrides, 40);
-        cpu.evaluate().unwrap();
-        g.evaluate().unwrap();
-        for p in [&mut cpu as &mut dyn PassesDyn, &mut g] {
-            p.kick_drift(2e-3, 0.999);
+        // The guard names the same particle.
+        let id = |sim: &mut Simulation| sim.backend_mut().particle_id(mc.max_speed2.1);
+        assert_eq!(id(&mut cpu), id(&mut g));
+        // Kick (with damping) and drift from the same accelerations.
+        let a = cpu.backend().download(&["a"]).remove(0);
+        g.backend_mut().upload("a", a);
+        for sim in [&mut cpu, &mut g] {
+            let b = sim.backend_mut();
+            b.kick(2e-3, 0.999);
+            b.drift(2e-3);
+            b.end_step();
         }
-        g.flush();
-        let (sc, sg) = (state(&cpu, &model), state(&g, &model));
-        let (dv, vs) = diff(&sc.vel, &sg.vel);
+        let (dv, vs) = diff(&cpu.backend().download(&["v"])[0], &g.backend().download(&["v"])[0]);
         assert!(dv <= 1e-4 * vs.max(1.0), "{overrides:?}: velocities differ by {dv:e} (scale {vs})");
-        let (dx, _) = diff(&sc.pos, &sg.pos);
+        let (dx, _) = diff(&cpu.backend().download(&["x"])[0], &g.backend().download(&["x"])[0]);
         assert!(dx <= 1e-6, "{overrides:?}: positions differ by {dx:e} m");
     }
 }
 
-/// Kick (with XSPH and damping) then drift, through the shared pass interface.
-trait PassesDyn {
-    fn kick_drift(&mut self, dt: f32, keep: f32);
-}
-
-impl<P: Passes> PassesDyn for P {
-    fn kick_drift(&mut self, dt: f32, keep: f32) {
-        self.kick(dt, keep, true);
-        self.drift(dt);
-    }
-}
-
 #[test]
-fn the_guard_finds_the_same_particle() {
-    let Some(gpu) = common::gpu("the_guard_finds_the_same_particle") else { return };
-    let (mut cpu, mut g, _) = pair(gpu, "dam_break", &["particle_spacing=0.05"], 10);
-    let (mc, mg) = (cpu.evaluate().unwrap(), g.evaluate().unwrap());
-    let id = |b: &mut dyn FnMut(u32) -> u32, slot| b(slot);
-    assert_eq!(id(&mut |s| cpu.particle_id(s), mc.max_speed2.1), id(&mut |s| g.particle_id(s), mg.max_speed2.1));
+fn reductions_match_the_cpu() {
+    let Some(gpu) = common::gpu("reductions_match_the_cpu") else { return };
+    use floe_engine::schemes::{ReduceOp, Reduction};
+    let (mut cpu, mut g) = pair(gpu, "dam_break", &["particle_spacing=0.05"], 40);
+    for sim in [&mut cpu, &mut g] {
+        sim.backend_mut().run(Stage::Sort, 0.0);
+        sim.backend_mut().run(Stage::Density, 0.0);
+    }
+    for op in [ReduceOp::Sum, ReduceOp::Mean, ReduceOp::Max, ReduceOp::MaxAbs] {
+        let r = Reduction { attr: "rho", op };
+        let (c, v) = (cpu.backend_mut().reduce(&r).unwrap(), g.backend_mut().reduce(&r).unwrap());
+        assert!((c - v).abs() <= 1e-5 * c.abs(), "{op:?}: CPU {c}, GPU {v}");
+    }
 }
 
 #[test]
 fn positions_quantised_on_the_gpu_match_the_cpu() {
     let Some(gpu) = common::gpu("positions_quantised_on_the_gpu_match_the_cpu") else { return };
-    let (cpu, g, model) = pair(gpu, "dam_break", &["particle_spacing=0.05"], 40);
-    let d = model.domain;
+    let (cpu, g) = pair(gpu, "dam_break", &["particle_spacing=0.05"], 40);
+    let d = cpu.domain();
     let span = (d.max - d.min).max_element();
+    let set = floe_engine::channels::PARTICLE_SET;
     for bits in [16, 10] {
         let grid = PositionGrid { min: d.min.to_array(), max: (d.min + glam::Vec3::splat(span)).to_array(), bits };
         let step = span / grid.top() as f32;
         let channels = ["density"];
-        let (pc, pg) = (cpu.read_on_grid(&channels, &grid), g.read_on_grid(&channels, &grid));
+        let (pc, pg) = (cpu.read_on_grid(&set, &channels, &grid), g.read_on_grid(&set, &channels, &grid));
         assert_eq!(pc.channel("density").map(|v| v.len()), pg.channel("density").map(|v| v.len()));
         assert_eq!(pc.positions.len(), pg.positions.len());
         // The same codes, except where a fused multiply-add on the GPU rounds a
@@ -157,7 +210,7 @@ fn positions_quantised_on_the_gpu_match_the_cpu() {
         }
         assert!(differ * 1000 <= 3 * pc.positions.len(), "{bits} bits: {differ} codes differ");
         // Positions only: the GPU copies back nothing but the codes.
-        let only = g.read_on_grid(&[], &grid);
+        let only = g.read_on_grid(&set, &[], &grid);
         assert_eq!(only.positions, pg.positions);
         assert!(only.channels.is_empty());
         let true_pos = g.read(&[]).positions;

@@ -239,7 +239,8 @@ impl SceneView {
                 .enumerate()
                 .map(|(index, s)| SetView { name: s.name, count: s.count, index })
                 .collect(),
-            tunables: floe_engine::scene::tunable::TUNABLE
+            tunables: shared
+                .tunables
                 .iter()
                 .map(|t| TunableView {
                     path: t.path,
@@ -255,8 +256,8 @@ impl SceneView {
     }
 }
 
-async fn presets() -> Json<&'static [&'static str]> {
-    Json(floe_engine::scene::presets::NAMES)
+async fn presets() -> Json<Vec<&'static str>> {
+    Json(floe_engine::scene::presets::names())
 }
 
 async fn list(AxState(r): AxState<Arc<Registry>>) -> Json<Vec<SceneView>> {

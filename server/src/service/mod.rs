@@ -125,8 +125,9 @@ impl Registry {
             SceneSource::Document { text, format } => load::from_str(&text, format, overrides),
         }
         .map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
-        // Counted before the scene is built, so a scene over the limit allocates nothing.
-        let particles = floe_engine::sampling::fluid_particle_count(&scene);
+        // Counted before the scene is built (every particle set the scene's modules
+        // create), so a scene over the limit allocates nothing.
+        let particles = floe_engine::modules::counts(&scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
         if particles > self.limits.max_particles as u64 {
             return Err(ServiceError::InvalidArgument(format!(
                 "particle_spacing: the scene has {particles} particles, more than this server's limit of {}",

@@ -80,6 +80,8 @@ pub struct Shared {
     pub channels: Vec<SceneChannel>,
     /// The scene's particle sets; a frame's set byte is an index into this list.
     pub sets: Vec<SceneSet>,
+    /// The settings that may change while the scene exists.
+    pub tunables: Vec<floe_engine::scene::tunable::Tunable>,
     /// Particle spacing (m).
     pub particle_spacing: f32,
     /// The backend stepping the scene (`gpu`, `cpu`); resets and restores keep it.
@@ -120,7 +122,8 @@ impl Shared {
             scene_json: Mutex::new(serde_json::to_string(sim.scene()).expect("scenes serialise")),
             particles: sim.particle_count(),
             channels: scene_channels(sim.channels()),
-            sets: sim.sets().into_iter().map(|(name, count)| SceneSet { name, count }).collect(),
+            sets: sim.sets().into_iter().map(|(spec, count)| SceneSet { name: spec.name, count }).collect(),
+            tunables: floe_engine::modules::tunables(sim.scene()),
             particle_spacing: sim.scene().particle_spacing,
             backend: sim.backend_name(),
             bounds: (domain.min.to_array(), domain.max.to_array()),

@@ -4,6 +4,7 @@
 
 use super::handle::{Command, CommandError};
 use super::shared::{Event, Published, Shared, State, Status};
+use floe_engine::channels::PARTICLE_SET;
 use floe_engine::simulation::BackendFactory;
 use floe_engine::{Halted, Simulation};
 use std::sync::Arc;
@@ -252,7 +253,7 @@ impl Worker {
         }
         let wanted = self.shared.wanted();
         let read = self.guarded(|sim| match wanted {
-            (channels, Some(grid)) => sim.read_on_grid(&channels, &grid),
+            (channels, Some(grid)) => sim.read_on_grid(&PARTICLE_SET, &channels, &grid),
             (channels, None) => sim.read(&channels),
         });
         let particles = match read {

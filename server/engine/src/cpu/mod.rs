@@ -1,127 +1,169 @@
 //! The CPU backend (rayon): the reference implementation every other backend is
 //! tested against.
 //!
-//! State is structure-of-arrays in `f32`, re-sorted by grid cell at every
-//! evaluation (see [`crate::neighbors`]); `ids` remembers each slot's particle
-//! so output comes back in identity order.
+//! It holds a scene's attributes in an [`Attrs`] store (structure of arrays, `f32`)
+//! and runs the passes of the scene's plan: each pass's CPU implementation
+//! ([`CpuPass`]) is looked up by name once, from the core, the scheme and the
+//! modules. The particle space is re-sorted by grid cell at every evaluation
+//! ([`crate::neighbors`]); `id` remembers each slot's particle so output comes back
+//! in identity order.
+//!
+//! - [`core`]: the core's passes (sort, density), the reduction, kick and drift.
+//! - [`neighbors`]: the step's neighbour lists.
 
-mod passes;
+pub mod core;
+pub mod neighbors;
 
-use crate::backend::{Backend, Particles};
+use crate::attrs::{Allocation, Attrs, Column};
+use crate::backend::Backend;
 use crate::guard::Measures;
-use crate::math::{Real, Vec3};
+use crate::math::Real;
 use crate::model::Model;
-use crate::neighbors::{Grid, permute};
-use crate::stepping::{Clock, Passes, SortedState, by_identity};
-use rayon::prelude::*;
+use crate::neighbors::Grid;
+use crate::plan::{PassSpec, Stage};
+use crate::schemes::{ReduceOp, Reduction, Stages};
+use neighbors::NeighborLists;
 
-/// Fluid state and scratch buffers on the CPU.
+/// What a CPU pass works on.
+#[derive(Debug)]
+pub struct CpuCx<'a> {
+    /// The model (constants, materials, walls).
+    pub model: &'a Model,
+    /// Every attribute.
+    pub attrs: &'a mut Attrs,
+    /// The particle grid after the last sort.
+    pub grid: &'a mut Grid,
+    /// The step's neighbour lists (filled by the density pass).
+    pub nb: &'a mut NeighborLists,
+    /// The sort's scratch space.
+    pub sort: &'a mut SortScratch,
+    /// The step's dt (s), for passes that integrate.
+    pub dt: Real,
+}
+
+/// Scratch space of the counting sort.
+#[derive(Debug, Default)]
+pub struct SortScratch {
+    /// Cell of each particle.
+    pub cells: Vec<u32>,
+    /// The permutation.
+    pub order: Vec<u32>,
+}
+
+/// A pass's CPU implementation.
+pub trait CpuPass: Send + Sync + std::fmt::Debug {
+    /// Runs the pass.
+    fn run(&self, cx: &mut CpuCx<'_>);
+}
+
+/// Every CPU pass implementation of the core, the schemes and the modules, by name.
+fn all() -> Vec<(&'static str, &'static dyn CpuPass)> {
+    let modules = crate::modules::all();
+    let schemes = crate::schemes::all();
+    let lists = core::PASSES.iter().chain(schemes.iter().flat_map(|s| s.cpu)).chain(modules.iter().flat_map(|m| m.cpu));
+    lists.copied().collect()
+}
+
+fn implementation(name: &str) -> Option<&'static dyn CpuPass> {
+    all().into_iter().find(|(n, _)| *n == name).map(|(_, p)| p)
+}
+
+/// The names of every pass the CPU implements (the GPU's list must match).
+pub fn implementations() -> Vec<&'static str> {
+    all().into_iter().map(|(n, _)| n).collect()
+}
+
+/// A scene's state and scratch space on the CPU.
 #[derive(Debug)]
 pub struct CpuBackend {
     model: Model,
-    pos: Vec<Vec3>,
-    vel: Vec<Vec3>,
-    acc: Vec<Vec3>,
-    rho: Vec<Real>,
-    pterm: Vec<Real>,
-    /// Pressure of each wall particle (Pa), extrapolated from the fluid.
-    wall_p: Vec<Real>,
-    ids: Vec<u32>,
-    /// XSPH corrections; allocated only when the fluid uses XSPH.
-    xsph: Option<Vec<Vec3>>,
+    attrs: Attrs,
     grid: Grid,
-    /// Neighbour lists of the current step, per chunk of particles.
-    neighbors: Vec<passes::ChunkNeighbors>,
-    cells: Vec<u32>,
-    order: Vec<u32>,
-    scratch_v: Vec<Vec3>,
-    scratch_u: Vec<u32>,
-    clock: Clock,
+    nb: NeighborLists,
+    sort: SortScratch,
+    /// The plan's passes with their implementations, in plan order.
+    passes: Vec<(&'static PassSpec, &'static dyn CpuPass)>,
+    /// Every pass run so far, in the order first run.
+    ran: Vec<&'static str>,
 }
 
 impl CpuBackend {
     /// Takes ownership of a model's initial state.
     pub fn new(mut model: Model) -> Self {
-        let n = model.particle_count();
-        let pos = std::mem::take(&mut model.positions);
-        let vel = std::mem::take(&mut model.velocities);
+        let attrs = Attrs::new(model.layout.take_columns());
         let grid = Grid::new(model.domain, model.kernel.support());
-        let xsph = (model.fluid.xsph > 0.0).then(|| vec![Vec3::ZERO; n]);
-        let clock = Clock::new(&model);
-        let walls = model.boundary.len();
-        Self {
-            model,
-            pos,
-            vel,
-            acc: vec![Vec3::ZERO; n],
-            rho: vec![0.0; n],
-            pterm: vec![0.0; n],
-            wall_p: vec![0.0; walls],
-            ids: (0..n as u32).collect(),
-            xsph,
-            grid,
-            neighbors: Vec::new(),
-            cells: Vec::new(),
-            order: Vec::new(),
-            scratch_v: Vec::new(),
-            scratch_u: Vec::new(),
-            clock,
-        }
+        let passes = Self::resolve(&model);
+        Self { model, attrs, grid, nb: NeighborLists::default(), sort: SortScratch::default(), passes, ran: Vec::new() }
     }
 
-    /// Sorts by cell (a stable sort: sorting sorted particles changes nothing) and
-    /// computes density and pressure.
-    fn sort_and_density(&mut self) {
-        self.grid.sort(&self.pos, &mut self.cells, &mut self.order);
-        permute(&mut self.pos, &mut self.scratch_v, &self.order);
-        permute(&mut self.vel, &mut self.scratch_v, &self.order);
-        permute(&mut self.acc, &mut self.scratch_v, &self.order);
-        permute(&mut self.ids, &mut self.scratch_u, &self.order);
-        passes::density(&self.model, &self.grid, &self.pos, &mut self.neighbors, &mut self.rho, &mut self.pterm);
+    fn resolve(model: &Model) -> Vec<(&'static PassSpec, &'static dyn CpuPass)> {
+        let imp = |p: &'static PassSpec| {
+            implementation(p.name).unwrap_or_else(|| panic!("pass {} has no CPU implementation", p.name))
+        };
+        model.plan.passes().iter().map(|&p| (p, imp(p))).collect()
+    }
+
+    fn run_one(&mut self, pass: &'static PassSpec, imp: &'static dyn CpuPass, dt: Real) {
+        if !self.ran.contains(&pass.name) {
+            self.ran.push(pass.name);
+        }
+        let mut cx = CpuCx {
+            model: &self.model,
+            attrs: &mut self.attrs,
+            grid: &mut self.grid,
+            nb: &mut self.nb,
+            sort: &mut self.sort,
+            dt,
+        };
+        imp.run(&mut cx);
     }
 }
 
-impl Passes for CpuBackend {
+impl Stages for CpuBackend {
     fn model(&self) -> &Model {
         &self.model
     }
 
-    fn evaluate(&mut self) -> Result<Measures, String> {
-        self.sort_and_density();
-        passes::wall_pressure(&self.model, &self.grid, &self.pos, &self.rho, &self.pterm, &mut self.wall_p);
-        passes::forces(
-            &self.model,
-            &self.neighbors,
-            &self.pos,
-            &self.vel,
-            &self.rho,
-            &self.pterm,
-            &self.wall_p,
-            &mut self.acc,
-            self.xsph.as_deref_mut(),
-        );
-        Ok(passes::measure(&self.pos, &self.vel, &self.acc, &self.rho, self.model.fluid.rho0, self.model.domain))
+    fn run(&mut self, stage: Stage, dt: Real) {
+        for i in 0..self.passes.len() {
+            let (p, imp) = self.passes[i];
+            if p.stage == stage {
+                self.run_one(p, imp, dt);
+            }
+        }
     }
 
-    fn kick(&mut self, dt: Real, keep: Real, with_xsph: bool) {
-        let xsph = if with_xsph { self.xsph.as_deref() } else { None };
-        self.vel.par_iter_mut().zip(self.acc.par_iter()).enumerate().with_min_len(4096).for_each(|(i, (v, &a))| {
-            *v = (*v + a * dt) * keep + xsph.map_or(Vec3::ZERO, |x| x[i]);
-        });
+    fn run_pass(&mut self, name: &str, dt: Real) {
+        let (p, imp) = *self.passes.iter().find(|(p, _)| p.name == name).unwrap_or_else(|| panic!("no pass {name}"));
+        self.run_one(p, imp, dt);
+    }
+
+    fn measure(&mut self) -> Result<Measures, String> {
+        Ok(core::measure(&self.model, &self.attrs))
+    }
+
+    fn reduce(&mut self, r: &Reduction) -> Result<f64, String> {
+        let values = self.attrs.get(self.attrs.handle::<Real>(r.attr));
+        let n = values.len().max(1) as f64;
+        let sum = || values.iter().map(|&v| f64::from(v)).sum::<f64>();
+        Ok(match r.op {
+            ReduceOp::Sum => sum(),
+            ReduceOp::Mean => sum() / n,
+            ReduceOp::Max => values.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(f64::from(v))),
+            ReduceOp::MaxAbs => values.iter().fold(0.0, |m: f64, &v| m.max(f64::from(v.abs()))),
+        })
+    }
+
+    fn kick(&mut self, dt: Real, keep: Real) {
+        core::kick(&mut self.attrs, dt, keep);
     }
 
     fn drift(&mut self, dt: Real) {
-        let walls = &self.model.walls;
-        self.pos.par_iter_mut().zip(self.vel.par_iter_mut()).with_min_len(4096).for_each(|(x, v)| {
-            *x += *v * dt;
-            for w in walls {
-                w.apply(x, v);
-            }
-        });
+        core::drift(&self.model, &mut self.attrs, dt);
     }
 
     fn particle_id(&mut self, slot: u32) -> u32 {
-        self.ids[slot as usize]
+        self.attrs.get(self.attrs.handle::<u32>("id"))[slot as usize]
     }
 }
 
@@ -130,39 +172,47 @@ impl Backend for CpuBackend {
         "cpu"
     }
 
-    fn clock(&self) -> &Clock {
-        &self.clock
+    fn download(&self, names: &[&str]) -> Vec<Column> {
+        names.iter().map(|n| self.attrs.column(n).unwrap_or_else(|| panic!("no attribute {n}")).clone()).collect()
     }
 
-    fn clock_mut(&mut self) -> &mut Clock {
-        &mut self.clock
+    fn upload(&mut self, name: &str, column: Column) {
+        self.attrs.set_column(name, column);
     }
 
-    fn particle_count(&self) -> usize {
-        self.pos.len()
+    fn restored(&mut self) {
+        // Densities (and anything else derived) for output right away; the next step
+        // recomputes them identically.
+        self.run(Stage::Sort, 0.0);
+        self.run(Stage::Density, 0.0);
     }
 
-    fn retune(&mut self, scene: &crate::scene::Scene) {
-        self.model.retune(scene);
-        self.clock.retune(&self.model);
-        if self.model.fluid.xsph > 0.0 && self.xsph.is_none() {
-            self.xsph = Some(vec![Vec3::ZERO; self.pos.len()]);
-        } else if self.model.fluid.xsph == 0.0 {
-            self.xsph = None;
+    fn retuned(&mut self) {
+        // Attributes that came or went with a setting (XSPH), then the passes.
+        let wanted: Vec<_> = self.model.layout.specs().collect();
+        if wanted.iter().map(|s| s.name).ne(self.attrs.specs().iter().map(|s| s.name)) {
+            let mut old = std::mem::take(&mut self.attrs).into_columns();
+            let columns = wanted
+                .into_iter()
+                .map(|spec| match old.iter().position(|(s, _)| s.name == spec.name) {
+                    Some(i) => old.swap_remove(i),
+                    None => (spec, Column::zeros(spec.elem, self.model.layout.count(spec.space))),
+                })
+                .collect();
+            self.attrs = Attrs::new(columns);
         }
+        self.passes = Self::resolve(&self.model);
     }
 
-    fn sorted_state(&self) -> SortedState {
-        SortedState { pos: self.pos.clone(), vel: self.vel.clone(), acc: self.acc.clone(), ids: self.ids.clone() }
+    fn model_mut(&mut self) -> &mut Model {
+        &mut self.model
     }
 
-    fn restore_state(&mut self, s: SortedState) {
-        (self.pos, self.vel, self.acc, self.ids) = (s.pos, s.vel, s.acc, s.ids);
-        // Densities for output right away; the next step recomputes them identically.
-        self.sort_and_density();
+    fn allocations(&self) -> Vec<Allocation> {
+        self.attrs.allocations()
     }
 
-    fn read(&self, channels: &[&str]) -> Particles {
-        by_identity(channels, &self.ids, &self.pos, Some(&self.vel), Some(&self.rho), &self.model.fluid.eos)
+    fn passes_run(&self) -> Vec<&'static str> {
+        self.ran.clone()
     }
 }

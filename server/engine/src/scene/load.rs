@@ -40,7 +40,7 @@ pub enum SceneError {
     #[error("{}", .0.join("\n"))]
     Invalid(Vec<String>),
     /// No preset has this name.
-    #[error("unknown preset '{name}'; presets are: {}", presets::NAMES.join(", "))]
+    #[error("unknown preset '{name}'; presets are: {}", presets::names().join(", "))]
     UnknownPreset {
         /// The name asked for.
         name: String,
@@ -116,7 +116,7 @@ pub fn from_preset(name: &str, overrides: &[String]) -> Result<Scene, SceneError
 
 /// Loads `source`: a preset name if one has that name, otherwise a file path.
 pub fn resolve(source: &str, overrides: &[String]) -> Result<Scene, SceneError> {
-    if presets::NAMES.contains(&source) {
+    if presets::names().contains(&source) {
         from_preset(source, overrides)
     } else if Path::new(source).exists() {
         from_file(Path::new(source), overrides)

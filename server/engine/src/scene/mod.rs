@@ -14,6 +14,7 @@ pub mod tunable;
 pub mod validate;
 
 use crate::kernel::KernelKind;
+pub use crate::modules::fluid::spec::{EquationOfState, Fluid, FluidBlock, Viscosity};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -24,17 +25,19 @@ pub struct Scene {
     /// Human-readable name.
     #[serde(default = "default_name")]
     pub name: String,
-    /// Physics modules this scene uses. The engine builds only the buffers and
-    /// passes of the modules listed here.
+    /// Physics modules this scene uses (`floe modules` lists them). The engine builds
+    /// only the buffers and passes of the modules listed here.
     #[serde(default = "default_modules")]
-    pub modules: Vec<ModuleKind>,
-    /// Distance between neighbouring particles when blocks are filled (m). Sets
-    /// the resolution: particle mass is `rest_density * spacing^3`.
+    pub modules: Vec<String>,
+    /// Distance between neighbouring particles when blocks are filled (m). Sets the
+    /// resolution: each particle's mass is its material's rest density over the
+    /// kernel sum of a full lattice of this spacing, so a block at rest sums to
+    /// exactly its rest density.
     pub particle_spacing: f32,
     /// Gravitational acceleration (m/s^2).
     #[serde(default = "default_gravity")]
     pub gravity: [f32; 3],
-    /// Fluid phases (the `fluid` module). One phase is supported at present.
+    /// Fluid phases (the `fluid` module), each a material of its own.
     #[serde(default)]
     pub fluids: Vec<Fluid>,
     /// Static walls, sampled with boundary particles (Akinci et al. 2012).
@@ -55,19 +58,11 @@ pub struct Scene {
 fn default_name() -> String {
     "scene".into()
 }
-fn default_modules() -> Vec<ModuleKind> {
-    vec![ModuleKind::Fluid]
+fn default_modules() -> Vec<String> {
+    vec!["fluid".into()]
 }
 fn default_gravity() -> [f32; 3] {
     [0.0, -9.81, 0.0]
-}
-
-/// A physics module.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum ModuleKind {
-    /// Weakly compressible SPH fluid (`fluids`).
-    Fluid,
 }
 
 /// An axis-aligned box (m).
@@ -78,106 +73,6 @@ pub struct BoxRegion {
     pub min: [f32; 3],
     /// Upper corner (m).
     pub max: [f32; 3],
-}
-
-/// One fluid phase: its material and where it starts.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct Fluid {
-    /// Name of the phase.
-    #[serde(default = "default_fluid_name")]
-    pub name: String,
-    /// Rest density rho0 (kg/m^3). Water: 1000.
-    #[serde(default = "default_rest_density")]
-    pub rest_density: f32,
-    /// Equation of state relating density to pressure.
-    #[serde(default)]
-    pub eos: EquationOfState,
-    /// Viscosity model.
-    #[serde(default)]
-    pub viscosity: Viscosity,
-    /// XSPH velocity correction factor epsilon (Monaghan 1989), 0 to 1; 0 disables it.
-    #[serde(default)]
-    pub xsph: f32,
-    /// Boxes filled with particles on a cubic lattice of `particle_spacing`.
-    pub blocks: Vec<FluidBlock>,
-}
-
-fn default_fluid_name() -> String {
-    "water".into()
-}
-fn default_rest_density() -> f32 {
-    1000.0
-}
-
-/// A box of fluid particles.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct FluidBlock {
-    /// Lower corner (m); the first particle centre sits half a spacing inside.
-    pub min: [f32; 3],
-    /// Upper corner (m).
-    pub max: [f32; 3],
-    /// Initial velocity (m/s).
-    #[serde(default)]
-    pub velocity: [f32; 3],
-}
-
-/// Equation of state p(rho). Pressure is clamped at zero (no tension), which
-/// avoids the tensile instability at free surfaces.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum EquationOfState {
-    /// Tait: `p = B ((rho/rho0)^gamma - 1)`, `B = rho0 c^2 / gamma`
-    /// (Monaghan 1994, J. Comput. Phys. 110, eq. 3.4; Becker & Teschner 2007, eq. 7).
-    Tait {
-        /// Exponent gamma (7 for water).
-        #[serde(default = "default_gamma")]
-        gamma: f32,
-    },
-    /// Linear "ideal gas" model `p = k (rho - rho0)` (Müller et al. 2003, eq. 12,
-    /// with the rest density offset of Desbrun & Gascuel). Default `k = c^2`.
-    Linear {
-        /// Stiffness k (m^2/s^2 = Pa m^3/kg). Default: the squared speed of sound.
-        #[serde(default)]
-        stiffness: Option<f32>,
-    },
-}
-
-fn default_gamma() -> f32 {
-    7.0
-}
-
-impl Default for EquationOfState {
-    fn default() -> Self {
-        Self::Tait { gamma: default_gamma() }
-    }
-}
-
-/// Viscosity model.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
-pub enum Viscosity {
-    /// No explicit viscosity.
-    None,
-    /// Physical viscosity through a kernel Laplacian (Müller et al. 2003, eq. 14;
-    /// with the cubic kernel, Morris et al. 1997, eq. 8). Momentum conserving.
-    Laplacian {
-        /// Kinematic viscosity nu (m^2/s). Water: 1e-6.
-        nu: f32,
-    },
-    /// Monaghan's artificial viscosity (Monaghan 1992, eq. 4.1), acting only on
-    /// approaching pairs; `nu_eff ~ alpha c h / 10`.
-    Artificial {
-        /// Dimensionless alpha, typically 0.01 to 0.1.
-        alpha: f32,
-    },
-}
-
-impl Default for Viscosity {
-    fn default() -> Self {
-        Self::Artificial { alpha: 0.02 }
-    }
 }
 
 /// A static wall sampled with boundary particles.
@@ -243,6 +138,9 @@ pub enum Face {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Solver {
+    /// Pressure solver (the scheme that orders a step).
+    #[serde(default)]
+    pub method: Method,
     /// Kernel family.
     #[serde(default)]
     pub kernel: KernelKind,
@@ -285,6 +183,7 @@ fn default_mach_factor() -> f32 {
 impl Default for Solver {
     fn default() -> Self {
         Self {
+            method: Method::default(),
             kernel: KernelKind::default(),
             support_factor: default_support_factor(),
             integrator: Integrator::default(),
@@ -296,6 +195,16 @@ impl Default for Solver {
             damping_until: 0.0,
         }
     }
+}
+
+/// Pressure solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Weakly compressible SPH: pressure from an equation of state, explicit steps
+    /// limited by the speed of sound (Monaghan 1994; Becker & Teschner 2007).
+    #[default]
+    Wcsph,
 }
 
 /// Time integrator.

@@ -28,8 +28,8 @@ pub struct Tunable {
     pub module: &'static str,
 }
 
-/// The tunable fields.
-pub const TUNABLE: &[Tunable] = &[
+/// The core's tunable fields (modules declare their own: `crate::modules::ModuleDef::tunables`).
+pub const CORE: &[Tunable] = &[
     Tunable {
         path: "gravity",
         unit: "m/s^2",
@@ -37,22 +37,6 @@ pub const TUNABLE: &[Tunable] = &[
         max: None,
         about: "Gravitational acceleration vector.",
         module: "core",
-    },
-    Tunable {
-        path: "fluids[*].viscosity",
-        unit: "",
-        min: None,
-        max: None,
-        about: "A fluid's viscosity model and its constant.",
-        module: "fluid",
-    },
-    Tunable {
-        path: "fluids[*].xsph",
-        unit: "",
-        min: Some(0.0),
-        max: Some(1.0),
-        about: "A fluid's XSPH velocity correction factor.",
-        module: "fluid",
     },
     Tunable {
         path: "solver.time_step",
@@ -123,12 +107,13 @@ pub fn apply(current: &Scene, overrides: &[String]) -> Result<Scene, SceneError>
     apply_overrides(&mut value, overrides)?;
     let next = from_value(value)?;
     let mut kept = serde_json::to_value(&next).expect("scenes serialise");
-    for t in TUNABLE {
+    let tunables = crate::modules::tunables(current);
+    for t in &tunables {
         copy_path(&mut kept, &now, &segments(t.path));
     }
     if kept != now {
         let keys: Vec<&str> = overrides.iter().map(|o| o.split('=').next().unwrap_or(o).trim()).collect();
-        let paths: Vec<&str> = TUNABLE.iter().map(|t| t.path).collect();
+        let paths: Vec<&str> = tunables.iter().map(|t| t.path).collect();
         return Err(SceneError::Invalid(vec![format!(
             "{}: cannot change while the scene exists; tunable fields are {}",
             keys.join(", "),

@@ -1,54 +1,63 @@
 //! Validation of a deserialised [`Scene`]: every bound a field must respect,
 //! reported as `path: must be ..., got ...`, all errors at once.
 
-use super::{Boundary, EquationOfState, ModuleKind, Scene, TimeStep, Viscosity};
+use super::{Boundary, Scene, TimeStep};
 
-/// The most fluid particles one scene may create (a guard against requests that
-/// would exhaust memory: about 100 bytes each on the CPU backend).
+/// The most particles one scene may create (a guard against requests that would
+/// exhaust memory: under 300 bytes each on the CPU backend, `floe bench --memory`).
 pub const MAX_PARTICLES: f64 = 50e6;
 
-struct Checker {
+/// Collects validation errors, each as `path: message`. Modules use it to check
+/// their sections.
+#[derive(Debug, Default)]
+pub struct Checker {
     errors: Vec<String>,
 }
 
 impl Checker {
-    fn fail(&mut self, path: &str, message: String) {
+    /// Records that the field at `path` is wrong.
+    pub fn fail(&mut self, path: &str, message: String) {
         self.errors.push(format!("{path}: {message}"));
     }
 
-    fn finite(&mut self, path: &str, v: f32) -> bool {
+    /// Checks that `v` is finite.
+    pub fn finite(&mut self, path: &str, v: f32) -> bool {
         if !v.is_finite() {
             self.fail(path, format!("must be a finite number, got {v}"));
         }
         v.is_finite()
     }
 
-    fn positive(&mut self, path: &str, v: f32) {
+    /// Checks `v > 0`.
+    pub fn positive(&mut self, path: &str, v: f32) {
         if self.finite(path, v) && v <= 0.0 {
             self.fail(path, format!("must be > 0, got {v}"));
         }
     }
 
-    fn non_negative(&mut self, path: &str, v: f32) {
+    /// Checks `v >= 0`.
+    pub fn non_negative(&mut self, path: &str, v: f32) {
         if self.finite(path, v) && v < 0.0 {
             self.fail(path, format!("must be >= 0, got {v}"));
         }
     }
 
-    fn within(&mut self, path: &str, v: f32, lo: f32, hi: f32) {
+    /// Checks `lo <= v <= hi`.
+    pub fn within(&mut self, path: &str, v: f32, lo: f32, hi: f32) {
         if self.finite(path, v) && !(lo..=hi).contains(&v) {
             self.fail(path, format!("must be between {lo} and {hi}, got {v}"));
         }
     }
 
-    fn vector(&mut self, path: &str, v: &[f32]) {
+    /// Checks every component is finite.
+    pub fn vector(&mut self, path: &str, v: &[f32]) {
         for (i, &c) in v.iter().enumerate() {
             self.finite(&format!("{path}[{i}]"), c);
         }
     }
 
-    /// `min < max` on every axis.
-    fn ordered_box(&mut self, path: &str, min: [f32; 3], max: [f32; 3]) {
+    /// Checks `min < max` on every axis.
+    pub fn ordered_box(&mut self, path: &str, min: [f32; 3], max: [f32; 3]) {
         self.vector(&format!("{path}.min"), &min);
         self.vector(&format!("{path}.max"), &max);
         for (axis, (lo, hi)) in ["x", "y", "z"].iter().zip(min.iter().zip(max)) {
@@ -68,7 +77,17 @@ pub fn validate(scene: &Scene) -> Result<(), Vec<String>> {
     c.positive("particle_spacing", scene.particle_spacing);
     c.vector("gravity", &scene.gravity);
     check_modules(&mut c, scene);
-    check_fluids(&mut c, scene);
+    for m in crate::modules::of(scene) {
+        (m.validate)(scene, &mut c);
+    }
+    let counted = scene.particle_spacing.is_finite() && scene.particle_spacing > 0.0;
+    let particles = crate::modules::counts(scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
+    if counted && particles as f64 > MAX_PARTICLES {
+        c.fail(
+            "particle_spacing",
+            format!("the scene would create {particles} particles, more than the limit of {MAX_PARTICLES:.0e}; increase particle_spacing"),
+        );
+    }
     for (i, b) in scene.boundaries.iter().enumerate() {
         let path = format!("boundaries[{i}]");
         match b {
@@ -99,59 +118,36 @@ pub fn validate(scene: &Scene) -> Result<(), Vec<String>> {
     if c.errors.is_empty() { Ok(()) } else { Err(c.errors) }
 }
 
+/// Every listed module exists, once, with its section and its requirements; every
+/// section present belongs to a listed module.
 fn check_modules(c: &mut Checker, scene: &Scene) {
+    let names: Vec<&str> = crate::modules::all().iter().map(|m| m.id).collect();
     for (i, m) in scene.modules.iter().enumerate() {
+        let path = format!("modules[{i}]");
         if scene.modules[..i].contains(m) {
-            c.fail(&format!("modules[{i}]"), format!("{m:?} is listed twice"));
+            c.fail(&path, format!("{:?} is listed twice", m));
         }
-    }
-    let has_fluid = scene.modules.contains(&ModuleKind::Fluid);
-    if has_fluid && scene.fluids.is_empty() {
-        c.fail("fluids", "must hold at least one fluid, since modules lists \"fluid\"".into());
-    }
-    if !has_fluid && !scene.fluids.is_empty() {
-        c.fail("modules", "must list \"fluid\", since the scene has fluids".into());
-    }
-    if scene.modules.is_empty() {
-        c.fail("modules", "must list at least one module".into());
-    }
-}
-
-fn check_fluids(c: &mut Checker, scene: &Scene) {
-    if scene.fluids.len() > 1 {
-        c.fail("fluids", format!("one fluid phase is supported, got {}", scene.fluids.len()));
-    }
-    let mut particles = 0.0f64;
-    for (i, f) in scene.fluids.iter().enumerate() {
-        let p = format!("fluids[{i}]");
-        c.positive(&format!("{p}.rest_density"), f.rest_density);
-        match f.eos {
-            EquationOfState::Tait { gamma } => c.within(&format!("{p}.eos.gamma"), gamma, 1.0, 10.0),
-            EquationOfState::Linear { stiffness: Some(k) } => c.positive(&format!("{p}.eos.stiffness"), k),
-            EquationOfState::Linear { stiffness: None } => {}
-        }
-        match f.viscosity {
-            Viscosity::None => {}
-            Viscosity::Laplacian { nu } => c.non_negative(&format!("{p}.viscosity.nu"), nu),
-            Viscosity::Artificial { alpha } => c.within(&format!("{p}.viscosity.alpha"), alpha, 0.0, 1.0),
-        }
-        c.within(&format!("{p}.xsph"), f.xsph, 0.0, 1.0);
-        if f.blocks.is_empty() {
-            c.fail(&format!("{p}.blocks"), "must hold at least one block".into());
-        }
-        for (j, b) in f.blocks.iter().enumerate() {
-            let bp = format!("{p}.blocks[{j}]");
-            c.ordered_box(&bp, b.min, b.max);
-            c.vector(&format!("{bp}.velocity"), &b.velocity);
-            if scene.particle_spacing > 0.0 {
-                let n: f64 =
-                    (0..3).map(|a| ((b.max[a] - b.min[a]) as f64 / scene.particle_spacing as f64).max(0.0)).product();
-                particles += n;
+        match crate::modules::find(m) {
+            None => c.fail(&path, format!("unknown module {:?}; modules are {}", m, names.join(", "))),
+            Some(def) => {
+                for r in def.requires {
+                    if !scene.modules.iter().any(|x| x == r) {
+                        c.fail(&path, format!("{m:?} requires module {r:?}, which the scene does not list"));
+                    }
+                }
             }
         }
     }
-    if particles > MAX_PARTICLES {
-        c.fail("fluids", format!("would create {particles:.3e} particles, more than the limit of {MAX_PARTICLES:.0e}; increase particle_spacing"));
+    for def in crate::modules::all() {
+        let listed = scene.modules.iter().any(|m| m == def.id);
+        match (listed, (def.has_section)(scene)) {
+            (true, false) => c.fail("modules", format!("lists {:?} but the scene has no section for it", def.id)),
+            (false, true) => c.fail("modules", format!("must list {:?}, since the scene has its section", def.id)),
+            _ => {}
+        }
+    }
+    if scene.modules.is_empty() {
+        c.fail("modules", "must list at least one module".into());
     }
 }
 
@@ -207,11 +203,12 @@ mod tests {
             errors(&["fluids[0].viscosity={\"model\":\"artificial\",\"alpha\":3}"]),
             "fluids[0].viscosity.alpha: must be between 0 and 1, got 3"
         );
-        assert!(errors(&["particle_spacing=1e-5"]).starts_with("fluids: would create"));
+        assert!(errors(&["particle_spacing=1e-5"]).starts_with("particle_spacing: the scene would create"));
         assert_eq!(
             errors(&["modules=[]"]),
-            "modules: must list \"fluid\", since the scene has fluids\nmodules: must list at least one module"
+            "modules: must list \"fluid\", since the scene has its section\nmodules: must list at least one module"
         );
+        assert_eq!(errors(&["modules=[\"fluid\",\"lava\"]"]), "modules[1]: unknown module \"lava\"; modules are fluid");
         // Several problems are reported together.
         let both = errors(&["particle_spacing=-1", "guard.max_compression=0"]);
         assert_eq!(both.lines().count(), 2, "{both}");

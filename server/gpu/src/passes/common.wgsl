@@ -1,6 +1,6 @@
 // Shared by every particle kernel (prepended to each kernel's source): the
-// scene constants, the grid and the SPH kernels, mirroring floe-engine's
-// `neighbors`, `kernel`, `eos` and `viscosity` modules line for line so the
+// scene constants with the material table, the grid and the SPH kernels,
+// mirroring floe-engine's `neighbors` and `kernel` modules line for line so the
 // CPU backend can serve as the oracle.
 
 struct Params {
@@ -24,23 +24,15 @@ struct Params {
     inv_h: f32,
     w_norm: f32,
     g_norm: f32,
-    mass: f32,
-    rho0: f32,
-    eos_kind: u32,
-    eos_a: f32,
-    eos_gamma: f32,
-    visc_kind: u32,
-    visc_a: f32,
-    visc_b: f32,
-    xsph: f32,
-    inv_rho0_2: f32,
+    n_materials: u32,
+    // Index of the wall grid's first run start in `starts` (after the particle grid's).
+    wall_start: u32,
+    // Per material: rest density (kg/m^3), mass (kg), 1 / rho0^2, rho0 / rho0 of material 0.
+    materials: array<vec4<f32>, 16>,
 }
 
 const WG: u32 = 128u;
 const KERNEL_MUELLER: u32 = 0u;
-const EOS_TAIT: u32 = 0u;
-const VISC_LAPLACIAN: u32 = 1u;
-const VISC_ARTIFICIAL: u32 = 2u;
 
 @group(0) @binding(0) var<uniform> params: Params;
 
@@ -119,33 +111,9 @@ fn kernel_laplacian(r: f32) -> f32 {
     return -2.0 * kernel_dw_dr(r) * r / (r * r + 0.01 * params.h2);
 }
 
-// Pressure (Pa) at density rho, clamped at 0 (floe-engine `Eos::pressure`).
-fn pressure(rho: f32) -> f32 {
-    if (params.eos_kind == EOS_TAIT) {
-        let ratio = rho / params.rho0;
-        var p: f32;
-        if (params.eos_gamma == 7.0) {
-            let r2 = ratio * ratio;
-            p = r2 * r2 * r2 * ratio;
-        } else {
-            p = pow(ratio, params.eos_gamma);
-        }
-        return max(params.eos_a * (p - 1.0), 0.0);
-    }
-    return max(params.eos_a * (rho - params.rho0), 0.0);
-}
-
-// Viscous acceleration on i from j (floe-engine `ViscosityModel::pair`).
-fn viscosity(x_ij: vec3<f32>, r: f32, v_ij: vec3<f32>, m_j: f32, rho_i: f32, rho_j: f32, grad: vec3<f32>) -> vec3<f32> {
-    if (params.visc_kind == VISC_LAPLACIAN) {
-        return -v_ij * (params.visc_a * m_j / (rho_i * rho_j) * kernel_laplacian(r));
-    }
-    if (params.visc_kind == VISC_ARTIFICIAL) {
-        let mu_ij = min(dot(v_ij, x_ij), 0.0) / (r * r + params.visc_b);
-        let pi_ij = -params.visc_a * mu_ij * 2.0 / (rho_i + rho_j);
-        return -grad * (m_j * pi_ij);
-    }
-    return vec3<f32>(0.0);
+// The material of a particle: its index is stored in the w component of its position.
+fn material_of(p: vec4<f32>) -> u32 {
+    return u32(p.w);
 }
 
 // Whether an f32 is infinite or NaN (WGSL has no isinf/isnan).

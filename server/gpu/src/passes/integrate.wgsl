@@ -1,16 +1,15 @@
-// The integrators' two halves (floe-engine `stepping`): `kick` updates
-// velocities, `drift` positions followed by the walls' non-penetration
-// constraints (floe-engine `boundary::WallConstraint::apply`).
+// The integrators' two halves (floe-engine `cpu::core::kick` and `drift`):
+// `kick` updates velocities, `drift` positions followed by the walls'
+// non-penetration constraints (floe-engine `boundary::WallConstraint::apply`).
 
 struct Step {
     // dt of the kick (s).
     kick_dt: f32,
     // Damping factor exp(-rate dt) applied with the kick.
     keep: f32,
-    // 1 when the kick adds the XSPH correction.
-    with_xsph: u32,
     // dt of the drift (s).
     drift_dt: f32,
+    _pad: f32,
 }
 
 // A wall's constraint. kind 0, a box: `a` its lower and `b` its upper interior
@@ -31,7 +30,7 @@ struct Constraint {
 @group(0) @binding(1) var<uniform> step: Step;
 @group(0) @binding(2) var<storage, read_write> pos: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read_write> vel: array<vec4<f32>>;
-// Accelerations in [0, n), XSPH corrections in [n, 2n) (see forces.wgsl).
+// The kick: accelerations; the drift: the walls' constraints (one layout each).
 @group(0) @binding(4) var<storage, read> acc: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read> constraints: array<Constraint>;
 
@@ -41,11 +40,7 @@ fn kick(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     if (i >= params.n) {
         return;
     }
-    var v = (vel[i].xyz + acc[i].xyz * step.kick_dt) * step.keep;
-    if (step.with_xsph != 0u && params.xsph > 0.0) {
-        v += acc[params.n + i].xyz;
-    }
-    vel[i] = vec4<f32>(v, 0.0);
+    vel[i] = vec4<f32>((vel[i].xyz + acc[i].xyz * step.kick_dt) * step.keep, 0.0);
 }
 
 fn closed(c: Constraint, axis: u32, side: u32) -> bool {
@@ -95,6 +90,7 @@ fn drift(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups)
             }
         }
     }
-    pos[i] = vec4<f32>(x, 0.0);
+    // w keeps the particle's material.
+    pos[i] = vec4<f32>(x, pos[i].w);
     vel[i] = vec4<f32>(v, 0.0);
 }

@@ -1,7 +1,8 @@
 // What the stability guard and the time step need, reduced over all particles
-// (floe-engine `cpu::passes::measure` and `Measures::merge`): largest squared
-// speed and acceleration, largest compression, the compression sum, and the
-// first non-finite and first out-of-domain particle. `partials` reduces each
+// (floe-engine `cpu::core::measure` and `Measures::merge`): largest squared
+// speed and acceleration, largest compression against each particle's own
+// material, the compression sum, and the first non-finite and first
+// out-of-domain particle. `partials` reduces each
 // workgroup; `total` reduces the partials in one workgroup. Ties keep the lower
 // slot, as on the CPU.
 
@@ -22,7 +23,7 @@ const NO_SLOT: u32 = 0xffffffffu;
 @group(0) @binding(1) var<storage, read> pos: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> vel: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> acc: array<vec4<f32>>;
-@group(0) @binding(4) var<storage, read> dens: array<vec2<f32>>;
+@group(0) @binding(4) var<storage, read> rho_of: array<f32>;
 @group(0) @binding(5) var<storage, read_write> parts: array<Measures>;
 
 var<workgroup> shared_m: array<Measures, RW>;
@@ -53,7 +54,7 @@ fn of_particle(i: u32) -> Measures {
     let x = pos[i].xyz;
     let v = vel[i].xyz;
     let a = acc[i].xyz;
-    let rho = dens[i].x;
+    let rho = rho_of[i];
     if (any(vec4<bool>(non_finite(x.x), non_finite(x.y), non_finite(x.z), non_finite(rho)))
         || any(vec3<bool>(non_finite(v.x), non_finite(v.y), non_finite(v.z)))
         || any(vec3<bool>(non_finite(a.x), non_finite(a.y), non_finite(a.z)))) {
@@ -66,7 +67,8 @@ fn of_particle(i: u32) -> Measures {
         m.speed_slot = i;
     }
     m.accel2 = dot(a, a);
-    let c = (rho - params.rho0) / params.rho0;
+    let rho0 = params.materials[material_of(pos[i])].x;
+    let c = (rho - rho0) / rho0;
     if (c > 0.0) {
         m.compression = c;
         m.compression_slot = i;

@@ -1,69 +1,123 @@
-//! The GPU passes: one WGSL file per kernel (`common.wgsl` prepended to the
-//! particle kernels) and one Rust file owning its pipelines and bindings.
-//! [`Programs`] compiles them once per device; every scene on that device
-//! shares them.
+//! The core's GPU kernels: one WGSL file per kernel (`common.wgsl` prepended to the
+//! particle kernels), compiled once per device into [`Programs`] that every scene
+//! on it shares. Plan passes ([`crate::pass`]: this core's density, the schemes'
+//! and the modules') are compiled on first use.
 
-pub mod density;
-pub mod forces;
-pub mod grid;
-pub mod integrate;
-pub mod measure;
-pub mod quantize;
-pub mod reorder;
 pub mod scan;
-pub mod wall_pressure;
 
-use crate::program::Kernel;
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
+use crate::program::{Kernel, Layout, module};
 use wgpu::Device;
 
-/// Joins `common.wgsl` with a particle kernel's own source.
+/// Joins `common.wgsl` with a particle kernel's own source(s).
 macro_rules! particle_kernel {
-    ($file:literal) => {
-        concat!(include_str!("common.wgsl"), "\n", include_str!($file))
+    ($($file:literal),+) => {
+        concat!(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/common.wgsl")), $("\n", include_str!($file)),+)
     };
 }
 pub(crate) use particle_kernel;
 
-/// Every shader's label and complete WGSL source (for validation and docs).
+/// Source of the counting sort (grid.wgsl).
+pub const GRID: &str = particle_kernel!("grid.wgsl");
+/// Source of the strided permutation (reorder.wgsl, stand-alone).
+pub const REORDER: &str = include_str!("reorder.wgsl");
+/// Source of the guard's reduction (measure.wgsl).
+pub const MEASURE: &str = particle_kernel!("measure.wgsl");
+/// Source of kick and drift (integrate.wgsl).
+pub const INTEGRATE: &str = particle_kernel!("integrate.wgsl");
+/// Source of the frame quantiser (quantize.wgsl).
+pub const QUANTIZE: &str = particle_kernel!("quantize.wgsl");
+/// Source of the generic reduction (reduce.wgsl, stand-alone).
+pub const REDUCE: &str = include_str!("reduce.wgsl");
+/// Source of summation density (density.wgsl), the core's plan pass.
+pub const DENSITY: &str = particle_kernel!("density.wgsl");
+
+/// Summation density, the core's plan pass `core.density`.
+pub static DENSITY_PASS: crate::pass::GpuPass = crate::pass::GpuPass {
+    name: "core.density",
+    source: DENSITY,
+    entry: "main",
+    bindings: &[(U, "params"), (R, "x"), (R, "starts"), (R, "walls"), (W, "rho")],
+    space: floe_engine::attrs::PARTICLES,
+    when: crate::pass::always,
+};
+
+/// Particles per partial of the reductions (their workgroup size).
+pub const PER_PARTIAL: u32 = 256;
+
+/// Every core shader's label and complete WGSL source (for validation and docs).
 pub const SOURCES: &[(&str, &str)] = &[
-    ("grid", grid::SOURCE),
+    ("grid", GRID),
     ("scan", scan::SOURCE),
-    ("reorder", reorder::SOURCE),
-    ("density", density::SOURCE),
-    ("wall_pressure", wall_pressure::SOURCE),
-    ("forces", forces::SOURCE),
-    ("measure", measure::SOURCE),
-    ("integrate", integrate::SOURCE),
-    ("quantize", quantize::SOURCE),
+    ("reorder", REORDER),
+    ("measure", MEASURE),
+    ("integrate", INTEGRATE),
+    ("quantize", QUANTIZE),
+    ("reduce", REDUCE),
+    ("density", DENSITY),
 ];
 
-/// All compiled kernels of one device.
+/// The core's compiled kernels on one device.
 #[derive(Debug)]
 pub struct Programs {
-    pub grid: grid::Grid,
+    /// params, positions, (cell, rank), counts then run starts, order.
+    pub grid_count: Kernel,
+    /// Same bindings.
+    pub grid_scatter: Kernel,
+    /// Same bindings.
+    pub grid_settle: Kernel,
+    /// The prefix sum.
     pub scan: scan::Scan,
-    pub reorder: reorder::Reorder,
-    pub density: Kernel,
-    pub wall_pressure: Kernel,
-    pub forces: Kernel,
-    pub measure: measure::Measure,
-    pub integrate: integrate::Integrate,
+    /// words, order, source, destination.
+    pub permute: Kernel,
+    /// words, (unused) order, ids, slot of each id.
+    pub slots: Kernel,
+    /// params, positions, velocities, accelerations, densities, partials.
+    pub measure_partials: Kernel,
+    /// Same bindings.
+    pub measure_total: Kernel,
+    /// params, step, positions, velocities, accelerations, constraints.
+    pub kick: Kernel,
+    /// Same bindings.
+    pub drift: Kernel,
+    /// params, grid, positions, slot of each id, codes.
     pub quantize: Kernel,
+    /// words, values, partials.
+    pub reduce_partials: Kernel,
+    /// Same bindings.
+    pub reduce_total: Kernel,
 }
 
 impl Programs {
-    /// Compiles every kernel for `device`.
+    /// Compiles every core kernel for `device`.
     pub fn new(device: &Device) -> Self {
+        let grid = module(device, "grid.wgsl", GRID);
+        let grid_layout = Layout::new(device, "grid", &[U, R, W, W, W]);
+        let reorder = module(device, "reorder.wgsl", REORDER);
+        let reorder_layout = Layout::new(device, "reorder", &[U, R, R, W]);
+        let measure = module(device, "measure.wgsl", MEASURE);
+        let measure_layout = Layout::new(device, "measure", &[U, R, R, R, R, W]);
+        let integrate = module(device, "integrate.wgsl", INTEGRATE);
+        let integrate_layout = Layout::new(device, "integrate", &[U, U, W, W, R, R]);
+        let reduce = module(device, "reduce.wgsl", REDUCE);
+        let reduce_layout = Layout::new(device, "reduce", &[U, R, W]);
+        let k = |m: &wgpu::ShaderModule, label, entry, layout: &Layout, wg| {
+            Kernel::new(device, m, label, entry, layout, wg)
+        };
         Self {
-            grid: grid::Grid::new(device),
+            grid_count: k(&grid, "grid count", "count", &grid_layout, 128),
+            grid_scatter: k(&grid, "grid scatter", "scatter", &grid_layout, 128),
+            grid_settle: k(&grid, "grid settle", "settle", &grid_layout, 128),
             scan: scan::Scan::new(device),
-            reorder: reorder::Reorder::new(device),
-            density: density::kernel(device),
-            wall_pressure: wall_pressure::kernel(device),
-            forces: forces::kernel(device),
-            measure: measure::Measure::new(device),
-            integrate: integrate::Integrate::new(device),
-            quantize: quantize::kernel(device),
+            permute: k(&reorder, "reorder", "permute", &reorder_layout, 128),
+            slots: k(&reorder, "slot of id", "slots", &reorder_layout, 128),
+            measure_partials: k(&measure, "measure partials", "partials", &measure_layout, PER_PARTIAL),
+            measure_total: k(&measure, "measure total", "total", &measure_layout, PER_PARTIAL),
+            kick: k(&integrate, "kick", "kick", &integrate_layout, 128),
+            drift: k(&integrate, "drift", "drift", &integrate_layout, 128),
+            quantize: Kernel::single(device, "quantize", QUANTIZE, "main", &[U, U, R, R, W]),
+            reduce_partials: k(&reduce, "reduce partials", "partials", &reduce_layout, PER_PARTIAL),
+            reduce_total: k(&reduce, "reduce total", "total", &reduce_layout, PER_PARTIAL),
         }
     }
 }

@@ -15,7 +15,7 @@ const BLOCK: u32 = 512;
 /// Largest array one level can scan (one dispatch dimension of blocks).
 pub const MAX_LEN: u64 = 65_535 * BLOCK as u64;
 
-const BINDINGS: &[(u32, Access)] = &[(0, U), (1, W), (2, W)];
+const BINDINGS: &[Access] = &[U, W, W];
 
 /// The scan kernels.
 #[derive(Debug)]

@@ -1,12 +1,13 @@
 // Pressure of each wall particle extrapolated from the fluid around it
-// (floe-engine `cpu::passes::wall_pressure`; Adami, Hu & Adams 2012, eq. 27):
-// `p_b = (sum_f p_f W_bf + g . sum_f rho_f (x_b - x_f) W_bf) / sum_f W_bf`.
+// (floe-engine `schemes::wcsph::cpu::WallPressure`; Adami, Hu & Adams 2012,
+// eq. 27): `p_b = (sum_f p_f W_bf + g . sum_f rho_f (x_b - x_f) W_bf) / sum_f W_bf`.
 
 @group(0) @binding(1) var<storage, read> pos: array<vec4<f32>>;
-@group(0) @binding(2) var<storage, read> cell_start: array<u32>;
+@group(0) @binding(2) var<storage, read> starts: array<u32>;
 @group(0) @binding(3) var<storage, read> walls: array<vec4<f32>>;
-@group(0) @binding(4) var<storage, read> dens: array<vec2<f32>>;
-@group(0) @binding(5) var<storage, read_write> wall_p: array<f32>;
+@group(0) @binding(4) var<storage, read> rho: array<f32>;
+@group(0) @binding(5) var<storage, read> pterm: array<f32>;
+@group(0) @binding(6) var<storage, read_write> wall_p: array<f32>;
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -21,15 +22,15 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     let b = block_of(xb, params.grid_origin, params.inv_cell, params.grid_dims);
     for (var k = 0u; k < 9u; k++) {
         let run = run_cells(b, k, params.grid_dims);
-        for (var j = cell_start[run.x]; j < cell_start[run.y]; j++) {
+        for (var j = starts[run.x]; j < starts[run.y]; j++) {
             let x_bj = xb - pos[j].xyz;
             let r2 = dot(x_bj, x_bj);
             if (r2 < params.h2) {
                 let w = kernel_w(r2);
-                let d = dens[j];
+                let r = rho[j];
                 sum_w += w;
-                sum_p += d.y * d.x * d.x * w;
-                sum_rx += x_bj * (d.x * w);
+                sum_p += pterm[j] * r * r * w;
+                sum_rx += x_bj * (r * w);
             }
         }
     }

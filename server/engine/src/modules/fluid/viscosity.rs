@@ -70,6 +70,24 @@ impl ViscosityModel {
         }
     }
 
+    /// The model acting between particles of two different materials: the harmonic
+    /// mean of two Laplacian viscosities (the interface flux of Cleary 1998, as in
+    /// Morris et al. 1997 for variable viscosity), otherwise the larger artificial
+    /// viscosity of the two, or the one model present.
+    pub fn mix(&self, other: &ViscosityModel) -> ViscosityModel {
+        use ViscosityModel::*;
+        match (*self, *other) {
+            (Laplacian { mu: a }, Laplacian { mu: b }) => {
+                Laplacian { mu: if a + b > 0.0 { 2.0 * a * b / (a + b) } else { 0.0 } }
+            }
+            (Artificial { alpha_c_h: a, eps_h2 }, Artificial { alpha_c_h: b, .. }) => {
+                Artificial { alpha_c_h: a.max(b), eps_h2 }
+            }
+            (m @ Artificial { .. }, _) | (_, m @ Artificial { .. }) => m,
+            (None, m) | (m, None) => m,
+        }
+    }
+
     /// The kinematic viscosity this model acts like (m^2/s), for the viscous
     /// time-step limit: Laplacian `mu / rho0`; artificial `alpha c h / 10`
     /// (Monaghan 2005, Rep. Prog. Phys. 68, eq. 4.16 with the 3D factor 1/10).

@@ -1,0 +1,174 @@
+//! The core's passes on the CPU: the sort by cell, summation density (which also
+//! finds the step's neighbour lists), the guard's and time step's reduction, and the
+//! integrators' two halves.
+//!
+//! Density by summation, walls included (Akinci et al. 2012, eq. 6; several
+//! materials after Solenthaler & Pajarola 2008, eq. 4):
+//! `rho_i = m_i sum_j W_ij + sum_b psi_b W_ib`, with the wall pseudo-mass `psi_b`
+//! of particle i's material.
+
+use super::neighbors::CHUNK;
+use super::{CpuCx, CpuPass};
+use crate::guard::Measures;
+use crate::math::{Real, Vec3};
+use crate::model::Model;
+use crate::plan::{PassSpec, Stage};
+use rayon::prelude::*;
+
+/// Re-sorts the particle space by grid cell.
+pub static SORT: PassSpec = PassSpec {
+    name: "core.sort",
+    module: "core",
+    stage: Stage::Sort,
+    reads: &["x"],
+    writes: &["slot_of"],
+    accumulates: &[],
+    tolerance: 0.0,
+};
+
+/// Summation density.
+pub static DENSITY: PassSpec = PassSpec {
+    name: "core.density",
+    module: "core",
+    stage: Stage::Density,
+    reads: &["x"],
+    writes: &["rho"],
+    accumulates: &[],
+    tolerance: 1e-5,
+};
+
+/// The core's CPU passes, by name.
+pub static PASSES: &[(&str, &dyn CpuPass)] = &[("core.sort", &Sort), ("core.density", &Density)];
+
+/// Counting sort by cell (stable: sorting sorted particles changes nothing); every
+/// state attribute of the particle space follows, and `slot_of` is rebuilt.
+#[derive(Debug)]
+struct Sort;
+
+impl CpuPass for Sort {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let x = cx.attrs.handle::<Vec3>("x");
+        cx.grid.sort(cx.attrs.get(x), &mut cx.sort.cells, &mut cx.sort.order);
+        cx.attrs.permute(crate::attrs::PARTICLES, &cx.sort.order);
+        let (ids, slot) = (cx.attrs.handle::<u32>("id"), cx.attrs.handle::<u32>("slot_of"));
+        let mut slot_of = cx.attrs.take(slot);
+        for (k, &id) in cx.attrs.get(ids).iter().enumerate() {
+            slot_of[id as usize] = k as u32;
+        }
+        cx.attrs.put(slot, slot_of);
+    }
+}
+
+/// Finds every particle's neighbours into the step's lists and fills `rho` (kg/m^3).
+#[derive(Debug)]
+struct Density;
+
+impl CpuPass for Density {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let model = cx.model;
+        let k = &model.kernel;
+        let h2 = k.support() * k.support();
+        let walls = &model.wall_particles;
+        let (x, rho_h) = (cx.attrs.handle::<Vec3>("x"), cx.attrs.handle::<Real>("rho"));
+        let material = cx.attrs.find::<u32>("material");
+        let mut rho = cx.attrs.take(rho_h);
+        let pos = cx.attrs.get(x);
+        let materials = material.map(|m| cx.attrs.get(m));
+        let grid = &*cx.grid;
+        cx.nb.chunks.resize_with(pos.len().div_ceil(CHUNK), Default::default);
+        rho.par_chunks_mut(CHUNK).zip(cx.nb.chunks.par_iter_mut()).enumerate().for_each(|(c, (rho_c, nb))| {
+            nb.clear();
+            for (n, rho_i) in rho_c.iter_mut().enumerate() {
+                let i = c * CHUNK + n;
+                let xi = pos[i];
+                nb.push(grid, pos, &walls.grid, &walls.positions, xi, h2);
+                let a = materials.map_or(0, |m| m[i] as usize);
+                let (m, psi) = (model.materials.get(a).mass, &walls.psi[a]);
+                let sum: Real = nb.fluid(n).iter().map(|&j| k.w_r2((xi - pos[j as usize]).length_squared())).sum();
+                let wall: Real = nb
+                    .walls(n)
+                    .iter()
+                    .map(|&b| psi[b as usize] * k.w_r2((xi - walls.positions[b as usize]).length_squared()))
+                    .sum();
+                *rho_i = m * sum + wall;
+            }
+        });
+        cx.attrs.put(rho_h, rho);
+    }
+}
+
+/// Reduces the state to what the guard and the time step control need: largest
+/// speed and acceleration, largest compression relative to each particle's own
+/// material, the first non-finite value of any state attribute, the first particle
+/// outside the domain.
+pub fn measure(model: &Model, attrs: &crate::attrs::Attrs) -> Measures {
+    let (pos, vel) = (attrs.get(attrs.handle::<Vec3>("x")), attrs.get(attrs.handle::<Vec3>("v")));
+    let (acc, rho) = (attrs.get(attrs.handle::<Vec3>("a")), attrs.get(attrs.handle::<Real>("rho")));
+    let materials = attrs.find::<u32>("material").map(|m| attrs.get(m));
+    let domain = model.domain;
+    let rho0 = |i: usize| model.materials.get(materials.map_or(0, |m| m[i] as usize)).rest_density;
+    let mut m = (0..pos.len())
+        .into_par_iter()
+        .with_min_len(4 * CHUNK)
+        .fold(Measures::default, |mut m, i| {
+            let (x, v, a) = (pos[i], vel[i], acc[i]);
+            let slot = i as u32;
+            if !(x.is_finite() && v.is_finite() && a.is_finite() && rho[i].is_finite()) {
+                m.non_finite.get_or_insert(slot);
+                return m;
+            }
+            let s2 = v.length_squared();
+            if s2 > m.max_speed2.0 {
+                m.max_speed2 = (s2, slot);
+            }
+            m.max_accel2 = m.max_accel2.max(a.length_squared());
+            let r0 = rho0(i);
+            let c = (rho[i] - r0) / r0;
+            if c > m.max_compression.0 {
+                m.max_compression = (c, slot);
+            }
+            m.sum_compression += c.max(0.0) as f64;
+            if !domain.contains(x) {
+                m.outside.get_or_insert(slot);
+            }
+            m
+        })
+        .reduce(Measures::default, Measures::merge);
+    // Module state (temperature, ...) is checked too: a NaN anywhere halts the scene.
+    for (spec, column) in attrs.iter() {
+        let core = matches!(spec.name, "x" | "v" | "a");
+        if spec.space == crate::attrs::PARTICLES
+            && spec.role == crate::attrs::Role::State
+            && !core
+            && let Some(i) = column.first_non_finite()
+        {
+            m.non_finite = Some(m.non_finite.map_or(i as u32, |j| j.min(i as u32)));
+        }
+    }
+    m
+}
+
+/// `v = (v + dt a) keep`.
+pub fn kick(attrs: &mut crate::attrs::Attrs, dt: Real, keep: Real) {
+    let (v, a) = (attrs.handle::<Vec3>("v"), attrs.handle::<Vec3>("a"));
+    let mut vel = attrs.take(v);
+    vel.par_iter_mut().zip(attrs.get(a).par_iter()).with_min_len(4096).for_each(|(v, &a)| {
+        *v = (*v + a * dt) * keep;
+    });
+    attrs.put(v, vel);
+}
+
+/// `x += dt v`, then the walls' non-penetration constraints.
+pub fn drift(model: &Model, attrs: &mut crate::attrs::Attrs, dt: Real) {
+    let (x, v) = (attrs.handle::<Vec3>("x"), attrs.handle::<Vec3>("v"));
+    let (mut pos, mut vel) = (attrs.take(x), attrs.take(v));
+    let walls = &model.wall_constraints;
+    pos.par_iter_mut().zip(vel.par_iter_mut()).with_min_len(4096).for_each(|(x, v)| {
+        *x += *v * dt;
+        for w in walls {
+            w.apply(x, v);
+        }
+    });
+    attrs.put(x, pos);
+    attrs.put(v, vel);
+}

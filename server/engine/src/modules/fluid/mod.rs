@@ -1,0 +1,208 @@
+//! The fluid module: fluid phases as materials, sampled from blocks; viscosity
+//! (Laplacian or Monaghan's artificial); XSPH; gravity; and, fused into the same
+//! neighbour loop when the scheme is WCSPH, the pressure force.
+//!
+//! - [`spec`]: the scene section (`fluids`).
+//! - [`viscosity`]: the pairwise viscous terms.
+//! - [`forces`]: the force pass; [`xsph`]: the XSPH passes.
+//! - [`presets`]: `dam_break`, `hydrostatic`.
+
+pub mod forces;
+pub mod presets;
+pub mod spec;
+pub mod viscosity;
+pub mod xsph;
+
+use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
+use crate::materials::MaterialKind;
+use crate::math::{Aabb, Real, Vec3};
+use crate::model::{BuildError, Model, ModelBuilder};
+use crate::modules::ModuleDef;
+use crate::sampling::fill_block;
+use crate::scene::tunable::Tunable;
+use crate::scene::validate::Checker;
+use crate::scene::{Method, Scene, Viscosity};
+use viscosity::ViscosityModel;
+
+/// The module's definition.
+pub static MODULE: ModuleDef = ModuleDef {
+    id: "fluid",
+    about: "SPH fluid phases: materials sampled from blocks, viscosity, XSPH, gravity.",
+    requires: &[],
+    has_section: |scene| !scene.fluids.is_empty(),
+    validate,
+    count: |scene| vec![(PARTICLES, crate::sampling::fluid_particle_count(scene))],
+    particles,
+    build,
+    retune,
+    tunables: TUNABLES,
+    cpu: &[("fluid.forces", &forces::Forces), ("fluid.xsph", &xsph::Xsph), ("fluid.xsph_kick", &xsph::XsphKick)],
+    presets: presets::PRESETS,
+    dt_limit,
+};
+
+/// The module's live settings.
+pub const TUNABLES: &[Tunable] = &[
+    Tunable {
+        path: "fluids[*].viscosity",
+        unit: "",
+        min: None,
+        max: None,
+        about: "A fluid's viscosity model: {\"model\": \"laplacian\", \"nu\": m^2/s} or {\"model\": \"artificial\", \"alpha\": 0 to 1}.",
+        module: "fluid",
+    },
+    Tunable {
+        path: "fluids[*].xsph",
+        unit: "",
+        min: Some(0.0),
+        max: Some(1.0),
+        about: "A fluid's XSPH velocity correction factor (0 switches it off).",
+        module: "fluid",
+    },
+];
+
+/// XSPH velocity corrections (m/s): allocated only while a fluid uses XSPH.
+pub static XSPH: AttrSpec = AttrSpec {
+    name: "xsph",
+    elem: Elem::Vec3,
+    unit: "m/s",
+    role: Role::Derived,
+    space: PARTICLES,
+    module: "fluid",
+    about: "XSPH velocity correction of the last evaluation.",
+};
+
+/// The module's constants, per material.
+#[derive(Debug, Clone)]
+pub struct FluidConsts {
+    /// Viscosity of each material.
+    pub viscosity: Vec<ViscosityModel>,
+    /// Viscosity between materials `a` and `b`, at `a * materials + b` (see [`ViscosityModel::mix`]).
+    pub pair_viscosity: Vec<ViscosityModel>,
+    /// XSPH factor epsilon of each material (0 = off).
+    pub xsph: Vec<Real>,
+    /// Mass ratios `m_a / m_b` at `a * materials + b`, for the multi-material pressure term.
+    pub mass_ratio: Vec<Real>,
+}
+
+impl FluidConsts {
+    fn new(scene: &Scene, model: &Model) -> Self {
+        let c = model.sound_speed.unwrap_or(0.0);
+        let h = 0.5 * model.kernel.support();
+        let viscosity: Vec<ViscosityModel> = scene
+            .fluids
+            .iter()
+            .zip(model.materials.iter())
+            .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, c, h))
+            .collect();
+        Self::assemble(scene, model.materials.iter().map(|m| m.mass).collect(), viscosity)
+    }
+
+    fn assemble(scene: &Scene, masses: Vec<Real>, viscosity: Vec<ViscosityModel>) -> Self {
+        let n = masses.len();
+        let mut pair_viscosity = Vec::with_capacity(n * n);
+        let mut mass_ratio = Vec::with_capacity(n * n);
+        for a in 0..n {
+            for b in 0..n {
+                pair_viscosity.push(if a == b { viscosity[a] } else { viscosity[a].mix(&viscosity[b]) });
+                mass_ratio.push(masses[a] / masses[b]);
+            }
+        }
+        Self { viscosity, pair_viscosity, xsph: scene.fluids.iter().map(|f| f.xsph).collect(), mass_ratio }
+    }
+
+    /// Whether any material uses XSPH.
+    pub fn uses_xsph(&self) -> bool {
+        self.xsph.iter().any(|&e| e > 0.0)
+    }
+}
+
+fn validate(scene: &Scene, c: &mut Checker) {
+    for (i, f) in scene.fluids.iter().enumerate() {
+        let p = format!("fluids[{i}]");
+        c.positive(&format!("{p}.rest_density"), f.rest_density);
+        match f.eos {
+            spec::EquationOfState::Tait { gamma } => c.within(&format!("{p}.eos.gamma"), gamma, 1.0, 10.0),
+            spec::EquationOfState::Linear { stiffness: Some(k) } => c.positive(&format!("{p}.eos.stiffness"), k),
+            spec::EquationOfState::Linear { stiffness: None } => {}
+        }
+        match f.viscosity {
+            Viscosity::None => {}
+            Viscosity::Laplacian { nu } => c.non_negative(&format!("{p}.viscosity.nu"), nu),
+            Viscosity::Artificial { alpha } => c.within(&format!("{p}.viscosity.alpha"), alpha, 0.0, 1.0),
+        }
+        c.within(&format!("{p}.xsph"), f.xsph, 0.0, 1.0);
+        if f.blocks.is_empty() {
+            c.fail(&format!("{p}.blocks"), "must hold at least one block".into());
+        }
+        for (j, b) in f.blocks.iter().enumerate() {
+            let bp = format!("{p}.blocks[{j}]");
+            c.ordered_box(&bp, b.min, b.max);
+            c.vector(&format!("{bp}.velocity"), &b.velocity);
+        }
+    }
+    if scene.fluids.len() > 256 {
+        c.fail("fluids", format!("at most 256 fluid phases, got {}", scene.fluids.len()));
+    }
+}
+
+/// Each fluid is a material; its blocks are filled on the particle lattice.
+fn particles(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    let d = scene.particle_spacing;
+    for (i, f) in scene.fluids.iter().enumerate() {
+        let material = b.material(&f.name, MaterialKind::Fluid, f.rest_density);
+        for (j, block) in f.blocks.iter().enumerate() {
+            let pts = fill_block(block, d);
+            if pts.is_empty() {
+                return Err(BuildError::EmptyBlock { path: format!("fluids[{i}].blocks[{j}]"), spacing: d });
+            }
+            let velocities = vec![Vec3::from(block.velocity); pts.len()];
+            b.particles(material, pts, velocities, Aabb::new(block.min.into(), block.max.into()));
+        }
+    }
+    Ok(())
+}
+
+fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    // Monaghan's artificial viscosity scales with the speed of sound.
+    let artificial = scene.fluids.iter().any(|f| matches!(f.viscosity, Viscosity::Artificial { .. }));
+    let c = if artificial || scene.solver.method == Method::Wcsph { b.sound_speed()? } else { 0.0 };
+    let h = 0.5 * b.kernel.support();
+    let viscosity: Vec<ViscosityModel> = scene
+        .fluids
+        .iter()
+        .zip(b.materials())
+        .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, c, h))
+        .collect();
+    let masses = b.materials().iter().map(|m| m.mass).collect();
+    let consts = FluidConsts::assemble(scene, masses, viscosity);
+    b.pass(if scene.solver.method == Method::Wcsph { &forces::WITH_PRESSURE } else { &forces::FORCES });
+    if consts.uses_xsph() {
+        b.zeros(&XSPH);
+        b.pass(&xsph::SUM);
+        b.pass(&xsph::KICK);
+    }
+    b.set_consts(consts);
+    Ok(())
+}
+
+/// Viscosity and XSPH may change; XSPH's buffer and passes come and go with it.
+fn retune(scene: &Scene, model: &mut Model) {
+    let consts = FluidConsts::new(scene, model);
+    model.toggle(consts.uses_xsph(), &XSPH, &[&xsph::SUM, &xsph::KICK]);
+    model.set_consts(consts);
+}
+
+/// The viscous limit `0.125 h^2 / nu` (Morris et al. 1997, eq. 20) for the most
+/// viscous material.
+fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
+    let c = model.consts::<FluidConsts>();
+    let nu = c
+        .viscosity
+        .iter()
+        .zip(model.materials.iter())
+        .map(|(v, m)| v.effective_nu(m.rest_density))
+        .fold(0.0, Real::max);
+    let h = 0.5 * model.kernel.support();
+    (nu > 0.0).then(|| ("viscosity", 0.125 * h * h / nu))
+}

@@ -1,0 +1,105 @@
+//! The fluid module's scene section: fluid phases (each a material), their
+//! equation of state, viscosity, XSPH, and the blocks they fill.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// One fluid phase: its material and where it starts.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Fluid {
+    /// Name of the phase.
+    #[serde(default = "default_fluid_name")]
+    pub name: String,
+    /// Rest density rho0 (kg/m^3). Water: 1000.
+    #[serde(default = "default_rest_density")]
+    pub rest_density: f32,
+    /// Equation of state relating density to pressure.
+    #[serde(default)]
+    pub eos: EquationOfState,
+    /// Viscosity model.
+    #[serde(default)]
+    pub viscosity: Viscosity,
+    /// XSPH velocity correction factor epsilon (Monaghan 1989), 0 to 1; 0 disables it.
+    #[serde(default)]
+    pub xsph: f32,
+    /// Boxes filled with particles on a cubic lattice of `particle_spacing`.
+    pub blocks: Vec<FluidBlock>,
+}
+
+fn default_fluid_name() -> String {
+    "water".into()
+}
+fn default_rest_density() -> f32 {
+    1000.0
+}
+
+/// A box of fluid particles.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FluidBlock {
+    /// Lower corner (m); the first particle centre sits half a spacing inside.
+    pub min: [f32; 3],
+    /// Upper corner (m).
+    pub max: [f32; 3],
+    /// Initial velocity (m/s).
+    #[serde(default)]
+    pub velocity: [f32; 3],
+}
+
+/// Equation of state p(rho). Pressure is clamped at zero (no tension), which
+/// avoids the tensile instability at free surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum EquationOfState {
+    /// Tait: `p = B ((rho/rho0)^gamma - 1)`, `B = rho0 c^2 / gamma`
+    /// (Monaghan 1994, J. Comput. Phys. 110, eq. 3.4; Becker & Teschner 2007, eq. 7).
+    Tait {
+        /// Exponent gamma (7 for water).
+        #[serde(default = "default_gamma")]
+        gamma: f32,
+    },
+    /// Linear "ideal gas" model `p = k (rho - rho0)` (Müller et al. 2003, eq. 12,
+    /// with the rest density offset of Desbrun & Gascuel). Default `k = c^2`.
+    Linear {
+        /// Stiffness k (m^2/s^2 = Pa m^3/kg). Default: the squared speed of sound.
+        #[serde(default)]
+        stiffness: Option<f32>,
+    },
+}
+
+fn default_gamma() -> f32 {
+    7.0
+}
+
+impl Default for EquationOfState {
+    fn default() -> Self {
+        Self::Tait { gamma: default_gamma() }
+    }
+}
+
+/// Viscosity model.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Viscosity {
+    /// No explicit viscosity.
+    None,
+    /// Physical viscosity through a kernel Laplacian (Müller et al. 2003, eq. 14;
+    /// with the cubic kernel, Morris et al. 1997, eq. 8). Momentum conserving.
+    Laplacian {
+        /// Kinematic viscosity nu (m^2/s). Water: 1e-6.
+        nu: f32,
+    },
+    /// Monaghan's artificial viscosity (Monaghan 1992, eq. 4.1), acting only on
+    /// approaching pairs; `nu_eff ~ alpha c h / 10`.
+    Artificial {
+        /// Dimensionless alpha, typically 0.01 to 0.1.
+        alpha: f32,
+    },
+}
+
+impl Default for Viscosity {
+    fn default() -> Self {
+        Self::Artificial { alpha: 0.02 }
+    }
+}

@@ -1,0 +1,122 @@
+//! The module registry: every physics module the engine knows, each declared once
+//! as a [`ModuleDef`] and listed in [`BUILTIN`]. A scene lists the modules it uses
+//! (`modules = ["fluid"]`); only those build anything.
+//!
+//! A module brings, through its definition: its scene section's validation (with
+//! field paths), the particle counts a server checks before building, its
+//! particles and materials, its attributes, passes, channels and constants (through
+//! the [`ModelBuilder`]), its CPU passes, its live-tunable settings, its presets and
+//! its time-step limit. `floe presets`, `floe validate`, live parameters and the
+//! viewer's sliders pick a module up from here with no edit elsewhere. Modules
+//! couple only through named attributes, never by calling each other.
+//!
+//! [`register`] adds a module at run time (a plugin or a test's own module); it is
+//! then known to every scene loaded afterwards in this process.
+
+pub mod fluid;
+
+use crate::cpu::CpuPass;
+use crate::math::Real;
+use crate::model::{BuildError, Model, ModelBuilder};
+use crate::scene::Scene;
+use crate::scene::tunable::Tunable;
+use crate::scene::validate::Checker;
+use std::sync::RwLock;
+
+/// A built-in scene.
+#[derive(Debug, Clone, Copy)]
+pub struct Preset {
+    /// Name, as `floe run NAME` and `CreateScene{preset}` take it.
+    pub name: &'static str,
+    /// What it shows.
+    pub about: &'static str,
+    /// The scene.
+    pub scene: fn() -> Scene,
+}
+
+/// A physics module.
+#[derive(Debug)]
+pub struct ModuleDef {
+    /// Name, as a scene's `modules` list has it.
+    pub id: &'static str,
+    /// What it simulates.
+    pub about: &'static str,
+    /// Modules a scene must also list to use this one.
+    pub requires: &'static [&'static str],
+    /// Whether the scene carries this module's section (then it must list the module,
+    /// and a listed module must have its section).
+    pub has_section: fn(&Scene) -> bool,
+    /// Checks the module's section, naming bad fields by path.
+    pub validate: fn(&Scene, &mut Checker),
+    /// Elements the module adds to each space, counted without building (the server's
+    /// particle limit refuses a scene before it allocates anything).
+    pub count: fn(&Scene) -> Vec<(&'static str, u64)>,
+    /// Adds the module's materials and particles (run for every module before any
+    /// [`ModuleDef::build`], so the core knows every particle first).
+    pub particles: fn(&Scene, &mut ModelBuilder) -> Result<(), BuildError>,
+    /// Adds the module's attributes, passes, channels and constants.
+    pub build: fn(&Scene, &mut ModelBuilder) -> Result<(), BuildError>,
+    /// Takes new tunable settings from the scene.
+    pub retune: fn(&Scene, &mut Model),
+    /// The settings that may change while a scene exists.
+    pub tunables: &'static [Tunable],
+    /// The module's CPU passes, by pass name.
+    pub cpu: &'static [(&'static str, &'static dyn CpuPass)],
+    /// Built-in scenes.
+    pub presets: &'static [Preset],
+    /// The largest stable time step the module allows (s), if it limits it, and the
+    /// limit's name for messages.
+    pub dt_limit: fn(&Model) -> Option<(&'static str, Real)>,
+}
+
+/// The modules shipped with the engine, in the order their passes run within a stage.
+pub static BUILTIN: &[&ModuleDef] = &[&fluid::MODULE];
+
+static EXTRA: RwLock<Vec<&'static ModuleDef>> = RwLock::new(Vec::new());
+
+/// Adds a module to the registry (after the built-in ones); registering one twice
+/// changes nothing.
+pub fn register(module: &'static ModuleDef) {
+    let mut extra = EXTRA.write().expect("registry lock");
+    if !BUILTIN.iter().chain(extra.iter()).any(|m| m.id == module.id) {
+        extra.push(module);
+    }
+}
+
+/// Every module, built-in first.
+pub fn all() -> Vec<&'static ModuleDef> {
+    BUILTIN.iter().copied().chain(EXTRA.read().expect("registry lock").iter().copied()).collect()
+}
+
+/// The module called `id`.
+pub fn find(id: &str) -> Option<&'static ModuleDef> {
+    all().into_iter().find(|m| m.id == id)
+}
+
+/// The modules `scene` lists, in registry order (unknown names are validation errors).
+pub fn of(scene: &Scene) -> Vec<&'static ModuleDef> {
+    all().into_iter().filter(|m| scene.modules.iter().any(|id| id == m.id)).collect()
+}
+
+/// Elements `scene`'s modules will create, per space, counted without building them.
+pub fn counts(scene: &Scene) -> Vec<(&'static str, u64)> {
+    let mut out: Vec<(&'static str, u64)> = Vec::new();
+    for (space, n) in of(scene).iter().flat_map(|m| (m.count)(scene)) {
+        match out.iter_mut().find(|(s, _)| *s == space) {
+            Some(e) => e.1 = e.1.saturating_add(n),
+            None => out.push((space, n)),
+        }
+    }
+    out
+}
+
+/// Every preset of every module.
+pub fn presets() -> Vec<Preset> {
+    all().iter().flat_map(|m| m.presets.iter().copied()).collect()
+}
+
+/// Every tunable setting of the core and of `scene`'s modules.
+pub fn tunables(scene: &Scene) -> Vec<Tunable> {
+    let modules = of(scene);
+    crate::scene::tunable::CORE.iter().chain(modules.iter().flat_map(|m| m.tunables)).copied().collect()
+}

@@ -1,0 +1,155 @@
+//! Weakly compressible SPH (Monaghan 1994, J. Comput. Phys. 110; Becker & Teschner
+//! 2007, "Weakly compressible SPH for free surface flows", SCA): pressure from an
+//! equation of state of the summation density, explicit steps limited by the speed
+//! of sound.
+//!
+//! A step: sort, density, pre-force (`wcsph.eos`, `wcsph.wall_pressure`), force
+//! (the fluid module's pass with the pressure term fused in), measure, then the
+//! integrator:
+//! - symplectic Euler: evaluate `a(x)`, then `v += dt a`, `x += dt v`;
+//! - leap-frog kick-drift-kick (Verlet 1967; Monaghan 2005, Rep. Prog. Phys. 68,
+//!   section 6): `v += dt/2 a`, `x += dt v`, evaluate, `v += dt/2 a`, reusing the
+//!   previous step's measures to choose dt.
+//!
+//! The kick-stage passes (XSPH) follow the kick after an evaluation; damping
+//! multiplies velocities by `exp(-rate dt)` until its end time.
+
+pub mod cpu;
+pub mod eos;
+
+use crate::attrs::{AttrSpec, Elem, PARTICLES, Role, WALLS};
+use crate::clock::Clock;
+use crate::guard::Halted;
+use crate::math::Real;
+use crate::model::{BuildError, Model, ModelBuilder};
+use crate::plan::{PassSpec, Stage};
+use crate::scene::{Integrator, Scene};
+use crate::schemes::{SchemeDef, Stages, StepReport};
+use eos::Eos;
+
+/// The scheme's definition.
+pub static SCHEME: SchemeDef = SchemeDef {
+    id: "wcsph",
+    about: "Weakly compressible SPH: equation of state, explicit steps at the speed of sound.",
+    build,
+    cpu: &[("wcsph.eos", &cpu::EosPass), ("wcsph.wall_pressure", &cpu::WallPressure)],
+    step,
+    signal_speed: |model| model.sound_speed.unwrap_or(0.0),
+};
+
+/// `p / rho^2` of each particle (m^5/(kg s^2)), the pressure force's term.
+pub static PTERM: AttrSpec = AttrSpec {
+    name: "pterm",
+    elem: Elem::F32,
+    unit: "m^5/(kg s^2)",
+    role: Role::Derived,
+    space: PARTICLES,
+    module: "wcsph",
+    about: "Pressure over density squared.",
+};
+
+/// Pressure of each wall particle (Pa), extrapolated from the fluid.
+pub static WALL_P: AttrSpec = AttrSpec {
+    name: "wall_p",
+    elem: Elem::F32,
+    unit: "Pa",
+    role: Role::Derived,
+    space: WALLS,
+    module: "wcsph",
+    about: "Wall particle pressure (Adami et al. 2012).",
+};
+
+/// Pressure from density.
+pub static EOS: PassSpec = PassSpec {
+    name: "wcsph.eos",
+    module: "wcsph",
+    stage: Stage::PreForce,
+    reads: &["rho"],
+    writes: &["pterm"],
+    accumulates: &[],
+    tolerance: 1e-4,
+};
+
+/// Wall pressures.
+pub static WALL_PRESSURE: PassSpec = PassSpec {
+    name: "wcsph.wall_pressure",
+    module: "wcsph",
+    stage: Stage::PreForce,
+    reads: &["x", "rho", "pterm"],
+    writes: &["wall_p"],
+    accumulates: &[],
+    tolerance: 1e-4,
+};
+
+/// The scheme's constants: each material's equation of state.
+#[derive(Debug, Clone)]
+pub struct WcsphConsts {
+    /// Equation of state of each material.
+    pub eos: Vec<Eos>,
+}
+
+fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    let c = b.sound_speed()?;
+    let eos = scene.fluids.iter().zip(b.materials()).map(|(f, m)| Eos::new(f.eos, m.rest_density, c)).collect();
+    b.set_consts(WcsphConsts { eos });
+    b.zeros(&PTERM);
+    b.zeros(&WALL_P);
+    b.pass(&EOS);
+    b.pass(&WALL_PRESSURE);
+    b.channel(crate::channels::PRESSURE);
+    Ok(())
+}
+
+/// The stages of an evaluation.
+const EVALUATE: [Stage; 4] = [Stage::Sort, Stage::Density, Stage::PreForce, Stage::Force];
+
+/// One step with the model's integrator.
+fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
+    let model: &Model = s.model();
+    let (integrator, n) = (model.integrator, model.particle_count());
+    let (dt, m) = match integrator {
+        Integrator::SymplecticEuler => {
+            let m = clock.evaluate(s, &EVALUATE)?;
+            let dt = clock.dt(s.model(), &m)?;
+            let keep = clock.keep(s.model(), dt);
+            s.kick(dt, keep);
+            s.run(Stage::Kick, dt);
+            s.drift(dt);
+            s.run(Stage::Drift, dt);
+            (dt, m)
+        }
+        Integrator::Leapfrog => {
+            let m0 = match clock.measures() {
+                Some(m) => m,
+                None => clock.evaluate(s, &EVALUATE)?,
+            };
+            let dt = clock.dt(s.model(), &m0)?;
+            let half: Real = 0.5 * dt;
+            let keep = clock.keep(s.model(), half);
+            s.kick(half, keep);
+            s.drift(dt);
+            s.run(Stage::Drift, dt);
+            let m = clock.evaluate(s, &EVALUATE)?;
+            s.kick(half, keep);
+            s.run(Stage::Kick, dt);
+            (dt, m)
+        }
+    };
+    s.run(Stage::PostStep, dt);
+    s.end_step();
+    Ok(clock.advance(dt, &m, n, Vec::new()))
+}
+
+/// Pressures (Pa) of particles with densities `columns[0]` (and materials
+/// `columns[1]` in scenes with several): the `pressure` channel.
+pub fn pressures(model: &Model, columns: &[crate::attrs::Column]) -> Vec<f32> {
+    use crate::attrs::Column;
+    let eos = &model.consts::<WcsphConsts>().eos;
+    match columns {
+        [Column::F32(rho)] => rho.iter().map(|&r| eos[0].pressure(r)).collect(),
+        [Column::F32(rho), Column::U32(mat)] => {
+            rho.iter().zip(mat).map(|(&r, &m)| eos[m as usize].pressure(r)).collect()
+        }
+        _ => panic!("pressures: densities (and materials) expected"),
+    }
+}

@@ -1,0 +1,11 @@
+//! The GPU halves of the engine's modules, in folders named as the engine's.
+
+pub mod fluid;
+
+use crate::pass::{GpuPass, UniformSource};
+
+/// Every module's GPU passes.
+pub static PASSES: &[&GpuPass] = &[&fluid::FORCES_WITH_PRESSURE, &fluid::FORCES, &fluid::XSPH, &fluid::XSPH_KICK];
+
+/// Every module's uniform.
+pub static UNIFORMS: &[(&str, UniformSource)] = &[("fluid", fluid::uniform)];

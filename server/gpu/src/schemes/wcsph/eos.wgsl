@@ -1,0 +1,38 @@
+// Pressure from density through each material's equation of state, stored as
+// `p / rho^2` (floe-engine `schemes::wcsph::cpu::EosPass` and `Eos::pressure`):
+// Tait `p = b ((rho/rho0)^gamma - 1)` or linear `p = k (rho - rho0)`, clamped at 0.
+
+struct Wcsph {
+    // Per material: kind (0 Tait, 1 linear), b or k, gamma, rho0.
+    eos: array<vec4<f32>, 16>,
+}
+
+@group(0) @binding(1) var<uniform> wcsph: Wcsph;
+@group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read> rho: array<f32>;
+@group(0) @binding(4) var<storage, read_write> pterm: array<f32>;
+
+fn pressure(e: vec4<f32>, r: f32) -> f32 {
+    if (e.x == 0.0) {
+        let ratio = r / e.w;
+        var p: f32;
+        if (e.z == 7.0) {
+            let r2 = ratio * ratio;
+            p = r2 * r2 * r2 * ratio;
+        } else {
+            p = pow(ratio, e.z);
+        }
+        return max(e.y * (p - 1.0), 0.0);
+    }
+    return max(e.y * (r - e.w), 0.0);
+}
+
+@compute @workgroup_size(WG)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = thread_index(gid, groups);
+    if (i >= params.n) {
+        return;
+    }
+    let r = rho[i];
+    pterm[i] = pressure(wcsph.eos[material_of(pos[i])], r) / (r * r);
+}

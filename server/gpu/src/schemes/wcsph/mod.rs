@@ -1,0 +1,55 @@
+//! The WCSPH scheme on the GPU: the equation of state and the walls' pressure, and
+//! the uniform `wcsph` (per material: the equation of state).
+
+use crate::layout::MAX_MATERIALS;
+use crate::pass::{GpuPass, always};
+use crate::passes::particle_kernel;
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
+use bytemuck::{Pod, Zeroable};
+use floe_engine::attrs::{PARTICLES, WALLS};
+use floe_engine::model::Model;
+use floe_engine::schemes::wcsph::WcsphConsts;
+use floe_engine::schemes::wcsph::eos::Eos;
+
+/// `p / rho^2` from density.
+pub static EOS: GpuPass = GpuPass {
+    name: "wcsph.eos",
+    source: particle_kernel!("eos.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "wcsph"), (R, "x"), (R, "rho"), (W, "pterm")],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The walls' pressure.
+pub static WALL_PRESSURE: GpuPass = GpuPass {
+    name: "wcsph.wall_pressure",
+    source: particle_kernel!("wall_pressure.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (R, "x"), (R, "starts"), (R, "walls"), (R, "rho"), (R, "pterm"), (W, "wall_p")],
+    space: WALLS,
+    when: always,
+};
+
+/// The `wcsph` uniform (`Wcsph` in eos.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct WcsphParams {
+    eos: [[f32; 4]; MAX_MATERIALS],
+}
+
+/// The uniform's bytes, when the scene is stepped by WCSPH.
+pub fn uniform(model: &Model) -> Option<Vec<u8>> {
+    if model.scheme.id != "wcsph" {
+        return None;
+    }
+    let c: &WcsphConsts = model.consts();
+    let mut p = WcsphParams::zeroed();
+    for (slot, e) in p.eos.iter_mut().zip(&c.eos) {
+        *slot = match *e {
+            Eos::Tait { rho0, b, gamma } => [0.0, b, gamma, rho0],
+            Eos::Linear { rho0, k } => [1.0, k, 1.0, rho0],
+        };
+    }
+    Some(bytemuck::bytes_of(&p).to_vec())
+}
