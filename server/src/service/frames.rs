@@ -69,12 +69,14 @@ fn input<'a>(shared: &Shared, p: &'a Particles, o: &FrameOptions) -> FrameInput<
     FrameInput { positions: &p.positions, grid: None, set: o.set, channels }
 }
 
-/// Encodes published state `s` with `o`'s channels and decimation.
+/// Encodes published state `s` with `o`'s set, channels and decimation (`s` holds
+/// the set: a subscription waits for a state read after it subscribed).
 fn encode(encoder: &mut Encoder, shared: &Shared, s: &Published, o: &FrameOptions) -> Result<Vec<u8>, EncodeError> {
+    let particles = s.particles(o.set).expect("published states hold the subscribers' sets");
     if o.decimation > 1 {
-        encoder.encode(s.step, s.time, &input(shared, &s.particles.every(o.decimation as usize), o))
+        encoder.encode(s.step, s.time, &input(shared, &particles.every(o.decimation as usize), o))
     } else {
-        encoder.encode(s.step, s.time, &input(shared, &s.particles, o))
+        encoder.encode(s.step, s.time, &input(shared, particles, o))
     }
 }
 
@@ -140,7 +142,7 @@ impl Subscription {
         let delivered = Arc::new(std::sync::atomic::AtomicU64::new(last_sequence.unwrap_or(0)));
         scene.shared.track(&delivered);
         let grid = position_grid(&config(&scene.shared, &options));
-        scene.subscribe(&options.channels, grid);
+        scene.subscribe(options.set, &options.channels, grid);
         Ok(Self { scene, cache, rx, options, grid, own, last_sequence, delivered, last_sent: None })
     }
 
@@ -156,7 +158,11 @@ impl Subscription {
             }
             let fresh = self.rx.borrow_and_update().clone();
             match fresh {
-                Some(s) if self.last_sequence.is_none_or(|l| s.sequence > l) => return Some(self.encode(s).await),
+                Some(s)
+                    if self.last_sequence.is_none_or(|l| s.sequence > l) && s.particles(self.options.set).is_some() =>
+                {
+                    return Some(self.encode(s).await);
+                }
                 _ => {
                     if self.rx.changed().await.is_err() {
                         return None;
@@ -201,6 +207,6 @@ impl Subscription {
 
 impl Drop for Subscription {
     fn drop(&mut self) {
-        self.scene.shared.unsubscribe(&self.options.channels, self.grid);
+        self.scene.shared.unsubscribe(self.options.set, &self.options.channels, self.grid);
     }
 }

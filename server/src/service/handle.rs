@@ -138,8 +138,8 @@ impl SceneHandle {
 
     /// Registers a frame subscriber wanting `channels` on `grid` and has the
     /// worker publish a fresh snapshot for it. Undo with [`Shared::unsubscribe`].
-    pub fn subscribe(&self, channels: &[&'static str], grid: PositionGrid) {
-        self.shared.subscribe(channels, grid);
+    pub fn subscribe(&self, set: u8, channels: &[&'static str], grid: PositionGrid) {
+        self.shared.subscribe(set, channels, grid);
         let _ = self.send(Command::Publish);
     }
 

@@ -50,8 +50,16 @@ pub struct Published {
     pub step: u64,
     /// Simulated time (s).
     pub time: f64,
-    /// Positions and the channels subscribers asked for.
-    pub particles: Particles,
+    /// Per particle set with subscribers (set 0 always): its index, positions and the
+    /// channels they asked for.
+    pub sets: Vec<(u8, Particles)>,
+}
+
+impl Published {
+    /// The particles of set `set`, if they were read for this state.
+    pub fn particles(&self, set: u8) -> Option<&Particles> {
+        self.sets.iter().find(|(s, _)| *s == set).map(|(_, p)| p)
+    }
 }
 
 /// Something that happened to a scene.
@@ -97,7 +105,8 @@ pub struct Shared {
     /// Open frame streams, and how many of them asked for each channel and
     /// each position grid.
     pub subscribers: AtomicU32,
-    wanted: Mutex<(Tally<&'static str>, Tally<PositionGrid>)>,
+    /// Per (set, channel) and per (set, position grid): how many subscribers want it.
+    wanted: Mutex<Wants>,
     /// Frames skipped by subscribers that went on to a later frame.
     dropped_frames: AtomicU64,
     /// Per live subscription, the sequence of the last snapshot it received (or
@@ -146,21 +155,21 @@ impl Shared {
         }
     }
 
-    /// Registers a subscriber wanting `channels` with positions quantised to
-    /// `grid`; undone by [`Shared::unsubscribe`].
-    pub fn subscribe(&self, channels: &[&'static str], grid: PositionGrid) {
+    /// Registers a subscriber wanting `channels` of particle set `set` with positions
+    /// quantised to `grid`; undone by [`Shared::unsubscribe`].
+    pub fn subscribe(&self, set: u8, channels: &[&'static str], grid: PositionGrid) {
         self.subscribers.fetch_add(1, Ordering::Relaxed);
         let mut wanted = self.wanted.lock().expect("lock");
-        channels.iter().for_each(|&c| wanted.0.add(c));
-        wanted.1.add(grid);
+        channels.iter().for_each(|&c| wanted.0.add((set, c)));
+        wanted.1.add((set, grid));
     }
 
-    /// Removes a subscriber registered with `channels` and `grid`.
-    pub fn unsubscribe(&self, channels: &[&'static str], grid: PositionGrid) {
+    /// Removes a subscriber registered with `set`, `channels` and `grid`.
+    pub fn unsubscribe(&self, set: u8, channels: &[&'static str], grid: PositionGrid) {
         self.subscribers.fetch_sub(1, Ordering::Relaxed);
         let mut wanted = self.wanted.lock().expect("lock");
-        channels.iter().for_each(|&c| wanted.0.remove(c));
-        wanted.1.remove(grid);
+        channels.iter().for_each(|&c| wanted.0.remove((set, c)));
+        wanted.1.remove((set, grid));
     }
 
     /// Tracks a subscription's last received sequence (see [`Shared::dropped_frames`]).
@@ -190,13 +199,26 @@ impl Shared {
         self.dropped_frames.load(Ordering::Relaxed) + pending
     }
 
-    /// The union of the channels subscribers want (the only ones read back),
-    /// and the position grid when every subscriber quantises to the same one
-    /// (positions are then quantised where they live: on a GPU, on the device).
-    pub(super) fn wanted(&self) -> (Vec<&'static str>, Option<PositionGrid>) {
+    /// Per particle set someone subscribes to (set 0 always): the union of the
+    /// channels its subscribers want (the only ones read back), and the position
+    /// grid when every subscriber of the set quantises to the same one (positions are
+    /// then quantised where they live: on a GPU, on the device).
+    pub(super) fn wanted(&self) -> Vec<Wanted> {
         let wanted = self.wanted.lock().expect("lock");
-        let grids: Vec<PositionGrid> = wanted.1.values().collect();
-        (wanted.0.values().collect(), (grids.len() == 1).then(|| grids[0]))
+        let mut sets: Vec<u8> = wanted.1.values().map(|(s, _)| s).collect();
+        sets.push(0);
+        sets.sort_unstable();
+        sets.dedup();
+        sets.into_iter()
+            .map(|set| {
+                let grids: Vec<PositionGrid> = wanted.1.values().filter(|(s, _)| *s == set).map(|(_, g)| g).collect();
+                Wanted {
+                    set,
+                    channels: wanted.0.values().filter(|(s, _)| *s == set).map(|(_, c)| c).collect(),
+                    grid: (grids.len() == 1).then(|| grids[0]),
+                }
+            })
+            .collect()
     }
 
     /// The resolved scene as JSON, live changes included.
@@ -208,6 +230,20 @@ impl Shared {
     pub fn status(&self) -> Status {
         self.status.lock().expect("lock").clone()
     }
+}
+
+/// Subscribers per (set, channel) and per (set, position grid).
+type Wants = (Tally<(u8, &'static str)>, Tally<(u8, PositionGrid)>);
+
+/// What the subscribers of one particle set want read back.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Wanted {
+    /// The set's index.
+    pub set: u8,
+    /// The channels any of its subscribers asked for.
+    pub channels: Vec<&'static str>,
+    /// The position grid, when all its subscribers share one.
+    pub grid: Option<PositionGrid>,
 }
 
 /// A channel of a scene: what the engine declares, and its tag on the wire.

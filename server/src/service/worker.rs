@@ -4,7 +4,6 @@
 
 use super::handle::{Command, CommandError};
 use super::shared::{Event, Published, Shared, State, Status};
-use floe_engine::channels::PARTICLE_SET;
 use floe_engine::simulation::BackendFactory;
 use floe_engine::{Halted, Simulation};
 use std::sync::Arc;
@@ -252,15 +251,25 @@ impl Worker {
             return;
         }
         let wanted = self.shared.wanted();
-        let read = self.guarded(|sim| match wanted {
-            (channels, Some(grid)) => sim.read_on_grid(&PARTICLE_SET, &channels, &grid),
-            (channels, None) => sim.read(&channels),
+        let sets = self.sim.sets();
+        let read = self.guarded(|sim| {
+            wanted
+                .iter()
+                .filter_map(|w| {
+                    let (spec, _) = sets.get(usize::from(w.set))?;
+                    let p = match w.grid {
+                        Some(grid) => sim.read_on_grid(spec, &w.channels, &grid),
+                        None => sim.read_set(spec, &w.channels),
+                    };
+                    Some((w.set, p))
+                })
+                .collect()
         });
-        let particles = match read {
+        let sets = match read {
             Ok(p) => p,
             Err(h) => return self.report_halt(h),
         };
-        let snapshot = Published { sequence: self.sequence, step: self.sim.steps(), time: self.sim.time(), particles };
+        let snapshot = Published { sequence: self.sequence, step: self.sim.steps(), time: self.sim.time(), sets };
         self.sequence += 1;
         self.shared.published.fetch_add(1, Ordering::Relaxed);
         self.shared.published_state.send_replace(Some(Arc::new(snapshot)));

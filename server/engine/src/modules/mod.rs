@@ -44,8 +44,8 @@ pub struct ModuleDef {
     /// Modules a scene must also list to use this one.
     pub requires: &'static [&'static str],
     /// Whether the scene carries this module's section (then it must list the module,
-    /// and a listed module must have its section).
-    pub has_section: fn(&Scene) -> bool,
+    /// and a listed module must have its section); `None` for a module without one.
+    pub has_section: Option<fn(&Scene) -> bool>,
     /// Checks the module's section, naming bad fields by path.
     pub validate: fn(&Scene, &mut Checker),
     /// Elements the module adds to each space, counted without building (the server's

@@ -139,8 +139,9 @@ fn check_modules(c: &mut Checker, scene: &Scene) {
         }
     }
     for def in crate::modules::all() {
+        let Some(has_section) = def.has_section else { continue };
         let listed = scene.modules.iter().any(|m| m == def.id);
-        match (listed, (def.has_section)(scene)) {
+        match (listed, has_section(scene)) {
             (true, false) => c.fail("modules", format!("lists {:?} but the scene has no section for it", def.id)),
             (false, true) => c.fail("modules", format!("must list {:?}, since the scene has its section", def.id)),
             _ => {}

@@ -29,7 +29,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     id: "fluid",
     about: "SPH fluid phases: materials sampled from blocks, viscosity, XSPH, gravity.",
     requires: &[],
-    has_section: |scene| !scene.fluids.is_empty(),
+    has_section: Some(|scene| !scene.fluids.is_empty()),
     validate,
     count: |scene| vec![(PARTICLES, crate::sampling::fluid_particle_count(scene))],
     particles,

@@ -1,0 +1,156 @@
+//! Modules are additive, and absent ones cost nothing:
+//! - a module that lives in these tests (`tracer/`), registered with one line, adds
+//!   attributes, passes, channels and a second particle set, and its channels
+//!   stream to a client as any other;
+//! - for every preset on both backends, nothing is allocated or run for a module
+//!   the scene does not use, and the memory a module's attribute adds is exactly
+//!   what the attribute declares.
+
+mod common;
+mod tracer;
+
+use floe_client::{Client, FrameRequest};
+use floe_engine::Simulation;
+use floe_engine::backend::Backend;
+use floe_engine::model::Model;
+use floe_engine::scene::load::from_preset;
+use floe_engine::simulation::BackendFactory;
+use floe_proto::Values;
+
+/// The dam break at a coarse spacing, with the tracer module listed.
+fn traced() -> Vec<String> {
+    vec!["particle_spacing=0.05".into(), "modules=[\"fluid\",\"tracer\"]".into()]
+}
+
+#[tokio::test]
+async fn a_module_of_the_tests_adds_attributes_passes_a_set_and_streams_its_channels() {
+    floe_engine::modules::register(&tracer::MODULE);
+    let server = common::TestServer::start().await;
+    let mut floe = Client::connect(&server.grpc_url()).await.unwrap();
+    let o: Vec<String> = traced();
+    let refs: Vec<&str> = o.iter().map(String::as_str).collect();
+    let info = floe.create_preset("dam_break", &refs).await.unwrap();
+    // The scene lists the module's channels, under per-scene tags, and its set.
+    let age = info.channels.iter().find(|c| c.name == "age").expect("the age channel");
+    assert_eq!((age.unit.as_str(), age.components, age.module.as_str()), ("s", 1, "tracer"));
+    assert!(age.tag >= 64, "a channel without a row in channels.json gets a per-scene tag");
+    let sets: Vec<(&str, u64, u32)> = info.sets.iter().map(|s| (s.name.as_str(), s.count, s.index)).collect();
+    assert_eq!(sets, [("particles", 1000, 0), ("probes", 4, 1)]);
+    let stepped = floe.step(info.scene_id, 25).await.unwrap();
+    let t = stepped.sim_time as f32;
+
+    // Every particle's age is the simulated time (f32 sums of dt).
+    let request = FrameRequest { channels: vec!["age".into()], ..FrameRequest::default() };
+    let mut frames = floe.frames(info.scene_id, request).await.unwrap();
+    let frame = frames.next().await.unwrap().unwrap();
+    let particles = frames.particles(frame);
+    let ages = particles.channel("age").and_then(Values::as_scalars).unwrap();
+    assert_eq!(ages.len(), 1000);
+    assert!(ages.iter().all(|a| (a - t).abs() <= 1e-4 * t), "ages {:?} at t = {t}", &ages[..3]);
+
+    // The probes stream as a set of their own.
+    let request = FrameRequest { channels: vec!["probe_age".into()], set: "probes".into(), ..FrameRequest::default() };
+    let mut probes = floe.frames(info.scene_id, request).await.unwrap();
+    let frame = probes.next().await.unwrap().unwrap();
+    assert_eq!(frame.header.set, 1);
+    let p = probes.particles(frame);
+    assert_eq!((p.set.as_str(), p.positions.len()), ("probes", 4));
+    assert!((p.positions[3][0] - 0.3).abs() < 1e-4);
+    let mean = p.channel("probe_age").and_then(Values::as_scalars).unwrap();
+    assert!(mean.iter().all(|a| (a - t).abs() <= 1e-4 * t), "probe ages {mean:?} at t = {t}");
+    server.shutdown().await;
+}
+
+#[test]
+fn a_gpu_refuses_a_module_pass_it_lacks_by_name() {
+    floe_engine::modules::register(&tracer::MODULE);
+    let Some(gpu) = gpu() else { return };
+    let model = Model::build(&from_preset("dam_break", &traced()).unwrap()).unwrap();
+    let e = floe_gpu::GpuBackend::new(gpu, model).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "backend: pass tracer.age (module tracer) has no GPU implementation; run this scene on the CPU backend"
+    );
+}
+
+/// A GPU for these tests, or `None` (saying why) where there is none.
+fn gpu() -> Option<&'static floe_gpu::GpuContext> {
+    static GPU: std::sync::OnceLock<Result<floe_gpu::GpuContext, String>> = std::sync::OnceLock::new();
+    match GPU.get_or_init(|| floe_gpu::GpuContext::new(floe_gpu::Adapters::Any, false).map_err(|e| e.to_string())) {
+        Ok(g) => Some(g),
+        Err(e) if std::env::var_os("FLOE_REQUIRE_GPU").is_some() => panic!("FLOE_REQUIRE_GPU is set: {e}"),
+        Err(e) => {
+            eprintln!("SKIPPED: no GPU ({e})");
+            None
+        }
+    }
+}
+
+/// The backends to check: the CPU's, and the GPU's where there is one.
+fn factories() -> Vec<(&'static str, Box<BackendFactory>)> {
+    let mut out: Vec<(&'static str, Box<BackendFactory>)> =
+        vec![("cpu", Box::new(floe_engine::simulation::cpu_backend))];
+    if let Some(gpu) = gpu() {
+        let make = move |model| floe_gpu::GpuBackend::new(gpu, model).map(|b| Box::new(b) as Box<dyn Backend>);
+        out.push(("gpu", Box::new(make)));
+    }
+    out
+}
+
+#[test]
+fn an_absent_module_allocates_and_runs_nothing() {
+    floe_engine::modules::register(&tracer::MODULE);
+    for (backend, make) in factories() {
+        for preset in floe_engine::scene::presets::names() {
+            let mut sim =
+                Simulation::new(from_preset(preset, &["particle_spacing=0.05".into()]).unwrap(), &make).unwrap();
+            for _ in 0..3 {
+                sim.step().unwrap();
+            }
+            let scene = sim.scene().modules.clone();
+            let present = |m: &str| m == "core" || m == sim.model().scheme.id || scene.iter().any(|s| s == m);
+            for a in sim.backend().allocations() {
+                assert!(present(a.module), "{backend} {preset}: {} allocated for absent module {}", a.name, a.module);
+            }
+            for pass in sim.backend().passes_run() {
+                let module = pass.split('.').next().unwrap();
+                assert!(present(module), "{backend} {preset}: pass {pass} of an absent module ran");
+            }
+            assert!(!sim.backend().passes_run().is_empty());
+        }
+    }
+}
+
+/// Bytes a backend holds for a scene, in all.
+fn total(b: &dyn Backend) -> u64 {
+    b.allocations().iter().map(|a| a.bytes).sum()
+}
+
+#[test]
+fn what_a_module_adds_is_what_its_attributes_declare() {
+    floe_engine::modules::register(&tracer::MODULE);
+    // The tracer module (CPU): the age of every particle and four probes.
+    let without = Simulation::new_cpu(from_preset("dam_break", &["particle_spacing=0.05".into()]).unwrap()).unwrap();
+    let with = Simulation::new_cpu(from_preset("dam_break", &traced()).unwrap()).unwrap();
+    let added: Vec<_> = with.backend().allocations().into_iter().filter(|a| a.module == "tracer").collect();
+    let declared: u64 = with
+        .model()
+        .layout
+        .specs()
+        .filter(|s| s.module == "tracer")
+        .map(|s| s.elem.cpu_bytes() as u64 * with.model().layout.count(s.space) as u64)
+        .sum();
+    assert_eq!(added.iter().map(|a| a.bytes).sum::<u64>(), declared);
+    assert_eq!(declared, 4 * 1000 + 12 * 4 + 4 * 4);
+    assert_eq!(total(with.backend()) - total(without.backend()), declared);
+    // XSPH, on both backends: its corrections are the fluid's optional attribute.
+    for (backend, make) in factories() {
+        let scene =
+            |xsph: &str| from_preset("dam_break", &["particle_spacing=0.05".into(), format!("fluids[0].xsph={xsph}")]);
+        let off = Simulation::new(scene("0").unwrap(), &make).unwrap();
+        let on = Simulation::new(scene("0.1").unwrap(), &make).unwrap();
+        let n = on.particle_count() as u64;
+        let per = if backend == "gpu" { 16 } else { 12 };
+        assert_eq!(total(on.backend()) - total(off.backend()), per * n, "{backend}: XSPH adds its vectors only");
+    }
+}
