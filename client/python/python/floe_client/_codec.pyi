@@ -1,0 +1,19 @@
+# Types of the extension module built from client/python/src (floe-proto's decoder).
+from typing import Any
+
+import numpy as np
+
+FORMAT_VERSION: int
+
+class DecodeError(ValueError): ...
+
+class Decoder:
+    def __init__(self, max_particles: int | None = None, max_frame_bytes: int | None = None) -> None: ...
+    def decode(
+        self, data: bytes
+    ) -> tuple[dict[str, Any], list[tuple[str, str, np.ndarray, tuple[float, ...]]]]: ...
+    def reset(self) -> None: ...
+    @property
+    def last_sequence(self) -> int | None: ...
+    @property
+    def held_sequence(self) -> int | None: ...
