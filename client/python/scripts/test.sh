@@ -9,7 +9,6 @@ venv=target/python-venv
 if [ ! -x "$venv/bin/python" ]; then
   python3 -m venv "$venv"
 fi
-"$venv/bin/python" -m pip install -q --upgrade pip
-"$venv/bin/python" -m pip install -q "./client/python[test]" -C build-args="--profile dev"
+"$venv/bin/python" -m pip install -q "./client/python[test]" --config-settings=build-args="--profile dev"
 # lavapipe is installed (scripts/install-deps.sh): the GPU round trip must run, not skip.
 FLOE_REQUIRE_GPU=1 "$venv/bin/python" -m pytest -q client/python/tests "$@"
