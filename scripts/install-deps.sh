@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # System packages the tests need, installed only when missing: Chromium (the
 # viewer test; Debian's build, no browser download), Node.js with npm (the
-# JavaScript tests) and Mesa's Vulkan drivers (lavapipe, a software GPU the GPU
-# backend's tests run on), and Python's venv module (the Python client's tests run in
-# a virtualenv; Debian ships it apart from python3). The Rust build needs none: protoc
-# comes vendored.
+# JavaScript tests), Mesa's Vulkan drivers (lavapipe, a software GPU the GPU
+# backend's tests run on) and Python 3 with its venv module (the Python client's
+# tests run in a virtualenv; Debian ships venv apart from python3). The Rust build
+# needs none: protoc comes vendored.
 set -euo pipefail
 need=()
 command -v chromium >/dev/null || need+=(chromium)
