@@ -44,7 +44,7 @@ def best_rate(frames: list[bytes], passes: int) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--floe", default=ROOT / "target" / "release" / "floe", help="floe binary to start")
-    parser.add_argument("--spacing", type=float, default=0.5 / 48, help="dam break spacing (m): a/48, 110,592 particles")
+    parser.add_argument("--spacing", type=float, default=0.5 / 48, help="spacing (m); a/48: 110,592 particles")
     parser.add_argument("--until", type=float, default=0.05, help="simulated time (s) to step before recording")
     parser.add_argument("--frames", type=int, default=30, help="frames recorded per stream")
     parser.add_argument("--passes", type=int, default=20, help="passes over the frames; the best counts")

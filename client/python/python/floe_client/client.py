@@ -7,11 +7,10 @@ import json
 import os
 import pathlib
 from collections.abc import Iterable, Mapping, Sequence
-from typing import Any, Union
+from typing import Any
 
 import grpc
 
-from . import messages
 from ._proto import scenes_pb2 as pb
 from ._proto import scenes_pb2_grpc as pb_grpc
 from .errors import Unavailable, from_rpc
@@ -27,10 +26,10 @@ MAX_MESSAGE_BYTES = 512 << 20
 
 #: "key=value" overrides, or a mapping whose values are written as JSON
 #: (``{"gravity": [0, -1.62, 0]}`` is ``gravity=[0, -1.62, 0]``).
-Overrides = Union[Sequence[str], Mapping[str, Any]]
+Overrides = Sequence[str] | Mapping[str, Any]
 
 #: A scene: its id, or what the server said about it.
-SceneLike = Union[int, SceneInfo]
+SceneLike = int | SceneInfo
 
 
 def _overrides(o: Overrides) -> list[str]:
@@ -45,10 +44,11 @@ def _id(scene: SceneLike) -> int:
     return scene.scene_id if isinstance(scene, SceneInfo) else int(scene)
 
 
-def _enum_value(enum: Any, prefix: str, name: str, what: str) -> int:
-    """The value of ``prefix + NAME`` in a proto enum; ValueError listing the names allowed."""
+def _enum_name(enum: Any, prefix: str, name: str, what: str) -> str:
+    """``prefix + NAME``, checked to be in a proto enum; ValueError listing the names allowed."""
     try:
-        return int(enum.Value(prefix + name.upper()))
+        enum.Value(prefix + name.upper())
+        return prefix + name.upper()
     except ValueError:
         known = [n.removeprefix(prefix).lower() for n in enum.keys() if not n.endswith("UNSPECIFIED")]
         raise ValueError(f"{what}: unknown {name!r}; known: {', '.join(known)}") from None
@@ -201,10 +201,10 @@ class Client:
         """
         request = pb.StreamFramesRequest(
             scene_id=_id(scene),
-            channels=[_enum_value(pb.Channel, "CHANNEL_", c, "channels") for c in channels],
+            channels=[_enum_name(pb.Channel, "CHANNEL_", c, "channels") for c in channels],
             max_fps=fps,
             position_bits=bits,
-            mode=_enum_value(pb.FrameMode, "FRAME_MODE_", mode, "mode"),
+            mode=_enum_name(pb.FrameMode, "FRAME_MODE_", mode, "mode"),
             decimation=decimation,
         )
         return FrameStream(self._stream("StreamFrames", request), Decoder())

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
-from typing import Any, Union
+from typing import Any
 
 from ._proto import scenes_pb2 as pb
 
@@ -121,7 +121,7 @@ class Deleted:
     scene_id: int
 
 
-Event = Union[Halted, ParameterChanged, Deleted]
+Event = Halted | ParameterChanged | Deleted
 
 
 def event(m: pb.SceneEvent) -> Event | None:
