@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # All of Floe's tests: Rust (unit, physics, validation, service end to end), the
-# JavaScript frame decoder against the golden frames, and the viewer in headless
-# Chromium. Installs missing system packages first (scripts/install-deps.sh).
+# JavaScript frame decoder against the golden frames, the viewer in headless
+# Chromium, and the Python client against a real server. Installs missing system
+# packages first (scripts/install-deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -16,6 +17,8 @@ FLOE_REQUIRE_GPU=1 cargo test --workspace
 echo "== JavaScript decoder against the golden frames"
 node --test web/test/
 echo "== viewer in headless Chromium"
-cargo build -q -p floe-server
+cargo build -q -p floe-server -p floe-client
 (cd tests/browser && npm ci --no-audit --no-fund --silent)
 node --test tests/browser/
+echo "== Python client (client/python) against floe serve"
+bash client/python/scripts/test.sh

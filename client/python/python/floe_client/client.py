@@ -1,0 +1,248 @@
+"""The calls of ``floe.v1.SceneService``, mirroring the Rust client (floe-client)."""
+
+from __future__ import annotations
+
+import builtins
+import json
+import os
+import pathlib
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any
+
+import grpc
+
+from ._proto import scenes_pb2 as pb
+from ._proto import scenes_pb2_grpc as pb_grpc
+from .errors import Unavailable, from_rpc
+from .frames import Decoder
+from .messages import SceneInfo, SceneStats
+from .streams import EventStream, FrameStream
+
+#: Where :func:`connect` goes without an address: ``FLOE_SERVER`` or this (as floectl).
+DEFAULT_ADDRESS = "http://127.0.0.1:50051"
+
+#: Largest message accepted (bytes): snapshots of large scenes (as the Rust client).
+MAX_MESSAGE_BYTES = 512 << 20
+
+#: "key=value" overrides, or a mapping whose values are written as JSON
+#: (``{"gravity": [0, -1.62, 0]}`` is ``gravity=[0, -1.62, 0]``).
+Overrides = Sequence[str] | Mapping[str, Any]
+
+#: A scene: its id, or what the server said about it.
+SceneLike = int | SceneInfo
+
+
+def _overrides(o: Overrides) -> list[str]:
+    if isinstance(o, Mapping):
+        return [f"{key}={json.dumps(value)}" for key, value in o.items()]
+    if isinstance(o, str):
+        raise TypeError("overrides: give a list of 'key=value' strings or a dict, not one string")
+    return list(o)
+
+
+def _id(scene: SceneLike) -> int:
+    return scene.scene_id if isinstance(scene, SceneInfo) else int(scene)
+
+
+def _enum_name(enum: Any, prefix: str, name: str, what: str) -> str:
+    """``prefix + NAME``, checked to be in a proto enum; ValueError listing the names allowed."""
+    try:
+        enum.Value(prefix + name.upper())
+        return prefix + name.upper()
+    except ValueError:
+        known = [n.removeprefix(prefix).lower() for n in enum.keys() if not n.endswith("UNSPECIFIED")]
+        raise ValueError(f"{what}: unknown {name!r}; known: {', '.join(known)}") from None
+
+
+def _target(address: str) -> tuple[str, bool]:
+    """The gRPC target of an address and whether it wants TLS (``https://``)."""
+    for scheme, tls in (("http://", False), ("https://", True)):
+        if address.startswith(scheme):
+            return address[len(scheme) :].rstrip("/"), tls
+    return address, False
+
+
+class Client:
+    """A connection to a Floe server. Scene arguments take an id or a :class:`SceneInfo`.
+
+    Every failed call raises a :class:`~floe_client.errors.FloeError` with the gRPC code and
+    the server's message (bad input: :class:`~floe_client.errors.InvalidArgument`, naming the
+    field in ``.field``).
+    """
+
+    def __init__(self, channel: grpc.Channel, token: str | None = None) -> None:
+        """Wraps an open channel; :func:`connect` is the usual way in."""
+        self._channel = channel
+        self._stub = pb_grpc.SceneServiceStub(channel)
+        self._metadata = (("authorization", f"Bearer {token}"),) if token else ()
+
+    def _call(self, method: str, request: Any) -> Any:
+        try:
+            return getattr(self._stub, method)(request, metadata=self._metadata)
+        except grpc.RpcError as e:
+            raise from_rpc(e) from None
+
+    def close(self) -> None:
+        """Closes the connection (its streams end)."""
+        self._channel.close()
+
+    def __enter__(self) -> Client:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # Creating scenes.
+
+    def create_preset(self, preset: str, overrides: Overrides = ()) -> SceneInfo:
+        """A scene from a built-in preset ("dam_break", "hydrostatic") with overrides."""
+        return self._create(pb.CreateSceneRequest(preset=preset, overrides=_overrides(overrides)))
+
+    def create_document(self, text: str, format: str = "toml", overrides: Overrides = ()) -> SceneInfo:
+        """A scene from a scene document (``format``: "toml" or "json"; see ``floe schema``)."""
+        request = pb.CreateSceneRequest(document=text, document_format=format, overrides=_overrides(overrides))
+        return self._create(request)
+
+    def create_file(self, path: str | os.PathLike[str], overrides: Overrides = ()) -> SceneInfo:
+        """A scene from a ``.toml`` or ``.json`` scene file."""
+        path = pathlib.Path(path)
+        format = {".toml": "toml", ".json": "json"}.get(path.suffix.lower())
+        if format is None:
+            raise ValueError(f"{path}: a scene file ends in .toml or .json")
+        return self.create_document(path.read_text(), format, overrides)
+
+    def create_dict(self, scene: Mapping[str, Any], overrides: Overrides = ()) -> SceneInfo:
+        """A scene from a dict shaped like a scene document (sent as JSON)."""
+        return self.create_document(json.dumps(scene), "json", overrides)
+
+    def _create(self, request: pb.CreateSceneRequest) -> SceneInfo:
+        return SceneInfo.from_message(self._call("CreateScene", request))
+
+    # Inspecting and deleting.
+
+    def get(self, scene: SceneLike) -> SceneInfo:
+        """One scene (NotFound if no scene has that id)."""
+        return SceneInfo.from_message(self._call("GetScene", pb.SceneRef(scene_id=_id(scene))))
+
+    def list(self) -> builtins.list[SceneInfo]:
+        """Every scene on the server."""
+        return [SceneInfo.from_message(s) for s in self._call("ListScenes", pb.ListScenesRequest()).scenes]
+
+    def delete(self, scene: SceneLike) -> SceneInfo:
+        """Deletes a scene; its frame and event streams end after a Deleted event."""
+        return SceneInfo.from_message(self._call("DeleteScene", pb.SceneRef(scene_id=_id(scene))))
+
+    def stats(self, scene: SceneLike) -> SceneStats:
+        """Throughput and streaming statistics."""
+        return SceneStats.from_message(self._call("GetStats", pb.SceneRef(scene_id=_id(scene))))
+
+    # Stepping.
+
+    def step(self, scene: SceneLike, steps: int | None = None, *, until: float | None = None) -> SceneInfo:
+        """Advances a paused scene by ``steps`` steps (1 to 1,000,000), or to simulated time
+        ``until`` (s); returns when done."""
+        if (steps is None) == (until is None):
+            raise ValueError("step: give steps or until (s), not both or neither")
+        request = pb.StepRequest(scene_id=_id(scene), steps=steps or 0, until_time=until or 0.0)
+        return SceneInfo.from_message(self._call("Step", request))
+
+    def run(self, scene: SceneLike, real_time_factor: float = 0.0) -> SceneInfo:
+        """Runs continuously at ``real_time_factor`` simulated seconds per wall second
+        (0: as fast as the machine allows)."""
+        request = pb.RunRequest(scene_id=_id(scene), real_time_factor=real_time_factor)
+        return SceneInfo.from_message(self._call("Run", request))
+
+    def pause(self, scene: SceneLike) -> SceneInfo:
+        """Stops a running scene after its current step."""
+        return SceneInfo.from_message(self._call("Pause", pb.SceneRef(scene_id=_id(scene))))
+
+    def reset(self, scene: SceneLike) -> SceneInfo:
+        """Puts a paused or halted scene back at t = 0 with its current settings."""
+        return SceneInfo.from_message(self._call("Reset", pb.SceneRef(scene_id=_id(scene))))
+
+    def set_parameters(self, scene: SceneLike, overrides: Overrides) -> SceneInfo:
+        """Changes tunable settings from the next step (gravity, fluids[i].viscosity,
+        fluids[i].xsph, solver.time_step, solver.damping, solver.damping_until, guard);
+        other fields are InvalidArgument."""
+        request = pb.SetParametersRequest(scene_id=_id(scene), overrides=_overrides(overrides))
+        return SceneInfo.from_message(self._call("SetParameters", request))
+
+    # State.
+
+    def snapshot(self, scene: SceneLike) -> bytes:
+        """The scene's complete state (particles, time, step control, statistics)."""
+        return bytes(self._call("Snapshot", pb.SceneRef(scene_id=_id(scene))).state)
+
+    def restore(self, scene: SceneLike, state: bytes) -> SceneInfo:
+        """Replaces a paused scene's state with a :meth:`snapshot` of the same scene; it then
+        steps on bit for bit as from where the snapshot was taken."""
+        return SceneInfo.from_message(self._call("Restore", pb.RestoreRequest(scene_id=_id(scene), state=state)))
+
+    # Streams.
+
+    def frames(
+        self,
+        scene: SceneLike,
+        *,
+        channels: Iterable[str] = (),
+        fps: float = 30.0,
+        bits: int = 16,
+        decimation: int = 1,
+        mode: str = "identity",
+        particle_set: str = "",
+    ) -> FrameStream:
+        """Decoded frames of a scene as it steps, channels under the scene's names.
+
+        Args:
+            channels: extra channels besides positions, by name (``SceneInfo.channels`` lists
+                the scene's: "velocity", "density", "pressure", and the modules').
+            fps: most frames per second (up to 240).
+            bits: bits per position axis, 8 to 16.
+            decimation: send every n-th particle (particles 0, n, 2n, ...), 1 to 1000.
+            mode: "identity" (particle i at index i) or "unordered" (smallest, spatial order).
+            particle_set: the set to stream (``SceneInfo.sets``); "" for the SPH particles.
+        """
+        info = self.get(scene)
+        request = pb.StreamFramesRequest(
+            scene_id=_id(scene),
+            channel_names=list(channels),
+            max_fps=fps,
+            position_bits=bits,
+            mode=_enum_name(pb.FrameMode, "FRAME_MODE_", mode, "mode"),
+            decimation=decimation,
+            particle_set=particle_set,
+        )
+        return FrameStream(self._stream("StreamFrames", request), Decoder(scene=info))
+
+    def events(self, scene: SceneLike) -> EventStream:
+        """Events of a scene: Halted (with the reason), ParameterChanged, Deleted."""
+        return EventStream(self._stream("StreamEvents", pb.SceneRef(scene_id=_id(scene))))
+
+    def _stream(self, method: str, request: Any) -> Any:
+        # A refused stream raises when first read; the stream maps that error.
+        return getattr(self._stub, method)(request, metadata=self._metadata)
+
+
+def connect(address: str | None = None, *, token: str | None = None, timeout: float = 10.0) -> Client:
+    """Connects to a Floe server.
+
+    Args:
+        address: ``http://host:port`` (or ``host:port``; ``https://`` for TLS); default
+            ``FLOE_SERVER`` or ``http://127.0.0.1:50051``.
+        token: sent as ``authorization: Bearer <token>`` with every call, for a server that
+            admits users by token (the lab server).
+        timeout: seconds to wait for the connection; then :class:`Unavailable`.
+    """
+    address = address or os.environ.get("FLOE_SERVER") or DEFAULT_ADDRESS
+    target, tls = _target(address)
+    options = [("grpc.max_receive_message_length", MAX_MESSAGE_BYTES)]
+    if tls:
+        channel = grpc.secure_channel(target, grpc.ssl_channel_credentials(), options=options)
+    else:
+        channel = grpc.insecure_channel(target, options=options)
+    try:
+        grpc.channel_ready_future(channel).result(timeout=timeout)
+    except grpc.FutureTimeoutError:
+        channel.close()
+        raise Unavailable(grpc.StatusCode.UNAVAILABLE, f"cannot connect to {address} within {timeout} s") from None
+    return Client(channel, token)

@@ -1,0 +1,159 @@
+"""Frame streams against a real server: identity-ordered and unordered frames, channels,
+decimation and position bits, checked against known scene properties and against the Rust
+client (floectl exporting the same recording); recordings, DataFrames and VTK files."""
+
+from __future__ import annotations
+
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import floe_client
+from conftest import FLOECTL, SMALL_PARTICLES, frame_at
+
+CHANNELS = ["velocity", "density", "pressure"]
+
+
+def sorted_rows(a: np.ndarray) -> np.ndarray:
+    return a[np.lexsort(a.T[::-1])]
+
+
+def test_identity_frames_carry_positions_and_channels(client: floe_client.Client, scene: floe_client.SceneInfo) -> None:
+    with client.frames(scene, channels=CHANNELS) as frames:
+        first = next(frames)
+        h = first.header
+        assert (h.scene_id, h.step, h.time, h.mode, h.keyframe) == (scene.scene_id, 0, 0.0, "identity", True)
+        assert h.particle_count == SMALL_PARTICLES
+        assert list(first.channels) == ["position", *CHANNELS]
+        assert first.positions.shape == (SMALL_PARTICLES, 3) and first.positions.dtype == np.float32
+        assert first["velocity"].shape == (SMALL_PARTICLES, 3)
+        for name in ("density", "pressure"):
+            assert first[name].shape == (SMALL_PARTICLES,) and first[name].dtype == np.float32
+        units = {c.name: c.unit for c in first.channels.values()}
+        assert units == {"position": "m", "velocity": "m/s", "density": "kg/m^3", "pressure": "Pa"}
+
+        # The column at rest on its lattice: a/h = 10 x 20 x 5 particles 5 cm apart, inside
+        # [0, 0.5] x [0, 1] x [0, 0.25], not moving. (Densities and pressures are 0 until the
+        # first step evaluates them.)
+        p, err = first.positions, first.channels["position"].max_error
+        assert np.all(p.min(axis=0) >= -np.array(err)) and np.all(p.max(axis=0) <= [0.5, 1.0, 0.25])
+        assert len(np.unique(np.round(p[:, 0], 3))) == 10 and len(np.unique(np.round(p[:, 1], 3))) == 20
+        np.testing.assert_allclose(first["velocity"], 0.0, atol=max(first.channels["velocity"].max_error))
+
+        info = client.step(scene, 20)
+        later = frame_at(frames, 20)
+        assert later.header.time == info.sim_time and not later.header.keyframe
+        # Falling: every particle moved down or stayed, none up by more than the error.
+        dy = later.positions[:, 1] - first.positions[:, 1]
+        assert dy.min() < -1e-4 and dy.max() <= 2 * err[1]
+        assert later["velocity"][:, 1].mean() < 0
+        # Summation density is the rest density inside the column (1000 kg/m^3: the particle
+        # mass comes from the lattice), less at the free surface, never much more.
+        density = later["density"]
+        assert abs(np.median(density) - 1000.0) < 2.0 and density.max() < 1010.0 and density.min() > 500.0
+
+
+def test_unordered_and_decimated_frames_hold_the_same_particles(
+    client: floe_client.Client, scene: floe_client.SceneInfo
+) -> None:
+    client.step(scene, 10)
+    with client.frames(scene) as identity, client.frames(scene, mode="unordered") as unordered:
+        full = frame_at(identity, 10)
+        spatial = frame_at(unordered, 10)
+    with client.frames(scene, decimation=7) as decimated:
+        every7 = frame_at(decimated, 10)
+    with client.frames(scene, bits=10) as coarse_stream:
+        coarse = frame_at(coarse_stream, 10)
+
+    assert spatial.header.mode == "unordered" and spatial.header.keyframe
+    assert spatial.positions.shape == full.positions.shape
+    # The same 16-bit grid over the scene bounds: the same positions, in another order.
+    np.testing.assert_array_equal(sorted_rows(spatial.positions), sorted_rows(full.positions))
+
+    assert every7.positions.shape == (len(range(0, SMALL_PARTICLES, 7)), 3)
+    np.testing.assert_array_equal(every7.positions, full.positions[::7])
+
+    err16, err10 = full.channels["position"].max_error, coarse.channels["position"].max_error
+    assert all(e10 > 50 * e16 for e10, e16 in zip(err10, err16))
+    np.testing.assert_allclose(coarse.positions, full.positions, rtol=0, atol=max(err10) + max(err16))
+
+
+def test_bad_stream_options_name_the_field(client: floe_client.Client, scene: floe_client.SceneInfo) -> None:
+    with pytest.raises(floe_client.InvalidArgument) as e:
+        next(client.frames(scene, bits=20))
+    assert e.value.field == "position_bits"
+    with pytest.raises(floe_client.InvalidArgument) as e:
+        next(client.frames(scene, decimation=5000))
+    assert e.value.field == "decimation"
+    with pytest.raises(floe_client.InvalidArgument, match="it has velocity, density, pressure") as e:
+        next(client.frames(scene, channels=["temperature"]))
+    assert e.value.field == "channels"
+    with pytest.raises(ValueError, match="known: unordered, identity"):
+        client.frames(scene, mode="sorted")
+    with pytest.raises(floe_client.NotFound):
+        next(client.frames(987654))
+
+
+def _step_of(raw: bytes) -> int:
+    # The simulation step, a u64 at byte 40 of the frame header (see floe-proto's header docs).
+    return int.from_bytes(raw[40:48], "little")
+
+
+def test_values_match_the_rust_client_and_export(
+    client: floe_client.Client, scene: floe_client.SceneInfo, tmp_path: pathlib.Path
+) -> None:
+    rec = tmp_path / "run.rec"
+    with client.frames(scene, channels=CHANNELS) as frames, floe_client.recording.Recorder(rec) as recorder:
+        for target in (0, 5, 15):
+            if target:
+                client.step(scene, target - client.get(scene).steps)
+            while True:
+                raw = frames.next_raw()
+                recorder.push(raw)
+                if _step_of(raw) == target:
+                    break
+    ours = list(floe_client.recording.read(rec))
+    assert [f.header.step for f in ours][-1] == 15 and ours[0].header.keyframe
+
+    for fmt in ("csv", "vtk"):
+        subprocess.run(
+            [FLOECTL, "export", "--recording", rec, "--out", tmp_path / fmt, "--format", fmt],
+            check=True,
+            capture_output=True,
+        )
+    for k, frame in enumerate(ours):
+        csv = tmp_path / "csv" / f"frame_{k:05}.csv"
+        table = np.genfromtxt(csv, delimiter=",", names=True, dtype=np.float32)
+        cols = floe_client.export.columns(frame)
+        for name, (values, _) in cols.items():
+            np.testing.assert_array_equal(values, table[name], err_msg=f"frame {k}: {name}")
+        ours_vtk = tmp_path / f"ours_{k}.vtk"
+        frame.write_vtk(ours_vtk)
+        theirs = (tmp_path / "vtk" / f"frame_{k:05}.vtk").read_bytes()
+        assert ours_vtk.read_bytes() == theirs, f"frame {k}: VTK differs from floectl export's"
+
+
+def test_dataframe_has_a_column_per_component_with_units(
+    client: floe_client.Client, scene: floe_client.SceneInfo
+) -> None:
+    with client.frames(scene, channels=["velocity", "density"]) as frames:
+        frame = next(frames)
+    df = frame.to_dataframe()
+    assert list(df.columns) == ["x", "y", "z", "velocity_x", "velocity_y", "velocity_z", "density"]
+    assert len(df) == SMALL_PARTICLES and df.index.name == "id"
+    assert df.attrs["units"]["x"] == "m" and df.attrs["units"]["velocity_y"] == "m/s"
+    assert df.attrs["units"]["density"] == "kg/m^3" and df.attrs["header"] == frame.header
+    np.testing.assert_array_equal(df["y"].to_numpy(), frame.positions[:, 1])
+
+
+def test_recordings_need_their_header(tmp_path: pathlib.Path) -> None:
+    bad = tmp_path / "bad.rec"
+    bad.write_bytes(b"NOTAREC!")
+    with pytest.raises(ValueError, match="not a Floe recording"):
+        list(floe_client.recording.read(bad))
+    cut = tmp_path / "cut.rec"
+    cut.write_bytes(floe_client.recording.MAGIC + (100).to_bytes(4, "little") + b"short")
+    with pytest.raises(ValueError, match="frame 0 is cut short"):
+        list(floe_client.recording.read(cut))
