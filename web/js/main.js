@@ -34,6 +34,8 @@ const state = {
   // The latest decoded frame not drawn yet: only it is drawn when frames come faster than the
   // page draws (uploading each would stall on the frame being drawn).
   nextFrame: null,
+  // A frame waiting for the decoder, and frames skipped so (see decode()).
+  decoding: false, heldBytes: null, skipped: 0,
 };
 
 function banner(text) {
@@ -79,6 +81,7 @@ function close() {
   state.wantOpen = false;
   state.socket?.close();
   state.socket = null;
+  state.heldBytes = null;
 }
 
 function open(scene) {
@@ -142,7 +145,7 @@ function connect() {
     state.bytes += e.data.byteLength;
     state.lastBytes = e.data.byteLength;
     recorder.push(e.data);
-    worker.postMessage({ bytes: e.data }, [e.data]);
+    decode(e.data);
   };
   ws.onclose = () => {
     if (state.socket !== ws || !state.wantOpen) return;
@@ -198,7 +201,26 @@ function showFrame(frame) {
   renderer.upload(frame.positions, values);
 }
 
+/**
+ * Sends a frame to the decoder, or holds it while the decoder is busy, in place of a frame held
+ * before (skipped: the page asks for unordered frames, each whole on its own). A page that
+ * draws or decodes slower than frames come thus shows the latest frame, never a backlog.
+ */
+function decode(bytes) {
+  if (state.decoding) {
+    if (state.heldBytes) state.skipped += 1;
+    state.heldBytes = bytes;
+    return;
+  }
+  state.decoding = true;
+  worker.postMessage({ bytes }, [bytes]);
+}
+
 worker.onmessage = ({ data }) => {
+  state.decoding = false;
+  const held = state.heldBytes;
+  state.heldBytes = null;
+  if (held) decode(held);
   if (data.error) return banner(`Frame could not be decoded: ${data.error.message}`);
   if (replay.active) return;
   state.frames += 1;
@@ -414,7 +436,7 @@ function frame(now) {
       s ? `sim time   ${s.sim_time.toFixed(3)} s (${s.state})` : '',
       rt.text ? `real time  ${rt.text}` : '',
       s ? `steps/s    ${s.steps_per_second.toFixed(0)}` : '',
-      replay.active ? '' : `frames     ${state.frames}`,
+      replay.active ? '' : `frames     ${state.frames}${state.skipped ? ` (${state.skipped} skipped, decoder busy)` : ''}`,
       replay.active ? '' : `bytes/frm  ${state.lastBytes} (${(state.lastBytes / Math.max(renderer.count, 1)).toFixed(2)} B/particle)`,
       `decode     ${state.decodeMs.toFixed(2)} ms`,
       s ? `dropped    ${s.dropped_frames}` : '',

@@ -16,8 +16,9 @@
 //    the smaller, so a silhouette is not taken for a slope), the background refracted along the
 //    normal and tinted by Beer-Lambert absorption over the thickness, light scattered back in
 //    water's colour the more the thicker it is, Fresnel (Schlick) reflection of a sky, and a
-//    specular highlight. The surface's depth goes to the depth buffer, so walls drawn after it
-//    hide behind the water.
+//    specular highlight. A pixel whose neighbours on both sides of an axis lie beyond a jump
+//    faces the camera along that axis. The surface's depth goes to the depth buffer, so walls
+//    drawn after it hide behind the water.
 //
 // Passes 1 to 3 run at `scale` times the canvas's resolution, and passes 3 and 4 only over the
 // particles' bounding box on screen: on software GL (no GPU) their cost decides the frame rate.
@@ -29,6 +30,8 @@ import { SPHERE_POINT, SPRITE_VERT, WINDOW_DEPTH } from './sprite.js';
 
 /** Distance marking a pixel without fluid (the depth targets are cleared to it). */
 const EMPTY = '1e30';
+/** Neighbours further apart in depth than this many particle radii are across a silhouette. */
+const JUMP = 6;
 
 /**
  * The particle pass's fragment shader, writing `outputs`: `['distance', 'chord']` in one pass
@@ -92,6 +95,7 @@ uniform highp sampler2D u_depth;
 uniform sampler2D u_thickness, u_background;
 uniform mat4 u_proj, u_view;
 uniform vec2 u_size, u_low;
+uniform float u_jump;  // larger steps in distance (m) are silhouettes, not slopes
 out vec4 colour;
 ${WINDOW_DEPTH}
 float depthAt(ivec2 q) { return texelFetch(u_depth, clamp(q, ivec2(0), ivec2(u_low) - 1), 0).r; }
@@ -102,12 +106,13 @@ vec3 viewPoint(ivec2 q, float d) {
 vec3 tangent(ivec2 q, vec3 c, ivec2 dir) {
   float df = depthAt(q + dir), db = depthAt(q - dir);
   vec3 f = viewPoint(q + dir, df) - c, b = c - viewPoint(q - dir, db);
-  if (df >= ${EMPTY}) return db >= ${EMPTY} ? vec3(0.0) : b;
-  if (db >= ${EMPTY}) return f;
+  bool fOut = abs(f.z) > u_jump, bOut = abs(b.z) > u_jump;
+  if (fOut) return bOut ? vec3(0.0) : b;
+  if (bOut) return f;
   return abs(f.z) < abs(b.z) ? f : b;
 }
 vec3 sky(vec3 dir) {
-  return dir.y > 0.0 ? mix(vec3(0.32, 0.38, 0.45), vec3(0.62, 0.75, 0.9), dir.y) : vec3(0.13, 0.15, 0.17);
+  return dir.y > 0.0 ? mix(vec3(0.3, 0.36, 0.42), vec3(0.5, 0.62, 0.75), dir.y) : vec3(0.13, 0.15, 0.17);
 }
 void main() {
   vec2 uv = gl_FragCoord.xy / u_size;
@@ -126,13 +131,13 @@ void main() {
   vec3 tint = exp(-vec3(2.2, 0.7, 0.3) * thickness);
   float opacity = 1.0 - exp(-4.0 * thickness);
   vec3 l = normalize(vec3(0.4, 0.7, 0.6));
-  vec3 water = vec3(0.1, 0.4, 0.68) * (0.6 + 0.4 * max(dot(n, l), 0.0));
+  vec3 water = vec3(0.13, 0.48, 0.78) * (0.55 + 0.45 * max(dot(n, l), 0.0));
   vec3 body = mix(behind * tint, water, opacity);
   float cosine = max(dot(n, v), 0.0);
   float fresnel = 0.02 + 0.98 * pow(1.0 - cosine, 5.0);
   vec3 reflected = sky(transpose(mat3(u_view)) * reflect(-v, n));
-  float specular = pow(max(dot(n, normalize(l + v)), 0.0), 160.0);
-  colour = vec4(mix(body, reflected, fresnel) + vec3(0.9) * specular, 1.0);
+  float specular = pow(max(dot(n, normalize(l + v)), 0.0), 60.0);
+  colour = vec4(mix(body, reflected, fresnel) + vec3(0.5) * specular, 1.0);
   gl_FragDepth = windowDepth(u_proj, p);
 }`;
 
@@ -174,7 +179,7 @@ export class Surface {
     this.particlePasses = passes.map((outputs) => programWith(gl, SPRITE_VERT, particleFrag(outputs), particle));
     this.smoothPass = programWith(gl, FULL_SCREEN, SMOOTH_FRAG, ['u_depth', 'u_c', 'u_jump', 'u_rate']);
     this.shadePass = programWith(gl, FULL_SCREEN, SHADE_FRAG,
-      ['u_depth', 'u_thickness', 'u_background', 'u_proj', 'u_view', 'u_size', 'u_low']);
+      ['u_depth', 'u_thickness', 'u_background', 'u_proj', 'u_view', 'u_size', 'u_low', 'u_jump']);
     this.empty = gl.createVertexArray();
     this.targets = null;
   }
@@ -241,9 +246,12 @@ export class Surface {
     gl.useProgram(s.program);
     gl.uniform1i(s.u.u_depth, 0);
     gl.uniform2f(s.u.u_c, -2 / (t.lw * o.proj[0]), -2 / (t.lh * o.proj[5]));
-    gl.uniform1f(s.u.u_jump, 6 * o.radius);
+    gl.uniform1f(s.u.u_jump, JUMP * o.radius);
     gl.uniform1f(s.u.u_rate, 0.9);
     gl.activeTexture(gl.TEXTURE0);
+    // The other texture holds an older frame's distances: clear it, so none is read as fluid.
+    gl.bindFramebuffer(gl.FRAMEBUFFER, t.fbB);
+    gl.clearBufferfv(gl.COLOR, 0, [Number(EMPTY), 0, 0, 0]);
     let src = t.depthA;
     for (let i = 0; i < this.iterations(o, t.lh); i++) {
       const [dst, fb] = src === t.depthA ? [t.depthB, t.fbB] : [t.depthA, t.fbA];
@@ -255,8 +263,8 @@ export class Surface {
     // 4. Shading into the canvas, over the particles' box in canvas pixels.
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     gl.viewport(0, 0, t.w, t.h);
-    const k = t.w / t.lw;
-    gl.scissor(Math.floor(rect[0] * k), Math.floor(rect[1] * k), Math.ceil(rect[2] * k) + 1, Math.ceil(rect[3] * k) + 1);
+    const kx = t.w / t.lw, ky = t.h / t.lh;
+    gl.scissor(Math.floor(rect[0] * kx), Math.floor(rect[1] * ky), Math.ceil(rect[2] * kx), Math.ceil(rect[3] * ky));
     gl.enable(gl.DEPTH_TEST);
     gl.depthFunc(gl.ALWAYS);
     const c = this.shadePass;
@@ -270,6 +278,7 @@ export class Surface {
     gl.uniformMatrix4fv(c.u.u_view, false, o.view);
     gl.uniform2f(c.u.u_size, t.w, t.h);
     gl.uniform2f(c.u.u_low, t.lw, t.lh);
+    gl.uniform1f(c.u.u_jump, JUMP * o.radius);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.disable(gl.SCISSOR_TEST);
     gl.depthFunc(gl.LESS);
@@ -281,13 +290,13 @@ export class Surface {
   }
 
   /**
-   * Smoothing steps: enough for the flow to spread over about a particle's radius in pixels at
-   * the camera's distance (diffusion spreads sqrt(2 k n) pixels in n steps of coefficient k),
-   * within 4 to 40.
+   * Smoothing steps: enough for the flow to spread over one and a half particle radii in pixels
+   * at the camera's distance (diffusion spreads sqrt(2 k n) pixels in n steps of coefficient k),
+   * which irons out the layers of particles, within 4 to 40.
    */
   iterations(o, lowHeight) {
-    const radiusPx = (o.radius * o.proj[5] * lowHeight) / (2 * Math.max(o.distance, 1e-6));
-    return Math.max(4, Math.min(40, Math.round((radiusPx * radiusPx) / (2 * 0.9 * 0.25))));
+    const spread = (1.5 * o.radius * o.proj[5] * lowHeight) / (2 * Math.max(o.distance, 1e-6));
+    return Math.max(4, Math.min(40, Math.round((spread * spread) / (2 * 0.9 * 0.25))));
   }
 
   /** The particle passes: into the depth and thickness targets, cleared first. */

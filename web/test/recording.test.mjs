@@ -1,7 +1,10 @@
 // Recordings (web/js/recording.js) and seeking in them (web/js/player.js), on a recording made
 // by `floectl record` (512 particles of a dam break, 40 identity-ordered frames, keyframes at 0
-// and 30) whose positions the Rust decoder exported (data/dam_break_512.expected.json).
-// Run: node --test web/test/
+// and 30) whose positions the Rust decoder exported (data/dam_break_512.expected.json). Made with
+//   floectl create dam_break --set particle_spacing=0.0625 && floectl run 1 --rtf 0
+//   floectl record 1 --out dam_break_512.rec --frames 40 --fps 30
+//   floectl export --recording dam_break_512.rec --out frames --format csv   (particles 0, 1, 255, 511 kept)
+// and made anew when the frame format's version changes. Run: node --test web/test/
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import test from 'node:test';
