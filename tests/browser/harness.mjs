@@ -27,13 +27,13 @@ export function freePort() {
 }
 
 /**
- * Starts the server (HTTP on `http`, gRPC on `grpc`, no default scene, this checkout's web/) and
- * resolves with `{child, url}` once it prints the viewer's URL; `child.exited` resolves when it
- * ends.
+ * Starts the server (HTTP on `http`, gRPC on `grpc`, no default scene, this checkout's web/ or
+ * FLOE_WEB) and resolves with `{child, url}` once it prints the viewer's URL; `child.exited`
+ * resolves when it ends.
  */
 export function startServer({ http = '127.0.0.1:0', grpc = '127.0.0.1:0', release = false, quiet = false } = {}) {
   const child = spawn(floeBinary(release),
-    ['serve', '--http', http, '--grpc', grpc, '--scene', 'none', '--web', path.join(root, 'web')],
+    ['serve', '--http', http, '--grpc', grpc, '--scene', 'none', '--web', process.env.FLOE_WEB ?? path.join(root, 'web')],
     { cwd: root, stdio: ['ignore', 'pipe', quiet ? 'ignore' : 'inherit'] });
   return new Promise((resolve, reject) => {
     let out = '';

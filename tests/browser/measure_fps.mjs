@@ -1,6 +1,8 @@
 // Measures the viewer in headless Chromium on large scenes (needs target/release/floe):
 //
 //   node tests/browser/measure_fps.mjs [particles]          render fps of both views (default 200000)
+//   FLOE_WEB=DIR node tests/browser/measure_fps.mjs [particles]   the same for another viewer
+//                                                           (an older one: its single view)
 //   node tests/browser/measure_fps.mjs --scrub [particles] [frames]
 //                                                           replay: seek times in a floectl recording
 //                                                           (default 100000 particles, 300 frames;
@@ -8,11 +10,12 @@
 //
 // Render: the dam break runs while the camera orbits (a drag across the view), so every frame
 // is drawn anew (the viewer otherwise draws only when something changed); "render fps" is frames
-// drawn per second as the overlay counts them. Scrub: the timeline is set to random frames, one
-// at a time; "shown" is the time from the slider's input event until the frame's label changes
-// (decoded in the worker and handed to the page), "drawn" until two animation frames later
-// (uploaded and drawn). Software GL (SwiftShader) on the CPU: the figures are for a machine
-// without a GPU.
+// drawn per second as the overlay counts them. Scrub: the timeline is set to 40 frames spread
+// over the recording, one at a time; "seek" is the worker's time to decode the frame (and the
+// frames before it back to a kept state), "shown" the time from the slider's input event until
+// the frame's label changes (the frame reached the page, which may have been busy drawing),
+// "drawn" until two animation frames later (uploaded and drawn). Software GL (SwiftShader) on
+// the CPU: the figures are for a machine without a GPU.
 
 import { spawn } from 'node:child_process';
 import { mkdtemp, rm, stat } from 'node:fs/promises';
@@ -47,8 +50,9 @@ async function measureRender(page, scene) {
   const num = (text, label) => Number(new RegExp(`${label}\\s+([\\d.]+)`).exec(text)?.[1]);
   console.log('| particles | view | render fps (orbiting) | frames received/s | bytes/frame | decode ms |');
   console.log('|---:|---|---:|---:|---:|---:|');
-  for (const view of ['spheres', 'surface']) {
-    await page.selectOption('#view-mode', view);
+  const views = (await page.$('#view-mode')) ? ['spheres', 'surface'] : ['spheres (the only view)'];
+  for (const view of views) {
+    if (views.length > 1) await page.selectOption('#view-mode', view);
     await page.mouse.move(700, 400);
     await page.mouse.down();
     let x = 700, dir = 1;
@@ -85,14 +89,14 @@ async function measureScrub(page, scene, frames) {
     await page.click('#pause');
     await page.setInputFiles('#recording-file', file);
     await page.waitForFunction(() => document.querySelector('#tl-label').textContent.startsWith('frame 1 /'), null, { timeout: 120_000 });
-    const opened = Date.now();
-    await page.waitForFunction(() => document.querySelector('#tl-progress').textContent === '', null, { timeout: 600_000 });
-    const indexSeconds = (Date.now() - opened) / 1000;
+    await page.waitForFunction(() => document.querySelector('#tl-progress').dataset.indexMs !== undefined, null, { timeout: 600_000 });
+    const indexSeconds = Number(await page.getAttribute('#tl-progress', 'data-index-ms')) / 1000;
     const total = Number(/frame 1 \/ (\d+)/.exec(await page.textContent('#tl-label'))[1]);
-    const targets = Array.from({ length: 40 }, (_, i) => Math.floor(((i * 7919) % 997) / 997 * total));
-    const shown = [], drawn = [];
+    // 40 frames spread over the recording in a scrambled order (never frame 0, shown already).
+    const targets = Array.from({ length: 40 }, (_, i) => 1 + Math.floor((((i + 1) * 7919) % 997) / 997 * (total - 1)));
+    const seek = [], shown = [], drawn = [];
     for (const k of targets) {
-      const [a, b] = await page.evaluate((frame) => new Promise((resolve) => {
+      const [w, a, b] = await page.evaluate((frame) => new Promise((resolve) => {
         const slider = document.querySelector('#tl-slider'), label = document.querySelector('#tl-label');
         const t0 = performance.now();
         slider.value = String(frame);
@@ -101,19 +105,22 @@ async function measureScrub(page, scene, frames) {
         const check = () => {
           if (!label.textContent.startsWith(want)) return setTimeout(check, 1);
           const t1 = performance.now();
-          requestAnimationFrame(() => requestAnimationFrame(() => resolve([t1 - t0, performance.now() - t0])));
+          requestAnimationFrame(() => requestAnimationFrame(() => resolve([Number(label.dataset.seekMs), t1 - t0, performance.now() - t0])));
         };
         check();
       }), k);
+      seek.push(w);
       shown.push(a);
       drawn.push(b);
     }
     const stats = (v) => { const s = [...v].sort((x, y) => x - y); return `${s[s.length >> 1].toFixed(0)} / ${s.at(-1).toFixed(0)}`; };
     const view = await page.inputValue('#view-mode');
-    console.log('| particles | frames | file MB | indexing s | seeks | shown ms (median / max) | drawn ms (median / max, ' + view + ' view) |');
-    console.log('|---:|---:|---:|---:|---:|---:|---:|');
+    console.log(`| particles | frames | file MB | indexing s | seeks | seek ms in the worker | shown ms | drawn ms (${view} view) |`);
+    console.log('|---:|---:|---:|---:|---:|---:|---:|---:|');
     const { size } = await stat(file);
-    console.log(`| ${scene.particles} | ${total} | ${(size / 1e6).toFixed(1)} | ${indexSeconds.toFixed(1)} | ${targets.length} | ${stats(shown)} | ${stats(drawn)} |`);
+    console.log(`| ${scene.particles} | ${total} | ${(size / 1e6).toFixed(1)} | ${indexSeconds.toFixed(1)} | ${targets.length} | ${stats(seek)} | ${stats(shown)} | ${stats(drawn)} |`);
+    console.log('(median / max of each; every seek in order, ms in the worker / shown / drawn:)');
+    console.log(targets.map((k, i) => `${k}: ${seek[i].toFixed(0)}/${shown[i].toFixed(0)}/${drawn[i].toFixed(0)}`).join(', '));
   } finally {
     await rm(dir, { recursive: true, force: true });
   }

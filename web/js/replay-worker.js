@@ -7,10 +7,11 @@
  *   (times in s; bounds `{min, max}` from the positions' quantisation range, the scene's domain;
  *   spacing estimated from frame 0, m), then frame 0 as below (`id` null), then
  *   `{ progress: fraction }` while every frame is decoded once to index the file, then
- *   `{ ready: { extent } }` (`{min, max}`, m: the box every frame's particles lie in); or
+ *   `{ ready: { extent, indexMs } }` (`{min, max}`, m: the box every frame's particles lie in;
+ *   the time indexing took); or
  *   `{ error: message }` for a file that is not a whole recording.
- * - `{ seek: k, id }`: replies `{ id, index: k, frame, decodeMs }`, the frame's arrays transferred,
- *   or `{ id, error: message }`.
+ * - `{ seek: k, id }`: replies `{ id, index: k, frame, decodeMs }` (`decodeMs`: the whole seek,
+ *   frames decoded on the way included), the frame's arrays transferred, or `{ id, error: message }`.
  * @module
  */
 
@@ -36,8 +37,9 @@ export function handle(state, data, post) {
         },
       });
       post(...frameMessage(null, 0, first, decodeMs));
+      const t1 = now();
       player.prepare((done, total) => { if (done % 10 === 0 || done === total) post({ progress: done / total }); });
-      post({ ready: { extent: player.extent } });
+      post({ ready: { extent: player.extent, indexMs: now() - t1 } });
     } catch (e) {
       state.player = null;
       post({ error: e.message });

@@ -165,6 +165,7 @@ export class Replay {
       $('tl-progress').textContent = data.progress < 1 ? `indexing ${Math.round(data.progress * 100)} %` : '';
     } else if (data.ready) {
       $('tl-progress').textContent = '';
+      $('tl-progress').dataset.indexMs = data.ready.indexMs.toFixed(0);
       this.hooks.onReady(data.ready.extent);
     } else if (data.error) {
       if (data.id === undefined) this.#fail(data.error);
@@ -177,6 +178,8 @@ export class Replay {
       this.hooks.onFrame(data);
       $('tl-slider').value = String(data.index);
       $('tl-label').textContent = `frame ${data.index + 1} / ${this.info.frames}, t = ${this.info.times[data.index].toFixed(3)} s`;
+      // The worker's time for this seek (measure_fps.mjs reads it).
+      $('tl-label').dataset.seekMs = data.decodeMs.toFixed(1);
       this.#next();
     }
   }
