@@ -10,7 +10,6 @@ import { PlotPanel } from './plots.js';
 import { Recorder } from './recorder.js';
 import { Renderer } from './render.js';
 import { Replay } from './replay.js';
-import { physicalRadius } from './spacing.js';
 
 const $ = (id) => document.getElementById(id);
 const api = (path, init) => fetch(`/api/v1${path}`, {
@@ -107,7 +106,7 @@ function open(scene) {
  */
 function showScene(bounds, walls, spacing, frame, floor = bounds) {
   state.bounds = bounds;
-  renderer.setScene(walls, floor?.min, floor?.max, physicalRadius(spacing));
+  renderer.setScene(walls, floor?.min, floor?.max, spacing);
   if (frame) frameCamera();
 }
 
@@ -431,7 +430,7 @@ function frame(now) {
     $('rtf-achieved').classList.toggle('slow', rt.slow);
     $('stats').textContent = [
       state.renderFps > 0 ? `render     ${state.renderFps.toFixed(0)} fps (${renderer.view})` : `render     idle (${renderer.view})`,
-      `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}`,
+      `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}${renderer.drawnCount < renderer.count ? ` (${renderer.drawnCount} drawn)` : ''}`,
       ...(replay.active ? replay.describe() : []),
       s ? `sim time   ${s.sim_time.toFixed(3)} s (${s.state})` : '',
       rt.text ? `real time  ${rt.text}` : '',

@@ -1,11 +1,14 @@
 // WebGL2 particle renderer with two views: spheres (each particle a point sprite shaded as a lit
-// sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection) and
-// the fluid's surface (surface.js). Both draw particles at their physical size (spacing.js);
-// the scene's box walls are lines (outline.js) and its floor a checkerboard (floor.js).
+// sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection;
+// particles hidden deep inside the fluid are left out, cull.js) and the fluid's surface
+// (surface.js). Both draw particles at their physical size (spacing.js); the scene's box walls
+// are lines (outline.js) and its floor a checkerboard (floor.js).
 
+import { outerParticles } from './cull.js';
 import { ATTRIBUTES, programWith } from './gl.js';
 import { Floor } from './floor.js';
 import { Outline } from './outline.js';
+import { physicalRadius } from './spacing.js';
 import { SPHERE_POINT, SPRITE_VERT } from './sprite.js';
 import { Surface } from './surface.js';
 
@@ -64,10 +67,18 @@ export class Renderer {
       gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
     }
     gl.bindVertexArray(null);
+    /** Particles in the frame, and those in the GPU's buffers (the sphere view leaves out hidden ones). */
     this.count = 0;
+    this.drawnCount = 0;
     this.box = { min: [0, 0, 0], max: [0, 0, 0] };
-    /** Drawing radius of a particle (m). */
-    this.radius = 0.01;
+    /** The frame's particles, all of them, and those the sphere view draws (made when needed). */
+    this.frame = null;
+    this.outer = null;
+    /** Which of them the buffers hold: `'all'` or `'outer'`. */
+    this.buffered = null;
+    /** Particle spacing (m) and drawing radius of a particle (m). */
+    this.spacing = 0.01;
+    this.radius = physicalRadius(this.spacing);
     this.range = [0, 1];
     this.coloured = false;
     /** `'surface'` or `'spheres'`. */
@@ -79,11 +90,14 @@ export class Renderer {
     this.drawn = null;
   }
 
-  /** A new scene: its walls and floor (see outline.js, floor.js) and the particles' radius (m). */
-  setScene(walls, floorMin, floorMax, radius) {
+  /** A new scene: its walls and floor (see outline.js, floor.js) and the particle spacing (m). */
+  setScene(walls, floorMin, floorMax, spacing) {
     this.outline.set(walls);
     this.floor.set(floorMin, floorMax);
-    this.radius = radius;
+    this.spacing = spacing;
+    this.radius = physicalRadius(spacing);
+    this.outer = null;
+    this.buffered = null;
     this.version += 1;
   }
 
@@ -94,7 +108,6 @@ export class Renderer {
 
   /** New particle data: positions (x,y,z interleaved) and one value per particle (or null). */
   upload(positions, values) {
-    const gl = this.gl;
     this.count = positions.length / 3;
     const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < positions.length; i += 3) {
@@ -106,12 +119,26 @@ export class Renderer {
     }
     /** The particles' bounding box (m). */
     this.box = { min, max };
+    this.frame = { positions, values };
+    this.outer = null;
+    this.buffered = null;
+    this.coloured = values != null;
+    this.version += 1;
+  }
+
+  /** Fills the buffers with the particles the view draws. */
+  #buffer() {
+    const want = this.view === 'spheres' ? 'outer' : 'all';
+    if (this.buffered === want || !this.frame) return;
+    if (want === 'outer') this.outer ??= outerParticles(this.frame.positions, this.frame.values, this.spacing, this.box);
+    const { positions, values } = want === 'outer' ? this.outer : this.frame;
+    const gl = this.gl;
+    this.drawnCount = positions.length / 3;
     gl.bindBuffer(gl.ARRAY_BUFFER, this.posBuf);
     gl.bufferData(gl.ARRAY_BUFFER, positions, gl.DYNAMIC_DRAW);
     gl.bindBuffer(gl.ARRAY_BUFFER, this.valBuf);
-    gl.bufferData(gl.ARRAY_BUFFER, values ?? new Float32Array(this.count), gl.DYNAMIC_DRAW);
-    this.coloured = values != null;
-    this.version += 1;
+    gl.bufferData(gl.ARRAY_BUFFER, values ?? new Float32Array(this.drawnCount), gl.DYNAMIC_DRAW);
+    this.buffered = want;
   }
 
   /**
@@ -128,12 +155,13 @@ export class Renderer {
     if (key === this.drawn) return false;
     this.drawn = key;
     if (c.width !== w || c.height !== h) { c.width = w; c.height = h; }
+    this.#buffer();
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     gl.viewport(0, 0, w, h);
     this.#background(proj, view);
     if (this.view === 'surface' && this.surfaceUnsupported() === null) {
       this.surface ??= new Surface(gl);
-      this.surface.draw({ proj, view, vao: this.vao, count: this.count, radius: this.radius, box: this.box,
+      this.surface.draw({ proj, view, vao: this.vao, count: this.drawnCount, radius: this.radius, box: this.box,
         width: w, height: h, distance, background: (p, v) => this.#background(p, v) });
       // Walls in front of the water.
       this.outline.draw(proj, view);
@@ -149,7 +177,7 @@ export class Renderer {
     gl.uniform2f(u.u_range, this.range[0], this.range[1]);
     gl.uniform1i(u.u_coloured, this.coloured ? 1 : 0);
     gl.bindVertexArray(this.vao);
-    gl.drawArrays(gl.POINTS, 0, this.count);
+    gl.drawArrays(gl.POINTS, 0, this.drawnCount);
     this.outline.draw(proj, view);
     return true;
   }
