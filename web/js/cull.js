@@ -1,16 +1,20 @@
 /**
- * Particles the sphere view need not draw: those deep inside the fluid. On software GL a frame's
- * cost grows with the particles drawn and the pixels they cover, and a body of water hides most
- * of its particles behind its outer ones.
+ * Fewer particles to draw where the fluid hides them. On software GL a frame's cost grows with
+ * the particles drawn and the pixels they cover, and a body of water hides most of its
+ * particles behind its outer ones.
  *
  * Space is cut into cubes of two particle spacings; a cube holding at least half the particles
- * it holds at rest (4) is full. A particle is left out when every cube within two of its own,
- * along each axis and diagonally (a 5 x 5 x 5 block), is full: then at least four spacings of
- * fluid lie between it and the outside in every direction. Through four spacings of fluid at
+ * it holds at rest (4) is full. A cube is inner when every cube within two of it, along each
+ * axis and diagonally (a 5 x 5 x 5 block), is full: then at least four spacings of fluid lie
+ * between its particles and the outside in every direction. Through four spacings of fluid at
  * rest density a ray misses every sphere of physical size (spacing.js) less than 1 % of the
- * time, and one that gets through meets the spheres drawn on the far side, not the background:
- * the sphere view looks the same, bar a pixel's colour here and there. The surface view draws
- * every particle (its thickness counts them all).
+ * time, and one that gets through meets the spheres drawn on the far side, not the background.
+ *
+ * - The sphere view leaves inner cubes' particles out ({@link outerParticles}): it looks the
+ *   same, bar a pixel's colour here and there.
+ * - The surface view draws each inner cube as one sphere of its particles' volume at their mean
+ *   position ({@link lumpedParticles}): hidden as they are, they change no depth, and the water's
+ *   thickness keeps its volume.
  * @module
  */
 
@@ -24,14 +28,14 @@ const REACH = 2;
 const MAX_CELLS = 1 << 23;
 
 /**
- * The particles to draw, in their order, and how many were left out.
+ * Each particle's cube and which cubes are inner, or null when none is.
  * @param {Float32Array} positions x, y, z interleaved (m)
- * @param {Float32Array|null} values one per particle, or null
  * @param {number} spacing particle spacing (m)
  * @param {{min: number[], max: number[]}} box the particles' bounding box (m)
- * @returns {{positions: Float32Array, values: Float32Array|null, hidden: number}}
+ * @returns {{index: Uint32Array, inner: Uint8Array, count: Uint8Array, hidden: number}|null}
+ *   `hidden`: particles in inner cubes
  */
-export function outerParticles(positions, values, spacing, box) {
+export function innerCubes(positions, spacing, box) {
   const n = positions.length / 3;
   const cell = CELL * spacing;
   // Cube faces half a spacing off the first particle: a lattice (a fluid at rest) never has
@@ -39,9 +43,7 @@ export function outerParticles(positions, values, spacing, box) {
   const origin = box.min.map((m) => m - spacing / 2);
   const dims = [0, 1, 2].map((k) => Math.floor((box.max[k] - origin[k]) / cell) + 1);
   const cells = dims[0] * dims[1] * dims[2];
-  if (!(spacing > 0) || n === 0 || !(cells <= MAX_CELLS) || dims.some((d) => d <= 2 * REACH)) {
-    return { positions, values, hidden: 0 };
-  }
+  if (!(spacing > 0) || n === 0 || !(cells <= MAX_CELLS) || dims.some((d) => d <= 2 * REACH)) return null;
   const index = new Uint32Array(n);
   const count = new Uint8Array(cells);
   for (let i = 0; i < n; i++) {
@@ -70,17 +72,58 @@ export function outerParticles(positions, values, spacing, box) {
     }
     inner = next;
   }
-  let kept = 0;
-  for (let i = 0; i < n; i++) if (!inner[index[i]]) kept += 1;
-  if (kept === n) return { positions, values, hidden: 0 };
+  let hidden = 0;
+  for (let i = 0; i < n; i++) hidden += inner[index[i]];
+  return hidden === 0 ? null : { index, inner, count, hidden };
+}
+
+/**
+ * The particles outside inner cubes, in their order, with their values.
+ * @param {Float32Array} positions @param {Float32Array|null} values
+ * @param {ReturnType<typeof innerCubes>} cubes
+ * @returns {{positions: Float32Array, values: Float32Array|null}}
+ */
+export function outerParticles(positions, values, cubes) {
+  if (!cubes) return { positions, values };
+  const n = positions.length / 3, kept = n - cubes.hidden;
   const outP = new Float32Array(3 * kept), outV = values ? new Float32Array(kept) : null;
   for (let i = 0, j = 0; i < n; i++) {
-    if (inner[index[i]]) continue;
-    outP[3 * j] = positions[3 * i];
-    outP[3 * j + 1] = positions[3 * i + 1];
-    outP[3 * j + 2] = positions[3 * i + 2];
+    if (cubes.inner[cubes.index[i]]) continue;
+    outP.set(positions.subarray(3 * i, 3 * i + 3), 3 * j);
     if (outV) outV[j] = values[i];
     j += 1;
   }
-  return { positions: outP, values: outV, hidden: n - kept };
+  return { positions: outP, values: outV };
 }
+
+/**
+ * The particles outside inner cubes, then one per inner cube at its particles' mean position;
+ * `scales` gives each one's radius over a particle's (1 for a particle, the cube root of the
+ * particles merged for a cube, so its volume is theirs).
+ * @param {Float32Array} positions
+ * @param {ReturnType<typeof innerCubes>} cubes
+ * @returns {{positions: Float32Array, scales: Float32Array}}
+ */
+export function lumpedParticles(positions, cubes) {
+  const n = positions.length / 3;
+  if (!cubes) return { positions, scales: new Float32Array(n).fill(1) };
+  const sums = new Map();
+  for (let i = 0; i < n; i++) {
+    const c = cubes.index[i];
+    if (!cubes.inner[c]) continue;
+    let s = sums.get(c);
+    if (!s) sums.set(c, (s = [0, 0, 0, 0]));
+    s[0] += positions[3 * i]; s[1] += positions[3 * i + 1]; s[2] += positions[3 * i + 2]; s[3] += 1;
+  }
+  const kept = n - cubes.hidden, total = kept + sums.size;
+  const outP = new Float32Array(3 * total), scales = new Float32Array(total).fill(1);
+  outP.set(outerParticles(positions, null, cubes).positions);
+  let j = kept;
+  for (const [x, y, z, m] of sums.values()) {
+    outP.set([x / m, y / m, z / m], 3 * j);
+    scales[j] = Math.cbrt(m);
+    j += 1;
+  }
+  return { positions: outP, scales };
+}
+

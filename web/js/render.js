@@ -1,10 +1,10 @@
 // WebGL2 particle renderer with two views: spheres (each particle a point sprite shaded as a lit
-// sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection;
-// particles hidden deep inside the fluid are left out, cull.js) and the fluid's surface
-// (surface.js). Both draw particles at their physical size (spacing.js); the scene's box walls
+// sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection) and
+// the fluid's surface (surface.js); particles hidden deep inside the fluid are left out or
+// merged (cull.js). Both draw particles at their physical size (spacing.js); the scene's box walls
 // are lines (outline.js) and its floor a checkerboard (floor.js).
 
-import { outerParticles } from './cull.js';
+import { innerCubes, lumpedParticles, outerParticles } from './cull.js';
 import { ATTRIBUTES, programWith } from './gl.js';
 import { Floor } from './floor.js';
 import { Outline } from './outline.js';
@@ -15,8 +15,7 @@ import { Surface } from './surface.js';
 const FRAG = `#version 300 es
 precision highp float;
 uniform bool u_coloured;
-uniform float u_radius;
-in float v_t;
+in float v_t, v_radius;
 in vec3 v_center;
 out vec4 colour;
 ${SPHERE_POINT}
@@ -29,7 +28,7 @@ void main() {
   vec3 n;
   // Depth is the sprite's (the particle centre's): writing each fragment's sphere depth would
   // switch off early depth tests, which halves the frame rate on software GL.
-  spherePoint(v_center, u_radius, n);
+  spherePoint(v_center, v_radius, n);
   vec3 l = normalize(vec3(0.4, 0.7, 0.6));
   vec3 h = normalize(l + vec3(0.0, 0.0, 1.0));
   vec3 base = u_coloured ? ramp(v_t) : vec3(0.25, 0.55, 0.9);
@@ -52,7 +51,7 @@ export class Renderer {
     this.gl = gl;
     this.canvas = canvas;
     this.spheres = programWith(gl, SPRITE_VERT, FRAG,
-      ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured']);
+      ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured', 'u_scaled']);
     /** The scene's walls; `outline.set(wallLines(scene))` when the scene changes. */
     this.outline = new Outline(gl);
     /** The scene's floor; `floor.set(min, max)` when the scene changes. */
@@ -71,10 +70,10 @@ export class Renderer {
     this.count = 0;
     this.drawnCount = 0;
     this.box = { min: [0, 0, 0], max: [0, 0, 0] };
-    /** The frame's particles, all of them, and those the sphere view draws (made when needed). */
+    /** The frame's particles, and what each view draws of them (made when needed, cull.js). */
     this.frame = null;
-    this.outer = null;
-    /** Which of them the buffers hold: `'all'` or `'outer'`. */
+    this.drawable = null;
+    /** Which the buffers hold: `'spheres'` or `'surface'`. */
     this.buffered = null;
     /** Particle spacing (m) and drawing radius of a particle (m). */
     this.spacing = 0.01;
@@ -96,7 +95,7 @@ export class Renderer {
     this.floor.set(floorMin, floorMax);
     this.spacing = spacing;
     this.radius = physicalRadius(spacing);
-    this.outer = null;
+    this.drawable = null;
     this.buffered = null;
     this.version += 1;
   }
@@ -120,25 +119,34 @@ export class Renderer {
     /** The particles' bounding box (m). */
     this.box = { min, max };
     this.frame = { positions, values };
-    this.outer = null;
+    this.drawable = null;
     this.buffered = null;
     this.coloured = values != null;
     this.version += 1;
   }
 
-  /** Fills the buffers with the particles the view draws. */
+  /**
+   * Fills the buffers with what the view draws: the sphere view the particles outside inner
+   * cubes and their values, the surface view those and one sphere per inner cube, with radius
+   * scales in place of values.
+   */
   #buffer() {
-    const want = this.view === 'spheres' ? 'outer' : 'all';
-    if (this.buffered === want || !this.frame) return;
-    if (want === 'outer') this.outer ??= outerParticles(this.frame.positions, this.frame.values, this.spacing, this.box);
-    const { positions, values } = want === 'outer' ? this.outer : this.frame;
+    if (this.buffered === this.view || !this.frame) return;
+    const { positions, values } = this.frame;
+    const d = (this.drawable ??= { cubes: innerCubes(positions, this.spacing, this.box) });
+    let data;
+    if (this.view === 'spheres') data = (d.spheres ??= outerParticles(positions, values, d.cubes));
+    else {
+      d.surface ??= lumpedParticles(positions, d.cubes);
+      data = { positions: d.surface.positions, values: d.surface.scales };
+    }
     const gl = this.gl;
-    this.drawnCount = positions.length / 3;
+    this.drawnCount = data.positions.length / 3;
     gl.bindBuffer(gl.ARRAY_BUFFER, this.posBuf);
-    gl.bufferData(gl.ARRAY_BUFFER, positions, gl.DYNAMIC_DRAW);
+    gl.bufferData(gl.ARRAY_BUFFER, data.positions, gl.DYNAMIC_DRAW);
     gl.bindBuffer(gl.ARRAY_BUFFER, this.valBuf);
-    gl.bufferData(gl.ARRAY_BUFFER, values ?? new Float32Array(this.drawnCount), gl.DYNAMIC_DRAW);
-    this.buffered = want;
+    gl.bufferData(gl.ARRAY_BUFFER, data.values ?? new Float32Array(this.drawnCount), gl.DYNAMIC_DRAW);
+    this.buffered = this.view;
   }
 
   /**
@@ -176,6 +184,7 @@ export class Renderer {
     gl.uniform1f(u.u_viewport_h, h);
     gl.uniform2f(u.u_range, this.range[0], this.range[1]);
     gl.uniform1i(u.u_coloured, this.coloured ? 1 : 0);
+    gl.uniform1i(u.u_scaled, 0);
     gl.bindVertexArray(this.vao);
     gl.drawArrays(gl.POINTS, 0, this.drawnCount);
     this.outline.draw(proj, view);

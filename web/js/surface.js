@@ -43,15 +43,15 @@ function particleFrag(outputs) {
   return `#version 300 es
 precision highp float;
 uniform mat4 u_proj;
-uniform float u_radius;
+in float v_radius;
 in vec3 v_center;
 ${out}
 ${SPHERE_POINT}
 void main() {
   vec3 n;
-  vec3 p = spherePoint(v_center, u_radius, n);
+  vec3 p = spherePoint(v_center, v_radius, n);
   ${outputs.includes('distance') ? 'distance = -p.z;' : ''}
-  ${outputs.includes('chord') ? 'chord = 2.0 * u_radius * n.z;' : ''}
+  ${outputs.includes('chord') ? 'chord = 2.0 * v_radius * n.z;' : ''}
   ${depthTested ? 'gl_FragDepth = windowDepth(u_proj, p);' : ''}
 }`;
 }
@@ -174,7 +174,7 @@ export class Surface {
     this.scale = 0.5;
     /** Per-buffer blending, when depth and thickness take one pass over the particles. */
     this.indexed = gl.getExtension('EXT_float_blend') ? gl.getExtension('OES_draw_buffers_indexed') : null;
-    const particle = ['u_proj', 'u_view', 'u_radius', 'u_viewport_h'];
+    const particle = ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_scaled'];
     const passes = this.indexed ? [['distance', 'chord']] : [['distance'], ['chord']];
     this.particlePasses = passes.map((outputs) => programWith(gl, SPRITE_VERT, particleFrag(outputs), particle));
     this.smoothPass = programWith(gl, FULL_SCREEN, SMOOTH_FRAG, ['u_depth', 'u_c', 'u_jump', 'u_rate']);
@@ -220,9 +220,9 @@ export class Surface {
    * @param {{proj: Float32Array, view: Float32Array, vao: WebGLVertexArrayObject, count: number,
    *   radius: number, box: {min: number[], max: number[]}, width: number, height: number,
    *   distance: number, background: (proj: Float32Array, view: Float32Array) => void}} o the
-   *   particles (`vao`, `count`, drawing `radius` in m, bounding `box`), the canvas's size in
-   *   pixels, the camera's distance to what it looks at (m; sets how much to smooth) and what
-   *   draws the scene behind the water
+   *   particles (`vao` with positions and radius scales, `count`, a particle's drawing `radius`
+   *   in m, bounding `box`), the canvas's size in pixels, the camera's distance to what it looks
+   *   at (m; sets how much to smooth) and what draws the scene behind the water
    */
   draw(o) {
     const gl = this.gl;
@@ -308,6 +308,7 @@ export class Surface {
       gl.uniformMatrix4fv(u.u_view, false, o.view);
       gl.uniform1f(u.u_radius, o.radius);
       gl.uniform1f(u.u_viewport_h, t.lh);
+      gl.uniform1i(u.u_scaled, 1);
       gl.drawArrays(gl.POINTS, 0, o.count);
     };
     const [distanceFb, chordFb] = t.particleFbs;

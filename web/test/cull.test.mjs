@@ -1,7 +1,7 @@
-// Leaving out particles hidden inside the fluid (web/js/cull.js). Run: node --test web/test/
+// Fewer particles where the fluid hides them (web/js/cull.js). Run: node --test web/test/
 import assert from 'node:assert/strict';
 import test from 'node:test';
-import { outerParticles } from '../js/cull.js';
+import { innerCubes, lumpedParticles, outerParticles } from '../js/cull.js';
 
 /** A lattice block of side^3 particles `h` apart from `origin`, with a value per particle. */
 function block(side, h, origin = [0, 0, 0]) {
@@ -22,11 +22,12 @@ const boxOf = (p) => {
 
 test('a block keeps every particle within four spacings of its faces and drops most inside', () => {
   const h = 0.01, side = 30, { positions, values } = block(side, h);
-  const out = outerParticles(positions, values, h, boxOf(positions));
+  const cubes = innerCubes(positions, h, boxOf(positions));
+  const out = outerParticles(positions, values, cubes);
   const n = side ** 3;
-  assert.equal(out.positions.length / 3 + out.hidden, n);
+  assert.equal(out.positions.length / 3 + cubes.hidden, n);
   assert.equal(out.values.length, out.positions.length / 3);
-  assert.ok(out.hidden > 0.3 * n, `only ${out.hidden} of ${n} left out`);
+  assert.ok(cubes.hidden > 0.3 * n, `only ${cubes.hidden} of ${n} left out`);
   const kept = new Set(Array.from(out.values));
   for (let i = 0; i < n; i++) {
     const p = positions.subarray(3 * i, 3 * i + 3);
@@ -50,11 +51,31 @@ test('thin or sparse particles are all kept', () => {
     if (sheet.positions[i + 1] < 4 * h) { t.set(sheet.positions.subarray(i, i + 3), k); k += 3; }
   }
   const tp = t.subarray(0, k);
-  assert.equal(outerParticles(tp, null, h, boxOf(tp)).hidden, 0);
+  assert.equal(innerCubes(tp, h, boxOf(tp)), null);
   // Particles eight spacings apart: no cube is full.
   const sparse = block(20, 8 * h);
-  assert.equal(outerParticles(sparse.positions, null, h, boxOf(sparse.positions)).hidden, 0);
+  assert.equal(innerCubes(sparse.positions, h, boxOf(sparse.positions)), null);
   // No spacing known, or no particles: nothing left out.
-  assert.equal(outerParticles(sparse.positions, null, 0, boxOf(sparse.positions)).hidden, 0);
-  assert.equal(outerParticles(new Float32Array(0), null, h, { min: [0, 0, 0], max: [0, 0, 0] }).hidden, 0);
+  assert.equal(innerCubes(sparse.positions, 0, boxOf(sparse.positions)), null);
+  assert.equal(innerCubes(new Float32Array(0), h, { min: [0, 0, 0], max: [0, 0, 0] }), null);
+  const all = outerParticles(sparse.positions, sparse.values, null);
+  assert.equal(all.positions, sparse.positions);
+  assert.deepEqual(Array.from(lumpedParticles(sparse.positions, null).scales), new Array(8000).fill(1));
+});
+
+test('the surface view gets one sphere per inner cube, of its particles\' volume, at their centre', () => {
+  const h = 0.01, side = 24, { positions } = block(side, h);
+  const cubes = innerCubes(positions, h, boxOf(positions));
+  const lumped = lumpedParticles(positions, cubes);
+  const outer = side ** 3 - cubes.hidden, lumps = lumped.scales.length - outer;
+  assert.ok(lumps > 0);
+  assert.deepEqual(Array.from(lumped.positions.subarray(0, 3 * outer)), Array.from(outerParticles(positions, null, cubes).positions));
+  assert.ok(lumped.scales.subarray(0, outer).every((s) => s === 1));
+  // Volume kept: the scales cubed add up to the particles merged (8 a cube in a lattice).
+  const volume = lumped.scales.subarray(outer).reduce((a, s) => a + s ** 3, 0);
+  assert.ok(Math.abs(volume - cubes.hidden) < 1e-3 * cubes.hidden, `${volume} for ${cubes.hidden} particles`);
+  assert.equal(lumps, cubes.hidden / 8);
+  // A lump sits at its cube's centre, between lattice points.
+  const [x, y, z] = lumped.positions.subarray(3 * outer, 3 * outer + 3);
+  for (const v of [x, y, z]) assert.ok(Math.abs(v / h - Math.round(v / h)) < 1e-4, `${v / h} is not on a lattice corner`);
 });
