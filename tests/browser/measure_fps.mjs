@@ -1,6 +1,8 @@
 // Measures the viewer in headless Chromium on large scenes (needs target/release/floe):
 //
 //   node tests/browser/measure_fps.mjs [particles]          render fps of both views (default 200000)
+//   node tests/browser/measure_fps.mjs --paused [particles] the same with the scene paused (the
+//                                                           solver not sharing the CPU)
 //   FLOE_WEB=DIR node tests/browser/measure_fps.mjs [particles]   the same for another viewer
 //                                                           (an older one: its single view)
 //   node tests/browser/measure_fps.mjs --scrub [particles] [frames]
@@ -25,7 +27,8 @@ import { createScene, freePort, launchBrowser, root, startServer } from './harne
 
 const args = process.argv.slice(2);
 const scrub = args[0] === '--scrub';
-if (scrub) args.shift();
+const paused = args[0] === '--paused';
+if (scrub || paused) args.shift();
 const particles = Number(args[0] ?? (scrub ? 100000 : 200000));
 const spacing = 0.5 / Math.round(Math.cbrt(particles));
 const grpc = `127.0.0.1:${await freePort()}`;
@@ -45,10 +48,10 @@ try {
 }
 
 async function measureRender(page, scene) {
-  await page.click('#play');
+  if (!paused) await page.click('#play');
   const read = () => page.textContent('#stats');
   const num = (text, label) => Number(new RegExp(`${label}\\s+([\\d.]+)`).exec(text)?.[1]);
-  console.log('| particles | view | render fps (orbiting) | frames received/s | bytes/frame | decode ms |');
+  console.log(`| particles | view | render fps (orbiting; median of 5, range) | frames received/s | bytes/frame | decode ms |   scene ${paused ? 'paused' : 'running'}`);
   console.log('|---:|---|---:|---:|---:|---:|');
   const views = (await page.$('#view-mode')) ? ['spheres', 'surface'] : ['spheres (the only view)'];
   for (const view of views) {
