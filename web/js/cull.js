@@ -89,7 +89,9 @@ export function outerParticles(positions, values, cubes) {
   const outP = new Float32Array(3 * kept), outV = values ? new Float32Array(kept) : null;
   for (let i = 0, j = 0; i < n; i++) {
     if (cubes.inner[cubes.index[i]]) continue;
-    outP.set(positions.subarray(3 * i, 3 * i + 3), 3 * j);
+    outP[3 * j] = positions[3 * i];
+    outP[3 * j + 1] = positions[3 * i + 1];
+    outP[3 * j + 2] = positions[3 * i + 2];
     if (outV) outV[j] = values[i];
     j += 1;
   }
@@ -107,23 +109,31 @@ export function outerParticles(positions, values, cubes) {
 export function lumpedParticles(positions, cubes) {
   const n = positions.length / 3;
   if (!cubes) return { positions, scales: new Float32Array(n).fill(1) };
-  const sums = new Map();
+  // Number the inner cubes that hold particles, in the order they are met.
+  const slot = new Int32Array(cubes.inner.length).fill(-1);
+  let lumps = 0;
   for (let i = 0; i < n; i++) {
     const c = cubes.index[i];
-    if (!cubes.inner[c]) continue;
-    let s = sums.get(c);
-    if (!s) sums.set(c, (s = [0, 0, 0, 0]));
-    s[0] += positions[3 * i]; s[1] += positions[3 * i + 1]; s[2] += positions[3 * i + 2]; s[3] += 1;
+    if (cubes.inner[c] && slot[c] < 0) slot[c] = lumps++;
   }
-  const kept = n - cubes.hidden, total = kept + sums.size;
-  const outP = new Float32Array(3 * total), scales = new Float32Array(total).fill(1);
+  const sums = new Float64Array(4 * lumps);
+  for (let i = 0; i < n; i++) {
+    const s = slot[cubes.index[i]];
+    if (s < 0) continue;
+    sums[4 * s] += positions[3 * i];
+    sums[4 * s + 1] += positions[3 * i + 1];
+    sums[4 * s + 2] += positions[3 * i + 2];
+    sums[4 * s + 3] += 1;
+  }
+  const kept = n - cubes.hidden;
+  const outP = new Float32Array(3 * (kept + lumps)), scales = new Float32Array(kept + lumps).fill(1);
   outP.set(outerParticles(positions, null, cubes).positions);
-  let j = kept;
-  for (const [x, y, z, m] of sums.values()) {
-    outP.set([x / m, y / m, z / m], 3 * j);
+  for (let s = 0; s < lumps; s++) {
+    const m = sums[4 * s + 3], j = kept + s;
+    outP[3 * j] = sums[4 * s] / m;
+    outP[3 * j + 1] = sums[4 * s + 1] / m;
+    outP[3 * j + 2] = sums[4 * s + 2] / m;
     scales[j] = Math.cbrt(m);
-    j += 1;
   }
   return { positions: outP, scales };
 }
-
