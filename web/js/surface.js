@@ -12,15 +12,16 @@
 //    of the surface the depth image describes, from screen-space first and second differences,
 //    advanced by explicit Euler steps), which flattens single spheres' bumps but keeps silhouettes:
 //    a neighbour further than a few radii in depth, or no fluid, counts as level with the pixel;
-// 4. shading (full resolution): normals from the smoothed depth (of the two one-sided differences
-//    the smaller, so a silhouette is not taken for a slope), the background refracted along the
-//    normal and tinted by Beer-Lambert absorption over the thickness, light scattered back in
-//    water's colour the more the thicker it is, Fresnel (Schlick) reflection of a sky, and a
-//    specular highlight. A pixel whose neighbours on both sides of an axis lie beyond a jump
-//    faces the camera along that axis. The surface's depth goes to the depth buffer, so walls
-//    drawn after it hide behind the water.
+// 4. normals from the smoothed depth (of the two one-sided differences the smaller, so a
+//    silhouette is not taken for a slope; a pixel whose neighbours on both sides of an axis lie
+//    beyond a jump faces the camera along that axis);
+// 5. shading (full resolution, the normals filtered between texels): the background refracted
+//    along the normal and tinted by Beer-Lambert absorption over the thickness, light scattered
+//    back in water's colour the more the thicker it is, Fresnel (Schlick) reflection of a sky,
+//    and a specular highlight. The surface's depth goes to the depth buffer, so walls drawn
+//    after it hide behind the water.
 //
-// Passes 1 to 3 run at `scale` times the canvas's resolution, and passes 3 and 4 only over the
+// Passes 1 to 4 run at `scale` times the canvas's resolution, and passes 3 to 5 only over the
 // particles' bounding box on screen: on software GL (no GPU) their cost decides the frame rate.
 // The scene behind the water is drawn into the canvas by the caller first, and again at the
 // passes' resolution for refraction.
@@ -89,20 +90,22 @@ void main() {
   distance = z + dt * h;
 }`;
 
-const SHADE_FRAG = `#version 300 es
-precision highp float;
+/** GLSL: a distance texel (clamped to the texture) and the view-space point it stands for. */
+const VIEW_POINT = `
 uniform highp sampler2D u_depth;
-uniform sampler2D u_thickness, u_background;
-uniform mat4 u_proj, u_view;
-uniform vec2 u_size, u_low;
-uniform float u_jump;  // larger steps in distance (m) are silhouettes, not slopes
-out vec4 colour;
-${WINDOW_DEPTH}
+uniform mat4 u_proj;
+uniform vec2 u_low;
 float depthAt(ivec2 q) { return texelFetch(u_depth, clamp(q, ivec2(0), ivec2(u_low) - 1), 0).r; }
 vec3 viewPoint(ivec2 q, float d) {
   vec2 ndc = (vec2(q) + 0.5) / u_low * 2.0 - 1.0;
   return vec3((ndc.x + u_proj[2][0]) * d / u_proj[0][0], (ndc.y + u_proj[2][1]) * d / u_proj[1][1], -d);
-}
+}`;
+
+const NORMAL_FRAG = `#version 300 es
+precision highp float;
+${VIEW_POINT}
+uniform float u_jump;  // larger steps in distance (m) are silhouettes, not slopes
+out vec4 normal;       // view-space normal, and 1 where there is fluid (0 elsewhere)
 vec3 tangent(ivec2 q, vec3 c, ivec2 dir) {
   float df = depthAt(q + dir), db = depthAt(q - dir);
   vec3 f = viewPoint(q + dir, df) - c, b = c - viewPoint(q - dir, db);
@@ -111,6 +114,23 @@ vec3 tangent(ivec2 q, vec3 c, ivec2 dir) {
   if (bOut) return f;
   return abs(f.z) < abs(b.z) ? f : b;
 }
+void main() {
+  ivec2 q = ivec2(gl_FragCoord.xy);
+  float d = depthAt(q);
+  if (d >= ${EMPTY}) { normal = vec4(0.0); return; }
+  vec3 p = viewPoint(q, d);
+  vec3 n = cross(tangent(q, p, ivec2(1, 0)), tangent(q, p, ivec2(0, 1)));
+  normal = vec4(dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0), 1.0);
+}`;
+
+const SHADE_FRAG = `#version 300 es
+precision highp float;
+${VIEW_POINT}
+uniform sampler2D u_normals, u_thickness, u_background;
+uniform mat4 u_view;
+uniform vec2 u_size;
+out vec4 colour;
+${WINDOW_DEPTH}
 vec3 sky(vec3 dir) {
   return dir.y > 0.0 ? mix(vec3(0.3, 0.36, 0.42), vec3(0.5, 0.62, 0.75), dir.y) : vec3(0.13, 0.15, 0.17);
 }
@@ -120,8 +140,9 @@ void main() {
   float d = depthAt(q);
   if (d >= ${EMPTY}) discard;
   vec3 p = viewPoint(q, d);
-  vec3 n = cross(tangent(q, p, ivec2(1, 0)), tangent(q, p, ivec2(0, 1)));
-  n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
+  // Normals filtered between texels of the passes' resolution: smooth shading at full resolution.
+  vec4 filtered = texture(u_normals, uv);
+  vec3 n = dot(filtered.xyz, filtered.xyz) > 0.0 ? normalize(filtered.xyz) : vec3(0.0, 0.0, 1.0);
   vec3 v = normalize(-p);
   float thickness = texture(u_thickness, uv).r;
   // Refraction: the background seen through the water, shifted along the normal with depth.
@@ -178,8 +199,9 @@ export class Surface {
     const passes = this.indexed ? [['distance', 'chord']] : [['distance'], ['chord']];
     this.particlePasses = passes.map((outputs) => programWith(gl, SPRITE_VERT, particleFrag(outputs), particle));
     this.smoothPass = programWith(gl, FULL_SCREEN, SMOOTH_FRAG, ['u_depth', 'u_c', 'u_jump', 'u_rate']);
+    this.normalPass = programWith(gl, FULL_SCREEN, NORMAL_FRAG, ['u_depth', 'u_proj', 'u_low', 'u_jump']);
     this.shadePass = programWith(gl, FULL_SCREEN, SHADE_FRAG,
-      ['u_depth', 'u_thickness', 'u_background', 'u_proj', 'u_view', 'u_size', 'u_low', 'u_jump']);
+      ['u_depth', 'u_normals', 'u_thickness', 'u_background', 'u_proj', 'u_view', 'u_size', 'u_low']);
     this.empty = gl.createVertexArray();
     this.targets = null;
   }
@@ -191,8 +213,8 @@ export class Surface {
     if (t && t.w === w && t.h === h && t.lw === lw && t.lh === lh) return t;
     const gl = this.gl;
     if (t) {
-      for (const x of [t.depthA, t.depthB, t.thickness, t.background]) gl.deleteTexture(x);
-      for (const f of [...t.particleFbs, t.fbA, t.fbB, t.backgroundFb]) {
+      for (const x of [t.depthA, t.depthB, t.thickness, t.normals, t.background]) gl.deleteTexture(x);
+      for (const f of [...t.particleFbs, t.fbA, t.fbB, t.normalsFb, t.backgroundFb]) {
         if (f.depth) gl.deleteRenderbuffer(f.depth);
         gl.deleteFramebuffer(f);
       }
@@ -200,9 +222,11 @@ export class Surface {
     const float = (filter) => texture(gl, lw, lh, gl.R32F, gl.RED, gl.FLOAT, filter);
     const depthA = float(gl.NEAREST), depthB = float(gl.NEAREST);
     const thickness = texture(gl, lw, lh, gl.R16F, gl.RED, gl.HALF_FLOAT, gl.LINEAR);
+    const normals = texture(gl, lw, lh, gl.RGBA16F, gl.RGBA, gl.HALF_FLOAT, gl.LINEAR);
     const background = texture(gl, lw, lh, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, gl.LINEAR);
     this.targets = {
-      w, h, lw, lh, depthA, depthB, thickness, background,
+      w, h, lw, lh, depthA, depthB, thickness, normals, background,
+      normalsFb: framebuffer(gl, normals, lw, lh),
       // One framebuffer per particle pass.
       particleFbs: this.indexed
         ? [framebuffer(gl, [depthA, thickness], lw, lh)]
@@ -260,7 +284,20 @@ export class Surface {
       gl.drawArrays(gl.TRIANGLES, 0, 3);
       src = dst;
     }
-    // 4. Shading into the canvas, over the particles' box in canvas pixels.
+    // 4. Normals at the passes' resolution (cleared first: the shading filters across the box's edge).
+    gl.bindFramebuffer(gl.FRAMEBUFFER, t.normalsFb);
+    gl.disable(gl.SCISSOR_TEST);
+    gl.clearBufferfv(gl.COLOR, 0, [0, 0, 0, 0]);
+    gl.enable(gl.SCISSOR_TEST);
+    const nrm = this.normalPass;
+    gl.useProgram(nrm.program);
+    gl.bindTexture(gl.TEXTURE_2D, src);
+    gl.uniform1i(nrm.u.u_depth, 0);
+    gl.uniformMatrix4fv(nrm.u.u_proj, false, o.proj);
+    gl.uniform2f(nrm.u.u_low, t.lw, t.lh);
+    gl.uniform1f(nrm.u.u_jump, JUMP * o.radius);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    // 5. Shading into the canvas, over the particles' box in canvas pixels.
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     gl.viewport(0, 0, t.w, t.h);
     const kx = t.w / t.lw, ky = t.h / t.lh;
@@ -269,7 +306,8 @@ export class Surface {
     gl.depthFunc(gl.ALWAYS);
     const c = this.shadePass;
     gl.useProgram(c.program);
-    [[src, c.u.u_depth], [t.thickness, c.u.u_thickness], [t.background, c.u.u_background]].forEach(([tex, loc], unit) => {
+    const inputs = [[src, c.u.u_depth], [t.normals, c.u.u_normals], [t.thickness, c.u.u_thickness], [t.background, c.u.u_background]];
+    inputs.forEach(([tex, loc], unit) => {
       gl.activeTexture(gl.TEXTURE0 + unit);
       gl.bindTexture(gl.TEXTURE_2D, tex);
       gl.uniform1i(loc, unit);
@@ -278,12 +316,11 @@ export class Surface {
     gl.uniformMatrix4fv(c.u.u_view, false, o.view);
     gl.uniform2f(c.u.u_size, t.w, t.h);
     gl.uniform2f(c.u.u_low, t.lw, t.lh);
-    gl.uniform1f(c.u.u_jump, JUMP * o.radius);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.disable(gl.SCISSOR_TEST);
     gl.depthFunc(gl.LESS);
     // Unbind the passes' textures, so the next frame can render into them.
-    for (let unit = 2; unit >= 0; unit--) {
+    for (let unit = 3; unit >= 0; unit--) {
       gl.activeTexture(gl.TEXTURE0 + unit);
       gl.bindTexture(gl.TEXTURE_2D, null);
     }
