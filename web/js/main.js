@@ -1,9 +1,15 @@
-// The viewer: scene list and controls over REST, frames and control over the
-// scene's WebSocket, decoding in a Web Worker, drawing with WebGL2.
+// The viewer: scene list and controls over REST, frames and events over the scene's WebSocket,
+// decoding in a Web Worker, drawing with WebGL2; plots, recording and replay in their modules.
 
-import { OrbitCamera, perspective } from './camera.js';
+import { OrbitCamera } from './camera.js';
+import { DEFAULT_CHANNELS, NONE, colourModes, colourValues, valueRange } from './colour.js';
+import { bindKeys, fillHelp } from './help.js';
+import { acting, showError } from './notify.js';
 import { wallLines } from './outline.js';
+import { PlotPanel } from './plots.js';
+import { Recorder } from './recorder.js';
 import { Renderer } from './render.js';
+import { Replay } from './replay.js';
 
 const $ = (id) => document.getElementById(id);
 const api = (path, init) => fetch(`/api/v1${path}`, {
@@ -13,15 +19,22 @@ const api = (path, init) => fetch(`/api/v1${path}`, {
   if (!r.ok) throw new Error(body.error ?? `${r.status} ${r.statusText}`);
   return body;
 });
+const post = (path, body) => api(path, { method: 'POST', body: JSON.stringify(body ?? {}) });
 
 const canvas = $('view');
 const renderer = new Renderer(canvas);
 const camera = new OrbitCamera(canvas);
 const worker = new Worker(new URL('./codec/worker.js', import.meta.url), { type: 'module' });
+const plots = new PlotPanel($('plots'));
 
 const state = {
-  scene: null, socket: null, wantOpen: false, running: false,
-  frames: 0, bytes: 0, lastBytes: 0, decodeMs: 0, renderFps: 0, lastStatus: null,
+  scene: null, socket: null, wantOpen: false, running: false, requestedRtf: null,
+  frames: 0, bytes: 0, lastBytes: 0, decodeMs: 0, renderFps: 0, lastStatus: null, bounds: null, spacing: 0,
+  // The latest decoded frame not drawn yet: only it is drawn when frames come faster than the
+  // page draws (uploading each would stall on the frame being drawn).
+  nextFrame: null,
+  // A frame waiting for the decoder, and frames skipped so (see decode()).
+  decoding: false, heldBytes: null, skipped: 0,
 };
 
 function banner(text) {
@@ -35,9 +48,12 @@ function rtf() {
   return v;
 }
 
-/** The channel the colour mode needs (only that one is streamed). */
-function channelFor(mode) {
-  return { speed: 'velocity', density: 'density', pressure: 'pressure' }[mode] ?? '';
+/** Fills the "Colour by" menu from a channel list, keeping the choice if it is still there. */
+function showColourModes(channels) {
+  const sel = $('colour'), was = sel.value;
+  sel.replaceChildren(...colourModes(channels).map((m) => new Option(m.label, m.value)));
+  sel.value = [...sel.options].some((o) => o.value === was) ? was : sel.options[0].value;
+  $('legend').hidden = sel.value === NONE;
 }
 
 /**
@@ -47,6 +63,7 @@ function channelFor(mode) {
  */
 async function refreshScenes(select, reopen = false) {
   const scenes = await api('/scenes');
+  if (replay.active) return;
   const sel = $('scenes');
   sel.replaceChildren(...scenes.map((s) => new Option(`${s.scene_id}: ${s.name} (${s.particles} particles)`, s.scene_id)));
   const id = select ?? (scenes.some((s) => s.scene_id === state.scene?.scene_id) ? state.scene.scene_id : scenes[0]?.scene_id);
@@ -63,25 +80,62 @@ function close() {
   state.wantOpen = false;
   state.socket?.close();
   state.socket = null;
+  state.heldBytes = null;
 }
 
 function open(scene) {
+  const changed = scene.scene_id !== state.scene?.scene_id || state.bounds === null;
   close();
   state.scene = scene;
   state.wantOpen = true;
   banner(scene.halt_reason ? `Halted: ${scene.halt_reason}` : null);
-  camera.fit(scene.bounds_min, scene.bounds_max);
-  renderer.radius = 0.5 * scene.particle_spacing;
-  renderer.outline.set(wallLines(scene.scene));
+  showColourModes(scene.channels ?? DEFAULT_CHANNELS);
+  const tank = scene.scene?.boundaries?.find((b) => b.kind === 'box');
+  showScene({ min: scene.bounds_min, max: scene.bounds_max }, wallLines(scene.scene), scene.particle_spacing, changed, tank);
+  if (changed) {
+    recorder.stop();
+    plots.reset(`scene-${scene.scene_id}`);
+    state.requestedRtf = null;
+  }
   connect();
+}
+
+/**
+ * Sizes particles, sets the walls and the floor (under the `floor` box, else the bounds; null:
+ * none), and frames the camera on `bounds` if `frame`.
+ */
+function showScene(bounds, walls, spacing, frame, floor = bounds) {
+  state.bounds = bounds;
+  renderer.setScene(walls, floor?.min, floor?.max, spacing);
+  if (frame) frameCamera();
+}
+
+/** The part of the canvas not under the panels (CSS pixels): left and right edges. */
+function freeRegion() {
+  const w = canvas.clientWidth;
+  let left = 0, right = w;
+  // On a narrow screen the panels cover the view only while open; frame for the whole width.
+  if (w >= 700) {
+    if (!$('panel').classList.contains('collapsed')) left = $('panel').getBoundingClientRect().right;
+    if (plots.visible) right = $('hud').getBoundingClientRect().left;
+  }
+  return right - left > w / 3 ? { left, right } : { left: 0, right: w };
+}
+
+/** Points the camera at the scene's bounds, framed in the part of the view the panels leave. */
+function frameCamera() {
+  if (!state.bounds) return;
+  const { left, right } = freeRegion();
+  camera.fit(state.bounds.min, state.bounds.max, (right - left) / Math.max(canvas.clientHeight, 1));
+  state.framedFor = [left, right, Math.max(canvas.clientHeight, 1)].join();
 }
 
 function connect() {
   if (!state.wantOpen || !state.scene) return;
-  const channel = channelFor($('colour').value);
+  const channel = $('colour').value;
   const url = new URL(`/api/v1/scenes/${state.scene.scene_id}/ws`, location.href);
   url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
-  url.search = new URLSearchParams({ channels: channel, max_fps: '60' });
+  url.search = new URLSearchParams({ channels: channel === NONE ? '' : channel, max_fps: '60' });
   const ws = new WebSocket(url);
   ws.binaryType = 'arraybuffer';
   state.socket = ws;
@@ -89,7 +143,8 @@ function connect() {
     if (typeof e.data === 'string') return onText(JSON.parse(e.data));
     state.bytes += e.data.byteLength;
     state.lastBytes = e.data.byteLength;
-    worker.postMessage({ bytes: e.data }, [e.data]);
+    recorder.push(e.data);
+    decode(e.data);
   };
   ws.onclose = () => {
     if (state.socket !== ws || !state.wantOpen) return;
@@ -100,18 +155,24 @@ function connect() {
 
 /** Re-reads the scene list every second until the server answers, then reopens the scene. */
 function reconnect() {
+  if (replay.active) return;
   refreshScenes(undefined, true).catch(() => setTimeout(reconnect, 1000));
 }
 
+/** A status of the scene shown: settings, halt banner, plots. */
+function onStatus(scene) {
+  if (!['gravity', 'xsph'].includes(document.activeElement?.id)) showSettings(scene.scene);
+  state.lastStatus = scene;
+  // A halt banner goes once the scene is no longer halted (after a reset).
+  if (scene.state !== 'halted' && $('banner').textContent.startsWith('Halted')) banner(null);
+  state.running = scene.state === 'running';
+  if (scene.state === 'halted') banner(`Halted: ${scene.halt_reason}`);
+  plots.add(scene, performance.now() / 1000);
+}
+
 function onText(msg) {
-  if (msg.type === 'status') {
-    if (!['gravity', 'xsph'].includes(document.activeElement?.id)) showSettings(msg.scene.scene);
-    state.lastStatus = msg.scene;
-    // A halt banner goes once the scene is no longer halted (after a reset).
-    if (msg.scene.state !== 'halted' && $('banner').textContent.startsWith('Halted')) banner(null);
-    state.running = msg.scene.state === 'running';
-    if (msg.scene.state === 'halted') banner(`Halted: ${msg.scene.halt_reason}`);
-  } else if (msg.type === 'event' && msg.event === 'halted') {
+  if (msg.type === 'status') onStatus(msg.scene);
+  else if (msg.type === 'event' && msg.event === 'halted') {
     state.running = false;
     banner(`Halted: ${msg.reason}`);
   } else if (msg.type === 'event' && msg.event === 'parameter_changed') {
@@ -127,41 +188,83 @@ function onText(msg) {
   }
 }
 
-worker.onmessage = ({ data }) => {
-  if (data.error) return banner(`Frame could not be decoded: ${data.error.message}`);
-  state.frames += 1;
-  state.decodeMs = data.decodeMs ?? 0;
-  const mode = $('colour').value;
-  const channel = (name) => data.channels.find((c) => c.name === name);
-  let values = null;
-  if (mode === 'speed' && channel('velocity')) {
-    const v = channel('velocity').values;
-    values = new Float32Array(v.length / 3);
-    for (let i = 0; i < values.length; i++) values[i] = Math.hypot(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-  } else if (channel(mode)?.components === 1) values = Float32Array.from(channel(mode).values);
+/** Draws a decoded frame (live or replayed), coloured by the chosen channel. */
+function showFrame(frame) {
+  const values = colourValues(frame, $('colour').value);
   if (values) {
-    let lo = Infinity, hi = -Infinity;
-    for (const x of values) { if (x < lo) lo = x; if (x > hi) hi = x; }
+    const [lo, hi] = valueRange(values);
     renderer.range = [lo, hi];
     $('legend-min').textContent = lo.toPrecision(3);
     $('legend-max').textContent = hi.toPrecision(3);
   }
-  renderer.upload(data.positions, values);
+  renderer.upload(frame.positions, values);
+}
+
+/**
+ * Sends a frame to the decoder, or holds it while the decoder is busy, in place of a frame held
+ * before (skipped: the page asks for unordered frames, each whole on its own). A page that
+ * draws or decodes slower than frames come thus shows the latest frame, never a backlog.
+ */
+function decode(bytes) {
+  if (state.decoding) {
+    if (state.heldBytes) state.skipped += 1;
+    state.heldBytes = bytes;
+    return;
+  }
+  state.decoding = true;
+  worker.postMessage({ bytes }, [bytes]);
+}
+
+worker.onmessage = ({ data }) => {
+  state.decoding = false;
+  const held = state.heldBytes;
+  state.heldBytes = null;
+  if (held) decode(held);
+  if (data.error) return banner(`Frame could not be decoded: ${data.error.message}`);
+  if (replay.active) return;
+  state.frames += 1;
+  state.decodeMs = data.decodeMs ?? 0;
+  state.nextFrame = data;
 };
 
 function send(op) {
   if (state.socket?.readyState === WebSocket.OPEN) state.socket.send(JSON.stringify(op));
 }
 
-$('play').onclick = () => send({ op: 'run', real_time_factor: rtf() });
-$('pause').onclick = () => send({ op: 'pause' });
-$('step').onclick = () => send({ op: 'step', steps: 1 });
-$('reset').onclick = () => { banner(null); send({ op: 'reset' }); };
+/** A control of the scene shown, over REST; its error goes beside the scene controls. */
+function control(path, body) {
+  const scene = state.scene;
+  return acting('controls-error', async () => {
+    if (!scene) throw new Error('no scene: create one first');
+    onStatus(await post(`/scenes/${scene.scene_id}/${path}`, body));
+  });
+}
+
+function play() {
+  state.requestedRtf = rtf();
+  return control('run', { real_time_factor: state.requestedRtf });
+}
+function pause() { return control('pause'); }
+function step() { return control('step', { steps: 1 }); }
+function reset() { banner(null); return control('reset'); }
+/** Changes tunable settings; the error goes beside the control used (`errorId`). */
+function setParameters(overrides, errorId) {
+  const scene = state.scene;
+  return acting(errorId, async () => {
+    if (!scene) throw new Error('no scene: create one first');
+    onStatus(await post(`/scenes/${scene.scene_id}/parameters`, { overrides }));
+  });
+}
+
+$('play').onclick = play;
+$('pause').onclick = pause;
+$('step').onclick = step;
+$('reset').onclick = reset;
 // Sliders for tunable settings: applied when released.
 $('gravity').oninput = () => { $('gravity-value').textContent = Number($('gravity').value).toFixed(2); };
-$('gravity').onchange = () => send({ op: 'set', overrides: [`gravity=[0,${$('gravity').value},0]`] });
+$('gravity').onchange = () => setParameters([`gravity=[0,${$('gravity').value},0]`], 'settings-error');
 $('xsph').oninput = () => { $('xsph-value').textContent = Number($('xsph').value).toFixed(2); };
-$('xsph').onchange = () => send({ op: 'set', overrides: [`fluids[0].xsph=${$('xsph').value}`] });
+$('xsph').onchange = () => setParameters([`fluids[0].xsph=${$('xsph').value}`], 'settings-error');
 
 /** Shows a scene's current tunable settings on the sliders. */
 function showSettings(scene) {
@@ -170,40 +273,113 @@ function showSettings(scene) {
   const x = scene?.fluids?.[0]?.xsph;
   if (typeof x === 'number') { $('xsph').value = x; $('xsph-value').textContent = x.toFixed(2); }
 }
-$('rtf').oninput = () => { const v = rtf(); if (state.running) send({ op: 'run', real_time_factor: v }); };
-$('colour').onchange = () => { if (state.scene) open(state.scene); };
+$('rtf').oninput = () => {
+  const v = rtf();
+  if (state.running) { state.requestedRtf = v; control('run', { real_time_factor: v }); }
+};
+$('colour').onchange = () => {
+  $('legend').hidden = $('colour').value === NONE;
+  if (replay.active) replay.redraw();
+  else if (state.scene) open(state.scene);
+};
 $('scenes').onchange = () => refreshScenes(Number($('scenes').value));
 $('apply').onclick = () => {
   const text = $('param').value.trim();
-  if (text) send({ op: 'set', overrides: text.split(/\s+/) });
+  if (text) setParameters(text.split(/\s+/), 'param-error');
 };
-$('delete').onclick = async () => {
-  if (!state.scene) return;
+$('delete').onclick = () => acting('controls-error', async () => {
+  if (!state.scene) throw new Error('no scene to delete');
+  const id = state.scene.scene_id;
   close();
-  await api(`/scenes/${state.scene.scene_id}`, { method: 'DELETE' }).catch((e) => banner(e.message));
   state.scene = null;
-  refreshScenes();
-};
-async function create(body) {
   try {
-    const scene = await api('/scenes', { method: 'POST', body: JSON.stringify(body) });
-    await refreshScenes(scene.scene_id);
-    banner(null);
-  } catch (e) {
-    banner(e.message);
+    await api(`/scenes/${id}`, { method: 'DELETE' });
+  } finally {
+    refreshScenes();
   }
+});
+async function create(body, errorId) {
+  await acting(errorId, async () => {
+    const scene = await post('/scenes', body);
+    if (replay.active) replay.close();
+    await refreshScenes(scene.scene_id);
+  });
 }
-$('create').onclick = () => create({ preset: $('preset').value });
+$('create').onclick = () => create({ preset: $('preset').value }, 'create-error');
 $('create-doc').onclick = () => {
   const text = $('document').value;
-  create({ document: text, document_format: text.trim().startsWith('{') ? 'json' : 'toml' });
+  create({ document: text, document_format: text.trim().startsWith('{') ? 'json' : 'toml' }, 'create-doc-error');
 };
 $('file').onchange = async () => { $('document').value = await $('file').files[0].text(); };
-addEventListener('keydown', (e) => {
-  if (e.target.tagName === 'TEXTAREA' || (e.target.tagName === 'INPUT' && e.target.type === 'text')) return;
-  if (e.key === ' ') { e.preventDefault(); send(state.running ? { op: 'pause' } : { op: 'run', real_time_factor: rtf() }); }
-  if (e.key === 's') send({ op: 'step', steps: 1 });
-  if (e.key === 'r') send({ op: 'reset' });
+
+// View: the fluid's surface or spheres.
+function setView(view) {
+  const why = view === 'surface' ? renderer.surfaceUnsupported() : null;
+  showError('view-error', why);
+  renderer.view = why ? 'spheres' : view;
+  $('view-mode').value = renderer.view;
+  $('colour-section').classList.toggle('inactive', renderer.view === 'surface');
+}
+$('view-mode').onchange = () => setView($('view-mode').value);
+
+// Recording and replay.
+const recorder = new Recorder({
+  button: $('record'), status: $('record-status'), errorId: 'record-error',
+  onReplay: async (blob, name) => replay.open(await blob.arrayBuffer(), name),
+});
+$('record').onclick = () => {
+  if (recorder.active) recorder.stop();
+  else if (!state.scene || replay.active) showError('record-error', 'open a live scene to record it');
+  else recorder.start(`${state.scene.name}-${state.scene.scene_id}`);
+};
+const replay = new Replay({
+  errorId: 'replay-error',
+  onOpen: (info, name) => {
+    recorder.stop();
+    close();
+    state.lastStatus = null;
+    plots.reset(name);
+    banner(null);
+    // The walls are not recorded; the positions' range (a cube around the domain) frames the
+    // first view, until every frame is read and their extent is known.
+    state.spacing = info.spacing;
+    showScene(info.bounds, new Float32Array(0), info.spacing, true, null);
+  },
+  onReady: (extent) => showScene(extent, new Float32Array(0), state.spacing, !camera.moved),
+  onFrame: (message) => { state.decodeMs = message.decodeMs; state.nextFrame = message.frame; },
+  onClose: () => { state.bounds = null; refreshScenes(undefined, true).catch((e) => banner(`Cannot reach the server: ${e.message}`)); },
+});
+$('recording-file').onchange = async () => {
+  const file = $('recording-file').files[0];
+  if (file) replay.open(await file.arrayBuffer(), file.name);
+  $('recording-file').value = '';
+};
+
+// Panels, help and keys.
+function togglePanel() {
+  const collapsed = $('panel').classList.toggle('collapsed');
+  $('panel-toggle').setAttribute('aria-expanded', String(!collapsed));
+}
+$('panel-toggle').onclick = togglePanel;
+if (matchMedia('(max-width: 600px)').matches) togglePanel();
+function toggleHelp(show = $('help').hidden) { $('help').hidden = !show; }
+$('help-open').onclick = () => toggleHelp(true);
+$('help-close').onclick = () => toggleHelp(false);
+$('plots-open').onclick = () => plots.toggle();
+fillHelp($('help'));
+bindKeys({
+  playPause: () => (replay.active ? replay.togglePlay() : state.running ? pause() : play()),
+  step: () => (replay.active ? replay.step(1) : step()),
+  reset: () => { if (!replay.active) reset(); },
+  previous: () => replay.step(-1),
+  next: () => replay.step(1),
+  slower: () => replay.changeSpeed(-1),
+  faster: () => replay.changeSpeed(1),
+  view: () => setView(renderer.view === 'surface' ? 'spheres' : 'surface'),
+  frame: frameCamera,
+  plots: () => plots.toggle(),
+  help: () => toggleHelp(),
+  dismiss: () => toggleHelp(false),
 });
 
 // Colour-map legend, drawn once.
@@ -214,25 +390,53 @@ addEventListener('keydown', (e) => {
   g.fillRect(0, 0, 200, 10);
 }
 
+/** The real-time factor: achieved (over the last 3 s) against asked, for the overlay. */
+function realTime(s) {
+  if (s?.state !== 'running') return { text: '', slow: false };
+  const achieved = plots.series.recentRealTime(3);
+  if (!Number.isFinite(achieved)) return { text: 'measuring', slow: false };
+  const asked = state.requestedRtf;
+  const slow = asked !== null && achieved < 0.9 * asked;
+  const text = `${achieved.toPrecision(2)}${asked !== null ? ` of ${asked.toPrecision(2)} asked` : ''}${slow ? ' (cannot keep up)' : ''}`;
+  return { text, slow };
+}
+
 // Render loop and stats overlay.
-let fpsFrames = 0, fpsStart = performance.now();
+let fpsFrames = 0, fpsStart = performance.now(), lastPoll = 0;
 function frame(now) {
-  const aspect = canvas.clientWidth / Math.max(canvas.clientHeight, 1);
-  renderer.draw(perspective(0.8, aspect, 0.01, 100), camera.view());
-  fpsFrames += 1;
+  replay.tick(now);
+  if (state.nextFrame) {
+    showFrame(state.nextFrame);
+    state.nextFrame = null;
+  }
+  const w = canvas.clientWidth, h = Math.max(canvas.clientHeight, 1);
+  const { left, right } = freeRegion();
+  // Panels opened or closed, or the window resized: frame again unless the user moved the camera.
+  if (!camera.moved && state.framedFor !== [left, right, h].join()) frameCamera();
+  const shift = (left + right) / w - 1;
+  if (renderer.draw(camera.projection(w / h, shift), camera.view(), camera.distance)) fpsFrames += 1;
+  // The scene's status twice a second, for the plots and the overlay.
+  if (now - lastPoll > 500) {
+    lastPoll = now;
+    send({ op: 'status' });
+  }
   if (now - fpsStart > 1000) {
     state.renderFps = (fpsFrames * 1000) / (now - fpsStart);
     fpsFrames = 0;
     fpsStart = now;
-    send({ op: 'status' });
-    const s = state.lastStatus;
+    const s = replay.active ? null : state.lastStatus;
+    const rt = realTime(s);
+    $('rtf-achieved').textContent = rt.text ? `achieved ${rt.text}` : '';
+    $('rtf-achieved').classList.toggle('slow', rt.slow);
     $('stats').textContent = [
-      `render     ${state.renderFps.toFixed(0)} fps`,
-      `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}`,
+      state.renderFps > 0 ? `render     ${state.renderFps.toFixed(0)} fps (${renderer.view})` : `render     idle (${renderer.view})`,
+      `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}${renderer.drawnCount < renderer.count ? ` (${renderer.drawnCount} drawn)` : ''}`,
+      ...(replay.active ? replay.describe() : []),
       s ? `sim time   ${s.sim_time.toFixed(3)} s (${s.state})` : '',
+      rt.text ? `real time  ${rt.text}` : '',
       s ? `steps/s    ${s.steps_per_second.toFixed(0)}` : '',
-      `frames     ${state.frames}`,
-      `bytes/frm  ${state.lastBytes} (${(state.lastBytes / Math.max(renderer.count, 1)).toFixed(2)} B/particle)`,
+      replay.active ? '' : `frames     ${state.frames}${state.skipped ? ` (${state.skipped} skipped, decoder busy)` : ''}`,
+      replay.active ? '' : `bytes/frm  ${state.lastBytes} (${(state.lastBytes / Math.max(renderer.count, 1)).toFixed(2)} B/particle)`,
       `decode     ${state.decodeMs.toFixed(2)} ms`,
       s ? `dropped    ${s.dropped_frames}` : '',
     ].filter(Boolean).join('\n');
@@ -242,5 +446,6 @@ function frame(now) {
 requestAnimationFrame(frame);
 
 rtf();
-api('/presets').then((p) => $('preset').replaceChildren(...p.map((n) => new Option(n, n)))).catch((e) => banner(e.message));
+setView('surface');
+api('/presets').then((p) => $('preset').replaceChildren(...p.map((n) => new Option(n, n)))).catch((e) => showError('create-error', e.message));
 refreshScenes().catch((e) => banner(`Cannot reach the server: ${e.message}`));

@@ -11,7 +11,7 @@ void main() { gl_Position = u_proj * u_view * vec4(a_pos, 1.0); }`;
 const FRAG = `#version 300 es
 precision mediump float;
 out vec4 colour;
-void main() { colour = vec4(0.42, 0.47, 0.53, 1.0); }`;
+void main() { colour = vec4(0.45, 0.47, 0.5, 1.0); }`;
 
 /**
  * The 12 edges of the box from `min` to `max` (m), as 24 line endpoints (x, y, z each).

@@ -1,48 +1,46 @@
-// WebGL2 particle renderer: each particle is a point sprite shaded as a lit
-// sphere impostor (Blinn-Phong), coloured by a scalar through a colour map; the scene's box
-// walls are drawn as lines (outline.js).
+// WebGL2 particle renderer with two views: spheres (each particle a point sprite shaded as a lit
+// sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection) and
+// the fluid's surface (surface.js); particles hidden deep inside the fluid are left out or
+// merged (cull.js). Both draw particles at their physical size (spacing.js); the scene's box walls
+// are lines (outline.js) and its floor a checkerboard (floor.js).
 
-import { program } from './gl.js';
+import { innerCubes, lumpedParticles, outerParticles } from './cull.js';
+import { ATTRIBUTES, programWith } from './gl.js';
+import { Floor } from './floor.js';
 import { Outline } from './outline.js';
-
-const VERT = `#version 300 es
-uniform mat4 u_proj, u_view;
-uniform float u_radius, u_viewport_h;
-uniform vec2 u_range;
-in vec3 a_pos;
-in float a_value;
-out float v_t;
-out vec3 v_center;
-void main() {
-  vec4 view = u_view * vec4(a_pos, 1.0);
-  v_center = view.xyz;
-  gl_Position = u_proj * view;
-  gl_PointSize = max(1.0, u_radius * u_proj[1][1] * u_viewport_h / -view.z);
-  v_t = clamp((a_value - u_range.x) / max(u_range.y - u_range.x, 1e-20), 0.0, 1.0);
-}`;
+import { physicalRadius } from './spacing.js';
+import { SPHERE_POINT, SPRITE_VERT } from './sprite.js';
+import { Surface } from './surface.js';
 
 const FRAG = `#version 300 es
 precision highp float;
 uniform bool u_coloured;
-in float v_t;
+in float v_t, v_radius;
 in vec3 v_center;
 out vec4 colour;
+${SPHERE_POINT}
 vec3 ramp(float t) {
   // A perceptual blue-green-yellow ramp (close to viridis).
   vec3 a = vec3(0.267, 0.005, 0.329), b = vec3(0.128, 0.567, 0.551), c = vec3(0.993, 0.906, 0.144);
   return t < 0.5 ? mix(a, b, t * 2.0) : mix(b, c, t * 2.0 - 1.0);
 }
 void main() {
-  vec2 p = gl_PointCoord * 2.0 - 1.0;
-  float r2 = dot(p, p);
-  if (r2 > 1.0) discard;
-  vec3 n = vec3(p.x, -p.y, sqrt(1.0 - r2));
+  vec3 n;
+  // Depth is the sprite's (the particle centre's): writing each fragment's sphere depth would
+  // switch off early depth tests, which halves the frame rate on software GL.
+  spherePoint(v_center, v_radius, n);
   vec3 l = normalize(vec3(0.4, 0.7, 0.6));
   vec3 h = normalize(l + vec3(0.0, 0.0, 1.0));
   vec3 base = u_coloured ? ramp(v_t) : vec3(0.25, 0.55, 0.9);
   float diffuse = max(dot(n, l), 0.0), specular = pow(max(dot(n, h), 0.0), 48.0);
   colour = vec4(base * (0.25 + 0.75 * diffuse) + vec3(0.35) * specular, 1.0);
 }`;
+
+/** The background colour (the page's), linear 0-1 RGB. */
+export const BACKGROUND = [0.063, 0.078, 0.094];
+
+/** The views a renderer can draw. */
+export const VIEWS = Object.freeze(['surface', 'spheres']);
 
 /** Draws particles into a canvas. */
 export class Renderer {
@@ -52,57 +50,155 @@ export class Renderer {
     if (!gl) throw new Error('WebGL2 is not available in this browser');
     this.gl = gl;
     this.canvas = canvas;
-    const p = program(gl, VERT, FRAG);
-    this.program = p;
+    this.spheres = programWith(gl, SPRITE_VERT, FRAG,
+      ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured', 'u_scaled']);
     /** The scene's walls; `outline.set(wallLines(scene))` when the scene changes. */
     this.outline = new Outline(gl);
-    this.u = Object.fromEntries(['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured']
-      .map((n) => [n, gl.getUniformLocation(p, n)]));
+    /** The scene's floor; `floor.set(min, max)` when the scene changes. */
+    this.floor = new Floor(gl);
     this.vao = gl.createVertexArray();
     gl.bindVertexArray(this.vao);
     this.posBuf = gl.createBuffer();
     this.valBuf = gl.createBuffer();
-    for (const [buf, name, size] of [[this.posBuf, 'a_pos', 3], [this.valBuf, 'a_value', 1]]) {
-      const loc = gl.getAttribLocation(p, name);
+    for (const [buf, loc, size] of [[this.posBuf, ATTRIBUTES.position, 3], [this.valBuf, ATTRIBUTES.value, 1]]) {
       gl.bindBuffer(gl.ARRAY_BUFFER, buf);
       gl.enableVertexAttribArray(loc);
       gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
     }
+    gl.bindVertexArray(null);
+    /** Particles in the frame, and those in the GPU's buffers (the sphere view leaves out hidden ones). */
     this.count = 0;
-    this.radius = 0.01;
+    this.drawnCount = 0;
+    this.box = { min: [0, 0, 0], max: [0, 0, 0] };
+    /** The frame's particles, and what each view draws of them (made when needed, cull.js). */
+    this.frame = null;
+    this.drawable = null;
+    /** Which the buffers hold: `'spheres'` or `'surface'`. */
+    this.buffered = null;
+    /** Particle spacing (m) and drawing radius of a particle (m). */
+    this.spacing = 0.01;
+    this.radius = physicalRadius(this.spacing);
     this.range = [0, 1];
     this.coloured = false;
+    /** `'surface'` or `'spheres'`. */
+    this.view = 'spheres';
+    /** @type {Surface|null} made when first drawn */
+    this.surface = null;
+    /** Counts changes of particles and scene, so a frame is drawn only when something changed. */
+    this.version = 0;
+    this.drawn = null;
+  }
+
+  /** A new scene: its walls and floor (see outline.js, floor.js) and the particle spacing (m). */
+  setScene(walls, floorMin, floorMax, spacing) {
+    this.outline.set(walls);
+    this.floor.set(floorMin, floorMax);
+    this.spacing = spacing;
+    this.radius = physicalRadius(spacing);
+    this.drawable = null;
+    this.buffered = null;
+    this.version += 1;
+  }
+
+  /** Why the surface view cannot be drawn here, or null when it can. */
+  surfaceUnsupported() {
+    return Surface.unsupported(this.gl);
   }
 
   /** New particle data: positions (x,y,z interleaved) and one value per particle (or null). */
   upload(positions, values) {
-    const gl = this.gl;
     this.count = positions.length / 3;
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.posBuf);
-    gl.bufferData(gl.ARRAY_BUFFER, positions, gl.DYNAMIC_DRAW);
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.valBuf);
-    gl.bufferData(gl.ARRAY_BUFFER, values ?? new Float32Array(this.count), gl.DYNAMIC_DRAW);
+    const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < positions.length; i += 3) {
+      for (let k = 0; k < 3; k++) {
+        const x = positions[i + k];
+        if (x < min[k]) min[k] = x;
+        if (x > max[k]) max[k] = x;
+      }
+    }
+    /** The particles' bounding box (m). */
+    this.box = { min, max };
+    this.frame = { positions, values };
+    this.drawable = null;
+    this.buffered = null;
     this.coloured = values != null;
+    this.version += 1;
   }
 
-  /** Draws with the camera's matrices. */
-  draw(proj, view) {
+  /**
+   * Fills the buffers with what the view draws: the sphere view the particles outside inner
+   * cubes and their values, the surface view those and one sphere per inner cube, with radius
+   * scales in place of values.
+   */
+  #buffer() {
+    if (this.buffered === this.view || !this.frame) return;
+    const { positions, values } = this.frame;
+    const d = (this.drawable ??= { cubes: innerCubes(positions, this.spacing, this.box) });
+    let data;
+    if (this.view === 'spheres') data = (d.spheres ??= outerParticles(positions, values, d.cubes));
+    else {
+      d.surface ??= lumpedParticles(positions, d.cubes);
+      data = { positions: d.surface.positions, values: d.surface.scales };
+    }
+    const gl = this.gl;
+    this.drawnCount = data.positions.length / 3;
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.posBuf);
+    gl.bufferData(gl.ARRAY_BUFFER, data.positions, gl.DYNAMIC_DRAW);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.valBuf);
+    gl.bufferData(gl.ARRAY_BUFFER, data.values ?? new Float32Array(this.drawnCount), gl.DYNAMIC_DRAW);
+    this.buffered = this.view;
+  }
+
+  /**
+   * Draws with the camera's matrices, unless nothing has changed since the last frame drawn (the
+   * canvas keeps it: with hundreds of thousands of particles on software GL a frame costs a
+   * good part of a second of CPU, which the solver may share). `distance` (m), the camera's to
+   * what it looks at, sets how much the surface view smooths.
+   * @returns {boolean} whether it drew
+   */
+  draw(proj, view, distance) {
     const gl = this.gl, c = this.canvas;
-    const w = c.clientWidth * devicePixelRatio, h = c.clientHeight * devicePixelRatio;
+    const w = Math.round(c.clientWidth * devicePixelRatio), h = Math.round(c.clientHeight * devicePixelRatio);
+    const key = [...proj, ...view, w, h, this.view, this.version, ...this.range].join();
+    if (key === this.drawn) return false;
+    this.drawn = key;
     if (c.width !== w || c.height !== h) { c.width = w; c.height = h; }
+    this.#buffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     gl.viewport(0, 0, w, h);
-    gl.clearColor(0.063, 0.078, 0.094, 1);
+    this.#background(proj, view);
+    if (this.view === 'surface' && this.surfaceUnsupported() === null) {
+      this.surface ??= new Surface(gl);
+      this.surface.draw({ proj, view, vao: this.vao, count: this.drawnCount, radius: this.radius, box: this.box,
+        width: w, height: h, distance, background: (p, v) => this.#background(p, v) });
+      // Walls in front of the water.
+      this.outline.draw(proj, view);
+      return true;
+    }
+    gl.enable(gl.DEPTH_TEST);
+    const { program, u } = this.spheres;
+    gl.useProgram(program);
+    gl.uniformMatrix4fv(u.u_proj, false, proj);
+    gl.uniformMatrix4fv(u.u_view, false, view);
+    gl.uniform1f(u.u_radius, this.radius);
+    gl.uniform1f(u.u_viewport_h, h);
+    gl.uniform2f(u.u_range, this.range[0], this.range[1]);
+    gl.uniform1i(u.u_coloured, this.coloured ? 1 : 0);
+    gl.uniform1i(u.u_scaled, 0);
+    gl.bindVertexArray(this.vao);
+    gl.drawArrays(gl.POINTS, 0, this.drawnCount);
+    this.outline.draw(proj, view);
+    return true;
+  }
+
+  /** Clears the bound framebuffer to the background and draws the floor and walls. */
+  #background(proj, view) {
+    const gl = this.gl;
+    gl.clearColor(...BACKGROUND, 1);
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST);
-    gl.useProgram(this.program);
-    gl.uniformMatrix4fv(this.u.u_proj, false, proj);
-    gl.uniformMatrix4fv(this.u.u_view, false, view);
-    gl.uniform1f(this.u.u_radius, this.radius);
-    gl.uniform1f(this.u.u_viewport_h, h / 2);
-    gl.uniform2f(this.u.u_range, this.range[0], this.range[1]);
-    gl.uniform1i(this.u.u_coloured, this.coloured ? 1 : 0);
-    gl.bindVertexArray(this.vao);
-    gl.drawArrays(gl.POINTS, 0, this.count);
+    gl.depthFunc(gl.LESS);
+    this.floor.draw(proj, view);
     this.outline.draw(proj, view);
   }
 }

@@ -97,6 +97,26 @@ export class Decoder {
   }
 
   /**
+   * The decoder's state after the last frame, to come back to with {@link restore} (a replay
+   * seeks near a frame this way instead of decoding from its keyframe). Cheap: the held codes
+   * are never changed in place, so the state shares them.
+   * @returns {object} opaque
+   */
+  checkpoint() {
+    return { base: this.#base, lastSequence: this.#lastSequence };
+  }
+
+  /**
+   * Goes back to a state from {@link checkpoint}: the next delta frame applies to the frame
+   * decoded before it was taken.
+   * @param {object} state
+   */
+  restore(state) {
+    this.#base = state.base;
+    this.#lastSequence = state.lastSequence;
+  }
+
+  /**
    * Decodes the frame at the start of `input` (bytes after its frame length are not read).
    * The u64 header fields `sceneId`, `sequence`, `baseSequence` and `step` are BigInts (they
    * may exceed 2^53); `time` and the counts and lengths (u32) are numbers.
