@@ -18,6 +18,7 @@
 use crate::kernel::Kernel;
 use crate::math::{Aabb, Real, Vec3};
 use crate::neighbors::{Grid, permute};
+use crate::periodic::Periodicity;
 use rayon::prelude::*;
 
 /// Wall particles sorted by cell, with their pseudo-masses and their own grid.
@@ -32,19 +33,20 @@ pub struct BoundaryParticles {
 }
 
 impl BoundaryParticles {
-    /// Sorts `positions` into a grid over `bounds` and computes their pseudo-masses
-    /// for each material's rest density in `rho0`; `spacing` and `layers` describe the
-    /// lattice the walls were sampled on.
+    /// Sorts `positions` into a grid over `bounds` (the domain's extent on its periodic
+    /// axes) and computes their pseudo-masses for each material's rest density in
+    /// `rho0`; `spacing` and `layers` describe the lattice the walls were sampled on.
     pub fn new(
         mut positions: Vec<Vec3>,
         kernel: &Kernel,
         rho0: &[Real],
         bounds: Aabb,
+        periodic: &Periodicity,
         spacing: Real,
         layers: u32,
     ) -> Self {
         let gamma = lattice_sum(kernel, spacing, Some(layers)) / lattice_sum(kernel, spacing, None);
-        let mut grid = Grid::new(bounds, kernel.support());
+        let mut grid = Grid::new(periodic.fit(bounds), kernel.support(), periodic.axes);
         let (mut cells, mut order, mut scratch) = (Vec::new(), Vec::new(), Vec::new());
         grid.sort(&positions, &mut cells, &mut order);
         permute(&mut positions, &mut scratch, &order);
@@ -55,7 +57,7 @@ impl BoundaryParticles {
                 let mut sum = 0.0;
                 grid.for_each_run(x, |run| {
                     for &y in &positions[run] {
-                        let r2 = (x - y).length_squared();
+                        let r2 = periodic.image(x - y).length_squared();
                         if r2 < h2 {
                             sum += kernel.w_r2(r2);
                         }
@@ -249,9 +251,17 @@ mod tests {
             let floor = crate::sampling::sample_boundary(
                 &Boundary::Box { min: [-1.0; 3], max: [1.0; 3], open: vec![], layers: 1 },
                 d,
+                [false; 3],
             );
-            let walls =
-                BoundaryParticles::new(floor, &k, &[1000.0], Aabb::new(Vec3::splat(-1.2), Vec3::splat(1.2)), d, 1);
+            let walls = BoundaryParticles::new(
+                floor,
+                &k,
+                &[1000.0],
+                Aabb::new(Vec3::splat(-1.2), Vec3::splat(1.2)),
+                &Periodicity::NONE,
+                d,
+                1,
+            );
             let x = Vec3::new(0.05, -0.95, 0.05);
             let mass = 1000.0 / full;
             let mut rho = 0.0;

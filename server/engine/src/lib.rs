@@ -15,7 +15,8 @@
 //! - [`scene`]: the scene spec (one serde definition, JSON Schema), presets,
 //!   loading with overrides, validation with field paths.
 //! - [`model`]: a scene resolved into the numbers a backend steps.
-//! - [`math`], [`kernel`], [`neighbors`]: numeric types, SPH kernels, the uniform grid.
+//! - [`math`], [`kernel`], [`neighbors`], [`periodic`]: numeric types, SPH kernels, the
+//!   uniform grid, periodic domains (minimum-image pairs).
 //! - [`eos`], [`viscosity`], [`boundary`], [`sampling`]: the physics pieces of
 //!   the fluid module (each names its paper and equation).
 //! - [`timestep`], [`guard`]: adaptive dt and the stability guard.
@@ -38,6 +39,7 @@ pub mod math;
 pub mod model;
 pub mod modules;
 pub mod neighbors;
+pub mod periodic;
 pub mod plan;
 pub mod quantize;
 pub mod sampling;

@@ -15,6 +15,7 @@ use crate::kernel::Kernel;
 use crate::materials::{Material, Materials};
 use crate::math::{Aabb, Real, Vec3};
 use crate::modules::ModuleDef;
+use crate::periodic::Periodicity;
 use crate::plan::{PassSpec, Plan};
 use crate::sampling::sample_boundary;
 use crate::scene::{Boundary, Integrator, Scene, TimeStep};
@@ -149,8 +150,10 @@ pub struct Model {
     pub max_compression: Real,
     /// Largest speed allowed before halting (m/s).
     pub max_speed: Real,
-    /// Particles leaving this box halt the scene.
+    /// Particles leaving this box halt the scene (on an open axis).
     pub domain: Aabb,
+    /// The domain's periodic axes.
+    pub periodic: Periodicity,
     /// The speed of sound (m/s), when the scheme or a module derived one.
     pub sound_speed: Option<Real>,
     /// The material table.
@@ -287,7 +290,7 @@ impl<'s> ModelBuilder<'s> {
             spacing: d,
             materials: Vec::new(),
             particles: NewParticles::default(),
-            walls: scene.boundaries.iter().flat_map(|b| sample_boundary(b, d)).collect(),
+            walls: scene.boundaries.iter().flat_map(|b| sample_boundary(b, d, scene.periodic_axes())).collect(),
             sound_speed: None,
             layout: Layout::default(),
             passes: Vec::new(),
@@ -410,6 +413,12 @@ impl<'s> ModelBuilder<'s> {
             Some(b) => Aabb::new(b.min.into(), b.max.into()),
             None => wall_box.expanded(self.kernel.support()),
         };
+        let periodic = Periodicity::new(domain, scene.periodic_axes());
+        if periodic.any() {
+            for x in &mut self.particles.positions {
+                *x = periodic.wrap(*x);
+            }
+        }
         self.core_layout(n);
         (scheme.build)(scene, &mut self)?;
         for m in &modules {
@@ -420,8 +429,15 @@ impl<'s> ModelBuilder<'s> {
         });
         let rest: Vec<Real> = self.materials.iter().map(|m| m.rest_density).collect();
         let walls = std::mem::take(&mut self.walls);
-        let wall_particles =
-            BoundaryParticles::new(walls, &self.kernel, &rest, domain.union(wall_box), d, layers.max().unwrap_or(1));
+        let wall_particles = BoundaryParticles::new(
+            walls,
+            &self.kernel,
+            &rest,
+            domain.union(wall_box),
+            &periodic,
+            d,
+            layers.max().unwrap_or(1),
+        );
         let names: Vec<&str> = self.layout.specs().map(|s| s.name).collect();
         let plan = Plan::build(std::mem::take(&mut self.passes), &names)?;
         let sound_speed = self.sound_speed;
@@ -435,6 +451,7 @@ impl<'s> ModelBuilder<'s> {
             max_compression: scene.guard.max_compression,
             max_speed: scene.guard.max_speed.or(sound_speed).unwrap_or(Real::INFINITY),
             domain,
+            periodic,
             sound_speed,
             materials: Materials::new(self.materials),
             wall_particles,

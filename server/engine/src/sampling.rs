@@ -54,11 +54,13 @@ fn axis_coords(lo: Real, hi: Real, spacing: Real, layers: u32) -> Vec<(Real, i8)
     out
 }
 
-/// Boundary particle positions for one wall.
-pub fn sample_boundary(boundary: &Boundary, spacing: Real) -> Vec<Vec3> {
+/// Boundary particle positions for one wall. Along the axes flagged in `periodic`
+/// a box has no faces: its walls tile the period with no layers beyond it.
+pub fn sample_boundary(boundary: &Boundary, spacing: Real, periodic: [bool; 3]) -> Vec<Vec3> {
     match boundary {
         Boundary::Box { min, max, open, layers } => {
-            let axes: Vec<Vec<(Real, i8)>> = (0..3).map(|a| axis_coords(min[a], max[a], spacing, *layers)).collect();
+            let axes: Vec<Vec<(Real, i8)>> =
+                (0..3).map(|a| axis_coords(min[a], max[a], spacing, if periodic[a] { 0 } else { *layers })).collect();
             let is_open = |axis: usize, side: i8| {
                 open.iter().any(|f| {
                     matches!(
@@ -134,19 +136,25 @@ mod tests {
     #[test]
     fn box_walls_form_a_closed_shell() {
         let b = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![], layers: 1 };
-        let p = sample_boundary(&b, 0.1);
+        let p = sample_boundary(&b, 0.1, [false; 3]);
         assert_eq!(p.len(), 12 * 12 * 12 - 10 * 10 * 10);
         assert!(p.iter().all(|q| q.min_element() < 0.0 || q.max_element() > 1.0));
         let open = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![Face::PlusY], layers: 2 };
-        let p = sample_boundary(&open, 0.1);
+        let p = sample_boundary(&open, 0.1, [false; 3]);
         assert!(p.iter().all(|q| q.y < 1.0));
         assert_eq!(p.len(), 14 * 12 * 14 - 10 * 10 * 10);
+        // Periodic along x: two plates (y faces) and two side walls (z faces), no x faces,
+        // nothing beyond the period.
+        let channel = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![Face::MinusX, Face::PlusX], layers: 2 };
+        let p = sample_boundary(&channel, 0.1, [true, false, false]);
+        assert_eq!(p.len(), 10 * (14 * 14 - 10 * 10));
+        assert!(p.iter().all(|q| (0.0..1.0).contains(&q.x)));
     }
 
     #[test]
     fn planes_sit_behind_their_normal() {
         let b = Boundary::Plane { center: [0.0; 3], normal: [0.0, 2.0, 0.0], size: [1.0, 0.5], layers: 2 };
-        let p = sample_boundary(&b, 0.1);
+        let p = sample_boundary(&b, 0.1, [false; 3]);
         assert_eq!(p.len(), 2 * 10 * 5);
         assert!(p.iter().all(|q| q.y < 0.0 && q.y > -0.2));
     }

@@ -75,7 +75,7 @@ pub struct GpuBackend {
 impl GpuBackend {
     /// Uploads `model`'s initial state to the GPU of `gpu`.
     pub fn new(gpu: &GpuContext, mut model: Model) -> Result<Self, BuildError> {
-        let grid = Grid::new(model.domain, model.kernel.support());
+        let grid = Grid::new(model.domain, model.kernel.support(), model.periodic.axes);
         // Every pass of the plan needs a GPU kernel, or the scene is refused by name.
         for p in model.plan.passes() {
             if p.name != "core.sort" && crate::pass::find(p.name, &model).is_none() {

@@ -23,17 +23,23 @@ pub struct Params {
     pub n_constraints: u32,
     /// 0 Müller, 1 cubic spline.
     pub kernel_kind: u32,
-    /// Particle grid: origin (m), inverse cell edge (1/m), cells per axis, cell count.
+    /// Particle grid: origin (m), cell count, inverse cell edge per axis (1/m), the
+    /// wall grid's cell count, cells per axis, periodic axes (bit per axis).
     pub grid_origin: [f32; 3],
-    pub inv_cell: f32,
-    pub grid_dims: [u32; 3],
     pub cell_count: u32,
+    pub grid_inv_cell: [f32; 3],
+    pub wall_cell_count: u32,
+    pub grid_dims: [u32; 3],
+    pub periodic: u32,
     /// Wall grid, likewise; its run starts follow the particle grid's in `starts`,
     /// from index `wall_start`.
     pub wall_origin: [f32; 3],
-    pub wall_inv_cell: f32,
+    pub wall_start: u32,
+    pub wall_inv_cell: [f32; 3],
+    pub n_materials: u32,
     pub wall_dims: [u32; 3],
-    pub wall_cell_count: u32,
+    /// Kernel normalisation.
+    pub w_norm: f32,
     /// Gravity (m/s^2) and kernel support (m).
     pub gravity: [f32; 3],
     pub support: f32,
@@ -42,16 +48,17 @@ pub struct Params {
     pub h2: f32,
     pub domain_max: [f32; 3],
     pub inv_h: f32,
-    /// Kernel normalisations, materials, where wall starts begin in `starts`.
-    pub w_norm: f32,
+    /// Period per axis (m, 0 on open axes), the gradient normalisation, half the
+    /// period (the largest float on open axes).
+    pub period: [f32; 3],
     pub g_norm: f32,
-    pub n_materials: u32,
-    pub wall_start: u32,
+    pub half_period: [f32; 3],
+    pub _pad: u32,
     /// Per material: rest density (kg/m^3), mass (kg), `1 / rho0^2`, and the ratio
     /// of its rest density to material 0's (wall pseudo-masses scale by it).
     pub materials: [[f32; 4]; MAX_MATERIALS],
 }
-const _: () = assert!(std::mem::size_of::<Params>() == 144 + 16 * MAX_MATERIALS);
+const _: () = assert!(std::mem::size_of::<Params>() == 192 + 16 * MAX_MATERIALS);
 
 impl Params {
     /// The constants of `model` on the particle grid `grid`.
@@ -74,23 +81,27 @@ impl Params {
                 KernelKind::CubicSpline => 1,
             },
             grid_origin: grid.origin().to_array(),
-            inv_cell: grid.inv_cell(),
-            grid_dims: grid.dims(),
             cell_count: grid.cell_count() as u32,
-            wall_origin: walls.origin().to_array(),
-            wall_inv_cell: walls.inv_cell(),
-            wall_dims: walls.dims(),
+            grid_inv_cell: grid.inv_cell().to_array(),
             wall_cell_count: walls.cell_count() as u32,
+            grid_dims: grid.dims(),
+            periodic: (0..3).filter(|&a| model.periodic.axes[a]).map(|a| 1u32 << a).sum(),
+            wall_origin: walls.origin().to_array(),
+            wall_start: grid.cell_count() as u32 + 1,
+            wall_inv_cell: walls.inv_cell().to_array(),
+            n_materials: model.materials.len() as u32,
+            wall_dims: walls.dims(),
+            w_norm,
             gravity: model.gravity.to_array(),
             support: h,
             domain_min: model.domain.min.to_array(),
             h2: h * h,
             domain_max: model.domain.max.to_array(),
             inv_h: 1.0 / h,
-            w_norm,
+            period: model.periodic.period().to_array(),
             g_norm,
-            n_materials: model.materials.len() as u32,
-            wall_start: grid.cell_count() as u32 + 1,
+            half_period: model.periodic.half().to_array(),
+            _pad: 0,
             materials,
         }
     }

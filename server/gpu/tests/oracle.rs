@@ -6,7 +6,8 @@
 //! (fused multiply-adds on the GPU) separates them.
 //!
 //! Both backends start from one CPU state 40 steps into a dam break (a moving,
-//! splashing fluid against walls), so every term is non-trivial.
+//! splashing fluid against walls), so every term is non-trivial; one variant is
+//! periodic, so pairs across the periodic faces and the wrap are compared too.
 
 mod common;
 
@@ -91,6 +92,14 @@ const VARIANTS: &[&[&str]] = &[
         "fluids[0].viscosity={\"model\":\"laplacian\",\"nu\":1e-3}",
         "fluids[0].xsph=0.3",
         "fluids[0].eos={\"kind\":\"linear\"}",
+    ],
+    // Periodic along x (the collapsing column flows out through x = 0 and back in
+    // at x = 2) and along z (a period of two cells: the block wraps onto itself).
+    &[
+        "particle_spacing=0.05",
+        "periodic=[\"x\",\"z\"]",
+        "boundaries[0].open=[\"-x\",\"+x\",\"-z\",\"+z\"]",
+        "domain={\"min\":[0,-0.2,0],\"max\":[2,1.4,0.25]}",
     ],
 ];
 

@@ -12,6 +12,7 @@ use super::{CpuCx, CpuPass};
 use crate::guard::Measures;
 use crate::math::{Real, Vec3};
 use crate::model::Model;
+use crate::periodic::Separation;
 use crate::plan::{PassSpec, Stage};
 use rayon::prelude::*;
 
@@ -65,36 +66,41 @@ struct Density;
 
 impl CpuPass for Density {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        let model = cx.model;
-        let k = &model.kernel;
-        let h2 = k.support() * k.support();
-        let walls = &model.wall_particles;
-        let (x, rho_h) = (cx.attrs.handle::<Vec3>("x"), cx.attrs.handle::<Real>("rho"));
-        let material = cx.attrs.find::<u32>("material");
-        let mut rho = cx.attrs.take(rho_h);
-        let pos = cx.attrs.get(x);
-        let materials = material.map(|m| cx.attrs.get(m));
-        let grid = &*cx.grid;
-        cx.nb.chunks.resize_with(pos.len().div_ceil(CHUNK), Default::default);
-        rho.par_chunks_mut(CHUNK).zip(cx.nb.chunks.par_iter_mut()).enumerate().for_each(|(c, (rho_c, nb))| {
-            nb.clear();
-            for (n, rho_i) in rho_c.iter_mut().enumerate() {
-                let i = c * CHUNK + n;
-                let xi = pos[i];
-                nb.push(grid, pos, &walls.grid, &walls.positions, xi, h2);
-                let a = materials.map_or(0, |m| m[i] as usize);
-                let (m, psi) = (model.materials.get(a).mass, &walls.psi[a]);
-                let sum: Real = nb.fluid(n).iter().map(|&j| k.w_r2((xi - pos[j as usize]).length_squared())).sum();
-                let wall: Real = nb
-                    .walls(n)
-                    .iter()
-                    .map(|&b| psi[b as usize] * k.w_r2((xi - walls.positions[b as usize]).length_squared()))
-                    .sum();
-                *rho_i = m * sum + wall;
-            }
-        });
-        cx.attrs.put(rho_h, rho);
+        crate::with_separation!(&cx.model.periodic, |s| density(cx, s))
     }
+}
+
+fn density<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+    let model = cx.model;
+    let k = &model.kernel;
+    let h2 = k.support() * k.support();
+    let walls = &model.wall_particles;
+    let (x, rho_h) = (cx.attrs.handle::<Vec3>("x"), cx.attrs.handle::<Real>("rho"));
+    let material = cx.attrs.find::<u32>("material");
+    let mut rho = cx.attrs.take(rho_h);
+    let pos = cx.attrs.get(x);
+    let materials = material.map(|m| cx.attrs.get(m));
+    let grid = &*cx.grid;
+    cx.nb.chunks.resize_with(pos.len().div_ceil(CHUNK), Default::default);
+    rho.par_chunks_mut(CHUNK).zip(cx.nb.chunks.par_iter_mut()).enumerate().for_each(|(c, (rho_c, nb))| {
+        nb.clear();
+        for (n, rho_i) in rho_c.iter_mut().enumerate() {
+            let i = c * CHUNK + n;
+            let xi = pos[i];
+            nb.push(sep, grid, pos, &walls.grid, &walls.positions, xi, h2);
+            let a = materials.map_or(0, |m| m[i] as usize);
+            let (m, psi) = (model.materials.get(a).mass, &walls.psi[a]);
+            let sum: Real =
+                nb.fluid(n).iter().map(|&j| k.w_r2(sep.between(xi, pos[j as usize]).length_squared())).sum();
+            let wall: Real = nb
+                .walls(n)
+                .iter()
+                .map(|&b| psi[b as usize] * k.w_r2(sep.between(xi, walls.positions[b as usize]).length_squared()))
+                .sum();
+            *rho_i = m * sum + wall;
+        }
+    });
+    cx.attrs.put(rho_h, rho);
 }
 
 /// Reduces the state to what the guard and the time step control need: largest
@@ -158,15 +164,20 @@ pub fn kick(attrs: &mut crate::attrs::Attrs, dt: Real, keep: Real) {
     attrs.put(v, vel);
 }
 
-/// `x += dt v`, then the walls' non-penetration constraints.
+/// `x += dt v`, then the walls' non-penetration constraints; positions that left
+/// through a periodic face come back through the opposite one.
 pub fn drift(model: &Model, attrs: &mut crate::attrs::Attrs, dt: Real) {
     let (x, v) = (attrs.handle::<Vec3>("x"), attrs.handle::<Vec3>("v"));
     let (mut pos, mut vel) = (attrs.take(x), attrs.take(v));
     let walls = &model.wall_constraints;
+    let periodic = &model.periodic;
     pos.par_iter_mut().zip(vel.par_iter_mut()).with_min_len(4096).for_each(|(x, v)| {
         *x += *v * dt;
         for w in walls {
             w.apply(x, v);
+        }
+        if periodic.any() {
+            *x = periodic.wrap(*x);
         }
     });
     attrs.put(x, pos);

@@ -91,7 +91,7 @@ impl CpuBackend {
     /// Takes ownership of a model's initial state.
     pub fn new(mut model: Model) -> Self {
         let attrs = Attrs::new(model.layout.take_columns());
-        let grid = Grid::new(model.domain, model.kernel.support());
+        let grid = Grid::new(model.domain, model.kernel.support(), model.periodic.axes);
         let passes = Self::resolve(&model);
         Self { model, attrs, grid, nb: NeighborLists::default(), sort: SortScratch::default(), passes, ran: Vec::new() }
     }

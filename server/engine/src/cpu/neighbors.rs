@@ -8,24 +8,26 @@
 
 use crate::math::{Real, Vec3};
 use crate::neighbors::Grid;
+use crate::periodic::Separation;
 
 /// Particles per rayon task: large enough to amortise scheduling.
 pub const CHUNK: usize = 512;
 
 /// Appends to `out` the indices of the points of `pts` within the support of
-/// `x` (squared distance below `h2`), from the grid's candidate runs.
+/// `x` (squared distance below `h2`, separations measured by `sep`), from the
+/// grid's candidate runs.
 ///
 /// The compaction is branch-free: every candidate is written and the cursor
 /// advances only for a hit. About 15 % of candidates are hits, so a branch per
 /// candidate would mispredict constantly; this is the hot loop of the step.
 #[inline(always)]
-pub fn gather(grid: &Grid, pts: &[Vec3], x: Vec3, h2: Real, out: &mut Vec<u32>) {
+pub fn gather<S: Separation>(sep: S, grid: &Grid, pts: &[Vec3], x: Vec3, h2: Real, out: &mut Vec<u32>) {
     grid.for_each_run(x, |run| {
         let mut n = out.len();
         out.resize(n + run.len(), 0);
         for (j, &p) in run.clone().zip(&pts[run]) {
             out[n] = j as u32;
-            n += ((x - p).length_squared() < h2) as usize;
+            n += (sep.between(x, p).length_squared() < h2) as usize;
         }
         out.truncate(n);
     });
@@ -54,10 +56,20 @@ impl ChunkNeighbors {
     /// Appends the next particle's neighbours: particles of `pos` on `grid` and wall
     /// particles of `walls` on `wall_grid` within the support (squared: `h2`) of `x`.
     #[inline(always)]
-    pub fn push(&mut self, grid: &Grid, pos: &[Vec3], wall_grid: &Grid, walls: &[Vec3], x: Vec3, h2: Real) {
-        gather(grid, pos, x, h2, &mut self.fluid);
+    #[allow(clippy::too_many_arguments)]
+    pub fn push<S: Separation>(
+        &mut self,
+        sep: S,
+        grid: &Grid,
+        pos: &[Vec3],
+        wall_grid: &Grid,
+        walls: &[Vec3],
+        x: Vec3,
+        h2: Real,
+    ) {
+        gather(sep, grid, pos, x, h2, &mut self.fluid);
         self.fluid_start.push(self.fluid.len() as u32);
-        gather(wall_grid, walls, x, h2, &mut self.walls);
+        gather(sep, wall_grid, walls, x, h2, &mut self.walls);
         self.wall_start.push(self.walls.len() as u32);
     }
 

@@ -47,6 +47,13 @@ pub struct Scene {
     /// bounding box of all fluid blocks and boundaries, grown by one kernel support.
     #[serde(default)]
     pub domain: Option<BoxRegion>,
+    /// Axes along which the domain is periodic: what leaves through one face comes
+    /// back through the opposite one (minimum-image pairs, see `floe_engine::periodic`).
+    /// Needs an explicit `domain` at least two kernel supports long on each such axis,
+    /// and walls that are boxes open across it. Fill a periodic axis with whole
+    /// particle spacings, or the lattice has a seam there.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub periodic: Vec<Axis>,
     /// Solver settings.
     #[serde(default)]
     pub solver: Solver,
@@ -63,6 +70,41 @@ fn default_modules() -> Vec<String> {
 }
 fn default_gravity() -> [f32; 3] {
     [0.0, -9.81, 0.0]
+}
+
+/// A coordinate axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Axis {
+    /// The x axis.
+    X,
+    /// The y axis.
+    Y,
+    /// The z axis.
+    Z,
+}
+
+impl Axis {
+    /// 0, 1, 2 for x, y, z.
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// Its name.
+    pub fn name(self) -> &'static str {
+        ["x", "y", "z"][self.index()]
+    }
+}
+
+impl Scene {
+    /// Which of x, y, z are periodic.
+    pub fn periodic_axes(&self) -> [bool; 3] {
+        let mut axes = [false; 3];
+        for a in &self.periodic {
+            axes[a.index()] = true;
+        }
+        axes
+    }
 }
 
 /// An axis-aligned box (m).

@@ -110,12 +110,77 @@ pub fn validate(scene: &Scene) -> Result<(), Vec<String>> {
     if let Some(d) = &scene.domain {
         c.ordered_box("domain", d.min, d.max);
     }
+    check_periodic(&mut c, scene);
     check_solver(&mut c, scene);
     c.positive("guard.max_compression", scene.guard.max_compression);
     if let Some(v) = scene.guard.max_speed {
         c.positive("guard.max_speed", v);
     }
     if c.errors.is_empty() { Ok(()) } else { Err(c.errors) }
+}
+
+/// A periodic axis has an explicit domain at least two kernel supports long (so each
+/// pair within the support has one image), and walls do not close it.
+fn check_periodic(c: &mut Checker, scene: &Scene) {
+    use super::{Axis, Face};
+    for (i, a) in scene.periodic.iter().enumerate() {
+        if scene.periodic[..i].contains(a) {
+            c.fail(&format!("periodic[{i}]"), format!("axis {} is listed twice", a.name()));
+        }
+    }
+    if scene.periodic.is_empty() {
+        return;
+    }
+    let Some(domain) = &scene.domain else {
+        c.fail("periodic", "needs an explicit domain: its extent along a periodic axis is the period".into());
+        return;
+    };
+    let support = scene.solver.support_factor * scene.particle_spacing;
+    let faces = |a: Axis| match a {
+        Axis::X => [Face::MinusX, Face::PlusX],
+        Axis::Y => [Face::MinusY, Face::PlusY],
+        Axis::Z => [Face::MinusZ, Face::PlusZ],
+    };
+    for &a in &scene.periodic {
+        let (axis, k) = (a.name(), a.index());
+        let period = domain.max[k] - domain.min[k];
+        if support.is_finite() && period < 2.0 * support {
+            c.fail(
+                "domain",
+                format!(
+                    "the period along the periodic axis {axis} is {period} m, shorter than two kernel supports \
+                     (2 x {support} m); widen the domain along {axis}"
+                ),
+            );
+        }
+        for (i, b) in scene.boundaries.iter().enumerate() {
+            let path = format!("boundaries[{i}]");
+            match b {
+                Boundary::Plane { .. } => c.fail(
+                    &path,
+                    format!("a scene periodic along {axis} takes box walls open across {axis}, not planes"),
+                ),
+                Boundary::Box { min, max, open, .. } => {
+                    if !faces(a).iter().all(|f| open.contains(f)) {
+                        c.fail(
+                            &format!("{path}.open"),
+                            format!("must list \"-{axis}\" and \"+{axis}\": the scene is periodic along {axis}"),
+                        );
+                    }
+                    if min[k] != domain.min[k] || max[k] != domain.max[k] {
+                        c.fail(
+                            &path,
+                            format!(
+                                "must span the domain along the periodic axis {axis} (min.{axis} = {}, max.{axis} = {}), \
+                                 got {} to {}",
+                                domain.min[k], domain.max[k], min[k], max[k]
+                            ),
+                        );
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// Every listed module exists, once, with its section and its requirements; every

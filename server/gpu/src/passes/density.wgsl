@@ -19,11 +19,11 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     let xi = pos[i].xyz;
     let mat = params.materials[material_of(pos[i])];
     var sum = 0.0;
-    let b = block_of(xi, params.grid_origin, params.inv_cell, params.grid_dims);
-    for (var k = 0u; k < 9u; k++) {
+    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
+    for (var k = 0u; k < block_runs(b); k++) {
         let run = run_cells(b, k, params.grid_dims);
         for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let d = xi - pos[j].xyz;
+            let d = separation(xi, pos[j].xyz);
             let r2 = dot(d, d);
             if (r2 < params.h2) {
                 sum += kernel_w(r2);
@@ -33,11 +33,11 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     var wall = 0.0;
     if (params.n_walls > 0u) {
         let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
-        for (var k = 0u; k < 9u; k++) {
+        for (var k = 0u; k < block_runs(bw); k++) {
             let run = run_cells(bw, k, params.wall_dims);
             for (var j = starts[params.wall_start + run.x]; j < starts[params.wall_start + run.y]; j++) {
                 let w = walls[j];
-                let d = xi - w.xyz;
+                let d = separation(xi, w.xyz);
                 let r2 = dot(d, d);
                 if (r2 < params.h2) {
                     wall += w.w * mat.w * kernel_w(r2);

@@ -18,7 +18,7 @@ fn count(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups)
     if (i >= params.n) {
         return;
     }
-    let c = cell_index(cell_coords(pos[i].xyz, params.grid_origin, params.inv_cell, params.grid_dims), params.grid_dims);
+    let c = cell_index(cell_coords(pos[i].xyz, params.grid_origin, params.grid_inv_cell, params.grid_dims), params.grid_dims);
     cell_rank[i] = vec2<u32>(c, atomicAdd(&counts[c], 1u));
 }
 

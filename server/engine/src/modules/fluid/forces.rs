@@ -19,6 +19,7 @@ use super::FluidConsts;
 use crate::cpu::neighbors::{CHUNK, ChunkNeighbors};
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
+use crate::periodic::Separation;
 use crate::plan::{PassSpec, Stage};
 use rayon::prelude::*;
 
@@ -50,18 +51,23 @@ pub struct Forces;
 
 impl CpuPass for Forces {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        match (cx.attrs.has("pterm"), cx.attrs.has("material")) {
-            (false, false) => forces::<false, false>(cx),
-            (false, true) => forces::<false, true>(cx),
-            (true, false) => forces::<true, false>(cx),
-            (true, true) => forces::<true, true>(cx),
-        }
+        crate::with_separation!(&cx.model.periodic, |s| specialise(cx, s))
     }
 }
 
-/// The loop, specialised on whether pressure is part of it and whether the scene has
-/// several materials (one material reads no index and multiplies by no ratio).
-fn forces<const PRESSURE: bool, const MULTI: bool>(cx: &mut CpuCx<'_>) {
+fn specialise<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+    match (cx.attrs.has("pterm"), cx.attrs.has("material")) {
+        (false, false) => forces::<false, false, S>(cx, sep),
+        (false, true) => forces::<false, true, S>(cx, sep),
+        (true, false) => forces::<true, false, S>(cx, sep),
+        (true, true) => forces::<true, true, S>(cx, sep),
+    }
+}
+
+/// The loop, specialised on whether pressure is part of it, whether the scene has
+/// several materials (one material reads no index and multiplies by no ratio) and
+/// whether it is periodic.
+fn forces<const PRESSURE: bool, const MULTI: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let model = cx.model;
     let k = &model.kernel;
     let walls = &model.wall_particles;
@@ -90,7 +96,7 @@ fn forces<const PRESSURE: bool, const MULTI: bool>(cx: &mut CpuCx<'_>) {
         let mut a = model.gravity;
         for &j in nb.fluid(n) {
             let j = j as usize;
-            let x_ij = xi - pos[j];
+            let x_ij = sep.between(xi, pos[j]);
             let r2 = x_ij.length_squared();
             if r2 == 0.0 {
                 continue;
@@ -115,7 +121,7 @@ fn forces<const PRESSURE: bool, const MULTI: bool>(cx: &mut CpuCx<'_>) {
         let rho0 = materials.get(ma).rest_density;
         for &b in nb.walls(n) {
             let b = b as usize;
-            let x_ib = xi - walls.positions[b];
+            let x_ib = sep.between(xi, walls.positions[b]);
             let r2 = x_ib.length_squared();
             if r2 == 0.0 {
                 continue;

@@ -46,6 +46,7 @@ pub fn dam_break() -> Scene {
         fluids: vec![water(vec![block([0.0; 3], [a, 2.0 * a, 0.5 * a])], Viscosity::Artificial { alpha: 0.02 })],
         boundaries: vec![closed_box([0.0; 3], [4.0 * a, 2.4 * a, 0.5 * a])],
         domain: None,
+        periodic: Vec::new(),
         solver: Solver::default(),
         guard: Default::default(),
     }
@@ -63,6 +64,7 @@ pub fn hydrostatic() -> Scene {
         fluids: vec![water(vec![block([0.0; 3], [0.3, 0.9, 0.15])], Viscosity::Artificial { alpha: 0.02 })],
         boundaries: vec![closed_box([0.0; 3], [0.3, 1.0, 0.15])],
         domain: Some(BoxRegion { min: [-0.1, -0.1, -0.1], max: [0.4, 1.1, 0.25] }),
+        periodic: Vec::new(),
         solver: Solver { damping: 5.0, damping_until: 0.5, ..Solver::default() },
         guard: Default::default(),
     }

@@ -7,6 +7,7 @@ use super::FluidConsts;
 use crate::cpu::neighbors::CHUNK;
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
+use crate::periodic::Separation;
 use crate::plan::{PassSpec, Stage};
 use rayon::prelude::*;
 
@@ -38,38 +39,42 @@ pub struct Xsph;
 
 impl CpuPass for Xsph {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        let model = cx.model;
-        let k = &model.kernel;
-        let fc: &FluidConsts = model.consts();
-        let h = cx.attrs.handle::<Vec3>("xsph");
-        let mut dv_all = cx.attrs.take(h);
-        let attrs = &*cx.attrs;
-        let (pos, vel, rho) = (
-            attrs.get(attrs.handle::<Vec3>("x")),
-            attrs.get(attrs.handle::<Vec3>("v")),
-            attrs.get(attrs.handle::<Real>("rho")),
-        );
-        let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
-        let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
-        dv_all.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (dv_c, nb))| {
-            for (n, out) in dv_c.iter_mut().enumerate() {
-                let i = c * CHUNK + n;
-                let (xi, vi, rho_i) = (pos[i], vel[i], rho[i]);
-                let mut dv = Vec3::ZERO;
-                for &j in nb.fluid(n) {
-                    let j = j as usize;
-                    let r2 = (xi - pos[j]).length_squared();
-                    if r2 == 0.0 {
-                        continue;
-                    }
-                    let m = model.materials.get(material(j)).mass;
-                    dv -= (vi - vel[j]) * (2.0 * m / (rho_i + rho[j]) * k.w_r2(r2));
-                }
-                *out = dv * fc.xsph[material(i)];
-            }
-        });
-        cx.attrs.put(h, dv_all);
+        crate::with_separation!(&cx.model.periodic, |s| xsph(cx, s))
     }
+}
+
+fn xsph<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+    let model = cx.model;
+    let k = &model.kernel;
+    let fc: &FluidConsts = model.consts();
+    let h = cx.attrs.handle::<Vec3>("xsph");
+    let mut dv_all = cx.attrs.take(h);
+    let attrs = &*cx.attrs;
+    let (pos, vel, rho) = (
+        attrs.get(attrs.handle::<Vec3>("x")),
+        attrs.get(attrs.handle::<Vec3>("v")),
+        attrs.get(attrs.handle::<Real>("rho")),
+    );
+    let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
+    let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
+    dv_all.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (dv_c, nb))| {
+        for (n, out) in dv_c.iter_mut().enumerate() {
+            let i = c * CHUNK + n;
+            let (xi, vi, rho_i) = (pos[i], vel[i], rho[i]);
+            let mut dv = Vec3::ZERO;
+            for &j in nb.fluid(n) {
+                let j = j as usize;
+                let r2 = sep.between(xi, pos[j]).length_squared();
+                if r2 == 0.0 {
+                    continue;
+                }
+                let m = model.materials.get(material(j)).mass;
+                dv -= (vi - vel[j]) * (2.0 * m / (rho_i + rho[j]) * k.w_r2(r2));
+            }
+            *out = dv * fc.xsph[material(i)];
+        }
+    });
+    cx.attrs.put(h, dv_all);
 }
 
 /// `v += dv` on the CPU.

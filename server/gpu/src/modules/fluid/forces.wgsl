@@ -50,11 +50,11 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     let ma = material_of(pos[i]);
     let pt_i = pressure_term(i);
     var a = params.gravity;
-    let b = block_of(xi, params.grid_origin, params.inv_cell, params.grid_dims);
-    for (var k = 0u; k < 9u; k++) {
+    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
+    for (var k = 0u; k < block_runs(b); k++) {
         let run = run_cells(b, k, params.grid_dims);
         for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = xi - pos[j].xyz;
+            let x_ij = separation(xi, pos[j].xyz);
             let r2 = dot(x_ij, x_ij);
             if (r2 >= params.h2 || r2 == 0.0) {
                 continue;
@@ -73,11 +73,11 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
         let mat = params.materials[ma];
         let own = fluid.material[ma];
         let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
-        for (var k = 0u; k < 9u; k++) {
+        for (var k = 0u; k < block_runs(bw); k++) {
             let run = run_cells(bw, k, params.wall_dims);
             for (var j = starts[params.wall_start + run.x]; j < starts[params.wall_start + run.y]; j++) {
                 let w = walls[j];
-                let x_ib = xi - w.xyz;
+                let x_ib = separation(xi, w.xyz);
                 let r2 = dot(x_ib, x_ib);
                 if (r2 >= params.h2 || r2 == 0.0) {
                     continue;

@@ -24,11 +24,11 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     let vi = vel[i].xyz;
     let rho_i = rho[i];
     var dv = vec3<f32>(0.0);
-    let b = block_of(xi, params.grid_origin, params.inv_cell, params.grid_dims);
-    for (var k = 0u; k < 9u; k++) {
+    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
+    for (var k = 0u; k < block_runs(b); k++) {
         let run = run_cells(b, k, params.grid_dims);
         for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = xi - pos[j].xyz;
+            let x_ij = separation(xi, pos[j].xyz);
             let r2 = dot(x_ij, x_ij);
             if (r2 >= params.h2 || r2 == 0.0) {
                 continue;

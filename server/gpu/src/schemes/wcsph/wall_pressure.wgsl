@@ -19,11 +19,11 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     var sum_w = 0.0;
     var sum_p = 0.0;
     var sum_rx = vec3<f32>(0.0);
-    let b = block_of(xb, params.grid_origin, params.inv_cell, params.grid_dims);
-    for (var k = 0u; k < 9u; k++) {
+    let b = block_of(xb, params.grid_origin, params.grid_inv_cell, params.grid_dims);
+    for (var k = 0u; k < block_runs(b); k++) {
         let run = run_cells(b, k, params.grid_dims);
         for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_bj = xb - pos[j].xyz;
+            let x_bj = separation(xb, pos[j].xyz);
             let r2 = dot(x_bj, x_bj);
             if (r2 < params.h2) {
                 let w = kernel_w(r2);
