@@ -7,7 +7,7 @@ mod report;
 
 use crate::cli::ValidateArgs;
 use anyhow::{Context, bail};
-use floe_engine::validation::cases::{self, Case, Outcome, VARIANTS};
+use floe_engine::validation::cases::{self, Case, Outcome};
 use floe_engine::validation::stability::{self, StabilityOutcome};
 use std::io::Write;
 
@@ -40,7 +40,7 @@ pub fn validate(args: ValidateArgs) -> anyhow::Result<()> {
     let make = &*backend.factory;
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let total =
-        chosen_cases.iter().map(|c| c.spacings(full).len() * VARIANTS.len()).sum::<usize>() + chosen_stability.len();
+        chosen_cases.iter().map(|c| c.spacings(full).len() * c.variants.len()).sum::<usize>() + chosen_stability.len();
     let mut done = 0;
     let mut note = |line: String| {
         done += 1;
@@ -49,19 +49,19 @@ pub fn validate(args: ValidateArgs) -> anyhow::Result<()> {
     };
     let mut runs = Vec::new();
     for &case in &chosen_cases {
-        for variant in VARIANTS {
-            for spacing in case.spacings(full) {
+        for variant in case.variants {
+            for &spacing in case.spacings(full) {
                 let o = cases::run(case, spacing, variant, make)?;
                 note(format!(
                     "{} {} spacing {:.4} m: {} particles, {} steps, {:.1} s, {} {:.4}{}",
-                    case.name(),
+                    case.name,
                     variant.name,
                     spacing,
                     o.particles,
                     o.steps,
                     o.wall_seconds,
-                    case.primary_error(),
-                    o.error(case.primary_error()).unwrap_or(f64::NAN),
+                    case.primary_error,
+                    o.error(case.primary_error).unwrap_or(f64::NAN),
                     o.halted.as_deref().map(|h| format!(" HALTED: {h}")).unwrap_or_default()
                 ));
                 runs.push(o);
@@ -101,25 +101,22 @@ pub fn validate(args: ValidateArgs) -> anyhow::Result<()> {
 }
 
 /// Resolves `--case` names into accuracy cases and stability cases (all when empty).
-fn select(names: &[String]) -> anyhow::Result<(Vec<Case>, Vec<stability::StabilityCase>)> {
+fn select(names: &[String]) -> anyhow::Result<(Vec<&'static Case>, Vec<&'static stability::StabilityCase>)> {
+    let (all, battery) = (cases::all(), stability::all());
     if names.is_empty() {
-        return Ok((Case::ALL.to_vec(), stability::CASES.to_vec()));
+        return Ok((all, battery));
     }
     let (mut c, mut s) = (Vec::new(), Vec::new());
     for name in names {
-        if let Some(case) = Case::ALL.iter().find(|c| c.name() == name) {
+        if let Some(case) = all.iter().find(|c| c.name == name) {
             c.push(*case);
         } else if name == "stability" {
-            s.extend(stability::CASES.iter().cloned());
-        } else if let Some(case) = stability::CASES.iter().find(|c| c.name == name) {
-            s.push(case.clone());
+            s.extend(battery.iter().copied());
+        } else if let Some(case) = battery.iter().find(|c| c.name == name) {
+            s.push(*case);
         } else {
-            let known: Vec<&str> = Case::ALL
-                .iter()
-                .map(|c| c.name())
-                .chain(["stability"])
-                .chain(stability::CASES.iter().map(|c| c.name))
-                .collect();
+            let known: Vec<&str> =
+                all.iter().map(|c| c.name).chain(["stability"]).chain(battery.iter().map(|c| c.name)).collect();
             bail!("unknown case '{name}'; cases are: {}", known.join(", "));
         }
     }
@@ -128,25 +125,24 @@ fn select(names: &[String]) -> anyhow::Result<(Vec<Case>, Vec<stability::Stabili
 
 /// The bounds each case states, checked on the finest default run, and the
 /// battery's expectations.
-fn failures(cases: &[Case], runs: &[Outcome], battery: &[StabilityOutcome]) -> Vec<String> {
+fn failures(cases: &[&Case], runs: &[Outcome], battery: &[StabilityOutcome]) -> Vec<String> {
     let mut out = Vec::new();
     for &case in cases {
         let finest = runs
             .iter()
-            .filter(|o| o.case == case && o.variant == "default")
+            .filter(|o| o.case == case.name && o.variant == case.default_variant())
             .min_by(|a, b| a.spacing.total_cmp(&b.spacing));
         let Some(finest) = finest else { continue };
         if let Some(h) = &finest.halted {
-            out.push(format!("{}: finest default run halted: {h}", case.name()));
+            out.push(format!("{}: finest default run halted: {h}", case.name));
             continue;
         }
-        for &(norm, bound) in case.bounds() {
+        for &(norm, bound) in case.bounds {
             let v = finest.error(norm).unwrap_or(f64::NAN);
             if v.is_nan() || v > bound {
                 out.push(format!(
                     "{}: {norm} = {v:.4} exceeds its bound {bound} (spacing {} m)",
-                    case.name(),
-                    finest.spacing
+                    case.name, finest.spacing
                 ));
             }
         }

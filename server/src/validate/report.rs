@@ -3,7 +3,7 @@
 
 use super::Report;
 use super::plot::{Series, loglog};
-use floe_engine::validation::cases::{Case, VARIANTS, convergence_order};
+use floe_engine::validation::cases::{self, convergence_order};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -53,19 +53,20 @@ pub fn write(dir: &Path, r: &Report) -> anyhow::Result<()> {
         }
         writeln!(md)?;
     }
-    for case in Case::ALL {
-        let runs: Vec<_> = r.runs.iter().filter(|o| o.case == case).collect();
+    for case in cases::all() {
+        let runs: Vec<_> = r.runs.iter().filter(|o| o.case == case.name).collect();
         if runs.is_empty() {
             continue;
         }
-        let primary = case.primary_error();
-        writeln!(md, "## {}\n", case.name())?;
-        let bounds: Vec<String> = case.bounds().iter().map(|(n, b)| format!("{n} <= {b}")).collect();
-        writeln!(md, "Bounds (finest default run): {}.\n", bounds.join(", "))?;
+        let primary = case.primary_error;
+        writeln!(md, "## {}\n", case.name)?;
+        writeln!(md, "Reference: {} (module `{}`).\n", case.reference, case.module)?;
+        let bounds: Vec<String> = case.bounds.iter().map(|(n, b)| format!("{n} <= {b}")).collect();
+        writeln!(md, "Bounds (finest {} run): {}.\n", case.default_variant(), bounds.join(", "))?;
         let mut work = Vec::<Series>::new();
         let mut conv = Vec::<Series>::new();
         writeln!(md, "| variant | observed order of {primary} in spacing |\n|---|---:|")?;
-        for v in VARIANTS {
+        for v in case.variants {
             let mine: Vec<_> = runs.iter().filter(|o| o.variant == v.name && o.halted.is_none()).collect();
             let pts: Vec<(f64, f64)> = mine.iter().filter_map(|o| Some((o.spacing, o.error(primary)?))).collect();
             let order = convergence_order(&pts).map_or("-".into(), |p| format!("{p:.2}"));
@@ -73,7 +74,7 @@ pub fn write(dir: &Path, r: &Report) -> anyhow::Result<()> {
             work.push((v.name.into(), mine.iter().filter_map(|o| Some((o.wall_seconds, o.error(primary)?))).collect()));
             conv.push((v.name.into(), pts));
         }
-        let name = case.name();
+        let name = case.name;
         loglog(
             &dir.join(format!("{name}_work_precision.svg")),
             &format!("{name}: {primary} against run time"),
@@ -117,19 +118,20 @@ pub fn write(dir: &Path, r: &Report) -> anyhow::Result<()> {
         writeln!(md, "## Stability battery\n")?;
         writeln!(
             md,
-            "The dam break preset made stiff or extreme. Largest stable step: bisection on the CFL number (2.0 = the whole range was stable).\n"
+            "Presets made stiff or extreme (each case names its preset). Largest stable step: bisection on the CFL number (2.0 = the whole range was stable).\n"
         )?;
         writeln!(
             md,
-            "| case | what | particles | result | max density deviation | energy growth | steps (sub-steps) | largest stable CFL | its mean dt s | error the user saw | passed |"
+            "| case | preset | what | particles | result | max density deviation | energy growth | steps (sub-steps) | largest stable CFL | its mean dt s | error the user saw | passed |"
         )?;
-        writeln!(md, "|---|---|---:|---|---:|---:|---:|---:|---:|---|---|")?;
+        writeln!(md, "|---|---|---|---:|---|---:|---:|---:|---:|---:|---|---|")?;
         for o in &r.stability {
             let t = &o.trial;
             writeln!(
                 md,
-                "| {} | {} | {} | {} | {:.2} % | {:+.3} | {} ({}) | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {:.2} % | {:+.3} | {} ({}) | {} | {} | {} | {} |",
                 o.case.name,
+                o.case.preset,
                 o.case.what,
                 t.particles,
                 if t.finished {

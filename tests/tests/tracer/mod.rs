@@ -33,6 +33,8 @@ pub static MODULE: ModuleDef = ModuleDef {
     cpu: &[("tracer.age", &Age), ("tracer.probe", &Probe)],
     presets: &[],
     dt_limit: |_| None,
+    cases: &[],
+    stability: &[],
 };
 
 /// The probes' space.

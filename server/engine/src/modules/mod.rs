@@ -6,7 +6,7 @@
 //! field paths), the particle counts a server checks before building, its
 //! particles and materials, its attributes, passes, channels and constants (through
 //! the [`ModelBuilder`]), its CPU passes, its live-tunable settings, its presets and
-//! its time-step limit. `floe presets`, `floe validate`, live parameters and the
+//! its time-step limit, its validation cases and stability battery. `floe presets`, `floe validate`, live parameters and the
 //! viewer's sliders pick a module up from here with no edit elsewhere. Modules
 //! couple only through named attributes, never by calling each other.
 //!
@@ -21,6 +21,8 @@ use crate::model::{BuildError, Model, ModelBuilder};
 use crate::scene::Scene;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
+use crate::validation::cases::Case;
+use crate::validation::stability::StabilityCase;
 use std::sync::RwLock;
 
 /// A built-in scene.
@@ -67,6 +69,10 @@ pub struct ModuleDef {
     /// The largest stable time step the module allows (s), if it limits it, and the
     /// limit's name for messages.
     pub dt_limit: fn(&Model) -> Option<(&'static str, Real)>,
+    /// Validation cases against references (`floe validate`).
+    pub cases: &'static [Case],
+    /// Stiff and extreme scenes that must finish or halt with a reason.
+    pub stability: &'static [StabilityCase],
 }
 
 /// The modules shipped with the engine, in the order their passes run within a stage.

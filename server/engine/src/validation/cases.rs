@@ -1,62 +1,61 @@
 //! The validation cases as `floe validate` runs them: one case, one resolution,
 //! one variant of the solver options, timed, with the case's error norms.
+//!
+//! Each module declares its cases ([`crate::modules::ModuleDef::cases`]): the preset
+//! a case runs, its reference, resolutions, variants, bounds and how it measures its
+//! errors. `floe validate` and its report pick them up from the registry.
 
-use super::{dam_break, hydrostatic, run_probed};
 use crate::Simulation;
+use crate::guard::Halted;
 use crate::scene::load::{SceneError, from_preset};
-use crate::scene::presets::DAM_BREAK_A;
 use crate::simulation::BackendFactory;
 use serde::Serialize;
 
-/// A validation case this engine supports.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Case {
-    /// VALIDATION.md case 1: a column at rest, `p = rho0 g (H - y)`.
-    Hydrostatic,
-    /// VALIDATION.md case 2: surge front against Koshizuka & Oka (1996).
-    DamBreak,
+/// What a case's measurement returns: wall seconds stepping, the halt if the run
+/// halted, and the error norms by name.
+pub type Measured = (f64, Option<Halted>, Vec<(&'static str, f64)>);
+
+/// A validation case: a preset at several resolutions and solver variants, compared
+/// with a reference.
+#[derive(Debug, Serialize)]
+pub struct Case {
+    /// Name as used on the command line and in reports.
+    pub name: &'static str,
+    /// The module that declares it.
+    pub module: &'static str,
+    /// What it is compared with: paper, equation, or VALIDATION.md section.
+    pub reference: &'static str,
+    /// The preset it runs (with `particle_spacing` and the variant's overrides).
+    pub preset: &'static str,
+    /// The norm plotted against wall time and used for the convergence order.
+    pub primary_error: &'static str,
+    /// Particle spacings (m), coarse to fine: `floe validate --quick` (CI) and `--full`.
+    pub spacings: (&'static [f64], &'static [f64]),
+    /// The bounds the case states, checked on the finest run of the first variant:
+    /// (norm, largest allowed value).
+    pub bounds: &'static [(&'static str, f64)],
+    /// The solver variants it runs, the defaults first.
+    pub variants: &'static [Variant],
+    /// Runs the built scene at `spacing` (m) and measures its errors.
+    #[serde(skip)]
+    pub measure: fn(&mut Simulation, f64) -> Measured,
 }
 
 impl Case {
-    /// Every supported case.
-    pub const ALL: [Case; 2] = [Case::Hydrostatic, Case::DamBreak];
-
-    /// Name as used on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Case::Hydrostatic => "hydrostatic",
-            Case::DamBreak => "dam_break",
-        }
-    }
-
-    /// The norm plotted against wall time and used for the convergence order.
-    pub fn primary_error(self) -> &'static str {
-        match self {
-            Case::Hydrostatic => "pressure_l2",
-            Case::DamBreak => "front_rms",
-        }
-    }
-
     /// Resolutions (particle spacing, m), coarse to fine.
-    pub fn spacings(self, full: bool) -> Vec<f64> {
-        let a = DAM_BREAK_A as f64;
-        match (self, full) {
-            (Case::Hydrostatic, false) => vec![0.05, 0.0375, 0.025],
-            (Case::Hydrostatic, true) => vec![0.05, 0.0375, 0.025, 0.01875],
-            (Case::DamBreak, false) => vec![a / 8.0, a / 12.0, a / 16.0],
-            (Case::DamBreak, true) => vec![a / 12.0, a / 16.0, a / 22.0, a / 28.0],
-        }
+    pub fn spacings(&self, full: bool) -> &'static [f64] {
+        if full { self.spacings.1 } else { self.spacings.0 }
     }
 
-    /// The bounds the case states, checked on the finest run of the default variant:
-    /// (norm, largest allowed value).
-    pub fn bounds(self) -> &'static [(&'static str, f64)] {
-        match self {
-            Case::Hydrostatic => &[("pressure_l2", 0.05), ("mean_density_deviation", 0.01)],
-            Case::DamBreak => &[("front_max_t2_5", 0.35)],
-        }
+    /// The variant whose finest run the bounds are checked on.
+    pub fn default_variant(&self) -> &'static str {
+        self.variants.first().map_or("default", |v| v.name)
     }
+}
+
+/// Every case of every registered module.
+pub fn all() -> Vec<&'static Case> {
+    crate::modules::all().iter().flat_map(|m| m.cases.iter()).collect()
 }
 
 /// A variant of the solver options, as `--set` overrides on the preset.
@@ -68,27 +67,16 @@ pub struct Variant {
     pub overrides: &'static [&'static str],
 }
 
-/// The variants every case runs: the defaults, then one option changed at a time.
-pub const VARIANTS: &[Variant] = &[
-    Variant { name: "default", overrides: &[] },
-    Variant { name: "mueller_kernels", overrides: &["solver.kernel=mueller"] },
-    Variant { name: "leapfrog", overrides: &["solver.integrator=leapfrog"] },
-    Variant {
-        name: "laplacian_viscosity",
-        overrides: &["fluids[0].viscosity={\"model\":\"laplacian\",\"nu\":1e-6}", "fluids[0].xsph=0.05"],
-    },
-];
-
 /// One validation run.
 #[derive(Debug, Clone, Serialize)]
 pub struct Outcome {
-    /// The case.
-    pub case: Case,
+    /// The case's name.
+    pub case: &'static str,
     /// The variant's name.
     pub variant: &'static str,
     /// Particle spacing (m).
     pub spacing: f64,
-    /// Fluid particles.
+    /// Particles.
     pub particles: usize,
     /// Steps taken.
     pub steps: u64,
@@ -110,17 +98,14 @@ impl Outcome {
 }
 
 /// Runs `case` at `spacing` with `variant` on the backend `make` builds.
-pub fn run(case: Case, spacing: f64, variant: &Variant, make: &BackendFactory) -> Result<Outcome, SceneError> {
+pub fn run(case: &'static Case, spacing: f64, variant: &Variant, make: &BackendFactory) -> Result<Outcome, SceneError> {
     let mut overrides = vec![format!("particle_spacing={spacing}")];
     overrides.extend(variant.overrides.iter().map(|s| s.to_string()));
-    let scene = from_preset(case.name(), &overrides)?;
+    let scene = from_preset(case.preset, &overrides)?;
     let mut sim = Simulation::new(scene, make).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;
-    let (wall, halted, errors) = match case {
-        Case::Hydrostatic => run_hydrostatic(&mut sim, spacing),
-        Case::DamBreak => run_dam_break(&mut sim, spacing),
-    };
+    let (wall, halted, errors) = (case.measure)(&mut sim, spacing);
     Ok(Outcome {
-        case,
+        case: case.name,
         variant: variant.name,
         spacing,
         particles: sim.particle_count(),
@@ -130,42 +115,6 @@ pub fn run(case: Case, spacing: f64, variant: &Variant, make: &BackendFactory) -
         errors,
         halted: halted.map(|h| h.to_string()),
     })
-}
-
-type Measured = (f64, Option<crate::Halted>, Vec<(&'static str, f64)>);
-
-/// Settles for the preset's damped 0.5 s, runs undamped to 1 s, then compares
-/// with `rho0 g (H - y)` for H = 0.9 m (Adami et al. 2012).
-fn run_hydrostatic(sim: &mut Simulation, spacing: f64) -> Measured {
-    let (wall, halted) = run_probed(sim, 1.0, 1.0, |_| {});
-    let p = sim.read(&["velocity", "density", "pressure"]);
-    let e = hydrostatic::measure(&p, 1000.0, 9.81, 0.9, spacing);
-    let v = p.channel("velocity").and_then(|v| v.as_vectors()).expect("velocities requested");
-    let ke = v.iter().map(|v| 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) as f64).sum::<f64>() / v.len() as f64;
-    let errors = vec![
-        ("pressure_l2", e.pressure_l2),
-        ("pressure_linf", e.pressure_linf),
-        ("mean_density_deviation", e.mean_density_deviation),
-        ("surface_drift_m", e.surface - 0.9),
-        ("kinetic_energy_j_per_kg", ke),
-    ];
-    (wall, halted, errors)
-}
-
-/// Runs to T = 3.1 and compares the front with Koshizuka & Oka for T <= 3 and T <= 2.5.
-fn run_dam_break(sim: &mut Simulation, spacing: f64) -> Measured {
-    let (a, g) = (DAM_BREAK_A as f64, 9.81);
-    let t_scale = (2.0 * g / a).sqrt();
-    let mut history = Vec::new();
-    let (wall, halted) = run_probed(sim, dam_break::seconds(3.1, g, a), 0.005, |s| {
-        history.push((s.time() * t_scale, dam_break::front(&s.read(&[]).positions, 0.0, spacing, a)));
-    });
-    let reference = dam_break::reference(dam_break::KOSHIZUKA_OKA);
-    let e3 = dam_break::compare(&history, &reference, 3.0);
-    let e25 = dam_break::compare(&history, &reference, 2.5);
-    let errors =
-        vec![("front_rms", e3.rms), ("front_max", e3.max), ("front_bias", e3.bias), ("front_max_t2_5", e25.max)];
-    (wall, halted, errors)
 }
 
 /// Least-squares slope of `log(error)` against `log(spacing)`: the observed

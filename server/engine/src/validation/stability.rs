@@ -9,7 +9,6 @@
 use super::{energy, run_probed};
 use crate::Simulation;
 use crate::scene::load::{SceneError, from_preset};
-use crate::scene::presets::DAM_BREAK_A;
 use crate::simulation::BackendFactory;
 use serde::Serialize;
 
@@ -23,14 +22,19 @@ pub enum Expect {
     FinishOrHalt,
 }
 
-/// One stiff or extreme scene: the dam break preset with overrides.
+/// One stiff or extreme scene: a preset with overrides. Modules declare theirs
+/// ([`crate::modules::ModuleDef::stability`]).
 #[derive(Debug, Clone, Serialize)]
 pub struct StabilityCase {
     /// Short name.
     pub name: &'static str,
     /// What is extreme about it.
     pub what: &'static str,
-    /// Overrides on the dam break preset.
+    /// The preset it starts from.
+    pub preset: &'static str,
+    /// Particle spacing (m) in quick and full mode.
+    pub spacing: (f64, f64),
+    /// Overrides on the preset.
     pub overrides: &'static [&'static str],
     /// Simulated seconds in quick and full mode.
     pub until: (f64, f64),
@@ -38,67 +42,10 @@ pub struct StabilityCase {
     pub expect: Expect,
 }
 
-/// The battery.
-pub const CASES: &[StabilityCase] = &[
-    StabilityCase {
-        name: "stiff_pressure_10x",
-        what: "speed of sound 10x the usual choice (mach_factor 100)",
-        overrides: &["solver.mach_factor=100"],
-        until: (0.03, 0.2),
-        expect: Expect::Finish,
-    },
-    StabilityCase {
-        name: "stiff_pressure_100x",
-        what: "speed of sound 100x the usual choice (mach_factor 1000)",
-        overrides: &["solver.mach_factor=1000"],
-        until: (0.003, 0.02),
-        expect: Expect::Finish,
-    },
-    StabilityCase {
-        name: "fixed_dt_far_above_cfl",
-        what: "fixed dt = 10 ms, about 20x the stable limit (must be sub-stepped)",
-        overrides: &["solver.time_step={\"mode\":\"fixed\",\"dt\":0.01}"],
-        until: (0.1, 0.5),
-        expect: Expect::Finish,
-    },
-    StabilityCase {
-        name: "stiff_viscosity",
-        what: "Laplacian viscosity nu = 5 m^2/s (viscous step limit dominates)",
-        overrides: &["fluids[0].viscosity={\"model\":\"laplacian\",\"nu\":5}"],
-        until: (0.02, 0.1),
-        expect: Expect::Finish,
-    },
-    StabilityCase {
-        name: "overlapping_start",
-        what: "two fluid blocks overlapping at the start (density 2x rest where they overlap)",
-        overrides: &[
-            "fluids[0].blocks=[{\"min\":[0,0,0],\"max\":[0.5,1,0.25]},{\"min\":[0.25,0.5,0],\"max\":[0.75,1.1,0.25]}]",
-        ],
-        until: (0.1, 0.5),
-        expect: Expect::FinishOrHalt,
-    },
-    StabilityCase {
-        name: "high_speed_drop",
-        what: "a block thrown down at 20 m/s onto the floor",
-        overrides: &["fluids[0].blocks=[{\"min\":[0.5,0.5,0],\"max\":[1,1,0.25],\"velocity\":[0,-20,0]}]"],
-        until: (0.05, 0.3),
-        expect: Expect::Finish,
-    },
-    StabilityCase {
-        name: "near_zero_gravity",
-        what: "gravity 1e-4 m/s^2 (speed of sound derived from a tiny fall speed)",
-        overrides: &["gravity=[0,-1e-4,0]"],
-        until: (0.2, 1.0),
-        expect: Expect::Finish,
-    },
-    StabilityCase {
-        name: "large_gravity_100g",
-        what: "gravity 100 g = 981 m/s^2",
-        overrides: &["gravity=[0,-981,0]"],
-        until: (0.01, 0.05),
-        expect: Expect::Finish,
-    },
-];
+/// Every stability case of every registered module.
+pub fn all() -> Vec<&'static StabilityCase> {
+    crate::modules::all().iter().flat_map(|m| m.stability.iter()).collect()
+}
 
 /// One run of a stability case.
 #[derive(Debug, Clone, Serialize)]
@@ -142,11 +89,11 @@ pub struct StabilityOutcome {
 
 /// Runs one trial of `case` with `extra` overrides on the backend `make` builds.
 pub fn trial(case: &StabilityCase, full: bool, extra: &[String], make: &BackendFactory) -> Result<Trial, SceneError> {
-    let spacing = DAM_BREAK_A as f64 / if full { 16.0 } else { 10.0 };
+    let spacing = if full { case.spacing.1 } else { case.spacing.0 };
     let mut overrides = vec![format!("particle_spacing={spacing}")];
     overrides.extend(case.overrides.iter().map(|s| s.to_string()));
     overrides.extend_from_slice(extra);
-    let scene = from_preset("dam_break", &overrides)?;
+    let scene = from_preset(case.preset, &overrides)?;
     let g = scene.gravity;
     let mut sim = Simulation::new(scene, make).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;
     let mass = sim.particle_mass() as f64;

@@ -6,7 +6,9 @@
 //! - [`viscosity`]: the pairwise viscous terms.
 //! - [`forces`]: the force pass; [`xsph`]: the XSPH passes.
 //! - [`presets`]: `dam_break`, `hydrostatic`.
+//! - [`cases`]: validation cases and the stability battery.
 
+pub mod cases;
 pub mod forces;
 pub mod presets;
 pub mod spec;
@@ -39,6 +41,8 @@ pub static MODULE: ModuleDef = ModuleDef {
     cpu: &[("fluid.forces", &forces::Forces), ("fluid.xsph", &xsph::Xsph), ("fluid.xsph_kick", &xsph::XsphKick)],
     presets: presets::PRESETS,
     dt_limit,
+    cases: cases::CASES,
+    stability: cases::STABILITY,
 };
 
 /// The module's live settings.

@@ -1,0 +1,162 @@
+//! The fluid module's validation cases (VALIDATION.md §1 and §2) and its stability
+//! battery (VALIDATION.md, last section): the dam break made stiff or extreme.
+
+use crate::Simulation;
+use crate::scene::presets::DAM_BREAK_A;
+use crate::validation::cases::{Case, Measured, Variant};
+use crate::validation::stability::{Expect, StabilityCase};
+use crate::validation::{dam_break, hydrostatic, run_probed};
+
+const A: f64 = DAM_BREAK_A as f64;
+
+/// The variants every fluid case runs: the defaults, then one option changed at a time.
+const VARIANTS: &[Variant] = &[
+    Variant { name: "default", overrides: &[] },
+    Variant { name: "mueller_kernels", overrides: &["solver.kernel=mueller"] },
+    Variant { name: "leapfrog", overrides: &["solver.integrator=leapfrog"] },
+    Variant {
+        name: "laplacian_viscosity",
+        overrides: &["fluids[0].viscosity={\"model\":\"laplacian\",\"nu\":1e-6}", "fluids[0].xsph=0.05"],
+    },
+];
+
+/// The module's accuracy cases.
+pub const CASES: &[Case] = &[
+    Case {
+        name: "hydrostatic",
+        module: "fluid",
+        reference: "VALIDATION.md §1: a column at rest, p = rho0 g (H - y) (Adami, Hu & Adams 2012)",
+        preset: "hydrostatic",
+        primary_error: "pressure_l2",
+        spacings: (&[0.05, 0.0375, 0.025], &[0.05, 0.0375, 0.025, 0.01875]),
+        bounds: &[("pressure_l2", 0.05), ("mean_density_deviation", 0.01)],
+        variants: VARIANTS,
+        measure: hydrostatic_case,
+    },
+    Case {
+        name: "dam_break",
+        module: "fluid",
+        reference: "VALIDATION.md §2: surge front against Koshizuka & Oka (1996) and Martin & Moyce (1952)",
+        preset: "dam_break",
+        primary_error: "front_rms",
+        spacings: (&[A / 8.0, A / 12.0, A / 16.0], &[A / 12.0, A / 16.0, A / 22.0, A / 28.0]),
+        bounds: &[("front_max_t2_5", 0.35)],
+        variants: VARIANTS,
+        measure: dam_break_case,
+    },
+];
+
+/// Settles for the preset's damped 0.5 s, runs undamped to 1 s, then compares
+/// with `rho0 g (H - y)` for H = 0.9 m (Adami et al. 2012).
+fn hydrostatic_case(sim: &mut Simulation, spacing: f64) -> Measured {
+    let (wall, halted) = run_probed(sim, 1.0, 1.0, |_| {});
+    let p = sim.read(&["velocity", "density", "pressure"]);
+    let e = hydrostatic::measure(&p, 1000.0, 9.81, 0.9, spacing);
+    let v = p.channel("velocity").and_then(|v| v.as_vectors()).expect("velocities requested");
+    let ke = v.iter().map(|v| 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) as f64).sum::<f64>() / v.len() as f64;
+    let errors = vec![
+        ("pressure_l2", e.pressure_l2),
+        ("pressure_linf", e.pressure_linf),
+        ("mean_density_deviation", e.mean_density_deviation),
+        ("surface_drift_m", e.surface - 0.9),
+        ("kinetic_energy_j_per_kg", ke),
+    ];
+    (wall, halted, errors)
+}
+
+/// Runs to T = 3.1 and compares the front with Koshizuka & Oka for T <= 3 and T <= 2.5.
+fn dam_break_case(sim: &mut Simulation, spacing: f64) -> Measured {
+    let g = 9.81;
+    let t_scale = (2.0 * g / A).sqrt();
+    let mut history = Vec::new();
+    let (wall, halted) = run_probed(sim, dam_break::seconds(3.1, g, A), 0.005, |s| {
+        history.push((s.time() * t_scale, dam_break::front(&s.read(&[]).positions, 0.0, spacing, A)));
+    });
+    let reference = dam_break::reference(dam_break::KOSHIZUKA_OKA);
+    let e3 = dam_break::compare(&history, &reference, 3.0);
+    let e25 = dam_break::compare(&history, &reference, 2.5);
+    let errors =
+        vec![("front_rms", e3.rms), ("front_max", e3.max), ("front_bias", e3.bias), ("front_max_t2_5", e25.max)];
+    (wall, halted, errors)
+}
+
+/// The dam break at spacing a/10 (CI) and a/16 (`--full`).
+const BATTERY_SPACING: (f64, f64) = (A / 10.0, A / 16.0);
+
+/// The stability battery: the dam break preset made stiff or extreme.
+pub const STABILITY: &[StabilityCase] = &[
+    StabilityCase {
+        name: "stiff_pressure_10x",
+        what: "speed of sound 10x the usual choice (mach_factor 100)",
+        preset: "dam_break",
+        spacing: BATTERY_SPACING,
+        overrides: &["solver.mach_factor=100"],
+        until: (0.03, 0.2),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "stiff_pressure_100x",
+        what: "speed of sound 100x the usual choice (mach_factor 1000)",
+        preset: "dam_break",
+        spacing: BATTERY_SPACING,
+        overrides: &["solver.mach_factor=1000"],
+        until: (0.003, 0.02),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "fixed_dt_far_above_cfl",
+        what: "fixed dt = 10 ms, about 20x the stable limit (must be sub-stepped)",
+        preset: "dam_break",
+        spacing: BATTERY_SPACING,
+        overrides: &["solver.time_step={\"mode\":\"fixed\",\"dt\":0.01}"],
+        until: (0.1, 0.5),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "stiff_viscosity",
+        what: "Laplacian viscosity nu = 5 m^2/s (viscous step limit dominates)",
+        preset: "dam_break",
+        spacing: BATTERY_SPACING,
+        overrides: &["fluids[0].viscosity={\"model\":\"laplacian\",\"nu\":5}"],
+        until: (0.02, 0.1),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "overlapping_start",
+        what: "two fluid blocks overlapping at the start (density 2x rest where they overlap)",
+        preset: "dam_break",
+        spacing: BATTERY_SPACING,
+        overrides: &[
+            "fluids[0].blocks=[{\"min\":[0,0,0],\"max\":[0.5,1,0.25]},{\"min\":[0.25,0.5,0],\"max\":[0.75,1.1,0.25]}]",
+        ],
+        until: (0.1, 0.5),
+        expect: Expect::FinishOrHalt,
+    },
+    StabilityCase {
+        name: "high_speed_drop",
+        what: "a block thrown down at 20 m/s onto the floor",
+        preset: "dam_break",
+        spacing: BATTERY_SPACING,
+        overrides: &["fluids[0].blocks=[{\"min\":[0.5,0.5,0],\"max\":[1,1,0.25],\"velocity\":[0,-20,0]}]"],
+        until: (0.05, 0.3),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "near_zero_gravity",
+        what: "gravity 1e-4 m/s^2 (speed of sound derived from a tiny fall speed)",
+        preset: "dam_break",
+        spacing: BATTERY_SPACING,
+        overrides: &["gravity=[0,-1e-4,0]"],
+        until: (0.2, 1.0),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "large_gravity_100g",
+        what: "gravity 100 g = 981 m/s^2",
+        preset: "dam_break",
+        spacing: BATTERY_SPACING,
+        overrides: &["gravity=[0,-981,0]"],
+        until: (0.01, 0.05),
+        expect: Expect::Finish,
+    },
+];
