@@ -106,7 +106,11 @@ pub fn scene_stats(shared: &Shared) -> pb::SceneStats {
         dropped_frames: shared.dropped_frames(),
         frames_published: shared.published.load(Ordering::Relaxed),
         sets: sets(shared),
-        measures: Vec::new(),
+        measures: s
+            .measures
+            .iter()
+            .map(|m| pb::Measure { name: m.name.clone(), value: m.value, unit: m.unit.clone() })
+            .collect(),
     }
 }
 

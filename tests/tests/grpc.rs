@@ -95,6 +95,8 @@ async fn create_step_and_stream_a_dam_break() {
     let stats = s.client.get_stats(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
     assert_eq!(stats.subscribers, 2);
     assert!(stats.frames_published >= 5);
+    let ke = stats.measures.iter().find(|m| m.name == "fluid.kinetic_energy").expect("kinetic energy measured");
+    assert!(ke.value > 0.0 && ke.unit == "J", "{ke:?}");
 
     let listed = s.client.list_scenes(pb::ListScenesRequest {}).await.unwrap().into_inner();
     assert_eq!(listed.scenes.len(), 1);

@@ -75,6 +75,12 @@ async fn rest_mirrors_the_control_calls() {
     assert_eq!(res.status(), StatusCode::OK);
     let (_, v) = call(&app, "GET", &format!("/api/v1/scenes/{id}"), None).await;
     assert_eq!(v["steps"], 5);
+    // Measures with units, refreshed when stepping stops: the falling column has
+    // picked up kinetic energy.
+    let ke = &v["measures"]["fluid.kinetic_energy"];
+    assert_eq!(ke["unit"], "J");
+    assert!(ke["value"].as_f64().unwrap() > 0.0, "{ke}");
+    assert_eq!(v["measures"]["max_speed"]["unit"], "m/s");
     let req =
         Request::builder().method("PUT").uri(format!("/api/v1/scenes/{id}/snapshot")).body(Body::from("junk")).unwrap();
     assert_eq!(app.clone().oneshot(req).await.unwrap().status(), StatusCode::BAD_REQUEST);

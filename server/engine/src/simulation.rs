@@ -51,6 +51,25 @@ pub struct SolveStats {
     pub total_iterations: u64,
 }
 
+/// A named value a scene reports (a solver's iterations, a front position, the
+/// total heat), in SI units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Measure {
+    /// Name, `module.quantity` for a module's.
+    pub name: String,
+    /// Value.
+    pub value: f64,
+    /// SI unit, empty when dimensionless.
+    pub unit: String,
+}
+
+impl Measure {
+    /// A measure called `name`.
+    pub fn new(name: impl Into<String>, value: f64, unit: &str) -> Self {
+        Self { name: name.into(), value, unit: unit.into() }
+    }
+}
+
 /// The statistics with the running sums behind the means, as a snapshot saves them.
 #[derive(Debug, Serialize, Deserialize)]
 struct SavedStats {
@@ -179,6 +198,28 @@ impl Simulation {
     /// Run statistics so far.
     pub fn stats(&self) -> &RunStats {
         &self.stats
+    }
+
+    /// The named values the scene reports with its statistics: the run's largest
+    /// density deviation and speed, each iterative solve's iterations and last
+    /// residual, and what each module measures (its [`crate::modules::ModuleDef::measures`]).
+    /// Module measures may read state back from the device: call it at most a few
+    /// times a second.
+    pub fn measures(&self) -> Vec<Measure> {
+        let s = &self.stats;
+        let mut out = vec![
+            Measure::new("max_density_deviation", s.max_density_deviation, ""),
+            Measure::new("max_speed", s.max_speed, "m/s"),
+        ];
+        for (name, solve) in &s.solves {
+            out.push(Measure::new(format!("{name}.mean_iterations"), solve.mean_iterations, ""));
+            out.push(Measure::new(format!("{name}.max_iterations"), f64::from(solve.max_iterations), ""));
+            out.push(Measure::new(format!("{name}.last_residual"), solve.last_residual, ""));
+        }
+        for m in &self.backend.model().modules {
+            out.extend((m.measures)(self));
+        }
+        out
     }
 
     /// Copies out positions and the requested channels of the SPH particles, in

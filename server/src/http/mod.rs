@@ -125,7 +125,8 @@ pub struct SceneView {
     pub sets: Vec<SetView>,
     /// The settings `parameters` may change.
     pub tunables: Vec<TunableView>,
-    /// What the scheme and modules measured at the last step, by name.
+    /// What the scheme and modules measured (refreshed at most twice a second while
+    /// running, and whenever stepping stops), by name.
     pub measures: std::collections::BTreeMap<String, MeasureView>,
 }
 
@@ -184,7 +185,7 @@ pub struct MeasureView {
     /// The value.
     pub value: f64,
     /// Its SI unit.
-    pub unit: &'static str,
+    pub unit: String,
 }
 
 /// Name of a state in JSON.
@@ -251,7 +252,11 @@ impl SceneView {
                     module: t.module,
                 })
                 .collect(),
-            measures: Default::default(),
+            measures: s
+                .measures
+                .iter()
+                .map(|m| (m.name.clone(), MeasureView { value: m.value, unit: m.unit.clone() }))
+                .collect(),
         }
     }
 }

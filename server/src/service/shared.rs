@@ -5,6 +5,7 @@
 use floe_engine::Simulation;
 use floe_engine::channels::ChannelSpec;
 use floe_engine::quantize::PositionGrid;
+use floe_engine::simulation::Measure;
 use floe_proto::{ChannelKind, Particles};
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
@@ -38,6 +39,9 @@ pub struct Status {
     pub steps_per_second: f64,
     /// The halt message, when halted.
     pub halt_reason: Option<String>,
+    /// What the scheme and modules measured, refreshed at most twice a second while
+    /// running and whenever stepping stops.
+    pub measures: Vec<Measure>,
 }
 
 /// Particle state published for frame subscribers, in identity order (the
@@ -143,6 +147,7 @@ impl Shared {
                 dt: 0.0,
                 steps_per_second: 0.0,
                 halt_reason: None,
+                measures: Vec::new(),
             }),
             published_state,
             events,

@@ -14,6 +14,9 @@ use std::time::{Duration, Instant};
 /// Snapshots are published at most this often while stepping (s of wall time).
 const PUBLISH_INTERVAL: Duration = Duration::from_millis(16);
 
+/// Measures are refreshed at most this often while running (they may read state back).
+const MEASURE_INTERVAL: Duration = Duration::from_millis(500);
+
 /// The worker thread's state.
 pub(super) struct Worker {
     sim: Simulation,
@@ -22,13 +25,23 @@ pub(super) struct Worker {
     shared: Arc<Shared>,
     running: Option<f64>,
     last_publish: Option<Instant>,
+    last_measure: Option<Instant>,
     sequence: u64,
     rate: (Instant, u64),
 }
 
 impl Worker {
     pub(super) fn new(sim: Simulation, backend: Arc<BackendFactory>, shared: Arc<Shared>) -> Self {
-        Self { sim, backend, shared, running: None, last_publish: None, sequence: 0, rate: (Instant::now(), 0) }
+        Self {
+            sim,
+            backend,
+            shared,
+            running: None,
+            last_publish: None,
+            last_measure: None,
+            sequence: 0,
+            rate: (Instant::now(), 0),
+        }
     }
 
     pub(super) fn run(mut self, rx: mpsc::Receiver<Command>) {
@@ -243,10 +256,23 @@ impl Worker {
         }
     }
 
+    /// Refreshes the status's measures: always when stepping has stopped, at most every
+    /// [`MEASURE_INTERVAL`] while running.
+    fn measure(&mut self) {
+        if self.running.is_some() && self.last_measure.is_some_and(|t| t.elapsed() < MEASURE_INTERVAL) {
+            return;
+        }
+        self.last_measure = Some(Instant::now());
+        if let Ok(measures) = self.guarded(|sim| sim.measures()) {
+            self.shared.status.lock().expect("lock").measures = measures;
+        }
+    }
+
     /// Publishes a snapshot of positions and the channels subscribers want; none
     /// is read back while nobody subscribes.
     fn publish(&mut self) {
         self.last_publish = Some(Instant::now());
+        self.measure();
         if self.shared.subscribers.load(Ordering::Relaxed) == 0 && self.sequence > 0 {
             return;
         }

@@ -33,6 +33,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     cpu: &[("tracer.age", &Age), ("tracer.probe", &Probe)],
     presets: &[],
     dt_limit: |_| None,
+    measures: |_| Vec::new(),
     cases: &[],
     stability: &[],
 };

@@ -69,6 +69,9 @@ pub struct ModuleDef {
     /// The largest stable time step the module allows (s), if it limits it, and the
     /// limit's name for messages.
     pub dt_limit: fn(&Model) -> Option<(&'static str, Real)>,
+    /// Named values the module reports with a scene's statistics (read from its
+    /// state; called a few times a second at most).
+    pub measures: fn(&crate::Simulation) -> Vec<crate::simulation::Measure>,
     /// Validation cases against references (`floe validate`).
     pub cases: &'static [Case],
     /// Stiff and extreme scenes that must finish or halt with a reason.

@@ -41,6 +41,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     cpu: &[("fluid.forces", &forces::Forces), ("fluid.xsph", &xsph::Xsph), ("fluid.xsph_kick", &xsph::XsphKick)],
     presets: presets::PRESETS,
     dt_limit,
+    measures,
     cases: cases::CASES,
     stability: cases::STABILITY,
 };
@@ -209,4 +210,23 @@ fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
         .fold(0.0, Real::max);
     let h = 0.5 * model.kernel.support();
     (nu > 0.0).then(|| ("viscosity", 0.125 * h * h / nu))
+}
+
+/// The fluid's kinetic energy `sum_i m_i |v_i|^2 / 2` (J): watching it fall tells
+/// when a scene has settled.
+fn measures(sim: &crate::Simulation) -> Vec<crate::simulation::Measure> {
+    let several = sim.channels().iter().any(|c| c.name == "material");
+    let p = sim.read(if several { &["velocity", "material"] } else { &["velocity"] });
+    let Some(v) = p.channel("velocity").and_then(|v| v.as_vectors()) else { return Vec::new() };
+    let materials = &sim.model().materials;
+    let index = p.channel("material").and_then(|m| m.as_exact());
+    let energy: f64 = v
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let m = materials.get(index.map_or(0, |m| usize::from(m[i]))).mass as f64;
+            0.5 * m * f64::from(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+        })
+        .sum();
+    vec![crate::simulation::Measure::new("fluid.kinetic_energy", energy, "J")]
 }
