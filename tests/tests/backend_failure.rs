@@ -48,6 +48,9 @@ impl Stages for Faulty {
     fn particle_id(&mut self, slot: u32) -> u32 {
         self.0.particle_id(slot)
     }
+    fn first_outside(&mut self, attr: &str, min: f32, max: f32) -> Option<(u32, f32)> {
+        self.0.first_outside(attr, min, max)
+    }
 }
 
 impl Backend for Faulty {

@@ -11,6 +11,7 @@ mod tracer;
 
 use floe_client::{Client, FrameRequest};
 use floe_engine::Simulation;
+use floe_engine::attrs::Column;
 use floe_engine::backend::Backend;
 use floe_engine::model::Model;
 use floe_engine::scene::load::from_preset;
@@ -152,5 +153,22 @@ fn what_a_module_adds_is_what_its_attributes_declare() {
         let n = on.particle_count() as u64;
         let per = if backend == "gpu" { 16 } else { 12 };
         assert_eq!(total(on.backend()) - total(off.backend()), per * n, "{backend}: XSPH adds its vectors only");
+    }
+}
+
+#[test]
+fn a_module_bound_halts_the_scene_naming_the_particle() {
+    floe_engine::modules::register(&tracer::MODULE);
+    for (bad, says) in [(f32::NAN, "non-finite age (NaN)"), (5e3, "is outside its range [0, 1000] s")] {
+        let mut sim = Simulation::new_cpu(from_preset("dam_break", &traced()).unwrap()).unwrap();
+        sim.step().unwrap();
+        let mut age = sim.backend().download(&["age"]).remove(0);
+        let Column::F32(values) = &mut age else { panic!("age is f32") };
+        values[17] = bad;
+        sim.backend_mut().upload("age", age);
+        let id = sim.backend_mut().particle_id(17);
+        let halted = sim.step().unwrap_err();
+        assert_eq!(halted.particle, Some(id), "{halted}");
+        assert!(halted.reason.contains(says), "{halted}");
     }
 }

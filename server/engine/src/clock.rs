@@ -6,7 +6,7 @@ use crate::guard::{Halted, Measures};
 use crate::math::Real;
 use crate::model::Model;
 use crate::plan::Stage;
-use crate::schemes::{Stages, StepReport};
+use crate::schemes::{ReduceOp, Reduction, Stages, StepReport};
 use crate::timestep::{Limits, StepControl};
 use serde::{Deserialize, Serialize};
 
@@ -90,6 +90,16 @@ impl Clock {
         let model = s.model();
         if let Some((reason, slot)) = m.violation(model.max_compression, model.max_speed) {
             return Err(self.halt(reason, Some(s.particle_id(slot))));
+        }
+        let bounds = model.bounds.clone();
+        for b in &bounds {
+            let outside = s.reduce(&Reduction { attr: b.attr, op: ReduceOp::Outside { min: b.min, max: b.max } });
+            let outside = outside.map_err(|reason| self.halt(reason, None))?;
+            if outside > 0.0
+                && let Some((slot, value)) = s.first_outside(b.attr, b.min, b.max)
+            {
+                return Err(self.halt(b.reason(value), Some(s.particle_id(slot))));
+            }
         }
         self.measures = Some(m);
         Ok(m)

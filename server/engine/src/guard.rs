@@ -17,6 +17,41 @@ pub struct Halted {
     pub particle: Option<u32>,
 }
 
+/// A range a module's state attribute must stay in (a temperature between absolute
+/// zero and a bound the module states); leaving it, or going non-finite, halts the
+/// scene naming the particle. Checked after every evaluation on both backends, with
+/// one small readback on a GPU.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bound {
+    /// The attribute (one f32 per particle).
+    pub attr: &'static str,
+    /// What it is, for the message ("temperature").
+    pub what: &'static str,
+    /// Its unit.
+    pub unit: &'static str,
+    /// Smallest and largest allowed value.
+    pub min: f32,
+    /// Largest allowed value.
+    pub max: f32,
+}
+
+impl Bound {
+    /// The halt reason for `value` outside the bound.
+    pub fn reason(&self, value: f32) -> String {
+        let (what, unit) = (self.what, self.unit);
+        if value.is_finite() {
+            format!("{what} {value} {unit} is outside its range [{}, {}] {unit}", self.min, self.max)
+        } else {
+            format!("non-finite {what} ({value}): the simulation diverged")
+        }
+    }
+}
+
+/// The first index of `values` outside `[min, max]` or not finite, with its value.
+pub fn first_outside(values: &[f32], min: f32, max: f32) -> Option<(u32, f32)> {
+    values.iter().position(|v| !(min..=max).contains(v)).map(|i| (i as u32, values[i]))
+}
+
 /// Per-step measurements the guard and the time step control need, reduced
 /// over all particles.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

@@ -11,6 +11,7 @@
 use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role, WALLS};
 use crate::boundary::{BoundaryParticles, WallConstraint, lattice_sum};
 use crate::channels::{ChannelSpec, SetSpec};
+use crate::guard::Bound;
 use crate::kernel::Kernel;
 use crate::materials::{Material, Materials};
 use crate::math::{Aabb, Real, Vec3};
@@ -162,6 +163,8 @@ pub struct Model {
     pub wall_particles: BoundaryParticles,
     /// The walls' non-penetration constraints.
     pub wall_constraints: Vec<WallConstraint>,
+    /// Ranges the modules' state attributes must stay in.
+    pub bounds: Vec<Bound>,
     /// The scheme stepping the scene.
     pub scheme: &'static SchemeDef,
     /// The scene's modules, in registry order.
@@ -278,6 +281,7 @@ pub struct ModelBuilder<'s> {
     passes: Vec<&'static PassSpec>,
     channels: Vec<ChannelSpec>,
     sets: Vec<SetSpec>,
+    bounds: Vec<Bound>,
     consts: Consts,
 }
 
@@ -295,6 +299,7 @@ impl<'s> ModelBuilder<'s> {
             layout: Layout::default(),
             passes: Vec::new(),
             channels: Vec::new(),
+            bounds: Vec::new(),
             sets: vec![crate::channels::PARTICLE_SET],
             consts: Consts::default(),
         })
@@ -387,6 +392,11 @@ impl<'s> ModelBuilder<'s> {
         self.channels.push(spec);
     }
 
+    /// Adds a range a state attribute must stay in (the guard halts the scene otherwise).
+    pub fn bound(&mut self, bound: Bound) {
+        self.bounds.push(bound);
+    }
+
     /// Offers a particle set (besides the SPH particles) to frames.
     pub fn set(&mut self, spec: SetSpec) {
         self.sets.push(spec);
@@ -461,6 +471,7 @@ impl<'s> ModelBuilder<'s> {
             layout: self.layout,
             plan,
             channels: self.channels,
+            bounds: self.bounds,
             sets: self.sets,
             consts: self.consts,
         })

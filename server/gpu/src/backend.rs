@@ -353,12 +353,13 @@ impl Stages for GpuBackend {
     fn reduce(&mut self, r: &Reduction) -> Result<f64, String> {
         let spec = self.model.layout.spec(r.attr).ok_or_else(|| format!("no attribute {}", r.attr))?;
         let n = self.count(spec.space) as u32;
-        let op = match r.op {
-            ReduceOp::Sum | ReduceOp::Mean => 0,
-            ReduceOp::Max => 1,
-            ReduceOp::MaxAbs => 2,
+        let (op, lo, hi) = match r.op {
+            ReduceOp::Sum | ReduceOp::Mean => (0, 0.0, 0.0),
+            ReduceOp::Max => (1, 0.0, 0.0),
+            ReduceOp::MaxAbs => (2, 0.0, 0.0),
+            ReduceOp::Outside { min, max } => (3, min, max),
         };
-        let words = Words { n, stride: 1, op, _pad: 0 };
+        let words = Words { n, stride: 1, op, lo, hi, ..Words::default() };
         self.gpu.queue.write_buffer(self.buffers.get("reduce_words"), 0, bytemuck::bytes_of(&words));
         let bind = self.reduction(spec.name).clone();
         let mut e = self.take_recorder();
@@ -394,6 +395,14 @@ impl Stages for GpuBackend {
     fn particle_id(&mut self, slot: u32) -> u32 {
         self.flush();
         self.download_words(&[(self.buffers.get("id"), 4 * slot as u64, 4)])[0][0]
+    }
+
+    fn first_outside(&mut self, attr: &str, min: f32, max: f32) -> Option<(u32, f32)> {
+        self.flush();
+        match self.download(&[attr]).pop()? {
+            Column::F32(values) => floe_engine::guard::first_outside(&values, min, max),
+            _ => None,
+        }
     }
 }
 

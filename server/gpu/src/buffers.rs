@@ -163,7 +163,7 @@ impl Buffers {
         for (spec, _) in &attrs {
             let s = spec.elem.gpu_words() as u32;
             if !strides.iter().any(|(t, _)| *t == s) {
-                let words = Words { n: n as u32, stride: s, op: 0, _pad: 0 };
+                let words = Words { n: n as u32, stride: s, ..Words::default() };
                 strides.push((s, init(device, "permutation", &[words], U::UNIFORM)));
             }
         }

@@ -246,8 +246,12 @@ pub struct Words {
     pub n: u32,
     /// 32-bit words per element.
     pub stride: u32,
-    /// Reduction: 0 sum, 1 max, 2 max of magnitudes.
+    /// Reduction: 0 sum, 1 max, 2 max of magnitudes, 3 count outside `[lo, hi]`.
     pub op: u32,
     pub _pad: u32,
+    /// The range of reduction 3.
+    pub lo: f32,
+    pub hi: f32,
+    pub _pad2: [u32; 2],
 }
-const _: () = assert!(std::mem::size_of::<Words>() == 16);
+const _: () = assert!(std::mem::size_of::<Words>() == 32);

@@ -186,7 +186,8 @@ fn reductions_match_the_cpu() {
         sim.backend_mut().run(Stage::Sort, 0.0);
         sim.backend_mut().run(Stage::Density, 0.0);
     }
-    for op in [ReduceOp::Sum, ReduceOp::Mean, ReduceOp::Max, ReduceOp::MaxAbs] {
+    let outside = ReduceOp::Outside { min: 999.0, max: 1001.0 };
+    for op in [ReduceOp::Sum, ReduceOp::Mean, ReduceOp::Max, ReduceOp::MaxAbs, outside] {
         let r = Reduction { attr: "rho", op };
         let (c, v) = (cpu.backend_mut().reduce(&r).unwrap(), g.backend_mut().reduce(&r).unwrap());
         assert!((c - v).abs() <= 1e-5 * c.abs(), "{op:?}: CPU {c}, GPU {v}");

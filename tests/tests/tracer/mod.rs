@@ -4,7 +4,8 @@
 //! file outside this folder but the one line that registers it.
 //!
 //! - `age` (s), per particle: the time since the scene started, advanced by the
-//!   pass `tracer.age` in the kick stage (`age += dt`).
+//!   pass `tracer.age` in the kick stage (`age += dt`), guarded to stay within
+//!   [0, 1000] s.
 //! - `probes`, a second particle set of four points on the domain's diagonal, with
 //!   `probe_age` (s): the mean age of the particles, written by `tracer.probe` after
 //!   each step.
@@ -12,6 +13,7 @@
 use floe_engine::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use floe_engine::channels::{ChannelSpec, SetSpec, Source};
 use floe_engine::cpu::{CpuCx, CpuPass};
+use floe_engine::guard::Bound;
 use floe_engine::math::Vec3;
 use floe_engine::model::{BuildError, ModelBuilder};
 use floe_engine::modules::ModuleDef;
@@ -93,6 +95,7 @@ static PROBE_PASS: PassSpec = PassSpec {
 
 fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.zeros(&AGE);
+    b.bound(Bound { attr: "age", what: "age", unit: "s", min: 0.0, max: 1e3 });
     b.space(PROBES, 4);
     let probes = (0..4).map(|k| Vec3::splat(0.1 * k as f32)).collect();
     b.attr(&PROBE_X, Column::Vec3(probes));

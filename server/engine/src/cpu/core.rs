@@ -105,15 +105,16 @@ fn density<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
 
 /// Reduces the state to what the guard and the time step control need: largest
 /// speed and acceleration, largest compression relative to each particle's own
-/// material, the first non-finite value of any state attribute, the first particle
-/// outside the domain.
+/// material, the first non-finite position, velocity, acceleration or density, the
+/// first particle outside the domain. Modules guard their own state with bounds
+/// ([`crate::guard::Bound`]).
 pub fn measure(model: &Model, attrs: &crate::attrs::Attrs) -> Measures {
     let (pos, vel) = (attrs.get(attrs.handle::<Vec3>("x")), attrs.get(attrs.handle::<Vec3>("v")));
     let (acc, rho) = (attrs.get(attrs.handle::<Vec3>("a")), attrs.get(attrs.handle::<Real>("rho")));
     let materials = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let domain = model.domain;
     let rho0 = |i: usize| model.materials.get(materials.map_or(0, |m| m[i] as usize)).rest_density;
-    let mut m = (0..pos.len())
+    (0..pos.len())
         .into_par_iter()
         .with_min_len(4 * CHUNK)
         .fold(Measures::default, |mut m, i| {
@@ -139,19 +140,7 @@ pub fn measure(model: &Model, attrs: &crate::attrs::Attrs) -> Measures {
             }
             m
         })
-        .reduce(Measures::default, Measures::merge);
-    // Module state (temperature, ...) is checked too: a NaN anywhere halts the scene.
-    for (spec, column) in attrs.iter() {
-        let core = matches!(spec.name, "x" | "v" | "a");
-        if spec.space == crate::attrs::PARTICLES
-            && spec.role == crate::attrs::Role::State
-            && !core
-            && let Some(i) = column.first_non_finite()
-        {
-            m.non_finite = Some(m.non_finite.map_or(i as u32, |j| j.min(i as u32)));
-        }
-    }
-    m
+        .reduce(Measures::default, Measures::merge)
 }
 
 /// `v = (v + dt a) keep`.

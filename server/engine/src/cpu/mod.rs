@@ -151,6 +151,7 @@ impl Stages for CpuBackend {
             ReduceOp::Mean => sum() / n,
             ReduceOp::Max => values.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(f64::from(v))),
             ReduceOp::MaxAbs => values.iter().fold(0.0, |m: f64, &v| m.max(f64::from(v.abs()))),
+            ReduceOp::Outside { min, max } => values.iter().filter(|&&v| !(min..=max).contains(&v)).count() as f64,
         })
     }
 
@@ -164,6 +165,10 @@ impl Stages for CpuBackend {
 
     fn particle_id(&mut self, slot: u32) -> u32 {
         self.attrs.get(self.attrs.handle::<u32>("id"))[slot as usize]
+    }
+
+    fn first_outside(&mut self, attr: &str, min: Real, max: Real) -> Option<(u32, Real)> {
+        crate::guard::first_outside(self.attrs.get(self.attrs.handle::<Real>(attr)), min, max)
     }
 }
 

@@ -39,12 +39,15 @@ pub trait Stages {
     fn drift(&mut self, dt: Real);
     /// The stable id of the particle in sorted slot `slot`.
     fn particle_id(&mut self, slot: u32) -> u32;
+    /// The first slot whose value of `attr` is outside `[min, max]` or not finite,
+    /// with that value (a guard found one: this path may be slow).
+    fn first_outside(&mut self, attr: &str, min: Real, max: Real) -> Option<(u32, Real)>;
     /// Called after every step (a GPU submits the step's last passes).
     fn end_step(&mut self) {}
 }
 
 /// How a reduction combines an attribute's values.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ReduceOp {
     /// The sum.
     Sum,
@@ -54,10 +57,17 @@ pub enum ReduceOp {
     Max,
     /// The largest magnitude.
     MaxAbs,
+    /// How many values are outside `[min, max]` or not finite (a guard's bound).
+    Outside {
+        /// Smallest allowed value.
+        min: Real,
+        /// Largest allowed value.
+        max: Real,
+    },
 }
 
 /// An attribute reduced to one number.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Reduction {
     /// The attribute (one f32 per element).
     pub attr: &'static str,

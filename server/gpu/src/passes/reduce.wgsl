@@ -1,14 +1,17 @@
 // One f32 attribute reduced to one number (floe-engine `schemes::Reduction`, the
-// residual of an iterative solve): sum, largest value or largest magnitude, by a
+// residual of an iterative solve, a guard's bound): sum, largest value, largest
+// magnitude or how many values are outside [lo, hi] or not finite, by a
 // workgroup tree reduction into `parts` and a second pass over the parts. Sums
 // are f32 here (the CPU sums in f64): a residual, not a bit-exact figure.
 
 struct Words {
     n: u32,
     stride: u32,
-    // 0 sum, 1 max, 2 max of magnitudes.
+    // 0 sum, 1 max, 2 max of magnitudes, 3 count outside [lo, hi].
     op: u32,
     _pad: u32,
+    lo: f32,
+    hi: f32,
 }
 
 const RW: u32 = 256u;
@@ -30,7 +33,7 @@ fn identity() -> f32 {
 }
 
 fn combine(a: f32, b: f32) -> f32 {
-    if (words.op == 0u) {
+    if (words.op == 0u || words.op == 3u) {
         return a + b;
     }
     return max(a, b);
@@ -39,6 +42,11 @@ fn combine(a: f32, b: f32) -> f32 {
 fn value(x: f32) -> f32 {
     if (words.op == 2u) {
         return abs(x);
+    }
+    if (words.op == 3u) {
+        // Infinite or NaN: all exponent bits set (WGSL has no isnan).
+        let non_finite = (bitcast<u32>(x) & 0x7f800000u) == 0x7f800000u;
+        return select(0.0, 1.0, non_finite || x < words.lo || x > words.hi);
     }
     return x;
 }

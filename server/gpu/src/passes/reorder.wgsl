@@ -7,6 +7,8 @@ struct Words {
     stride: u32,
     op: u32,
     _pad: u32,
+    lo: f32,
+    hi: f32,
 }
 
 @group(0) @binding(0) var<uniform> words: Words;
