@@ -76,7 +76,11 @@ test('the viewer: views, plots, record and replay, help, errors, phone width', {
       const [download] = await Promise.all([page.waitForEvent('download'), page.click('#plots .plots-csv')]);
       assert.match(download.suggestedFilename(), /^floe-scene-1-stats\.csv$/);
       const lines = (await readFile(await download.path(), 'utf8')).trim().split('\r\n');
-      assert.equal(lines[0], 'wall_time (s),sim_time (s),steps_per_second (1/s),dt (s),real_time_factor');
+      // The fixed statistics, then the scene's measures with their units.
+      assert.equal(lines[0], 'wall_time (s),sim_time (s),steps_per_second (1/s),dt (s),real_time_factor,'
+        + 'fluid.kinetic_energy (J),max_density_deviation,max_speed (m/s)');
+      const now = await page.locator('#plots figcaption').allTextContents();
+      assert.ok(now.some((c) => /^fluid\.kinetic energy \(J\): [\d.e+-]+$/.test(c)), now.join(' | '));
       assert.ok(lines.length >= 3, `only ${lines.length - 1} samples`);
       const sim = lines.slice(1).map((l) => Number(l.split(',')[1]));
       assert.ok(sim.every((v, i) => i === 0 || v > sim[i - 1]), `simulated time does not increase: ${sim}`);

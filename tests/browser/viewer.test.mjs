@@ -57,6 +57,16 @@ test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, a
       const s = await (await fetch('/api/v1/scenes/1')).json();
       return Math.abs(s.scene.gravity[1] + 1.6) < 1e-6;
     }, null, { timeout: 10_000 });
+    // The module's bounded settings get sliders from the scene's tunables.
+    await page.evaluate(() => {
+      const x = document.querySelector('input[data-path="fluids[0].xsph"]');
+      x.value = '0.25';
+      x.dispatchEvent(new Event('change'));
+    });
+    await page.waitForFunction(async () => {
+      const s = await (await fetch('/api/v1/scenes/1')).json();
+      return Math.abs(s.scene.fluids[0].xsph - 0.25) < 1e-6;
+    }, null, { timeout: 10_000 });
     assert.deepEqual(problems, [], 'nothing went wrong on the page before the restart');
 
     // The server restarts under the page (same address, a new scene 1): the viewer

@@ -102,6 +102,17 @@ fn the_schema_describes_scene_files() {
     assert_eq!(schema["title"], "Scene");
     assert!(schema["required"].as_array().unwrap().iter().any(|r| r == "particle_spacing"));
     assert!(schema["properties"]["fluids"].is_object());
+    // Tunable fields are marked with their unit and bounds, the module's through its
+    // definition (fluids[*] is a reference to Fluid).
+    assert_eq!(schema["properties"]["gravity"]["x-floe-tunable"]["unit"], "m/s^2");
+    let xsph = &schema["$defs"]["Fluid"]["properties"]["xsph"]["x-floe-tunable"];
+    assert_eq!(
+        (xsph["min"].as_f64(), xsph["max"].as_f64(), xsph["module"].as_str()),
+        (Some(0.0), Some(1.0), Some("fluid"))
+    );
+    let damping = &schema["$defs"]["Solver"]["properties"]["damping"]["x-floe-tunable"];
+    assert_eq!(damping["unit"], "1/s");
+    assert!(schema["properties"]["particle_spacing"].get("x-floe-tunable").is_none());
     floe(&["schema"]).unwrap();
 }
 

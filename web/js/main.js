@@ -10,6 +10,7 @@ import { PlotPanel } from './plots.js';
 import { Recorder } from './recorder.js';
 import { Renderer } from './render.js';
 import { Replay } from './replay.js';
+import { sliders } from './tunables.js';
 
 const $ = (id) => document.getElementById(id);
 const api = (path, init) => fetch(`/api/v1${path}`, {
@@ -90,6 +91,7 @@ function open(scene) {
   state.wantOpen = true;
   banner(scene.halt_reason ? `Halted: ${scene.halt_reason}` : null);
   showColourModes(scene.channels ?? DEFAULT_CHANNELS);
+  showTunables(scene);
   const tank = scene.scene?.boundaries?.find((b) => b.kind === 'box');
   showScene({ min: scene.bounds_min, max: scene.bounds_max }, wallLines(scene.scene), scene.particle_spacing, changed, tank);
   if (changed) {
@@ -161,7 +163,7 @@ function reconnect() {
 
 /** A status of the scene shown: settings, halt banner, plots. */
 function onStatus(scene) {
-  if (!['gravity', 'xsph'].includes(document.activeElement?.id)) showSettings(scene.scene);
+  showSettings(scene.scene);
   state.lastStatus = scene;
   // A halt banner goes once the scene is no longer halted (after a reset).
   if (scene.state !== 'halted' && $('banner').textContent.startsWith('Halted')) banner(null);
@@ -263,15 +265,47 @@ $('reset').onclick = reset;
 // Sliders for tunable settings: applied when released.
 $('gravity').oninput = () => { $('gravity-value').textContent = Number($('gravity').value).toFixed(2); };
 $('gravity').onchange = () => setParameters([`gravity=[0,${$('gravity').value},0]`], 'settings-error');
-$('xsph').oninput = () => { $('xsph-value').textContent = Number($('xsph').value).toFixed(2); };
-$('xsph').onchange = () => setParameters([`fluids[0].xsph=${$('xsph').value}`], 'settings-error');
 
-/** Shows a scene's current tunable settings on the sliders. */
+/**
+ * One slider per bounded numeric tunable of the scene (a module's settings included),
+ * applied when released; the input's title lists every tunable with its unit.
+ */
+function showTunables(scene) {
+  const list = scene.tunables ?? [];
+  $('param').title = list.map((t) => `${t.path}${t.unit ? ` (${t.unit})` : ''}: ${t.about}`).join('\n');
+  const rows = sliders(list, scene.scene ?? {}).flatMap((s) => {
+    const label = document.createElement('label');
+    const out = document.createElement('output');
+    label.textContent = `${s.path} `;
+    label.title = s.about;
+    label.append(out, s.unit ? ` ${s.unit}` : '');
+    const input = Object.assign(document.createElement('input'), { type: 'range', min: s.min, max: s.max, step: s.step });
+    input.dataset.path = s.path;
+    input.setAttribute('aria-label', s.path);
+    label.htmlFor = input.id = `tunable-${s.path}`;
+    input.oninput = () => { out.textContent = Number(input.value).toPrecision(3); };
+    input.onchange = () => setParameters([`${s.path}=${input.value}`], 'settings-error');
+    input.value = s.value;
+    input.oninput();
+    return [label, input];
+  });
+  $('tunables').replaceChildren(...rows);
+}
+
+/** Shows a scene's current tunable settings on the sliders (not on one being dragged). */
 function showSettings(scene) {
   const g = scene?.gravity?.[1];
-  if (typeof g === 'number') { $('gravity').value = g; $('gravity-value').textContent = g.toFixed(2); }
-  const x = scene?.fluids?.[0]?.xsph;
-  if (typeof x === 'number') { $('xsph').value = x; $('xsph-value').textContent = x.toFixed(2); }
+  if (typeof g === 'number' && document.activeElement !== $('gravity')) {
+    $('gravity').value = g;
+    $('gravity-value').textContent = g.toFixed(2);
+  }
+  for (const s of sliders(state.scene?.tunables ?? [], scene ?? {})) {
+    const input = document.getElementById(`tunable-${s.path}`);
+    if (input && document.activeElement !== input) {
+      input.value = s.value;
+      input.oninput();
+    }
+  }
 }
 $('rtf').oninput = () => {
   const v = rtf();

@@ -332,5 +332,10 @@ impl Default for Guard {
 
 /// The JSON Schema of a scene document, as printed by `floe schema`.
 pub fn json_schema() -> serde_json::Value {
-    serde_json::to_value(schemars::schema_for!(Scene)).expect("a schema is plain JSON")
+    let mut schema = serde_json::to_value(schemars::schema_for!(Scene)).expect("a schema is plain JSON");
+    let core = tunable::CORE.iter();
+    for t in core.chain(crate::modules::all().iter().flat_map(|m| m.tunables)) {
+        tunable::mark(&mut schema, t);
+    }
+    schema
 }

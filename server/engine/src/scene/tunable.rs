@@ -72,6 +72,27 @@ pub const CORE: &[Tunable] = &[
     },
 ];
 
+/// Marks `t`'s field in the scene's JSON Schema with `"x-floe-tunable"`: its unit,
+/// bounds, owning module and what it does, so editors and clients see which
+/// fields may change while a scene runs.
+pub fn mark(schema: &mut Value, t: &Tunable) {
+    let mut pointer = String::new();
+    for seg in segments(t.path) {
+        // Follow a reference to its definition before descending.
+        if let Some(r) = schema.pointer(&pointer).and_then(|n| n.get("$ref")).and_then(Value::as_str) {
+            pointer = r.trim_start_matches('#').to_string();
+        }
+        pointer += if seg == "*" { "/items".to_string() } else { format!("/properties/{seg}") }.as_str();
+    }
+    if let Some(Value::Object(node)) = schema.pointer_mut(&pointer) {
+        let bound = |b: Option<f64>| b.map_or(Value::Null, Value::from);
+        node.insert(
+            "x-floe-tunable".into(),
+            serde_json::json!({ "unit": t.unit, "min": bound(t.min), "max": bound(t.max), "module": t.module, "about": t.about }),
+        );
+    }
+}
+
 /// Copies the value at `path` (segments; `*` for any index) from `from` into `into`,
 /// where both documents have it.
 fn copy_path(into: &mut Value, from: &Value, path: &[&str]) {
