@@ -9,16 +9,20 @@ use floe_engine::scene::load::Format;
 use floe_proto::Mode;
 use floe_proto::pb;
 use std::sync::atomic::Ordering;
-use tonic::Status;
+use tonic::{Code, Status};
 
-/// The gRPC status of a service error.
+/// The gRPC status of a service error, its message bounded ([`crate::echo`]).
 pub fn status(e: ServiceError) -> Status {
-    match e {
-        ServiceError::NotFound(_) => Status::not_found(e.to_string()),
-        ServiceError::InvalidArgument(m) => Status::invalid_argument(m),
-        ServiceError::FailedPrecondition(m) => Status::failed_precondition(m),
-        ServiceError::ResourceExhausted(m) => Status::resource_exhausted(m),
-    }
+    let code = match e {
+        ServiceError::NotFound(_) | ServiceError::Missing(_) => Code::NotFound,
+        ServiceError::InvalidArgument(_) => Code::InvalidArgument,
+        ServiceError::FailedPrecondition(_) => Code::FailedPrecondition,
+        ServiceError::ResourceExhausted(_) => Code::ResourceExhausted,
+        ServiceError::PermissionDenied(_) => Code::PermissionDenied,
+        ServiceError::Unavailable(_) => Code::Unavailable,
+        ServiceError::Unauthenticated(_) => Code::Unauthenticated,
+    };
+    Status::new(code, crate::echo::bounded(&e.to_string()))
 }
 
 /// `document_format` of a create request.
@@ -26,7 +30,10 @@ pub fn document_format(name: &str) -> Result<Format, Status> {
     match name {
         "" | "toml" => Ok(Format::Toml),
         "json" => Ok(Format::Json),
-        other => Err(Status::invalid_argument(format!("document_format: must be \"toml\" or \"json\", got {other:?}"))),
+        other => Err(Status::invalid_argument(format!(
+            "document_format: must be \"toml\" or \"json\", got {:?}",
+            crate::echo::cap(other)
+        ))),
     }
 }
 
@@ -54,6 +61,7 @@ pub fn scene_info(shared: &Shared) -> pb::SceneInfo {
         halt_reason: s.halt_reason.unwrap_or_default(),
         scene_json: shared.scene_json(),
         backend: shared.backend.to_string(),
+        owner: shared.owner.clone(),
     }
 }
 
@@ -71,6 +79,9 @@ pub fn scene_stats(shared: &Shared) -> pb::SceneStats {
         subscribers: shared.subscribers.load(Ordering::Relaxed),
         dropped_frames: shared.dropped_frames(),
         frames_published: shared.published.load(Ordering::Relaxed),
+        name: shared.name.clone(),
+        owner: shared.owner.clone(),
+        frame_bytes: shared.frame_bytes.load(Ordering::Relaxed),
     }
 }
 

@@ -13,17 +13,31 @@
 //! - [`service`]: the in-process service API (scenes, workers, frame subscriptions).
 //! - [`grpc`], [`convert`]: the gRPC adapter and where generated types meet the service.
 //! - [`http`], [`ws`]: the viewer's files, the REST mirror and the per-scene WebSocket.
+//! - [`auth`]: users, tokens, share links and single-user mode; [`grpc_guard`] and
+//!   `http::guard` apply them (with the request rate and the metrics) to every call.
+//! - [`grpc_lab`]: `floe.v1.LabService` (checkpoints, share links, users, quotas).
+//! - [`quota`]: per-user quotas. [`metrics`]: Prometheus metrics.
+//! - [`store`]: the database and checkpoint files. [`admin`]: `floe admin`.
+//! - [`echo`]: error messages bounded however large the request.
 
+pub mod admin;
+pub mod auth;
 pub mod bench;
 pub mod cli;
 pub mod codec_bench;
 pub mod convert;
+pub mod echo;
 pub mod grpc;
+pub mod grpc_guard;
+pub mod grpc_lab;
 pub mod http;
+pub mod metrics;
 pub mod progress;
+pub mod quota;
 pub mod run;
 pub mod serve;
 pub mod service;
+pub mod store;
 pub mod validate;
 pub mod ws;
 
@@ -38,6 +52,7 @@ pub fn execute(cli: cli::Cli) -> anyhow::Result<()> {
             println!("{}", serde_json::to_string_pretty(&floe_engine::scene::json_schema())?);
             Ok(())
         }
+        cli::Command::Admin(args) => admin::admin(args),
         cli::Command::Presets => {
             for name in floe_engine::scene::presets::NAMES {
                 println!("{name}");
