@@ -103,18 +103,29 @@ pub fn admin(args: AdminArgs) -> anyhow::Result<()> {
     })
 }
 
+/// Adds a user; returns their first API token.
+pub async fn add_user(db: &Database, name: &str, admin: bool) -> anyhow::Result<String> {
+    if !valid_user_name(name) {
+        anyhow::bail!(
+            "'{}' cannot name a user: use 1-64 of a-z 0-9 _ . - starting with a letter or digit",
+            crate::echo::cap(name)
+        );
+    }
+    db.add_user(name, admin).await?;
+    rotate_token(db, name).await
+}
+
+/// Revokes a user's tokens; returns a new one.
+pub async fn rotate_token(db: &Database, name: &str) -> anyhow::Result<String> {
+    let t = token::generate(token::API_PREFIX);
+    db.replace_tokens(name, Some(&token::hash(&t))).await?;
+    Ok(t)
+}
+
 async fn run(db: &Database, command: AdminCommand) -> anyhow::Result<()> {
     match command {
         AdminCommand::User(UserCommand::Add { name, admin }) => {
-            if !valid_user_name(&name) {
-                anyhow::bail!(
-                    "'{}' cannot name a user: use 1-64 of a-z 0-9 _ . - starting with a letter or digit",
-                    crate::echo::cap(&name)
-                );
-            }
-            db.add_user(&name, admin).await?;
-            let t = token::generate(token::API_PREFIX);
-            db.replace_tokens(&name, Some(&token::hash(&t))).await?;
+            let t = add_user(db, &name, admin).await?;
             eprintln!(
                 "added {}user {name}; their API token (shown once, keep it secret):",
                 if admin { "admin " } else { "" }
@@ -139,8 +150,7 @@ async fn run(db: &Database, command: AdminCommand) -> anyhow::Result<()> {
             );
         }
         AdminCommand::Token(TokenCommand::Rotate { name }) => {
-            let t = token::generate(token::API_PREFIX);
-            db.replace_tokens(&name, Some(&token::hash(&t))).await?;
+            let t = rotate_token(db, &name).await?;
             eprintln!("revoked {name}'s tokens; the new one (shown once, keep it secret):");
             println!("{t}");
         }

@@ -65,10 +65,11 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
             device.unwrap_or_else(|| "-".into())
         );
     }
-    for (p, kernels) in profiles.iter().filter(|k| !k.1.is_empty()) {
+    for (p, kernels) in profiles.iter().filter(|k| args.profile && !k.1.is_empty()) {
         let total: f64 = kernels.iter().map(|k| k.1).sum();
-        println!("\nGPU time per step by kernel at {p} particles (timestamp queries), {total:.3} ms in all:");
-        println!("| kernel | dispatches/step | ms/step | share |");
+        let how = if backend.name == "cpu" { "CPU wall time" } else { "GPU timestamp queries" };
+        println!("\nTime per step by pass at {p} particles ({how}), {total:.3} ms in all:");
+        println!("| pass | calls/step | ms/step | share |");
         println!("|---|---:|---:|---:|");
         for (label, ms, dispatches) in kernels.iter() {
             println!("| {label} | {dispatches:.1} | {ms:.3} | {:.1} % |", 100.0 * ms / total.max(f64::MIN_POSITIVE));

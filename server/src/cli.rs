@@ -124,8 +124,8 @@ pub struct BenchArgs {
     /// for a clean figure).
     #[arg(long)]
     pub memory: bool,
-    /// GPU backend: also time every kernel with timestamp queries and print
-    /// device milliseconds per step for each (adds a wait per submission).
+    /// Also print milliseconds per step by pass: wall time on the CPU backend, device
+    /// time per kernel from timestamp queries on a GPU (adds a wait per submission).
     #[arg(long)]
     pub profile: bool,
     /// Frame codec instead: bytes per particle and encode/decode throughput on

@@ -308,6 +308,12 @@ async fn session(
             }
         }
     }
+    // Frames end when the scene is deleted: its Deleted event is already waiting.
+    while let Ok(e) = events.try_recv() {
+        if socket.send(event_message(&e)).await.is_err() {
+            break;
+        }
+    }
     let close = close.unwrap_or(CloseFrame { code: close_code::NORMAL, reason: "".into() });
     let _ = socket.send(Message::Close(Some(close))).await;
 }

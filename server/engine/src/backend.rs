@@ -118,8 +118,9 @@ pub trait Backend: Passes + Send {
     }
     /// Copies out positions and the requested channels.
     fn read(&self, channels: &[Channel]) -> Particles;
-    /// Per kernel: label, total device seconds and dispatches so far, when the
-    /// backend was asked to profile (`floe bench --profile`); empty otherwise.
+    /// Per pass or kernel: label, total seconds and calls so far. The CPU backend
+    /// always reports wall time per pass; a GPU reports device time per kernel when
+    /// asked to profile (`floe bench --profile`), and nothing otherwise.
     fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
         Vec::new()
     }

@@ -64,16 +64,13 @@ pub async fn bounded_head_and_json_errors(request: Request, next: Next) -> Respo
     }
     let status = response.status();
     let message = match status {
-        StatusCode::METHOD_NOT_ALLOWED => {
-            let allowed = response.headers().get(header::ALLOW).and_then(|a| a.to_str().ok()).unwrap_or("");
-            format!("{method} is not allowed on {}; allowed: {allowed}", crate::echo::cap(&path))
-        }
+        // The router adds the Allow header (the methods that are allowed) afterwards.
+        StatusCode::METHOD_NOT_ALLOWED => format!("{method} is not allowed on {}", crate::echo::cap(&path)),
         s => s.canonical_reason().unwrap_or("error").to_owned(),
     };
-    let allow = response.headers().get(header::ALLOW).cloned();
     let mut json = ApiError(status, message).into_response();
-    if let Some(a) = allow {
-        json.headers_mut().insert(header::ALLOW, a);
+    if let Some(allow) = response.headers().get(header::ALLOW) {
+        json.headers_mut().insert(header::ALLOW, allow.clone());
     }
     json
 }

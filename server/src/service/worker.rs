@@ -125,8 +125,9 @@ impl Worker {
                 self.publish_if_due();
             }
         }
-        self.set_state(State::Deleted);
+        // The event first: whoever sees the Deleted state can find the event already sent.
         let _ = self.shared.events.send(Event::Deleted);
+        self.set_state(State::Deleted);
         // Wakes frame subscribers waiting for a snapshot, so they see the deletion.
         self.shared.published_state.send_replace(None);
     }
