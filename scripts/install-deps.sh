@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # System packages the tests need, installed only when missing: Chromium (the
 # viewer test; Debian's build, no browser download), Node.js with npm (the
-# JavaScript tests) and Mesa's Vulkan drivers (lavapipe, a software GPU the GPU
-# backend's tests run on). The Rust build needs none: protoc comes vendored.
+# JavaScript tests), Mesa's Vulkan drivers (lavapipe, a software GPU the GPU
+# backend's tests run on) and PostgreSQL (the lab server's tests on PostgreSQL run
+# a throwaway cluster, scripts/pg-test-cluster.sh). The Rust build needs none:
+# protoc comes vendored, SQLite is compiled in.
 set -euo pipefail
 need=()
 command -v chromium >/dev/null || need+=(chromium)
 command -v node >/dev/null || need+=(nodejs)
 command -v npm >/dev/null || need+=(npm)
 ls /usr/share/vulkan/icd.d/lvp_icd*.json >/dev/null 2>&1 || need+=(mesa-vulkan-drivers)
+ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1 || need+=(postgresql)
 if [ ${#need[@]} -gt 0 ]; then
   if [ "$(id -u)" != 0 ] || ! command -v apt-get >/dev/null; then
     echo "missing: ${need[*]}; install them (Debian: apt-get install ${need[*]})" >&2

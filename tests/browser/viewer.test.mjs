@@ -1,6 +1,7 @@
-// The viewer in a real browser: start `floe serve` on free ports, open the page in
-// headless Chromium, create a dam break, watch frames arrive and particles drawn,
-// pause and check frames stop. Leaves a screenshot in target/viewer.png.
+// The viewer in a real browser: start `floe serve` on free ports (its data in a
+// temporary directory), open the page in headless Chromium, create a dam break, watch
+// frames arrive and particles drawn, pause and check frames stop, restart the server
+// and watch the viewer find the scene again. Leaves a screenshot in target/viewer.png.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -8,14 +9,18 @@ import { spawn } from 'node:child_process';
 import { chromium } from 'playwright-core';
 import { fileURLToPath } from 'node:url';
 import path from 'node:path';
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 const floe = process.env.FLOE_BIN ?? path.join(root, 'target/debug/floe');
 const browserPath = process.env.CHROMIUM ?? '/usr/bin/chromium';
+const dataDir = mkdtempSync(path.join(tmpdir(), 'floe-viewer-'));
 
 /** Starts the server (HTTP on `http`) and resolves with the viewer's URL it prints. */
 function startServer(http = '127.0.0.1:0') {
-  const child = spawn(floe, ['serve', '--http', http, '--grpc', '127.0.0.1:0', '--scene', 'none'], {
+  const args = ['serve', '--http', http, '--grpc', '127.0.0.1:0', '--scene', 'none', '--data-dir', dataDir];
+  const child = spawn(floe, args, {
     cwd: root, stdio: ['ignore', 'pipe', 'inherit'],
   });
   return new Promise((resolve, reject) => {
@@ -103,18 +108,22 @@ test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, a
       return Math.abs(s.scene.gravity[1] + 1.6) < 1e-6;
     }, null, { timeout: 10_000 });
 
-    // The server restarts under the page (same address, a new scene 1): the viewer
-    // finds it again by itself and streams the new scene.
+    // The server restarts under the page (same address, same data): scene 1 comes
+    // back from its checkpoint with its live settings, and the viewer finds it again
+    // by itself and streams it once it runs.
     server.kill('SIGTERM');
     await server.exited;
+    const framesBefore = await stat(page, 'frames');
     server = (await startServer(new URL(url).host)).child;
-    const post = (p, body) => fetch(new URL(p, url), {
-      method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify(body),
+    const restored = await (await fetch(new URL('/api/v1/scenes/1', url))).json();
+    assert.equal(restored.particles, 4096);
+    assert.ok(Math.abs(restored.scene.gravity[1] + 1.6) < 1e-6, `gravity ${restored.scene.gravity}`);
+    const run = await fetch(new URL('/api/v1/scenes/1/run', url), {
+      method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify({ real_time_factor: 1 }),
     });
-    assert.equal((await post('/api/v1/scenes', { preset: 'dam_break', overrides: ['particle_spacing=0.05'] })).status, 201);
-    assert.equal((await post('/api/v1/scenes/1/run', { real_time_factor: 1 })).status, 200);
-    await page.waitForFunction(() => /particles\s+1000\b/.test(document.querySelector('#stats').textContent),
-      null, { timeout: 30_000 });
+    assert.equal(run.status, 200);
+    await page.waitForFunction((n) => /frames\s+(\d+)/.exec(document.querySelector('#stats').textContent)?.[1] > n,
+      framesBefore, { timeout: 30_000 });
     const reconnected = await stat(page, 'frames');
     await page.waitForFunction((n) => /frames\s+(\d+)/.exec(document.querySelector('#stats').textContent)?.[1] >= n + 5,
       reconnected, { timeout: 30_000 });
@@ -122,5 +131,7 @@ test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, a
   } finally {
     await browser.close();
     server.kill('SIGTERM');
+    await server.exited;
+    rmSync(dataDir, { recursive: true, force: true });
   }
 });

@@ -90,6 +90,15 @@ pub struct Lab {
     pub dir: tempfile::TempDir,
     /// (user, token) of each user, in the order given.
     pub users: Vec<(String, String)>,
+    options: Options,
+}
+
+/// A registry over the data in `dir` (SQLite), authenticating with tokens.
+async fn lab_registry(dir: &std::path::Path, options: Options) -> Arc<Registry> {
+    let location = Location { data_dir: dir.to_path_buf(), database: None };
+    let store = Store::open(&location).await.unwrap();
+    let options = Options { auth: AuthMode::Tokens, ..options };
+    Registry::open(options, Arc::new(floe_engine::simulation::cpu_backend), store).await.unwrap()
 }
 
 impl Lab {
@@ -103,11 +112,16 @@ impl Lab {
             tokens.push((name.to_string(), floe_server::admin::add_user(&db, name, admin).await.unwrap()));
         }
         db.close().await;
-        let store = Store::open(&location).await.unwrap();
-        let options = Options { auth: AuthMode::Tokens, ..options };
-        let backend = Arc::new(floe_engine::simulation::cpu_backend);
-        let registry = Registry::open(options, backend, store).await.unwrap();
-        Self { server: TestServer::start_with(registry).await, dir, users: tokens }
+        let registry = lab_registry(dir.path(), options.clone()).await;
+        Self { server: TestServer::start_with(registry).await, dir, users: tokens, options }
+    }
+
+    /// Shuts the server down gracefully and starts a new one on the same data.
+    pub async fn restart(self) -> Self {
+        let Self { server, dir, users, options } = self;
+        server.shutdown().await;
+        let registry = lab_registry(dir.path(), options.clone()).await;
+        Self { server: TestServer::start_with(registry).await, dir, users, options }
     }
 
     /// The token of `user`.
