@@ -136,6 +136,26 @@ pub struct BenchArgs {
     /// at the first particle count and report wall time and surge-front error.
     #[arg(long, value_name = "SECONDS")]
     pub solve: Option<f64>,
+    /// A lab server under load instead: this binary serving with users and tokens, a
+    /// dam break of the first particle count running flat out, viewers and scripted
+    /// users; the solver's steps/s alone and under load, lost calls, memory.
+    #[arg(long, conflicts_with_all = ["codec", "solve"])]
+    pub lab: bool,
+    /// `--lab`: seconds under load.
+    #[arg(long, default_value = "60", requires = "lab")]
+    pub seconds: u64,
+    /// `--lab`: viewers streaming the running scene through share links.
+    #[arg(long, default_value = "50", requires = "lab")]
+    pub viewers: usize,
+    /// `--lab`: how many of the viewers never read their stream.
+    #[arg(long, default_value = "10", requires = "lab")]
+    pub idle_viewers: usize,
+    /// `--lab`: scripted users, each stepping, tuning and querying a scene of their own.
+    #[arg(long, default_value = "10", requires = "lab")]
+    pub scripts: usize,
+    /// `--lab`: calls per second of each scripted user.
+    #[arg(long, default_value = "20", requires = "lab")]
+    pub script_rate: f64,
 }
 
 /// `floe validate`.

@@ -19,6 +19,7 @@
 //! - [`quota`]: per-user quotas. [`metrics`]: Prometheus metrics.
 //! - [`store`]: the database and checkpoint files. [`admin`]: `floe admin`.
 //! - [`echo`]: error messages bounded however large the request.
+//! - [`lab_bench`]: `floe bench --lab`, a lab server under load.
 
 pub mod admin;
 pub mod auth;
@@ -31,6 +32,7 @@ pub mod grpc;
 pub mod grpc_guard;
 pub mod grpc_lab;
 pub mod http;
+pub mod lab_bench;
 pub mod metrics;
 pub mod progress;
 pub mod quota;

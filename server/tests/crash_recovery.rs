@@ -8,80 +8,15 @@
 
 use floe_client::Client;
 use floe_engine::Simulation;
+use floe_server::lab_bench::process::{Data, ServerProcess, add_user};
 use floe_server::store::Checkpoints;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-/// A `floe serve` process and where it listens.
-struct Server {
-    child: Child,
-    grpc: String,
-    log: PathBuf,
-}
-
-fn floe() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_floe"))
-}
-
-/// `--data-dir DIR [--database URL]`.
-fn store_args(dir: &Path, database: Option<&str>) -> Vec<String> {
-    let mut args = vec!["--data-dir".to_string(), dir.display().to_string()];
-    if let Some(url) = database {
-        args.extend(["--database".to_string(), url.to_string()]);
-    }
-    args
-}
-
-/// Starts `floe serve` on free ports (JSON logs in `log`) and waits until it listens.
-fn start(dir: &Path, database: Option<&str>, log: PathBuf) -> Server {
-    let out = std::fs::File::create(&log).unwrap();
-    let child = floe()
-        .args(["--log-format", "json", "serve", "--grpc", "127.0.0.1:0", "--http", "127.0.0.1:0"])
-        .args(["--scene", "none", "--backend", "cpu", "--checkpoint-every", "1"])
-        .args(store_args(dir, database))
-        .stdout(Stdio::null())
-        .stderr(out)
-        .spawn()
-        .unwrap();
-    let t0 = Instant::now();
-    loop {
-        let text = std::fs::read_to_string(&log).unwrap_or_default();
-        let address = text
-            .lines()
-            .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
-            .filter_map(|v| v["message"].as_str().map(str::to_owned))
-            .find(|m| m.starts_with("gRPC ("))
-            .and_then(|m| m.rsplit(" on ").next().map(str::to_owned));
-        if let Some(a) = address {
-            return Server { child, grpc: format!("http://{a}"), log };
-        }
-        assert!(t0.elapsed() < Duration::from_secs(120), "the server did not start:\n{text}");
-        std::thread::sleep(Duration::from_millis(50));
-    }
-}
-
-impl Server {
-    /// kill -9.
-    fn kill(mut self) -> String {
-        self.child.kill().unwrap();
-        self.child.wait().unwrap();
-        std::fs::read_to_string(&self.log).unwrap()
-    }
-
-    /// SIGTERM, and the exit status.
-    fn terminate(mut self) -> bool {
-        let pid = self.child.id().to_string();
-        assert!(Command::new("kill").args(["-TERM", &pid]).status().unwrap().success());
-        self.child.wait().unwrap().success()
-    }
-}
-
-/// `floe admin user add NAME`: the token it prints.
-fn add_user(dir: &Path, database: Option<&str>, name: &str) -> String {
-    let out = floe().arg("admin").args(store_args(dir, database)).args(["user", "add", name]).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8(out.stdout).unwrap().trim().to_owned()
+/// Starts `floe serve` on `data`, checkpointing running scenes every second.
+fn start(data: &Data, log: PathBuf) -> ServerProcess {
+    let floe = Path::new(env!("CARGO_BIN_EXE_floe"));
+    ServerProcess::start(floe, data, &["--scene", "none", "--backend", "cpu", "--checkpoint-every", "1"], log).unwrap()
 }
 
 /// The checkpoint files of a scene, newest first.
@@ -100,9 +35,9 @@ fn stepped_on(snapshot: &[u8], steps: u32) -> Vec<u8> {
 
 async fn crash_and_recover(database: Option<&str>) {
     let dir = tempfile::tempdir().unwrap();
-    let data = dir.path().join("data");
-    let token = add_user(&data, database, "alice");
-    let server = start(&data, database, dir.path().join("first.log"));
+    let data = Data { dir: dir.path().join("data"), database: database.map(str::to_owned) };
+    let token = add_user(Path::new(env!("CARGO_BIN_EXE_floe")), &data, "alice").unwrap();
+    let server = start(&data, dir.path().join("first.log"));
     let mut c = Client::connect_with_token(&server.grpc, Some(&token)).await.unwrap();
 
     // A: stepped by hand, checkpointed at steps 20 and 50, stepped on to 80.
@@ -121,19 +56,19 @@ async fn crash_and_recover(database: Option<&str>) {
     // C: never stepped, never checkpointed.
     let fresh = c.create_preset("dam_break", &["particle_spacing=0.1"]).await.unwrap().scene_id;
     let t0 = Instant::now();
-    while checkpoints(&data, b).len() < 2 {
+    while checkpoints(&data.dir, b).len() < 2 {
         assert!(t0.elapsed() < Duration::from_secs(30), "no periodic checkpoints of a running scene");
         tokio::time::sleep(Duration::from_millis(100)).await;
     }
     tokio::time::sleep(Duration::from_millis(500)).await;
-    server.kill();
+    server.kill().unwrap();
 
     // Restart: everything is back, paused, at its newest checkpoint.
     let (b_newest, b_previous) = {
-        let files = checkpoints(&data, b);
+        let files = checkpoints(&data.dir, b);
         (Checkpoints::read(&files[0]).unwrap(), Checkpoints::read(&files[1]).unwrap())
     };
-    let server = start(&data, database, dir.path().join("second.log"));
+    let server = start(&data, dir.path().join("second.log"));
     let mut c = Client::connect_with_token(&server.grpc, Some(&token)).await.unwrap();
     let scenes = c.list().await.unwrap();
     assert_eq!(scenes.iter().map(|s| s.scene_id).collect::<Vec<_>>(), [a, b, fresh]);
@@ -149,20 +84,20 @@ async fn crash_and_recover(database: Option<&str>) {
     assert_eq!(c.get(fresh).await.unwrap().steps, 0);
     let next = c.create_preset("dam_break", &["particle_spacing=0.1"]).await.unwrap().scene_id;
     assert!(next > fresh, "scene ids are never reused");
-    let log = server.kill();
+    let log = server.kill().unwrap();
     assert!(log.contains("scene restored paused at step 50"), "{log}");
 
     // Damage: A's newest checkpoint gets a flipped byte, B's newest is cut short.
-    let a_files = checkpoints(&data, a);
+    let a_files = checkpoints(&data.dir, a);
     let mut bytes = std::fs::read(&a_files[0]).unwrap();
     let middle = bytes.len() / 2;
     bytes[middle] ^= 0x40;
     std::fs::write(&a_files[0], bytes).unwrap();
-    let b_files = checkpoints(&data, b);
+    let b_files = checkpoints(&data.dir, b);
     let length = std::fs::metadata(&b_files[0]).unwrap().len();
     std::fs::OpenOptions::new().write(true).open(&b_files[0]).unwrap().set_len(length / 3).unwrap();
 
-    let server = start(&data, database, dir.path().join("third.log"));
+    let server = start(&data, dir.path().join("third.log"));
     let mut c = Client::connect_with_token(&server.grpc, Some(&token)).await.unwrap();
     assert_eq!(c.get(a).await.unwrap().steps, 20, "A falls back to its checkpoint at step 20");
     c.step(a, 30).await.unwrap();
@@ -171,11 +106,11 @@ async fn crash_and_recover(database: Option<&str>) {
     c.step(b, 3).await.unwrap();
     assert!(c.snapshot(b).await.unwrap() == stepped_on(&b_previous.1, 3));
     // A graceful stop checkpoints every scene.
-    assert!(server.terminate(), "floe serve exited with an error");
+    assert!(server.terminate().unwrap(), "floe serve exited with an error");
     let log = std::fs::read_to_string(dir.path().join("third.log")).unwrap();
     assert!(log.contains("checksum mismatch: the file is damaged"), "{log}");
     assert!(log.contains("cut short"), "{log}");
-    let newest = Checkpoints::read(&checkpoints(&data, a)[0]).unwrap().0;
+    let newest = Checkpoints::read(&checkpoints(&data.dir, a)[0]).unwrap().0;
     assert_eq!(newest.step, 50, "the shutdown checkpointed A where it was");
 }
 
