@@ -116,6 +116,8 @@ pub struct Client {
 
 /// Largest message the client accepts (bytes): snapshots of large scenes.
 const MAX_MESSAGE_BYTES: usize = 512 << 20;
+/// HTTP/2 receive window per stream (bytes): a few frames of a large scene.
+const STREAM_WINDOW_BYTES: u32 = 4 << 20;
 
 impl Client {
     /// Connects to `address`, e.g. `http://127.0.0.1:50051`, without a token (a
@@ -132,8 +134,15 @@ impl Client {
             None => None,
         };
         let err = |source| ClientError::Connect { address: address.into(), source };
-        let channel =
-            tonic::transport::Endpoint::from_shared(address.to_owned()).map_err(err)?.connect().await.map_err(err)?;
+        // Frames of large scenes are hundreds of kB: HTTP/2's default 64 kB receive
+        // window would make the server wait for window updates within every frame.
+        let channel = tonic::transport::Endpoint::from_shared(address.to_owned())
+            .map_err(err)?
+            .initial_stream_window_size(Some(STREAM_WINDOW_BYTES))
+            .initial_connection_window_size(Some(2 * STREAM_WINDOW_BYTES))
+            .connect()
+            .await
+            .map_err(err)?;
         let authed = InterceptedService::new(channel, Bearer(bearer));
         Ok(Self {
             inner: SceneServiceClient::new(authed.clone()).max_decoding_message_size(MAX_MESSAGE_BYTES),

@@ -41,6 +41,32 @@ pub enum Command {
     Presets,
     /// Manage a lab server's users, tokens and quotas (works beside a running server).
     Admin(crate::admin::AdminArgs),
+    /// Run the network- and disk-facing parsers on generated and mutated inputs.
+    Fuzz(FuzzArgs),
+}
+
+/// `floe fuzz`.
+#[derive(Debug, Args)]
+pub struct FuzzArgs {
+    /// Targets (repeatable; default: all): frame, scene, snapshot, rest, ws.
+    #[arg(long = "target", value_enum)]
+    pub targets: Vec<crate::fuzz::Target>,
+    /// Inputs per target (the seeds included).
+    #[arg(long, default_value = "100000")]
+    pub inputs: u64,
+    /// Seed of the mutations (the same seed tries the same inputs).
+    #[arg(long, default_value = "1")]
+    pub seed: u64,
+    /// Threads (default: one per core).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Write each input that panics into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Instead of fuzzing, write each target's seeds into DIR/TARGET/ (a starting corpus
+    /// for cargo fuzz: `floe fuzz --write-seeds fuzz/corpus`).
+    #[arg(long, value_name = "DIR")]
+    pub write_seeds: Option<PathBuf>,
 }
 
 /// Which backend steps the scenes.

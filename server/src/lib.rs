@@ -20,6 +20,7 @@
 //! - [`store`]: the database and checkpoint files. [`admin`]: `floe admin`.
 //! - [`echo`]: error messages bounded however large the request.
 //! - [`lab_bench`]: `floe bench --lab`, a lab server under load.
+//! - [`fuzz`]: `floe fuzz`, the parsers on generated and mutated inputs.
 
 pub mod admin;
 pub mod auth;
@@ -28,6 +29,7 @@ pub mod cli;
 pub mod codec_bench;
 pub mod convert;
 pub mod echo;
+pub mod fuzz;
 pub mod grpc;
 pub mod grpc_guard;
 pub mod grpc_lab;
@@ -55,6 +57,7 @@ pub fn execute(cli: cli::Cli) -> anyhow::Result<()> {
             Ok(())
         }
         cli::Command::Admin(args) => admin::admin(args),
+        cli::Command::Fuzz(args) => fuzz::command(args),
         cli::Command::Presets => {
             for name in floe_engine::scene::presets::NAMES {
                 println!("{name}");

@@ -7,8 +7,10 @@ use std::io::IsTerminal;
 fn main() -> std::process::ExitCode {
     quiet_mesa_device_select();
     let cli = floe_server::cli::Cli::parse();
+    // Fuzzing creates and deletes scenes by the thousand: only warnings by default.
+    let level = if matches!(cli.command, floe_server::cli::Command::Fuzz(_)) { "warn" } else { "info" };
     let logs = tracing_subscriber::fmt()
-        .with_env_filter(tracing_subscriber::EnvFilter::try_from_env("FLOE_LOG").unwrap_or_else(|_| "info".into()))
+        .with_env_filter(tracing_subscriber::EnvFilter::try_from_env("FLOE_LOG").unwrap_or_else(|_| level.into()))
         .with_writer(std::io::stderr);
     match cli.log_format {
         // Colour on a terminal only: a log file or journal gets plain text.

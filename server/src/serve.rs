@@ -193,3 +193,27 @@ fn default_web_root() -> PathBuf {
     let source = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../web");
     if source.join("index.html").exists() { source } else { PathBuf::from("web") }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    async fn listeners(ip: &str) -> Listeners {
+        Listeners {
+            grpc: TcpListener::bind(format!("{ip}:0")).await.unwrap(),
+            http: TcpListener::bind(format!("{ip}:0")).await.unwrap(),
+        }
+    }
+
+    #[tokio::test]
+    async fn no_authentication_only_on_loopback_unless_asked_for() {
+        let (local, public) = (listeners("127.0.0.1").await, listeners("0.0.0.0").await);
+        assert_eq!(auth_mode(AuthChoice::Auto, 0, &local).unwrap(), AuthMode::SingleUser);
+        assert_eq!(auth_mode(AuthChoice::Auto, 2, &local).unwrap(), AuthMode::Tokens);
+        let e = auth_mode(AuthChoice::Auto, 0, &public).unwrap_err().to_string();
+        assert!(e.starts_with("refusing to serve 0.0.0.0:") && e.contains("floe admin user add"), "{e}");
+        assert_eq!(auth_mode(AuthChoice::Auto, 1, &public).unwrap(), AuthMode::Tokens);
+        assert_eq!(auth_mode(AuthChoice::Off, 0, &public).unwrap(), AuthMode::SingleUser);
+        assert_eq!(auth_mode(AuthChoice::Tokens, 0, &local).unwrap(), AuthMode::Tokens);
+    }
+}

@@ -139,7 +139,7 @@ fn event_message(e: &Event) -> Message {
 
 /// A control message from the client.
 #[derive(Debug)]
-enum Control {
+pub(crate) enum Control {
     Run(RunBody),
     Pause,
     Step(StepBody),
@@ -153,7 +153,7 @@ const OPS: &str = "run, pause, step, set, reset, status";
 
 /// Reads a control message: `op` names the call, the other fields are its REST
 /// body's, checked the same way (unknown fields refused).
-fn parse_control(text: &str) -> Result<(Control, &'static str), String> {
+pub(crate) fn parse_control(text: &str) -> Result<(Control, &'static str), String> {
     let mut fields: serde_json::Map<String, serde_json::Value> =
         serde_json::from_str(text).map_err(|e| format!("bad control message: {e}"))?;
     let op = match fields.remove("op") {

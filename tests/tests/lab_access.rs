@@ -188,6 +188,22 @@ async fn tokens_admins_and_revocation() {
         assert_eq!(http(lab.server.http, "GET", path, &[("authorization", &alice_auth)], "").await.status, 403);
         assert_eq!(http(lab.server.http, "GET", path, &[("authorization", &root_auth)], "").await.status, 200);
     }
+    // The metrics: per scene (read when scraped) and per call, by code.
+    let info = alice.create_preset("dam_break", &["particle_spacing=0.1"]).await.unwrap();
+    let (id, particles) = (info.scene_id, info.particles);
+    alice.step(id, 3).await.unwrap();
+    let metrics = http(lab.server.http, "GET", "/metrics", &[("authorization", &root_auth)], "").await;
+    let text = String::from_utf8(metrics.body).unwrap();
+    for line in [
+        format!("floe_scene_steps_total{{scene=\"{id}\",owner=\"alice\",name=\"dam_break\"}} 3"),
+        format!("floe_scene_particles{{scene=\"{id}\",owner=\"alice\",name=\"dam_break\"}} {particles}"),
+        "floe_requests_total{transport=\"grpc\",method=\"SceneService/Step\",code=\"Ok\"} 1".into(),
+        "floe_requests_total{transport=\"grpc\",method=\"LabService/ListUsers\",code=\"PermissionDenied\"} 1".into(),
+        "floe_requests_total{transport=\"http\",method=\"GET /metrics\",code=\"403\"} 1".into(),
+    ] {
+        assert!(text.lines().any(|l| l == line), "no {line} in\n{text}");
+    }
+    assert!(text.contains("floe_scene_backend_seconds_total{scene="), "no backend time per pass");
     assert_eq!(alice.whoami().await.unwrap().name, "alice");
 
     // `floe admin token revoke alice`, beside the running server: refused within seconds.
@@ -201,5 +217,36 @@ async fn tokens_admins_and_revocation() {
         tokio::time::sleep(std::time::Duration::from_millis(100)).await;
     }
     assert_eq!(code(&alice.list().await.unwrap_err()), Code::Unauthenticated);
+    lab.server.shutdown().await;
+}
+
+#[tokio::test]
+async fn websocket_origins_are_checked() {
+    let options = Options { origins: vec!["https://dash.example".into()], ..Options::default() };
+    let lab = Lab::start(&[("alice", false)], options).await;
+    let mut alice = lab.client("alice").await;
+    let id = alice.create_preset("dam_break", &["particle_spacing=0.1"]).await.unwrap().scene_id;
+    let url = format!("ws://{}/api/v1/scenes/{id}/ws", lab.server.http);
+    let own = format!("http://{}", lab.server.http);
+    for (origin, allowed) in [(own.as_str(), true), ("https://dash.example", true), ("http://evil.example", false)] {
+        let mut request = ws_request(&url, Some(lab.token("alice")));
+        request.headers_mut().insert("origin", origin.parse().unwrap());
+        match tokio_tungstenite::connect_async(request).await {
+            Ok((mut ws, _)) => {
+                assert!(allowed, "{origin} opened a socket");
+                ws.close(None).await.unwrap();
+            }
+            Err(WsError::Http(r)) => {
+                assert!(!allowed, "{origin} was refused");
+                assert_eq!(r.status(), 403);
+                let body: serde_json::Value = serde_json::from_slice(r.body().as_deref().unwrap_or_default()).unwrap();
+                assert!(
+                    body["error"].as_str().unwrap().starts_with("origin http://evil.example may not open"),
+                    "{body}"
+                );
+            }
+            Err(e) => panic!("{origin}: {e}"),
+        }
+    }
     lab.server.shutdown().await;
 }

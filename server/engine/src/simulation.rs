@@ -207,8 +207,15 @@ impl Simulation {
         Self::restore_on(bytes, &cpu_backend)
     }
 
-    /// Rebuilds a scene from a snapshot, on the backend `make` builds.
-    pub fn restore_on(bytes: &[u8], make: &BackendFactory) -> Result<Self, SnapshotError> {
+    /// The scene a snapshot is of, read without building anything: a caller can check
+    /// it (its size, that it is the scene expected) before [`Simulation::restore_on`]
+    /// allocates its particles.
+    pub fn snapshot_scene(bytes: &[u8]) -> Result<Scene, SnapshotError> {
+        Ok(Self::read_scene(bytes)?.0)
+    }
+
+    /// The scene of a snapshot, and a reader at what follows it.
+    fn read_scene(bytes: &[u8]) -> Result<(Scene, Reader<'_>), SnapshotError> {
         let bad = |m: String| SnapshotError::Malformed(m);
         if bytes.len() < MAGIC.len() || &bytes[..MAGIC.len()] != MAGIC {
             return Err(bad("it does not start with FLOESNAP".into()));
@@ -221,6 +228,13 @@ impl Simulation {
         let scene_json = r.bytes("scene")?;
         let value: serde_json::Value = serde_json::from_slice(scene_json).map_err(|e| bad(format!("scene: {e}")))?;
         let scene = crate::scene::load::from_value(value).map_err(|e| bad(format!("scene: {e}")))?;
+        Ok((scene, r))
+    }
+
+    /// Rebuilds a scene from a snapshot, on the backend `make` builds.
+    pub fn restore_on(bytes: &[u8], make: &BackendFactory) -> Result<Self, SnapshotError> {
+        let bad = |m: String| SnapshotError::Malformed(m);
+        let (scene, mut r) = Self::read_scene(bytes)?;
         let mut sim = Self::new(scene, make).map_err(|e| bad(format!("scene: {e}")))?;
         let mut f = [0.0; 6];
         for v in &mut f {

@@ -2,9 +2,11 @@
 //! binary) with users and tokens; one user's dam break runs as fast as it can (the
 //! solver); viewers watch it through read-only share links, some of them never
 //! reading their stream; scripted users step, tune and query scenes of their own.
-//! Reported: the solver's steps/s alone and under load (the same run), every control
+//! Reported: the solver's steps/s alone (before and after the load, so drift from
+//! other work on the machine shows) and under load, in the same run; every control
 //! call answered or not (lost: no answer within 10 s), errors, frames the viewers
-//! read, and the server's resident memory over the loaded phase.
+//! read, the CPU the server and the load generator used, and the server's resident
+//! memory over the loaded phase.
 //!
 //! - [`process`]: the server process, its users, its memory.
 
@@ -43,8 +45,8 @@ pub struct LoadConfig {
 pub struct LoadReport {
     /// Fluid particles of the solver's scene.
     pub particles: u64,
-    /// The solver's steps/s with nothing else going on.
-    pub unloaded_steps_per_second: f64,
+    /// The solver's steps/s with nothing else going on: before the load, and after it.
+    pub unloaded_steps_per_second: (f64, f64),
     /// The solver's steps/s under load.
     pub loaded_steps_per_second: f64,
     /// Control calls made by the scripted users.
@@ -61,6 +63,10 @@ pub struct LoadReport {
     pub viewer_failures: Vec<String>,
     /// Server resident memory once a second through the loaded phase (bytes).
     pub rss: Vec<u64>,
+    /// CPU cores the server used: alone before the load, under load, alone after.
+    pub server_cores: (f64, f64, f64),
+    /// CPU cores the load generator (this process: viewers and scripted users) used.
+    pub client_cores: f64,
     /// Whether the server shut down cleanly afterwards.
     pub clean_shutdown: bool,
 }
@@ -92,11 +98,18 @@ pub async fn run(cfg: &LoadConfig) -> anyhow::Result<LoadReport> {
     Ok(report)
 }
 
-/// The solver's steps over `seconds` of wall time, per second.
-async fn steps_per_second(c: &mut Client, id: u64, seconds: f64) -> anyhow::Result<f64> {
-    let (s0, t0) = (c.stats(id).await?.steps, Instant::now());
+/// CPU time of this process so far (s).
+fn own_cpu_seconds() -> f64 {
+    process::cpu_seconds("/proc/self/stat").unwrap_or(0.0)
+}
+
+/// The solver's steps/s and the server's CPU cores over `seconds` of wall time.
+async fn solver_alone(c: &mut Client, id: u64, server: &ServerProcess, seconds: f64) -> anyhow::Result<(f64, f64)> {
+    let (s0, cpu0, t0) = (c.stats(id).await?.steps, server.cpu_seconds().unwrap_or(0.0), Instant::now());
     tokio::time::sleep(Duration::from_secs_f64(seconds)).await;
-    Ok((c.stats(id).await?.steps - s0) as f64 / t0.elapsed().as_secs_f64())
+    let wall = t0.elapsed().as_secs_f64();
+    let steps = (c.stats(id).await?.steps - s0) as f64 / wall;
+    Ok((steps, (server.cpu_seconds().unwrap_or(0.0) - cpu0) / wall))
 }
 
 async fn load(
@@ -114,7 +127,8 @@ async fn load(
     let mut report = LoadReport { particles: scene.particles, ..LoadReport::default() };
     tokio::time::sleep(Duration::from_secs(3)).await;
     let unloaded_seconds = (cfg.seconds as f64 / 4.0).clamp(5.0, 15.0);
-    report.unloaded_steps_per_second = steps_per_second(&mut solver, id, unloaded_seconds).await?;
+    (report.unloaded_steps_per_second.0, report.server_cores.0) =
+        solver_alone(&mut solver, id, server, unloaded_seconds).await?;
 
     let stop = Arc::new(AtomicBool::new(false));
     let frames = Arc::new((AtomicU64::new(0), AtomicU64::new(0)));
@@ -155,13 +169,16 @@ async fn load(
     }
 
     // The loaded phase, with the server's memory sampled every second.
-    let t0 = Instant::now();
+    let (t0, cpu0, own0) = (Instant::now(), server.cpu_seconds().unwrap_or(0.0), own_cpu_seconds());
     let s0 = solver.stats(id).await?.steps;
     while t0.elapsed() < Duration::from_secs(cfg.seconds) {
         tokio::time::sleep(Duration::from_secs(1)).await;
         report.rss.extend(server.rss());
     }
-    report.loaded_steps_per_second = (solver.stats(id).await?.steps - s0) as f64 / t0.elapsed().as_secs_f64();
+    let wall = t0.elapsed().as_secs_f64();
+    report.loaded_steps_per_second = (solver.stats(id).await?.steps - s0) as f64 / wall;
+    report.server_cores.1 = (server.cpu_seconds().unwrap_or(0.0) - cpu0) / wall;
+    report.client_cores = (own_cpu_seconds() - own0) / wall;
     stop.store(true, Ordering::Relaxed);
     for s in scripts {
         let (calls, errors, lost) = s.await?;
@@ -176,6 +193,10 @@ async fn load(
     }
     report.frames = frames.0.load(Ordering::Relaxed);
     report.frame_bytes = frames.1.load(Ordering::Relaxed);
+    // The viewers' and scripts' connections are closed: the solver alone again.
+    tokio::time::sleep(Duration::from_secs(2)).await;
+    (report.unloaded_steps_per_second.1, report.server_cores.2) =
+        solver_alone(&mut solver, id, server, unloaded_seconds).await?;
     Ok(report)
 }
 
@@ -218,16 +239,30 @@ pub fn rss_thirds(rss: &[u64]) -> Option<(f64, f64)> {
 
 /// Prints the report as a table.
 pub fn print(cfg: &LoadConfig, r: &LoadReport) {
-    let ratio = r.loaded_steps_per_second / r.unloaded_steps_per_second.max(f64::MIN_POSITIVE);
+    let alone = (r.unloaded_steps_per_second.0 + r.unloaded_steps_per_second.1) / 2.0;
+    let ratio = r.loaded_steps_per_second / alone.max(f64::MIN_POSITIVE);
     println!(
         "lab load: {} viewers ({} never reading), {} scripted users at {} calls/s each, {} s, solver dam break of {} particles on {}",
         cfg.viewers, cfg.idle_viewers, cfg.scripts, cfg.script_rate, cfg.seconds, r.particles, cfg.backend
     );
     println!("| figure | value |");
     println!("|---|---:|");
-    println!("| solver steps/s, alone | {:.1} |", r.unloaded_steps_per_second);
+    println!("| solver steps/s, alone before the load | {:.1} |", r.unloaded_steps_per_second.0);
     println!("| solver steps/s, under load | {:.1} |", r.loaded_steps_per_second);
-    println!("| under load / alone | {:.1} % |", 100.0 * ratio);
+    println!("| solver steps/s, alone after the load | {:.1} |", r.unloaded_steps_per_second.1);
+    println!("| under load / alone (mean of before and after) | {:.1} % |", 100.0 * ratio);
+    let (c, u) = (r.server_cores, r.unloaded_steps_per_second);
+    println!("| server CPU cores used: alone before, under load, alone after | {:.2}, {:.2}, {:.2} |", c.0, c.1, c.2);
+    // Steps per CPU second the server got: what the load costs the server itself, even
+    // when other work on the machine took cores away in some phase.
+    let per_core = |steps: f64, cores: f64| steps / cores.max(f64::MIN_POSITIVE);
+    println!(
+        "| solver steps per server CPU-second: alone before, under load, alone after | {:.1}, {:.1}, {:.1} |",
+        per_core(u.0, c.0),
+        per_core(r.loaded_steps_per_second, c.1),
+        per_core(u.1, c.2)
+    );
+    println!("| load generator CPU cores used (viewers, scripts) | {:.2} |", r.client_cores);
     println!("| control calls | {} |", r.calls);
     println!("| calls with an error | {} |", r.errors.len());
     println!("| calls lost (no answer in 10 s) | {} |", r.lost);
@@ -239,8 +274,23 @@ pub fn print(cfg: &LoadConfig, r: &LoadReport) {
         println!("| server RSS, first third of the load (MiB) | {:.1} |", first / (1 << 20) as f64);
         println!("| server RSS, last third (MiB) | {:.1} |", last / (1 << 20) as f64);
         println!("| server RSS, most (MiB) | {:.1} |", *max as f64 / (1 << 20) as f64);
+        let at = |f: f64| r.rss[((r.rss.len() - 1) as f64 * f) as usize] as f64 / (1 << 20) as f64;
+        println!(
+            "server RSS at 0, 25, 50, 75, 100 % of the load (MiB): {:.1}, {:.1}, {:.1}, {:.1}, {:.1}",
+            at(0.0),
+            at(0.25),
+            at(0.5),
+            at(0.75),
+            at(1.0)
+        );
     }
     println!("| clean shutdown | {} |", if r.clean_shutdown { "yes" } else { "no" });
+    if let Ok(load) = std::fs::read_to_string("/proc/loadavg") {
+        println!(
+            "machine load average at the end (1, 5, 15 min): {}",
+            load.split_whitespace().take(3).collect::<Vec<_>>().join(", ")
+        );
+    }
     for e in r.errors.iter().chain(&r.viewer_failures).take(10) {
         println!("error: {e}");
     }

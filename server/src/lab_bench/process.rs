@@ -97,6 +97,11 @@ impl ServerProcess {
         Ok(self.child.wait()?.success())
     }
 
+    /// CPU time it has used so far (user and system, s), from /proc.
+    pub fn cpu_seconds(&self) -> Option<f64> {
+        cpu_seconds(&format!("/proc/{}/stat", self.child.id()))
+    }
+
     /// Resident memory now (bytes), from /proc.
     pub fn rss(&self) -> Option<u64> {
         let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id())).ok()?;
@@ -115,4 +120,14 @@ pub fn admin(floe: &Path, data: &Data, args: &[&str]) -> anyhow::Result<String> 
 /// `floe admin user add NAME`: the user's token.
 pub fn add_user(floe: &Path, data: &Data, name: &str) -> anyhow::Result<String> {
     admin(floe, data, &["user", "add", name])
+}
+
+/// User plus system CPU time (s) of the process whose `stat` file is at `path`.
+pub fn cpu_seconds(path: &str) -> Option<f64> {
+    let stat = std::fs::read_to_string(path).ok()?;
+    // Fields after the command name (in parentheses, which may hold spaces): utime and
+    // stime are the 12th and 13th, in clock ticks of 1/100 s on Linux.
+    let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
+    let ticks: u64 = fields.get(11)?.parse::<u64>().ok()? + fields.get(12)?.parse::<u64>().ok()?;
+    Some(ticks as f64 / 100.0)
 }

@@ -8,7 +8,7 @@ use crate::store::Store;
 use crate::store::checkpoint::{Checkpoints, Meta};
 use crate::store::db::SceneRow;
 use floe_engine::Simulation;
-use floe_engine::scene::tunable::TUNABLE;
+use floe_engine::scene::tunable::{self, TUNABLE};
 use floe_engine::scene::{Scene, load};
 use floe_engine::simulation::BackendFactory;
 use serde_json::Value;
@@ -84,12 +84,16 @@ fn recover(
             if meta.scene != row.id {
                 return Err(format!("{}: a checkpoint of scene {}", path.display(), meta.scene));
             }
-            let mut sim = Simulation::restore_on(&payload, backend).map_err(|e| format!("{}: {e}", path.display()))?;
-            if sim.scene() != &scene {
-                sim.set_parameters(&overrides).map_err(|e| format!("{}: {e}", path.display()))?;
-            }
-            if sim.scene() != &scene {
+            // The checkpoint's scene, with the live settings recorded since, must be the
+            // recorded scene: checked before anything is built.
+            let at_checkpoint = Simulation::snapshot_scene(&payload).map_err(|e| format!("{}: {e}", path.display()))?;
+            let tuned = tunable::apply(&at_checkpoint, &overrides).map_err(|e| format!("{}: {e}", path.display()))?;
+            if tuned != scene {
                 return Err(format!("{}: a checkpoint of another scene", path.display()));
+            }
+            let mut sim = Simulation::restore_on(&payload, backend).map_err(|e| format!("{}: {e}", path.display()))?;
+            if at_checkpoint != scene {
+                sim.set_parameters(&overrides).map_err(|e| format!("{}: {e}", path.display()))?;
             }
             Ok((sim, meta))
         });

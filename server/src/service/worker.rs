@@ -133,11 +133,14 @@ impl Worker {
     }
 
     fn restore(&mut self, state: &[u8]) -> Result<Status, CommandError> {
-        let sim =
-            Simulation::restore_on(state, &*self.backend).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
-        if sim.scene() != self.sim.scene() {
+        // Checked before anything is built: a snapshot of another (maybe far larger)
+        // scene allocates nothing.
+        let scene = Simulation::snapshot_scene(state).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
+        if &scene != self.sim.scene() {
             return Err(CommandError::BadSnapshot("the snapshot is of a different scene".into()));
         }
+        let sim =
+            Simulation::restore_on(state, &*self.backend).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
         Ok(self.replace(sim))
     }
 
