@@ -156,6 +156,9 @@ struct SceneCollector(Arc<dyn SceneSamples>);
 /// Labels of a scene's series.
 type SceneLabels = [(&'static str, String); 3];
 
+/// A per-scene series: name, help, and its value in a sample.
+type Series<T> = (&'static str, &'static str, fn(&SceneSample) -> T);
+
 fn labels(s: &SceneSample) -> SceneLabels {
     [("scene", s.id.to_string()), ("owner", s.owner.clone()), ("name", s.name.clone())]
 }
@@ -163,7 +166,7 @@ fn labels(s: &SceneSample) -> SceneLabels {
 impl Collector for SceneCollector {
     fn encode(&self, mut encoder: DescriptorEncoder) -> Result<(), std::fmt::Error> {
         let samples = self.0.samples();
-        let gauges: [(&str, &str, fn(&SceneSample) -> f64); 5] = [
+        let gauges: [Series<f64>; 5] = [
             ("scene_steps_per_second", "Steps per wall second over the last second of stepping", |s| {
                 s.steps_per_second
             }),
@@ -179,7 +182,7 @@ impl Collector for SceneCollector {
                 ConstGauge::new(value(s)).encode(m.encode_family(&l)?)?;
             }
         }
-        let counters: [(&str, &str, fn(&SceneSample) -> u64); 4] = [
+        let counters: [Series<u64>; 4] = [
             ("scene_steps", "Steps taken", |s| s.steps),
             ("scene_frames_published", "Particle states published for frame subscribers", |s| s.frames_published),
             ("scene_frame_bytes", "Encoded frame bytes sent to subscribers", |s| s.frame_bytes),

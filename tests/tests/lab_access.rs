@@ -103,7 +103,7 @@ async fn a_share_link_watches_but_does_not_steer() {
     let other = alice.create_preset("hydrostatic", &["particle_spacing=0.1"]).await.unwrap().scene_id;
     let link = alice.share(id).await.unwrap();
     assert!(link.token.starts_with("floe_shr_"), "{}", link.token);
-    assert_eq!(alice.shares(id).await.unwrap(), [link.share_id.clone()]);
+    assert_eq!(alice.shares(id).await.unwrap(), std::slice::from_ref(&link.share_id));
 
     let mut viewer = Client::connect_with_token(&lab.server.grpc_url(), Some(&link.token)).await.unwrap();
     assert_eq!(viewer.get(id).await.unwrap().scene_id, id);

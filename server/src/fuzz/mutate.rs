@@ -13,7 +13,7 @@ impl Rng {
     }
 
     /// The next 64 random bits.
-    pub fn next(&mut self) -> u64 {
+    pub fn bits(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -23,7 +23,7 @@ impl Rng {
 
     /// A number in `0..n` (`n` > 0).
     pub fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
+        (self.bits() % n as u64) as usize
     }
 }
 
@@ -73,7 +73,7 @@ pub fn mutate(rng: &mut Rng, seeds: &[Vec<u8>]) -> Vec<u8> {
             }
             1 if !data.is_empty() => {
                 let i = at.min(data.len() - 1);
-                data[i] = rng.next() as u8;
+                data[i] = rng.bits() as u8;
             }
             2 => {
                 let piece = INTERESTING[rng.below(INTERESTING.len())];
@@ -103,7 +103,7 @@ pub fn mutate(rng: &mut Rng, seeds: &[Vec<u8>]) -> Vec<u8> {
             7 => data.truncate(at),
             _ => {
                 let n = 1 + rng.below(8);
-                data.splice(at..at, (0..n).map(|_| rng.next() as u8));
+                data.splice(at..at, (0..n).map(|_| rng.bits() as u8));
             }
         }
     }

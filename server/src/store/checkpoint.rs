@@ -129,7 +129,7 @@ impl Checkpoints {
                 Some((seq, e.path()))
             })
             .collect();
-        files.sort_by(|a, b| b.0.cmp(&a.0));
+        files.sort_by_key(|f| std::cmp::Reverse(f.0));
         files
     }
 
