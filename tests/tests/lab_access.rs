@@ -196,7 +196,7 @@ async fn tokens_admins_and_revocation() {
     let text = String::from_utf8(metrics.body).unwrap();
     for line in [
         format!("floe_scene_steps_total{{scene=\"{id}\",owner=\"alice\",name=\"dam_break\"}} 3"),
-        format!("floe_scene_particles{{scene=\"{id}\",owner=\"alice\",name=\"dam_break\"}} {particles}"),
+        format!("floe_scene_particles{{scene=\"{id}\",owner=\"alice\",name=\"dam_break\"}} {particles}.0"),
         "floe_requests_total{transport=\"grpc\",method=\"SceneService/Step\",code=\"Ok\"} 1".into(),
         "floe_requests_total{transport=\"grpc\",method=\"LabService/ListUsers\",code=\"PermissionDenied\"} 1".into(),
         "floe_requests_total{transport=\"http\",method=\"GET /metrics\",code=\"403\"} 1".into(),

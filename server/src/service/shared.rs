@@ -102,7 +102,7 @@ pub struct Shared {
     pub published: AtomicU64,
     /// Encoded frame bytes sent to subscribers (counted by the transports).
     pub frame_bytes: AtomicU64,
-    /// Backend time per pass so far (label, seconds, calls), refreshed with the step rate.
+    /// Backend time per pass so far (label, seconds, calls), refreshed after every step.
     pub passes: Mutex<Vec<(&'static str, f64, u64)>>,
     /// Set on delete, so a long hand-step ends at the next step.
     pub(super) cancel: AtomicBool,

@@ -213,8 +213,8 @@ impl Worker {
                 if elapsed >= 1.0 {
                     s.steps_per_second = self.rate.1 as f64 / elapsed;
                     self.rate = (Instant::now(), 0);
-                    *self.shared.passes.lock().expect("lock") = self.sim.kernel_times();
                 }
+                *self.shared.passes.lock().expect("lock") = self.sim.kernel_times();
                 s.time = self.sim.time();
                 s.steps = self.sim.steps();
                 s.dt = r.dt as f64;

@@ -38,24 +38,15 @@ pub struct CpuBackend {
     scratch_u: Vec<u32>,
     clock: Clock,
     /// Wall time per pass (label, seconds, calls): `Backend::kernel_times`.
-    times: PassTimes,
+    times: Vec<(&'static str, f64, u64)>,
 }
 
-/// Wall time spent in each pass of the step sequence.
-#[derive(Debug, Default)]
-struct PassTimes(Vec<(&'static str, f64, u64)>);
-
-impl PassTimes {
-    /// Runs `f`, adding its wall time to `label`.
-    fn time<T>(&mut self, label: &'static str, f: impl FnOnce() -> T) -> T {
-        let t0 = std::time::Instant::now();
-        let out = f();
-        let seconds = t0.elapsed().as_secs_f64();
-        match self.0.iter_mut().find(|e| e.0 == label) {
-            Some(e) => (e.1, e.2) = (e.1 + seconds, e.2 + 1),
-            None => self.0.push((label, seconds, 1)),
-        }
-        out
+/// Adds the wall time since `t0` to pass `label` of `times`.
+fn record(times: &mut Vec<(&'static str, f64, u64)>, label: &'static str, t0: std::time::Instant) {
+    let seconds = t0.elapsed().as_secs_f64();
+    match times.iter_mut().find(|e| e.0 == label) {
+        Some(e) => (e.1, e.2) = (e.1 + seconds, e.2 + 1),
+        None => times.push((label, seconds, 1)),
     }
 }
 
@@ -86,7 +77,7 @@ impl CpuBackend {
             scratch_v: Vec::new(),
             scratch_u: Vec::new(),
             clock,
-            times: PassTimes::default(),
+            times: Vec::new(),
         }
     }
 
@@ -108,50 +99,44 @@ impl Passes for CpuBackend {
     }
 
     fn evaluate(&mut self) -> Result<Measures, String> {
-        let mut times = std::mem::take(&mut self.times);
-        times.time("sort and density", || self.sort_and_density());
-        times.time("wall pressure", || {
-            passes::wall_pressure(&self.model, &self.grid, &self.pos, &self.rho, &self.pterm, &mut self.wall_p)
-        });
-        times.time("forces", || {
-            passes::forces(
-                &self.model,
-                &self.neighbors,
-                &self.pos,
-                &self.vel,
-                &self.rho,
-                &self.pterm,
-                &self.wall_p,
-                &mut self.acc,
-                self.xsph.as_deref_mut(),
-            )
-        });
-        let (pos, vel, acc, rho, m) = (&self.pos, &self.vel, &self.acc, &self.rho, &self.model);
-        let measures = times.time("measure", || passes::measure(pos, vel, acc, rho, m.fluid.rho0, m.domain));
-        self.times = times;
-        Ok(measures)
+        let t0 = std::time::Instant::now();
+        self.sort_and_density();
+        passes::wall_pressure(&self.model, &self.grid, &self.pos, &self.rho, &self.pterm, &mut self.wall_p);
+        passes::forces(
+            &self.model,
+            &self.neighbors,
+            &self.pos,
+            &self.vel,
+            &self.rho,
+            &self.pterm,
+            &self.wall_p,
+            &mut self.acc,
+            self.xsph.as_deref_mut(),
+        );
+        let m = passes::measure(&self.pos, &self.vel, &self.acc, &self.rho, self.model.fluid.rho0, self.model.domain);
+        record(&mut self.times, "evaluate", t0);
+        Ok(m)
     }
 
     fn kick(&mut self, dt: Real, keep: Real, with_xsph: bool) {
+        let t0 = std::time::Instant::now();
         let xsph = if with_xsph { self.xsph.as_deref() } else { None };
-        let (vel, acc) = (&mut self.vel, &self.acc);
-        self.times.time("kick", || {
-            vel.par_iter_mut().zip(acc.par_iter()).enumerate().with_min_len(4096).for_each(|(i, (v, &a))| {
-                *v = (*v + a * dt) * keep + xsph.map_or(Vec3::ZERO, |x| x[i]);
-            })
+        self.vel.par_iter_mut().zip(self.acc.par_iter()).enumerate().with_min_len(4096).for_each(|(i, (v, &a))| {
+            *v = (*v + a * dt) * keep + xsph.map_or(Vec3::ZERO, |x| x[i]);
         });
+        record(&mut self.times, "kick", t0);
     }
 
     fn drift(&mut self, dt: Real) {
-        let (pos, vel, walls) = (&mut self.pos, &mut self.vel, &self.model.walls);
-        self.times.time("drift", || {
-            pos.par_iter_mut().zip(vel.par_iter_mut()).with_min_len(4096).for_each(|(x, v)| {
-                *x += *v * dt;
-                for w in walls {
-                    w.apply(x, v);
-                }
-            })
+        let t0 = std::time::Instant::now();
+        let walls = &self.model.walls;
+        self.pos.par_iter_mut().zip(self.vel.par_iter_mut()).with_min_len(4096).for_each(|(x, v)| {
+            *x += *v * dt;
+            for w in walls {
+                w.apply(x, v);
+            }
         });
+        record(&mut self.times, "drift", t0);
     }
 
     fn particle_id(&mut self, slot: u32) -> u32 {
@@ -200,8 +185,8 @@ impl Backend for CpuBackend {
         by_identity(channels, &self.ids, &self.pos, Some(&self.vel), Some(&self.rho), &self.model.fluid.eos)
     }
 
-    /// Wall time per pass (always measured: a few clock reads per step).
+    /// Wall time per pass of the step sequence (always measured: a few clock reads per step).
     fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
-        self.times.0.clone()
+        self.times.clone()
     }
 }
