@@ -2,9 +2,11 @@
 # System packages the tests need, installed only when missing: Chromium (the
 # viewer test; Debian's build, no browser download), Node.js with npm (the
 # JavaScript tests), Mesa's Vulkan drivers (lavapipe, a software GPU the GPU
-# backend's tests run on) and Python 3 with its venv module (the Python client's
-# tests run in a virtualenv; Debian ships venv apart from python3). The Rust build
-# needs none: protoc comes vendored.
+# backend's tests run on), Python 3 with its venv module (the Python client's
+# tests run in a virtualenv; Debian ships venv apart from python3) and PostgreSQL
+# (the lab server's tests on PostgreSQL run a throwaway cluster,
+# scripts/pg-test-cluster.sh). The Rust build needs none: protoc comes vendored,
+# SQLite is compiled in.
 set -euo pipefail
 need=()
 command -v chromium >/dev/null || need+=(chromium)
@@ -13,6 +15,7 @@ command -v npm >/dev/null || need+=(npm)
 ls /usr/share/vulkan/icd.d/lvp_icd*.json >/dev/null 2>&1 || need+=(mesa-vulkan-drivers)
 command -v python3 >/dev/null || need+=(python3)
 python3 -c 'import ensurepip, venv' >/dev/null 2>&1 || need+=(python3-venv)
+ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1 || need+=(postgresql)
 if [ ${#need[@]} -gt 0 ]; then
   if [ "$(id -u)" != 0 ] || ! command -v apt-get >/dev/null; then
     echo "missing: ${need[*]}; install them (Debian: apt-get install ${need[*]})" >&2

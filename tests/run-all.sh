@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# All of Floe's tests: Rust (unit, physics, validation, service end to end), the
-# JavaScript frame decoder against the golden frames, the viewer in headless
-# Chromium, and the Python client against a real server. Installs missing system
-# packages first (scripts/install-deps.sh).
+# All of Floe's tests: Rust (unit, physics, validation, service end to end, the lab
+# server on SQLite and on a throwaway PostgreSQL cluster), the JavaScript frame
+# decoder against the golden frames, the viewer in headless Chromium, and the
+# Python client against a real server. Installs missing system packages first
+# (scripts/install-deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -12,8 +13,11 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ] || [ ! -d "$XDG_RUNTIME_DIR" ]; then
   XDG_RUNTIME_DIR="$(mktemp -d)"
   export XDG_RUNTIME_DIR
 fi
-# scripts/install-deps.sh installed lavapipe: the GPU tests must run, not skip.
-FLOE_REQUIRE_GPU=1 cargo test --workspace
+# A PostgreSQL cluster of our own on a free port, stopped however the tests end.
+eval "$(bash scripts/pg-test-cluster.sh start)"
+trap 'bash scripts/pg-test-cluster.sh stop "$FLOE_TEST_PG_DIR"' EXIT
+# scripts/install-deps.sh installed lavapipe and PostgreSQL: those tests must run, not skip.
+FLOE_REQUIRE_GPU=1 FLOE_REQUIRE_POSTGRES=1 cargo test --workspace
 echo "== JavaScript decoder against the golden frames"
 node --test web/test/
 echo "== viewer in headless Chromium"

@@ -17,6 +17,10 @@ pub struct Cli {
     /// The server's gRPC address.
     #[arg(long, env = "FLOE_SERVER", default_value = "http://127.0.0.1:50051")]
     pub server: String,
+    /// API token (from `floe admin user add`), or a share link's token; needed on a
+    /// server with users.
+    #[arg(long, env = "FLOE_TOKEN", hide_env_values = true)]
+    pub token: Option<String>,
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
@@ -140,6 +144,61 @@ pub enum Command {
         /// Scene id.
         id: u64,
     },
+    /// A live table of the scenes (every scene, for an admin), refreshed every second.
+    Top {
+        /// Stop after this many refreshes (default: until interrupted).
+        #[arg(long)]
+        count: Option<u64>,
+    },
+    /// Write a checkpoint of a scene now.
+    Checkpoint {
+        /// Scene id.
+        id: u64,
+    },
+    /// Create a read-only share link of a scene: prints its id and token.
+    Share {
+        /// Scene id.
+        id: u64,
+    },
+    /// List a scene's share links.
+    Shares {
+        /// Scene id.
+        id: u64,
+    },
+    /// Revoke a share link.
+    Unshare {
+        /// Scene id.
+        id: u64,
+        /// The link's id (from `floectl shares`).
+        share_id: String,
+    },
+    /// Who the token belongs to: quotas and usage.
+    Whoami,
+    /// Admin: every user with quotas and usage.
+    Users,
+    /// Admin: set a user's quota, e.g. `floectl quota alice running_scenes=2` (=0 clears it).
+    Quota {
+        /// Login name.
+        user: String,
+        /// NAME=VALUE.
+        #[arg(value_name = "NAME=VALUE")]
+        quota: String,
+    },
+}
+
+fn user_line(u: &floe_proto::pb::UserInfo) -> String {
+    let quotas: Vec<String> =
+        u.quotas.iter().map(|q| format!("{}={}{}", q.name, q.value, if q.overridden { "*" } else { "" })).collect();
+    format!(
+        "{}{}  {} scenes ({} running, {} particles)  {} streams  quotas: {}",
+        u.name,
+        if u.admin { " (admin)" } else { "" },
+        u.scenes,
+        u.running_scenes,
+        u.running_particles,
+        u.open_streams,
+        quotas.join(" ")
+    )
 }
 
 fn line(s: &crate::SceneInfo) -> String {
@@ -180,7 +239,7 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
             .collect();
         return export_frames(frames, out, *format);
     }
-    let mut floe = Client::connect(&cli.server).await?;
+    let mut floe = Client::connect_with_token(&cli.server, cli.token.as_deref()).await?;
     match cli.command {
         Command::Create { scene, overrides } => {
             let o: Vec<&str> = overrides.iter().map(String::as_str).collect();
@@ -275,6 +334,53 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
         Command::Restore { id, file } => {
             let state = std::fs::read(&file).with_context(|| format!("cannot read {}", file.display()))?;
             println!("{}", line(&floe.restore(id, state).await?));
+        }
+        Command::Top { count } => {
+            use std::io::IsTerminal;
+            let mut before: Option<(Vec<crate::SceneStats>, std::time::Instant)> = None;
+            let mut n = 0;
+            while count.is_none_or(|c| n < c) {
+                let now = floe.all_stats().await?;
+                let previous = before.as_ref().map(|(b, t)| (b.as_slice(), t.elapsed().as_secs_f64()));
+                let table = crate::top::table(&now, previous);
+                // On a terminal the table replaces the previous one.
+                let clear = if std::io::stdout().is_terminal() { "\x1b[2J\x1b[H" } else { "" };
+                println!("{clear}{table}");
+                before = Some((now, std::time::Instant::now()));
+                n += 1;
+                if count.is_none_or(|c| n < c) {
+                    tokio::time::sleep(std::time::Duration::from_secs(1)).await;
+                }
+            }
+        }
+        Command::Checkpoint { id } => {
+            let c = floe.checkpoint(id).await?;
+            println!("scene {id}: checkpoint {} at step {} (t = {:.4} s)", c.sequence, c.step, c.sim_time);
+        }
+        Command::Share { id } => {
+            let s = floe.share(id).await?;
+            println!("share {} of scene {id}; token (shown once): {}", s.share_id, s.token);
+            println!("viewer: http://<the server's HTTP address>/#scene={id}&token={}", s.token);
+        }
+        Command::Shares { id } => {
+            for s in floe.shares(id).await? {
+                println!("{s}");
+            }
+        }
+        Command::Unshare { id, share_id } => {
+            floe.revoke_share(id, &share_id).await?;
+            eprintln!("revoked share {share_id} of scene {id}");
+        }
+        Command::Whoami => println!("{}", user_line(&floe.whoami().await?)),
+        Command::Users => {
+            for u in floe.users().await? {
+                println!("{}", user_line(&u));
+            }
+        }
+        Command::Quota { user, quota } => {
+            let (name, value) = quota.split_once('=').context("expected NAME=VALUE, e.g. running_scenes=2")?;
+            let value: u64 = value.trim().parse().with_context(|| format!("{name}: not a whole number"))?;
+            println!("{}", user_line(&floe.set_quota(&user, name.trim(), value).await?));
         }
     }
     Ok(())

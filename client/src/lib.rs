@@ -15,15 +15,21 @@
 //! # Ok(()) }
 //! ```
 //!
-//! - [`Client`]: the calls. [`Frames`]: a decoded frame stream. [`recording`]: frames to and from files.
-//! - [`cli`]: the `floectl` command line.
+//! - [`Client`]: the calls ([`lab`]: checkpoints, share links, users and quotas).
+//!   [`Frames`]: a decoded frame stream. [`recording`]: frames to and from files.
+//! - [`cli`]: the `floectl` command line; [`top`]: `floectl top`'s table.
 
 pub mod cli;
+pub mod lab;
 pub mod recording;
+pub mod top;
 
+use floe_proto::pb::lab_service_client::LabServiceClient;
 use floe_proto::pb::scene_service_client::SceneServiceClient;
 use floe_proto::pb::{self, create_scene_request::Source};
 use floe_proto::{ChannelKind, Decoder, Frame, Limits, Particles};
+use tonic::metadata::{Ascii, MetadataValue};
+use tonic::service::interceptor::InterceptedService;
 use tonic::transport::Channel;
 
 pub use floe_proto::pb::{SceneInfo, SceneStats};
@@ -47,6 +53,9 @@ pub enum ClientError {
     /// A frame could not be decoded.
     #[error("frame: {0}")]
     Decode(floe_proto::DecodeError),
+    /// The token cannot be sent as a header (it is not printable ASCII).
+    #[error("the token is not a valid header value (printable ASCII only)")]
+    BadToken,
 }
 
 impl From<tonic::Status> for ClientError {
@@ -91,22 +100,63 @@ impl Default for FrameRequest {
     }
 }
 
+/// Adds `authorization: Bearer <token>` to every call, when there is a token.
+#[derive(Debug, Clone)]
+pub struct Bearer(Option<MetadataValue<Ascii>>);
+
+impl tonic::service::Interceptor for Bearer {
+    fn call(&mut self, mut request: tonic::Request<()>) -> Result<tonic::Request<()>, tonic::Status> {
+        if let Some(v) = &self.0 {
+            request.metadata_mut().insert("authorization", v.clone());
+        }
+        Ok(request)
+    }
+}
+
+/// A channel whose calls carry the token.
+type Authed = InterceptedService<Channel, Bearer>;
+
 /// A connection to a Floe server.
 #[derive(Debug, Clone)]
 pub struct Client {
-    inner: SceneServiceClient<Channel>,
+    inner: SceneServiceClient<Authed>,
+    lab: LabServiceClient<Authed>,
 }
 
 /// Largest message the client accepts (bytes): snapshots of large scenes.
 const MAX_MESSAGE_BYTES: usize = 512 << 20;
+/// HTTP/2 receive window per stream (bytes): a few frames of a large scene.
+const STREAM_WINDOW_BYTES: u32 = 4 << 20;
 
 impl Client {
-    /// Connects to `address`, e.g. `http://127.0.0.1:50051`.
+    /// Connects to `address`, e.g. `http://127.0.0.1:50051`, without a token (a
+    /// single-user server).
     pub async fn connect(address: &str) -> Result<Self, ClientError> {
+        Self::connect_with_token(address, None).await
+    }
+
+    /// Connects to `address`; every call carries `token` (an API token or a share
+    /// link's token) when given.
+    pub async fn connect_with_token(address: &str, token: Option<&str>) -> Result<Self, ClientError> {
+        let bearer = match token {
+            Some(t) => Some(format!("Bearer {t}").parse().map_err(|_| ClientError::BadToken)?),
+            None => None,
+        };
         let err = |source| ClientError::Connect { address: address.into(), source };
-        let channel =
-            tonic::transport::Endpoint::from_shared(address.to_owned()).map_err(err)?.connect().await.map_err(err)?;
-        Ok(Self { inner: SceneServiceClient::new(channel).max_decoding_message_size(MAX_MESSAGE_BYTES) })
+        // Frames of large scenes are hundreds of kB: HTTP/2's default 64 kB receive
+        // window would make the server wait for window updates within every frame.
+        let channel = tonic::transport::Endpoint::from_shared(address.to_owned())
+            .map_err(err)?
+            .initial_stream_window_size(Some(STREAM_WINDOW_BYTES))
+            .initial_connection_window_size(Some(2 * STREAM_WINDOW_BYTES))
+            .connect()
+            .await
+            .map_err(err)?;
+        let authed = InterceptedService::new(channel, Bearer(bearer));
+        Ok(Self {
+            inner: SceneServiceClient::new(authed.clone()).max_decoding_message_size(MAX_MESSAGE_BYTES),
+            lab: LabServiceClient::new(authed),
+        })
     }
 
     /// Creates a scene from a preset with `key=value` overrides.

@@ -10,10 +10,15 @@ use floe_engine::validation::dam_break;
 use floe_gpu::Selected;
 use std::time::Instant;
 
-/// The dam break scaled to about `particles` fluid particles (the column holds
-/// n^3 particles for spacing a/n).
+/// The particle spacing that scales the dam break to about `particles` fluid
+/// particles (the column holds n^3 particles for spacing a/n).
+pub fn spacing_for(particles: usize) -> f32 {
+    DAM_BREAK_A / (particles as f32).cbrt().round()
+}
+
+/// The dam break scaled to about `particles` fluid particles.
 fn dam_break(particles: usize, overrides: &[String], backend: &Selected) -> anyhow::Result<Simulation> {
-    let spacing = format!("particle_spacing={}", DAM_BREAK_A / (particles as f32).cbrt().round());
+    let spacing = format!("particle_spacing={}", spacing_for(particles));
     let all: Vec<String> = std::iter::once(spacing).chain(overrides.iter().cloned()).collect();
     Ok(Simulation::new(load::from_preset("dam_break", &all)?, &*backend.factory)?)
 }
@@ -27,6 +32,9 @@ fn peak_rss() -> Option<u64> {
 
 /// Runs the benchmark and prints a table.
 pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
+    if args.lab {
+        return lab(&args);
+    }
     if let Some(frames) = args.codec {
         return crate::codec_bench::codec_bench(args.particles[0], frames);
     }
@@ -65,10 +73,11 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
             device.unwrap_or_else(|| "-".into())
         );
     }
-    for (p, kernels) in profiles.iter().filter(|k| !k.1.is_empty()) {
+    for (p, kernels) in profiles.iter().filter(|k| args.profile && !k.1.is_empty()) {
         let total: f64 = kernels.iter().map(|k| k.1).sum();
-        println!("\nGPU time per step by kernel at {p} particles (timestamp queries), {total:.3} ms in all:");
-        println!("| kernel | dispatches/step | ms/step | share |");
+        let how = if backend.name == "cpu" { "CPU wall time" } else { "GPU timestamp queries" };
+        println!("\nTime per step by pass at {p} particles ({how}), {total:.3} ms in all:");
+        println!("| pass | calls/step | ms/step | share |");
         println!("|---|---:|---:|---:|");
         for (label, ms, dispatches) in kernels.iter() {
             println!("| {label} | {dispatches:.1} | {ms:.3} | {:.1} % |", 100.0 * ms / total.max(f64::MIN_POSITIVE));
@@ -133,5 +142,22 @@ fn solve(particles: usize, overrides: &[String], seconds: f64, backend: &Selecte
         err.bias,
         at(2.0)
     );
+    Ok(())
+}
+
+/// `floe bench --lab`: a lab server under load (see [`crate::lab_bench`]).
+fn lab(args: &BenchArgs) -> anyhow::Result<()> {
+    let cfg = crate::lab_bench::LoadConfig {
+        floe: std::env::current_exe()?,
+        backend: format!("{:?}", args.backend).to_lowercase(),
+        particles: args.particles[0],
+        seconds: args.seconds,
+        viewers: args.viewers,
+        idle_viewers: args.idle_viewers.min(args.viewers),
+        scripts: args.scripts,
+        script_rate: args.script_rate,
+    };
+    let report = tokio::runtime::Runtime::new()?.block_on(crate::lab_bench::run(&cfg))?;
+    crate::lab_bench::print(&cfg, &report);
     Ok(())
 }

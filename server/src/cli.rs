@@ -7,9 +7,21 @@ use std::path::PathBuf;
 #[derive(Debug, Parser)]
 #[command(name = "floe", version, about)]
 pub struct Cli {
+    /// Log format: `text` for people, `json` (one object per line) for log collectors.
+    #[arg(long, global = true, env = "FLOE_LOG_FORMAT", value_enum, default_value = "text")]
+    pub log_format: LogFormat,
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
+}
+
+/// How log lines are written (to stderr).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LogFormat {
+    /// Human-readable lines (coloured on a terminal).
+    Text,
+    /// One JSON object per line.
+    Json,
 }
 
 /// Sub-commands.
@@ -29,6 +41,34 @@ pub enum Command {
     Schema,
     /// List the built-in presets.
     Presets,
+    /// Manage a lab server's users, tokens and quotas (works beside a running server).
+    Admin(crate::admin::AdminArgs),
+    /// Run the network- and disk-facing parsers on generated and mutated inputs.
+    Fuzz(FuzzArgs),
+}
+
+/// `floe fuzz`.
+#[derive(Debug, Args)]
+pub struct FuzzArgs {
+    /// Targets (repeatable; default: all): frame, scene, snapshot, rest, ws.
+    #[arg(long = "target", value_enum)]
+    pub targets: Vec<crate::fuzz::Target>,
+    /// Inputs per target (the seeds included).
+    #[arg(long, default_value = "100000")]
+    pub inputs: u64,
+    /// Seed of the mutations (the same seed tries the same inputs).
+    #[arg(long, default_value = "1")]
+    pub seed: u64,
+    /// Threads (default: one per core).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Write each input that panics into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Instead of fuzzing, write each target's seeds into DIR/TARGET/ (a starting corpus
+    /// for cargo fuzz: `floe fuzz --write-seeds fuzz/corpus`).
+    #[arg(long, value_name = "DIR")]
+    pub write_seeds: Option<PathBuf>,
 }
 
 /// Which backend steps the scenes.
@@ -122,8 +162,8 @@ pub struct BenchArgs {
     /// for a clean figure).
     #[arg(long)]
     pub memory: bool,
-    /// GPU backend: also time every kernel with timestamp queries and print
-    /// device milliseconds per step for each (adds a wait per submission).
+    /// Also print milliseconds per step by pass: wall time on the CPU backend, device
+    /// time per kernel from timestamp queries on a GPU (adds a wait per submission).
     #[arg(long)]
     pub profile: bool,
     /// Frame codec instead: bytes per particle and encode/decode throughput on
@@ -134,6 +174,26 @@ pub struct BenchArgs {
     /// at the first particle count and report wall time and surge-front error.
     #[arg(long, value_name = "SECONDS")]
     pub solve: Option<f64>,
+    /// A lab server under load instead: this binary serving with users and tokens, a
+    /// dam break of the first particle count running flat out, viewers and scripted
+    /// users; the solver's steps/s alone and under load, lost calls, memory.
+    #[arg(long, conflicts_with_all = ["codec", "solve"])]
+    pub lab: bool,
+    /// `--lab`: seconds under load.
+    #[arg(long, default_value = "60", requires = "lab")]
+    pub seconds: u64,
+    /// `--lab`: viewers streaming the running scene through share links.
+    #[arg(long, default_value = "50", requires = "lab")]
+    pub viewers: usize,
+    /// `--lab`: how many of the viewers never read their stream.
+    #[arg(long, default_value = "10", requires = "lab")]
+    pub idle_viewers: usize,
+    /// `--lab`: scripted users, each stepping, tuning and querying a scene of their own.
+    #[arg(long, default_value = "10", requires = "lab")]
+    pub scripts: usize,
+    /// `--lab`: calls per second of each scripted user.
+    #[arg(long, default_value = "20", requires = "lab")]
+    pub script_rate: f64,
 }
 
 /// `floe validate`.
@@ -157,6 +217,54 @@ pub struct ValidateArgs {
     pub out: PathBuf,
 }
 
+/// Where a server keeps its data (`floe serve`, `floe admin`).
+#[derive(Debug, Clone, Args)]
+pub struct StoreArgs {
+    /// Data directory: the SQLite database and the checkpoints (default
+    /// `$XDG_DATA_HOME/floe`, else `~/.local/share/floe`).
+    #[arg(long, env = "FLOE_DATA_DIR", value_name = "DIR")]
+    pub data_dir: Option<PathBuf>,
+    /// A PostgreSQL database instead of SQLite, e.g. `postgres://floe@db/floe`
+    /// (checkpoints stay in the data directory).
+    #[arg(long, env = "FLOE_DATABASE_URL", value_name = "URL")]
+    pub database: Option<String>,
+}
+
+impl StoreArgs {
+    /// Where the data lives.
+    pub fn location(&self) -> crate::store::Location {
+        crate::store::Location {
+            data_dir: self.data_dir.clone().unwrap_or_else(default_data_dir),
+            database: self.database.clone(),
+        }
+    }
+}
+
+/// `$XDG_DATA_HOME/floe`, else `$HOME/.local/share/floe`, else `floe-data` here: a
+/// per-user place that outlives the build tree and the working directory.
+fn default_data_dir() -> PathBuf {
+    let xdg = std::env::var_os("XDG_DATA_HOME").filter(|d| !d.is_empty()).map(PathBuf::from);
+    let home = || std::env::var_os("HOME").filter(|d| !d.is_empty()).map(|h| PathBuf::from(h).join(".local/share"));
+    xdg.or_else(home).map_or_else(|| PathBuf::from("floe-data"), |d| d.join("floe"))
+}
+
+/// How `floe serve` authenticates calls.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum AuthChoice {
+    /// Tokens when the database has users, else single-user (only on loopback addresses).
+    Auto,
+    /// Every call needs a user's token or a share link.
+    Tokens,
+    /// No authentication: every call is the `local` admin. Needed explicitly to serve a
+    /// non-loopback address without tokens.
+    Off,
+}
+
+/// A `--quota NAME=VALUE`.
+fn quota(text: &str) -> Result<(crate::quota::Limit, u64), String> {
+    crate::quota::parse_assignment(text)
+}
+
 /// `floe serve`.
 #[derive(Debug, Args)]
 pub struct ServeArgs {
@@ -169,8 +277,10 @@ pub struct ServeArgs {
     /// Directory of the viewer's files (default: `web/` of the source tree).
     #[arg(long, value_name = "DIR")]
     pub web: Option<PathBuf>,
-    /// Preset to create at start-up, or `none`.
-    #[arg(long, default_value = "dam_break")]
+    /// Scene to create at start-up when the server has none: `auto` (the dam break at
+    /// the finest resolution this backend steps at real time or faster, measured at
+    /// start), a preset name (`dam_break`: the full 21,952 particles), or `none`.
+    #[arg(long, default_value = "auto")]
     pub scene: String,
     /// Backend every scene runs on.
     #[arg(long, env = "FLOE_BACKEND", value_enum, default_value = "auto")]
@@ -182,6 +292,24 @@ pub struct ServeArgs {
     /// Most fluid particles in one scene; a bigger scene is refused, naming the limit.
     #[arg(long, env = "FLOE_MAX_PARTICLES", default_value_t = crate::service::DEFAULT_MAX_PARTICLES, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_particles: u64,
+    /// Where scenes, users and checkpoints are kept.
+    #[command(flatten)]
+    pub store: StoreArgs,
+    /// Authentication.
+    #[arg(long, env = "FLOE_AUTH", value_enum, default_value = "auto")]
+    pub auth: AuthChoice,
+    /// A server-wide quota default, e.g. `--quota running_scenes=2` (repeatable):
+    /// particles_per_scene, running_scenes, running_particles, open_streams,
+    /// requests_per_second. Users' overrides: `floe admin quota set`.
+    #[arg(long = "quota", value_name = "NAME=VALUE", value_parser = quota)]
+    pub quotas: Vec<(crate::quota::Limit, u64)>,
+    /// An origin (`https://dash.example:8443`) besides the server's own whose pages may
+    /// open WebSockets (repeatable).
+    #[arg(long = "allow-origin", env = "FLOE_ALLOW_ORIGINS", value_delimiter = ',', value_name = "ORIGIN")]
+    pub allow_origins: Vec<String>,
+    /// Wall seconds a scene runs between periodic checkpoints.
+    #[arg(long, env = "FLOE_CHECKPOINT_EVERY", value_name = "SECONDS", default_value_t = crate::service::DEFAULT_CHECKPOINT_SECONDS, value_parser = clap::value_parser!(u64).range(1..))]
+    pub checkpoint_every: u64,
 }
 
 impl ServeArgs {
@@ -189,5 +317,20 @@ impl ServeArgs {
     pub fn limits(&self) -> crate::service::Limits {
         let size = |v: u64| usize::try_from(v).unwrap_or(usize::MAX);
         crate::service::Limits { max_scenes: size(self.max_scenes), max_particles: size(self.max_particles) }
+    }
+
+    /// The registry's options these flags set, authenticating in `auth`.
+    pub fn options(&self, auth: crate::auth::AuthMode) -> crate::service::Options {
+        let mut quotas = crate::quota::QuotaSet::default();
+        for &(limit, value) in &self.quotas {
+            quotas.set(limit, value);
+        }
+        crate::service::Options {
+            limits: self.limits(),
+            quotas,
+            auth,
+            origins: self.allow_origins.clone(),
+            checkpoint_every: std::time::Duration::from_secs(self.checkpoint_every),
+        }
     }
 }

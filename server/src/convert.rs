@@ -7,16 +7,20 @@ use crate::service::{Event, Shared, State};
 use floe_engine::scene::load::Format;
 use floe_proto::pb;
 use std::sync::atomic::Ordering;
-use tonic::Status;
+use tonic::{Code, Status};
 
-/// The gRPC status of a service error.
+/// The gRPC status of a service error, its message bounded ([`crate::echo`]).
 pub fn status(e: ServiceError) -> Status {
-    match e {
-        ServiceError::NotFound(_) => Status::not_found(e.to_string()),
-        ServiceError::InvalidArgument(m) => Status::invalid_argument(m),
-        ServiceError::FailedPrecondition(m) => Status::failed_precondition(m),
-        ServiceError::ResourceExhausted(m) => Status::resource_exhausted(m),
-    }
+    let code = match e {
+        ServiceError::NotFound(_) | ServiceError::Missing(_) => Code::NotFound,
+        ServiceError::InvalidArgument(_) => Code::InvalidArgument,
+        ServiceError::FailedPrecondition(_) => Code::FailedPrecondition,
+        ServiceError::ResourceExhausted(_) => Code::ResourceExhausted,
+        ServiceError::PermissionDenied(_) => Code::PermissionDenied,
+        ServiceError::Unavailable(_) => Code::Unavailable,
+        ServiceError::Unauthenticated(_) => Code::Unauthenticated,
+    };
+    Status::new(code, crate::echo::bounded(&e.to_string()))
 }
 
 /// `document_format` of a create request.
@@ -24,7 +28,10 @@ pub fn document_format(name: &str) -> Result<Format, Status> {
     match name {
         "" | "toml" => Ok(Format::Toml),
         "json" => Ok(Format::Json),
-        other => Err(Status::invalid_argument(format!("document_format: must be \"toml\" or \"json\", got {other:?}"))),
+        other => Err(Status::invalid_argument(format!(
+            "document_format: must be \"toml\" or \"json\", got {:?}",
+            crate::echo::cap(other)
+        ))),
     }
 }
 
@@ -79,6 +86,7 @@ pub fn scene_info(shared: &Shared) -> pb::SceneInfo {
                 module: t.module.into(),
             })
             .collect(),
+        owner: shared.owner.clone(),
     }
 }
 
@@ -111,6 +119,9 @@ pub fn scene_stats(shared: &Shared) -> pb::SceneStats {
             .iter()
             .map(|m| pb::Measure { name: m.name.clone(), value: m.value, unit: m.unit.clone() })
             .collect(),
+        name: shared.name.clone(),
+        owner: shared.owner.clone(),
+        frame_bytes: shared.frame_bytes.load(Ordering::Relaxed),
     }
 }
 

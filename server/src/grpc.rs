@@ -1,21 +1,22 @@
 //! The gRPC adapter: `floe.v1.SceneService` over the in-process [`Registry`].
-//! Generated types stay here and in [`crate::convert`]; the service API does
-//! not see them.
+//! Generated types stay here, in [`crate::grpc_lab`] and in [`crate::convert`]; the
+//! service API does not see them. Every call arrives through [`crate::grpc_guard`],
+//! which authenticated it and put its [`Caller`] in the request's extensions.
 
+use crate::auth::Caller;
 use crate::convert::{self, status};
-use crate::service::{CommandError, Event, MAX_STEPS_PER_REQUEST};
-use crate::service::{Registry, SceneSource, ServiceError};
+use crate::service::{MAX_STEPS_PER_REQUEST, Need};
+use crate::service::{Registry, SceneSource};
 use floe_proto::pb::scene_service_server::SceneService;
 use floe_proto::pb::{self, create_scene_request::Source};
 use std::pin::Pin;
 use std::sync::Arc;
-use tokio::sync::mpsc;
 use tokio_stream::Stream;
 use tokio_stream::wrappers::ReceiverStream;
 use tonic::{Request, Response, Status};
 
 /// A server stream of gRPC messages.
-type Streamed<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Send + 'static>>;
+pub type Streamed<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Send + 'static>>;
 
 /// The gRPC service.
 #[derive(Debug, Clone)]
@@ -30,9 +31,22 @@ impl Grpc {
     }
 }
 
+/// The caller [`crate::grpc_guard`] authenticated; a request that did not pass the
+/// guard is refused rather than trusted.
+pub fn caller<T>(request: &Request<T>) -> Result<Caller, Status> {
+    request
+        .extensions()
+        .get::<Caller>()
+        .cloned()
+        .ok_or_else(|| Status::unauthenticated("the call was not authenticated"))
+}
+
+type Reply<T> = Result<Response<T>, Status>;
+
 #[tonic::async_trait]
 impl SceneService for Grpc {
-    async fn create_scene(&self, request: Request<pb::CreateSceneRequest>) -> Result<Response<pb::SceneInfo>, Status> {
+    async fn create_scene(&self, request: Request<pb::CreateSceneRequest>) -> Reply<pb::SceneInfo> {
+        let who = caller(&request)?;
         let r = request.into_inner();
         let source = match r.source {
             Some(Source::Preset(name)) => SceneSource::Preset(name),
@@ -41,36 +55,30 @@ impl SceneService for Grpc {
             }
             None => return Err(Status::invalid_argument("source: give a preset name or a scene document")),
         };
-        let registry = self.registry.clone();
-        // Building samples every particle: off the async workers.
-        let handle = tokio::task::spawn_blocking(move || registry.create(source, &r.overrides))
-            .await
-            .map_err(|e| Status::internal(e.to_string()))?
-            .map_err(status)?;
+        let handle = self.registry.create(&who, source, r.overrides).await.map_err(status)?;
         Ok(Response::new(convert::scene_info(&handle.shared)))
     }
 
-    async fn get_scene(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneInfo>, Status> {
-        let handle = self.registry.get(request.into_inner().scene_id).map_err(status)?;
+    async fn get_scene(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneInfo> {
+        let who = caller(&request)?;
+        let handle = self.registry.get(&who, request.into_inner().scene_id, Need::Watch).map_err(status)?;
         Ok(Response::new(convert::scene_info(&handle.shared)))
     }
 
-    async fn list_scenes(&self, _: Request<pb::ListScenesRequest>) -> Result<Response<pb::ListScenesResponse>, Status> {
-        let scenes = self.registry.list().iter().map(|h| convert::scene_info(&h.shared)).collect();
+    async fn list_scenes(&self, request: Request<pb::ListScenesRequest>) -> Reply<pb::ListScenesResponse> {
+        let who = caller(&request)?;
+        let scenes = self.registry.list(&who).iter().map(|h| convert::scene_info(&h.shared)).collect();
         Ok(Response::new(pb::ListScenesResponse { scenes }))
     }
 
-    async fn delete_scene(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneInfo>, Status> {
-        let id = request.into_inner().scene_id;
-        let registry = self.registry.clone();
-        let handle = tokio::task::spawn_blocking(move || registry.delete(id))
-            .await
-            .map_err(|e| Status::internal(e.to_string()))?
-            .map_err(status)?;
+    async fn delete_scene(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneInfo> {
+        let who = caller(&request)?;
+        let handle = self.registry.delete(&who, request.into_inner().scene_id).await.map_err(status)?;
         Ok(Response::new(convert::scene_info(&handle.shared)))
     }
 
-    async fn step(&self, request: Request<pb::StepRequest>) -> Result<Response<pb::SceneInfo>, Status> {
+    async fn step(&self, request: Request<pb::StepRequest>) -> Reply<pb::SceneInfo> {
+        let who = caller(&request)?;
         let r = request.into_inner();
         let until = if r.until_time != 0.0 {
             if !r.until_time.is_finite() || r.until_time < 0.0 {
@@ -89,12 +97,13 @@ impl SceneService for Grpc {
             }
             None
         };
-        let handle = self.registry.get(r.scene_id).map_err(status)?;
-        handle.step(r.steps, until).await.map_err(|e| status(ServiceError::FailedPrecondition(e.to_string())))?;
+        let handle = self.registry.get(&who, r.scene_id, Need::Steer).map_err(status)?;
+        handle.step(r.steps, until).await.map_err(|e| status(e.into()))?;
         Ok(Response::new(convert::scene_info(&handle.shared)))
     }
 
-    async fn run(&self, request: Request<pb::RunRequest>) -> Result<Response<pb::SceneInfo>, Status> {
+    async fn run(&self, request: Request<pb::RunRequest>) -> Reply<pb::SceneInfo> {
+        let who = caller(&request)?;
         let r = request.into_inner();
         if !r.real_time_factor.is_finite() || r.real_time_factor < 0.0 {
             return Err(Status::invalid_argument(format!(
@@ -102,106 +111,82 @@ impl SceneService for Grpc {
                 r.real_time_factor
             )));
         }
-        let handle = self.registry.get(r.scene_id).map_err(status)?;
-        handle.run(r.real_time_factor).await.map_err(|e| status(ServiceError::FailedPrecondition(e.to_string())))?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+        self.registry.run(&who, r.scene_id, r.real_time_factor).await.map_err(status)?;
+        self.info(&who, r.scene_id)
     }
 
-    async fn pause(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneInfo>, Status> {
-        let handle = self.registry.get(request.into_inner().scene_id).map_err(status)?;
-        handle.pause().await.map_err(|e| status(ServiceError::FailedPrecondition(e.to_string())))?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+    async fn pause(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneInfo> {
+        let who = caller(&request)?;
+        let id = request.into_inner().scene_id;
+        self.registry.pause(&who, id).await.map_err(status)?;
+        self.info(&who, id)
     }
 
-    async fn reset(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneInfo>, Status> {
-        let handle = self.registry.get(request.into_inner().scene_id).map_err(status)?;
-        handle.reset().await.map_err(|e| status(ServiceError::FailedPrecondition(e.to_string())))?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+    async fn reset(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneInfo> {
+        let who = caller(&request)?;
+        let id = request.into_inner().scene_id;
+        self.registry.reset(&who, id).await.map_err(status)?;
+        self.info(&who, id)
     }
 
-    async fn get_stats(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneStats>, Status> {
-        let handle = self.registry.get(request.into_inner().scene_id).map_err(status)?;
+    async fn get_stats(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneStats> {
+        let who = caller(&request)?;
+        let handle = self.registry.get(&who, request.into_inner().scene_id, Need::Watch).map_err(status)?;
         Ok(Response::new(convert::scene_stats(&handle.shared)))
     }
 
-    async fn set_parameters(
-        &self,
-        request: Request<pb::SetParametersRequest>,
-    ) -> Result<Response<pb::SceneInfo>, Status> {
+    async fn set_parameters(&self, request: Request<pb::SetParametersRequest>) -> Reply<pb::SceneInfo> {
+        let who = caller(&request)?;
         let r = request.into_inner();
-        let handle = self.registry.get(r.scene_id).map_err(status)?;
-        handle.set_parameters(r.overrides).await.map_err(|e| match e {
-            CommandError::BadParameter(m) => status(ServiceError::InvalidArgument(m)),
-            _ => status(ServiceError::FailedPrecondition(e.to_string())),
-        })?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+        self.registry.set_parameters(&who, r.scene_id, r.overrides).await.map_err(status)?;
+        self.info(&who, r.scene_id)
     }
 
-    async fn snapshot(&self, request: Request<pb::SceneRef>) -> Result<Response<pb::SceneSnapshot>, Status> {
+    async fn snapshot(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneSnapshot> {
+        let who = caller(&request)?;
         let id = request.into_inner().scene_id;
-        let handle = self.registry.get(id).map_err(status)?;
-        let state = handle.save().await.map_err(|e| status(ServiceError::FailedPrecondition(e.to_string())))?;
+        let handle = self.registry.get(&who, id, Need::Steer).map_err(status)?;
+        let state = handle.save().await.map_err(|e| status(e.into()))?;
         Ok(Response::new(pb::SceneSnapshot { scene_id: id, state }))
     }
 
-    async fn restore(&self, request: Request<pb::RestoreRequest>) -> Result<Response<pb::SceneInfo>, Status> {
+    async fn restore(&self, request: Request<pb::RestoreRequest>) -> Reply<pb::SceneInfo> {
+        let who = caller(&request)?;
         let r = request.into_inner();
-        let handle = self.registry.get(r.scene_id).map_err(status)?;
-        handle.restore(r.state).await.map_err(|e| match e {
-            CommandError::BadSnapshot(_) => status(ServiceError::InvalidArgument(e.to_string())),
-            _ => status(ServiceError::FailedPrecondition(e.to_string())),
-        })?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+        self.registry.restore(&who, r.scene_id, r.state).await.map_err(status)?;
+        self.info(&who, r.scene_id)
     }
 
     type StreamFramesStream = Streamed<pb::Frame>;
 
-    async fn stream_frames(
-        &self,
-        request: Request<pb::StreamFramesRequest>,
-    ) -> Result<Response<Self::StreamFramesStream>, Status> {
+    async fn stream_frames(&self, request: Request<pb::StreamFramesRequest>) -> Reply<Self::StreamFramesStream> {
+        let who = caller(&request)?;
         let r = request.into_inner();
         let request = convert::frame_request(&r)?;
-        let mut subscription = self.registry.subscribe(r.scene_id, &request).map_err(status)?;
-        // Capacity 1: a frame waits for the reader only while the next one is made,
-        // so a slow reader skips snapshots instead of queueing them.
-        let (tx, rx) = mpsc::channel(1);
-        tokio::spawn(async move {
-            while let Some(frame) = subscription.next().await {
-                let msg = frame
-                    .map(|f| pb::Frame { data: f.data.as_ref().clone(), sequence: f.sequence, skipped: f.skipped })
-                    .map_err(|e| Status::internal(e.to_string()));
-                if tx.send(msg).await.is_err() {
-                    break;
-                }
-            }
+        let feed = self.registry.subscribe(&who, r.scene_id, &request).map_err(status)?;
+        let frames = feed.spawn(|frame| {
+            frame
+                .map(|f| pb::Frame { data: f.data.as_ref().clone(), sequence: f.sequence, skipped: f.skipped })
+                .map_err(|e| Status::internal(e.to_string()))
         });
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        Ok(Response::new(Box::pin(ReceiverStream::new(frames))))
     }
 
     type StreamEventsStream = Streamed<pb::SceneEvent>;
 
-    async fn stream_events(
-        &self,
-        request: Request<pb::SceneRef>,
-    ) -> Result<Response<Self::StreamEventsStream>, Status> {
+    async fn stream_events(&self, request: Request<pb::SceneRef>) -> Reply<Self::StreamEventsStream> {
+        let who = caller(&request)?;
         let id = request.into_inner().scene_id;
-        let handle = self.registry.get(id).map_err(status)?;
-        let mut events = handle.shared.events.subscribe();
-        let (tx, rx) = mpsc::channel(16);
-        tokio::spawn(async move {
-            loop {
-                let event = match events.recv().await {
-                    Ok(e) => e,
-                    Err(tokio::sync::broadcast::error::RecvError::Lagged(_)) => continue,
-                    Err(tokio::sync::broadcast::error::RecvError::Closed) => break,
-                };
-                let last = event == Event::Deleted;
-                if tx.send(Ok(convert::scene_event(id, event))).await.is_err() || last {
-                    break;
-                }
-            }
-        });
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        let feed = self.registry.events(&who, id).map_err(status)?;
+        let events = feed.spawn(move |e| Ok(convert::scene_event(id, e)));
+        Ok(Response::new(Box::pin(ReceiverStream::new(events))))
+    }
+}
+
+impl Grpc {
+    /// The `SceneInfo` of a scene after a call changed it.
+    fn info(&self, who: &Caller, id: u64) -> Reply<pb::SceneInfo> {
+        let handle = self.registry.get(who, id, Need::Watch).map_err(status)?;
+        Ok(Response::new(convert::scene_info(&handle.shared)))
     }
 }

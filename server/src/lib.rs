@@ -10,22 +10,42 @@
 //! - [`plan`]: `floe plan`, what a scene allocates and runs.
 //! - [`progress`]: the progress display.
 //! - [`validate`]: `floe validate`, the validation report and stability battery.
-//! - [`serve`]: `floe serve`, the server: listeners, health, reflection, shutdown.
+//! - [`serve`]: `floe serve`, the server: listeners, health, reflection, shutdown;
+//!   [`default_scene`]: the scene it starts with, sized to the backend.
 //! - [`service`]: the in-process service API (scenes, workers, frame subscriptions).
 //! - [`grpc`], [`convert`]: the gRPC adapter and where generated types meet the service.
 //! - [`http`], [`ws`]: the viewer's files, the REST mirror and the per-scene WebSocket.
+//! - [`auth`]: users, tokens, share links and single-user mode; [`grpc_guard`] and
+//!   `http::guard` apply them (with the request rate and the metrics) to every call.
+//! - [`grpc_lab`]: `floe.v1.LabService` (checkpoints, share links, users, quotas).
+//! - [`quota`]: per-user quotas. [`metrics`]: Prometheus metrics.
+//! - [`store`]: the database and checkpoint files. [`admin`]: `floe admin`.
+//! - [`echo`]: error messages bounded however large the request.
+//! - [`lab_bench`]: `floe bench --lab`, a lab server under load.
+//! - [`fuzz`]: `floe fuzz`, the parsers on generated and mutated inputs.
 
+pub mod admin;
+pub mod auth;
 pub mod bench;
 pub mod cli;
 pub mod codec_bench;
 pub mod convert;
+pub mod default_scene;
+pub mod echo;
+pub mod fuzz;
 pub mod grpc;
+pub mod grpc_guard;
+pub mod grpc_lab;
 pub mod http;
+pub mod lab_bench;
+pub mod metrics;
 pub mod plan;
 pub mod progress;
+pub mod quota;
 pub mod run;
 pub mod serve;
 pub mod service;
+pub mod store;
 pub mod validate;
 pub mod ws;
 
@@ -44,6 +64,8 @@ pub fn execute(cli: cli::Cli) -> anyhow::Result<()> {
             println!("{}", serde_json::to_string_pretty(&floe_engine::scene::json_schema())?);
             Ok(())
         }
+        cli::Command::Admin(args) => admin::admin(args),
+        cli::Command::Fuzz(args) => fuzz::command(args),
         cli::Command::Presets => {
             for p in floe_engine::modules::presets() {
                 println!("{:<14} {}", p.name, p.about);

@@ -1,17 +1,23 @@
 //! `floe`: parse the command line, set up logging, hand over to [`floe_server::execute`].
 
 use clap::Parser;
+use floe_server::cli::LogFormat;
 use std::io::IsTerminal;
 
 fn main() -> std::process::ExitCode {
     quiet_mesa_device_select();
     let cli = floe_server::cli::Cli::parse();
-    tracing_subscriber::fmt()
-        .with_env_filter(tracing_subscriber::EnvFilter::try_from_env("FLOE_LOG").unwrap_or_else(|_| "info".into()))
-        .with_writer(std::io::stderr)
+    // Fuzzing creates and deletes scenes by the thousand: only warnings by default.
+    let level = if matches!(cli.command, floe_server::cli::Command::Fuzz(_)) { "warn" } else { "info" };
+    let logs = tracing_subscriber::fmt()
+        .with_env_filter(tracing_subscriber::EnvFilter::try_from_env("FLOE_LOG").unwrap_or_else(|_| level.into()))
+        .with_writer(std::io::stderr);
+    match cli.log_format {
         // Colour on a terminal only: a log file or journal gets plain text.
-        .with_ansi(std::io::stderr().is_terminal())
-        .init();
+        LogFormat::Text => logs.with_ansi(std::io::stderr().is_terminal()).init(),
+        // One object per line, the event's fields at the top level, for log collectors.
+        LogFormat::Json => logs.json().flatten_event(true).with_current_span(false).init(),
+    }
     match floe_server::execute(cli) {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {

@@ -2,26 +2,42 @@
 //! binary messages carry encoded frames (latest-frame semantics, as over gRPC);
 //! text messages are JSON both ways.
 //!
+//! A browser cannot set headers on a WebSocket: it offers its token as a protocol,
+//! `new WebSocket(url, ["floe.v1", token])`, and the server answers `floe.v1`. The
+//! handshake's Origin must be the server's own or one of `--allow-origin`
+//! ([`crate::auth::origin`]).
+//!
 //! Client to server: `{"op": "run", "real_time_factor": 1}`, `{"op": "pause"}`,
 //! `{"op": "step", "steps": 1}` (or `"until_time"`), `{"op": "set", "overrides": ["gravity=[0,-1,0]"]}`,
-//! `{"op": "reset"}`, `{"op": "status"}`.
+//! `{"op": "reset"}`, `{"op": "status"}`; the fields are those of the REST bodies and,
+//! as there, unknown fields are refused. Each counts against the request rate.
 //! Server to client: `{"type": "status", "scene": {...}}` after each op,
 //! `{"type": "event", "event": "halted", "reason": "...", "step": n, "sim_time": t}`,
 //! `{"type": "event", "event": "deleted"}` (then the socket closes), and
 //! `{"type": "error", "message": "..."}` for a message it could not use; the
-//! connection stays open after an error.
+//! connection stays open after an error. A message over 64 KiB closes the socket with
+//! code 1009 and the reason.
 
-use crate::http::{ApiError, Params, RunBody, SceneId, SceneView, StepBody};
-use crate::service::Registry;
+use crate::auth::{Caller, WS_PROTOCOL, origin};
+use crate::http::{ApiError, ParametersBody, Params, RunBody, SceneId, SceneView, StepBody, Who};
 use crate::service::frames::EncodedFrame;
 use crate::service::options::FrameRequest;
-use crate::service::{Event, SceneHandle};
+use crate::service::{Event, Need, Registry, SceneHandle, ServiceError};
 use axum::extract::State;
-use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
+use axum::extract::ws::{CloseFrame, Message, WebSocket, WebSocketUpgrade, close_code};
+use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::Response;
 use serde::Deserialize;
+use serde::de::DeserializeOwned;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 use tokio::sync::{broadcast, mpsc};
+
+/// Largest message a client may send (bytes).
+pub const MAX_MESSAGE_BYTES: usize = 64 << 10;
+/// How often the server pings a quiet client, and how long it waits for any sign of it.
+const PING_EVERY: Duration = Duration::from_secs(15);
+const SILENCE_LIMIT: Duration = Duration::from_secs(45);
 
 /// Query parameters of the socket.
 #[derive(Debug, Deserialize)]
@@ -56,31 +72,35 @@ impl WsQuery {
     }
 }
 
-/// Upgrades to a WebSocket after checking the scene and the options.
+/// Upgrades to a WebSocket after checking the origin, the scene and the options.
 pub async fn upgrade(
     State(registry): State<Arc<Registry>>,
+    Who(who): Who,
     SceneId(id): SceneId,
     Params(q): Params<WsQuery>,
+    headers: HeaderMap,
     ws: WebSocketUpgrade,
 ) -> Result<Response, ApiError> {
-    let handle = registry.get(id)?;
-    let subscription = registry.subscribe(id, &q.request())?;
-    let (tx, frames) = mpsc::channel(1);
-    // Frames are made in a task of their own, so a pending encode is never
-    // cancelled by the socket loop below; capacity 1 keeps latest-frame semantics.
-    let mut subscription = subscription;
-    tokio::spawn(async move {
-        while let Some(frame) = subscription.next().await {
-            if tx.send(frame).await.is_err() {
-                break;
-            }
-        }
-    });
-    Ok(ws.max_message_size(64 << 10).on_upgrade(move |socket| session(socket, handle, frames)))
+    let text = |h| headers.get(h).and_then(|v: &axum::http::HeaderValue| v.to_str().ok());
+    if !origin::allowed(text(header::ORIGIN), text(header::HOST), registry.access().origins()) {
+        let o = crate::echo::cap(text(header::ORIGIN).unwrap_or_default());
+        return Err(ApiError(
+            StatusCode::FORBIDDEN,
+            format!("origin {o} may not open a WebSocket here (the server's own origin or --allow-origin)"),
+        ));
+    }
+    let handle = registry.get(&who, id, Need::Watch)?;
+    let frames = registry.subscribe(&who, id, &q.request())?.spawn(|frame| frame);
+    let ws = ws.max_message_size(MAX_MESSAGE_BYTES).protocols([WS_PROTOCOL]);
+    Ok(ws.on_upgrade(move |socket| session(socket, registry, who, handle, frames)))
 }
 
 fn json(value: serde_json::Value) -> Message {
     Message::Text(value.to_string().into())
+}
+
+fn error(message: &str) -> Message {
+    json(serde_json::json!({ "type": "error", "message": crate::echo::bounded(message) }))
 }
 
 fn event_message(e: &Event) -> Message {
@@ -97,58 +117,107 @@ fn event_message(e: &Event) -> Message {
 }
 
 /// A control message from the client.
-#[derive(Debug, Deserialize)]
-#[serde(tag = "op", rename_all = "snake_case", deny_unknown_fields)]
-enum Control {
-    Run {
-        #[serde(default)]
-        real_time_factor: f64,
-    },
+#[derive(Debug)]
+pub(crate) enum Control {
+    Run(RunBody),
     Pause,
-    Step {
-        #[serde(default)]
-        steps: u64,
-        #[serde(default)]
-        until_time: Option<f64>,
-    },
-    Set {
-        overrides: Vec<String>,
-    },
+    Step(StepBody),
+    Set(ParametersBody),
     Reset,
     Status,
 }
 
-async fn control(handle: &SceneHandle, text: &str) -> Message {
-    let op: Control = match serde_json::from_str(text) {
-        Ok(op) => op,
-        Err(e) => return json(serde_json::json!({ "type": "error", "message": format!("bad control message: {e}") })),
+/// Ops and whether they take fields (the REST body of the same call).
+const OPS: &str = "run, pause, step, set, reset, status";
+
+/// Reads a control message: `op` names the call, the other fields are its REST
+/// body's, checked the same way (unknown fields refused).
+pub(crate) fn parse_control(text: &str) -> Result<(Control, &'static str), String> {
+    let mut fields: serde_json::Map<String, serde_json::Value> =
+        serde_json::from_str(text).map_err(|e| format!("bad control message: {e}"))?;
+    let op = match fields.remove("op") {
+        Some(serde_json::Value::String(op)) => op,
+        Some(_) => return Err("bad control message: op must be a string".into()),
+        None => return Err(format!("bad control message: no op ({OPS})")),
     };
-    let result = match op {
-        Control::Run { real_time_factor } => {
-            let b = RunBody { real_time_factor };
-            if !(b.real_time_factor.is_finite() && b.real_time_factor >= 0.0) {
-                Err(format!("real_time_factor: must be >= 0, got {}", b.real_time_factor))
-            } else {
-                handle.run(b.real_time_factor).await.map(|_| ()).map_err(|e| e.to_string())
-            }
-        }
-        Control::Pause => handle.pause().await.map(|_| ()).map_err(|e| e.to_string()),
-        Control::Step { steps, until_time } => match (StepBody { steps, until_time }).checked() {
-            Ok((n, until)) => handle.step(n, until).await.map(|_| ()).map_err(|e| e.to_string()),
-            Err(m) => Err(m),
-        },
-        Control::Set { overrides } => handle.set_parameters(overrides).await.map(|_| ()).map_err(|e| e.to_string()),
-        Control::Reset => handle.reset().await.map(|_| ()).map_err(|e| e.to_string()),
-        Control::Status => Ok(()),
-    };
-    match result {
-        Ok(()) => json(serde_json::json!({ "type": "status", "scene": SceneView::of(&handle.shared) })),
-        Err(m) => json(serde_json::json!({ "type": "error", "message": m })),
+    fn body<T: DeserializeOwned>(op: &str, fields: serde_json::Map<String, serde_json::Value>) -> Result<T, String> {
+        serde_json::from_value(serde_json::Value::Object(fields)).map_err(|e| format!("bad {op} message: {e}"))
     }
+    let bare = |control: Control, name: &'static str| match fields.keys().next() {
+        None => Ok((control, name)),
+        Some(k) => Err(format!("bad {name} message: unknown field `{}`; {name} takes no fields", crate::echo::cap(k))),
+    };
+    match op.as_str() {
+        "run" => Ok((Control::Run(body("run", fields)?), "run")),
+        "step" => Ok((Control::Step(body("step", fields)?), "step")),
+        "set" => Ok((Control::Set(body("set", fields)?), "set")),
+        "pause" => bare(Control::Pause, "pause"),
+        "reset" => bare(Control::Reset, "reset"),
+        "status" => bare(Control::Status, "status"),
+        other => Err(format!("bad control message: unknown op {:?} ({OPS})", crate::echo::cap(other))),
+    }
+}
+
+/// Carries out a control message; the reply, and the label and code for the metrics.
+async fn control(
+    registry: &Registry,
+    who: &Caller,
+    handle: &SceneHandle,
+    text: &str,
+) -> (Message, &'static str, String) {
+    let (op, name) = match parse_control(text) {
+        Ok(c) => c,
+        Err(m) => return (error(&m), "invalid", "400".into()),
+    };
+    let id = handle.shared.id;
+    let result: Result<(), ServiceError> = async {
+        registry.admit(who)?;
+        match op {
+            Control::Run(b) => {
+                let rtf = b.checked().map_err(ServiceError::InvalidArgument)?;
+                registry.run(who, id, rtf).await?;
+            }
+            Control::Pause => {
+                registry.pause(who, id).await?;
+            }
+            Control::Step(b) => {
+                let (n, until) = b.checked().map_err(ServiceError::InvalidArgument)?;
+                registry.get(who, id, Need::Steer)?.step(n, until).await?;
+            }
+            Control::Set(b) => {
+                registry.set_parameters(who, id, b.overrides).await?;
+            }
+            Control::Reset => {
+                registry.reset(who, id).await?;
+            }
+            Control::Status => {}
+        }
+        Ok(())
+    }
+    .await;
+    match result {
+        Ok(()) => {
+            (json(serde_json::json!({ "type": "status", "scene": SceneView::of(&handle.shared) })), name, "200".into())
+        }
+        Err(e) => {
+            let code = ApiError::from(e);
+            (error(&code.1), name, code.0.as_str().to_owned())
+        }
+    }
+}
+
+/// Whether a receive error is a message over [`MAX_MESSAGE_BYTES`].
+fn too_big(e: axum::Error) -> bool {
+    matches!(
+        e.into_inner().downcast::<tungstenite::Error>().map(|e| *e),
+        Ok(tungstenite::Error::Capacity(tungstenite::error::CapacityError::MessageTooLong { .. }))
+    )
 }
 
 async fn session(
     mut socket: WebSocket,
+    registry: Arc<Registry>,
+    who: Caller,
     handle: Arc<SceneHandle>,
     mut frames: mpsc::Receiver<Result<EncodedFrame, floe_proto::EncodeError>>,
 ) {
@@ -157,6 +226,9 @@ async fn session(
     if socket.send(hello).await.is_err() {
         return;
     }
+    let mut ping = tokio::time::interval(PING_EVERY);
+    let mut heard = Instant::now();
+    let mut close: Option<CloseFrame> = None;
     loop {
         tokio::select! {
             frame = frames.recv() => match frame {
@@ -166,32 +238,36 @@ async fn session(
                     }
                 }
                 Some(Err(e)) => {
-                    let _ = socket.send(json(serde_json::json!({ "type": "error", "message": e.to_string() }))).await;
+                    let _ = socket.send(error(&e.to_string())).await;
                 }
-                None => {
-                    // Frames end when the scene is deleted, after its Deleted event was sent:
-                    // pass on what is queued so the client hears why the socket closes.
-                    while let Ok(e) = events.try_recv() {
-                        let _ = socket.send(event_message(&e)).await;
-                    }
-                    break;
-                }
+                None => break,
             },
-            msg = socket.recv() => match msg {
-                Some(Ok(Message::Text(t))) => {
-                    let reply = control(&handle, t.as_str()).await;
-                    if socket.send(reply).await.is_err() {
+            msg = socket.recv() => {
+                heard = Instant::now();
+                match msg {
+                    Some(Ok(Message::Text(t))) => {
+                        let t0 = Instant::now();
+                        let (reply, op, code) = control(&registry, &who, &handle, t.as_str()).await;
+                        registry.metrics().observe("ws", op, &code, t0.elapsed().as_secs_f64());
+                        if socket.send(reply).await.is_err() {
+                            break;
+                        }
+                    }
+                    Some(Ok(Message::Binary(_))) => {
+                        if socket.send(error("binary messages are not accepted; send JSON text")).await.is_err() {
+                            break;
+                        }
+                    }
+                    Some(Err(e)) => {
+                        if too_big(e) {
+                            let reason = format!("message too big: at most {MAX_MESSAGE_BYTES} bytes");
+                            close = Some(CloseFrame { code: close_code::SIZE, reason: reason.into() });
+                        }
                         break;
                     }
+                    Some(Ok(Message::Close(_))) | None => break,
+                    Some(Ok(_)) => {}
                 }
-                Some(Ok(Message::Binary(_))) => {
-                    let m = json(serde_json::json!({ "type": "error", "message": "binary messages are not accepted; send JSON text" }));
-                    if socket.send(m).await.is_err() {
-                        break;
-                    }
-                }
-                Some(Ok(Message::Close(_))) | None | Some(Err(_)) => break,
-                Some(Ok(_)) => {}
             },
             event = events.recv() => match event {
                 Ok(e) => {
@@ -203,7 +279,20 @@ async fn session(
                 Err(broadcast::error::RecvError::Lagged(_)) => {}
                 Err(broadcast::error::RecvError::Closed) => break,
             },
+            _ = ping.tick() => {
+                // A peer that vanished without closing (no FIN, no reset) is dropped.
+                if heard.elapsed() > SILENCE_LIMIT || socket.send(Message::Ping(Default::default())).await.is_err() {
+                    break;
+                }
+            }
         }
     }
-    let _ = socket.send(Message::Close(None)).await;
+    // Frames end when the scene is deleted: its Deleted event is already waiting.
+    while let Ok(e) = events.try_recv() {
+        if socket.send(event_message(&e)).await.is_err() {
+            break;
+        }
+    }
+    let close = close.unwrap_or(CloseFrame { code: close_code::NORMAL, reason: "".into() });
+    let _ = socket.send(Message::Close(Some(close))).await;
 }

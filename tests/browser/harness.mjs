@@ -2,6 +2,8 @@
 // checkout's viewer, headless Chromium on software GL, and reading the page.
 
 import { spawn } from 'node:child_process';
+import { mkdtempSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import net from 'node:net';
 import { chromium } from 'playwright-core';
 import { fileURLToPath } from 'node:url';
@@ -26,14 +28,22 @@ export function freePort() {
   });
 }
 
+/** A new empty directory for a server's data (its database and checkpoints). */
+export function tempDataDir() {
+  return mkdtempSync(path.join(tmpdir(), 'floe-browser-'));
+}
+
 /**
  * Starts the server (HTTP on `http`, gRPC on `grpc`, no default scene, this checkout's web/ or
- * FLOE_WEB) and resolves with `{child, url}` once it prints the viewer's URL; `child.exited`
- * resolves when it ends.
+ * FLOE_WEB, its data in `dataDir`, by default a new temporary directory) and resolves with
+ * `{child, url}` once it prints the viewer's URL; `child.exited` resolves when it ends.
  */
-export function startServer({ http = '127.0.0.1:0', grpc = '127.0.0.1:0', release = false, quiet = false } = {}) {
+export function startServer({
+  http = '127.0.0.1:0', grpc = '127.0.0.1:0', release = false, quiet = false, dataDir = tempDataDir(),
+} = {}) {
+  const web = process.env.FLOE_WEB ?? path.join(root, 'web');
   const child = spawn(floeBinary(release),
-    ['serve', '--http', http, '--grpc', grpc, '--scene', 'none', '--web', process.env.FLOE_WEB ?? path.join(root, 'web')],
+    ['serve', '--http', http, '--grpc', grpc, '--scene', 'none', '--web', web, '--data-dir', dataDir],
     { cwd: root, stdio: ['ignore', 'pipe', quiet ? 'ignore' : 'inherit'] });
   return new Promise((resolve, reject) => {
     let out = '';

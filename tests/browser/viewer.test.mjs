@@ -1,15 +1,21 @@
-// The viewer in a real browser: start `floe serve` on free ports, open the page in
-// headless Chromium, create a dam break, watch frames arrive and particles drawn,
-// pause and check frames stop, reset, change a setting, and find the server again after it
-// restarts. Leaves a screenshot in target/viewer.png.
+// The viewer in a real browser: start `floe serve` on free ports (its data in a
+// temporary directory), open the page in headless Chromium, create a dam break, watch
+// frames arrive and particles drawn, pause and check frames stop, reset, change settings,
+// restart the server and watch the viewer find the scene again with its settings. Leaves a
+// screenshot in target/viewer.png.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { canvasSummary, createScene, launchBrowser, root, startServer, stat, statAtLeast, watchProblems } from './harness.mjs';
+import { rmSync } from 'node:fs';
+import {
+  canvasSummary, createScene, launchBrowser, root, startServer, stat, statAtLeast, tempDataDir, watchProblems,
+} from './harness.mjs';
+
+const dataDir = tempDataDir();
 
 test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, async () => {
-  const { child, url } = await startServer();
+  const { child, url } = await startServer({ dataDir });
   let server = child;
   const browser = await launchBrowser();
   try {
@@ -69,18 +75,22 @@ test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, a
     }, null, { timeout: 10_000 });
     assert.deepEqual(problems, [], 'nothing went wrong on the page before the restart');
 
-    // The server restarts under the page (same address, a new scene 1): the viewer
-    // finds it again by itself and streams the new scene.
+    // The server restarts under the page (same address, same data): scene 1 comes
+    // back from its checkpoint with its live settings, and the viewer finds it again
+    // by itself and streams it once it runs.
     server.kill('SIGTERM');
     await server.exited;
-    server = (await startServer({ http: new URL(url).host })).child;
-    const post = (p, body) => fetch(new URL(p, url), {
-      method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify(body),
+    const framesBefore = await stat(page, 'frames');
+    server = (await startServer({ http: new URL(url).host, dataDir })).child;
+    const restored = await (await fetch(new URL('/api/v1/scenes/1', url))).json();
+    assert.equal(restored.particles, 4096);
+    assert.ok(Math.abs(restored.scene.gravity[1] + 1.6) < 1e-6, `gravity ${restored.scene.gravity}`);
+    const run = await fetch(new URL('/api/v1/scenes/1/run', url), {
+      method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify({ real_time_factor: 1 }),
     });
-    assert.equal((await createScene(url, 'dam_break', ['particle_spacing=0.05'])).scene_id, 1);
-    assert.equal((await post('/api/v1/scenes/1/run', { real_time_factor: 1 })).status, 200);
-    await page.waitForFunction(() => /particles\s+1000\b/.test(document.querySelector('#stats').textContent),
-      null, { timeout: 30_000 });
+    assert.equal(run.status, 200);
+    await page.waitForFunction((n) => /frames\s+(\d+)/.exec(document.querySelector('#stats').textContent)?.[1] > n,
+      framesBefore, { timeout: 30_000 });
     const reconnected = await stat(page, 'frames');
     await statAtLeast(page, 'frames', reconnected + 5, 30_000);
     // While the server was down, the page's reconnection attempts failed as they should; only
@@ -89,5 +99,7 @@ test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, a
   } finally {
     await browser.close();
     server.kill('SIGTERM');
+    await server.exited;
+    rmSync(dataDir, { recursive: true, force: true });
   }
 });

@@ -9,6 +9,7 @@ use floe_engine::model::Model;
 use floe_engine::plan::Stage;
 use floe_engine::schemes::{Reduction, Stages};
 use floe_engine::simulation::BackendFactory;
+use floe_server::auth::Caller;
 use floe_server::service::{CommandError, State};
 use floe_server::service::{Registry, SceneSource};
 use std::sync::Arc;
@@ -86,8 +87,9 @@ async fn a_panicking_backend_halts_its_scene_and_the_others_go_on() {
         Arc::new(|model| Ok(Box::new(Faulty(CpuBackend::new(model), 0)) as Box<dyn Backend>));
     let registry = Registry::new(Default::default(), factory);
     let preset = || SceneSource::Preset("dam_break".into());
-    let faulty = registry.create(preset(), &["particle_spacing=0.05".into()]).unwrap();
-    let healthy = registry.create(preset(), &["particle_spacing=0.1".into()]).unwrap();
+    let local = Caller::local();
+    let faulty = registry.create(&local, preset(), vec!["particle_spacing=0.05".into()]).await.unwrap();
+    let healthy = registry.create(&local, preset(), vec!["particle_spacing=0.1".into()]).await.unwrap();
     assert_eq!(faulty.shared.particles, FAULTY_PARTICLES);
     assert_ne!(healthy.shared.particles, FAULTY_PARTICLES);
 
@@ -104,5 +106,5 @@ async fn a_panicking_backend_halts_its_scene_and_the_others_go_on() {
 
     let status = healthy.step(20, None).await.unwrap();
     assert_eq!((status.state, status.steps), (State::Paused, 20));
-    registry.shutdown();
+    registry.shutdown().await;
 }

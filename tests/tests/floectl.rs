@@ -92,7 +92,7 @@ async fn floectl_errors_name_what_was_wrong() {
     assert!(e.contains("particle_spacing") && e.ends_with("(InvalidArgument)"), "{e}");
     // Negative numbers reach the server, which names the field.
     floectl(&url, &["create", "dam_break", "--set", "particle_spacing=0.05"]).await.unwrap();
-    let id = server.registry.list()[0].shared.id.to_string();
+    let id = server.registry.list(&floe_server::auth::Caller::local())[0].shared.id.to_string();
     let e = fails(&["run", &id, "--rtf", "-2"]).await;
     assert!(e.starts_with("real_time_factor") && e.ends_with("(InvalidArgument)"), "{e}");
     let e = fails(&["step", &id, "--until", "-1"]).await;

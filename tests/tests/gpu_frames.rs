@@ -5,6 +5,7 @@
 
 use floe_engine::Simulation;
 use floe_proto::{Decoder, Limits};
+use floe_server::auth::Caller;
 use floe_server::service::options::FrameRequest;
 use floe_server::service::{Registry, SceneSource};
 
@@ -16,7 +17,9 @@ async fn frames_of_a_gpu_scene_decode_within_their_stated_error() {
         Err(e) => return eprintln!("SKIPPED frames_of_a_gpu_scene_decode_within_their_stated_error: no GPU ({e})"),
     };
     let registry = Registry::new(Default::default(), backend.factory);
-    let scene = registry.create(SceneSource::Preset("dam_break".into()), &["particle_spacing=0.05".into()]).unwrap();
+    let local = Caller::local();
+    let preset = SceneSource::Preset("dam_break".into());
+    let scene = registry.create(&local, preset, vec!["particle_spacing=0.05".into()]).await.unwrap();
     assert_eq!(scene.shared.backend, "gpu");
     scene.step(25, None).await.unwrap();
     let request = FrameRequest {
@@ -25,8 +28,8 @@ async fn frames_of_a_gpu_scene_decode_within_their_stated_error() {
         mode: Some("identity".into()),
         ..FrameRequest::default()
     };
-    let mut frames = registry.subscribe(scene.shared.id, &request).unwrap();
-    let frame = frames.next().await.unwrap().unwrap();
+    let mut frames = registry.subscribe(&local, scene.shared.id, &request).unwrap().spawn(|f| f);
+    let frame = frames.recv().await.unwrap().unwrap();
     let decoded = Decoder::new(Limits::default()).decode(&frame.data).unwrap();
     // The scene's exact state, through a snapshot restored on the CPU backend.
     let state = Simulation::restore(&scene.save().await.unwrap()).unwrap().read(&["velocity"]);
@@ -42,5 +45,5 @@ async fn frames_of_a_gpu_scene_decode_within_their_stated_error() {
     assert!(worst <= max_error * 1.01, "decoded positions off by {worst} m; the header states {max_error} m");
     let v = decoded.named("velocity").expect("velocity channel");
     assert_eq!(v.len(), state.positions.len());
-    registry.shutdown();
+    registry.shutdown().await;
 }

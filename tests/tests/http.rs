@@ -91,7 +91,7 @@ async fn rest_mirrors_the_control_calls() {
     assert_eq!((s, v["state"].as_str()), (StatusCode::OK, Some("deleted")));
     let (s, _) = call(&app, "GET", &format!("/api/v1/scenes/{id}"), None).await;
     assert_eq!(s, StatusCode::NOT_FOUND);
-    registry.shutdown();
+    registry.shutdown().await;
 }
 
 /// Bodies, ids and query parameters axum cannot parse get the API's JSON errors too.
@@ -122,17 +122,16 @@ async fn malformed_requests_get_json_errors_naming_what_was_wrong() {
     assert_eq!(res.status(), StatusCode::UNSUPPORTED_MEDIA_TYPE);
     let v: serde_json::Value = serde_json::from_slice(&res.into_body().collect().await.unwrap().to_bytes()).unwrap();
     assert!(error(&v).contains("Content-Type: application/json"), "{v}");
-    registry.shutdown();
+    registry.shutdown().await;
 }
 
 #[tokio::test]
 async fn websocket_streams_frames_and_survives_garbage() {
     let mut server = common::TestServer::start().await;
     let addr = server.http;
-    let scene = server
-        .registry
-        .create(floe_server::service::SceneSource::Preset("dam_break".into()), &["particle_spacing=0.05".into()])
-        .unwrap();
+    let preset = floe_server::service::SceneSource::Preset("dam_break".into());
+    let local = floe_server::auth::Caller::local();
+    let scene = server.registry.create(&local, preset, vec!["particle_spacing=0.05".into()]).await.unwrap();
     // A channel the scene lacks is refused at the handshake, naming those it has.
     let url = format!("ws://{addr}/api/v1/scenes/{}/ws?channels=velocity,temperature", scene.shared.id);
     match tokio_tungstenite::connect_async(url).await {

@@ -3,6 +3,7 @@
 
 import { OrbitCamera } from './camera.js';
 import { DEFAULT_CHANNELS, NONE, colourModes, colourValues, valueRange } from './colour.js';
+import { Credentials } from './credentials.js';
 import { bindKeys, fillHelp } from './help.js';
 import { acting, showError } from './notify.js';
 import { wallLines } from './outline.js';
@@ -13,11 +14,15 @@ import { Replay } from './replay.js';
 import { sliders } from './tunables.js';
 
 const $ = (id) => document.getElementById(id);
+const credentials = new Credentials(sessionStorage);
+const askedScene = credentials.readFragment(location, history);
 const api = (path, init) => fetch(`/api/v1${path}`, {
-  headers: { 'content-type': 'application/json' }, ...init,
+  headers: { 'content-type': 'application/json', ...credentials.headers() }, ...init,
 }).then(async (r) => {
   const body = await r.json().catch(() => ({}));
-  if (!r.ok) throw new Error(body.error ?? `${r.status} ${r.statusText}`);
+  const why = body.error ?? `${r.status} ${r.statusText}`;
+  if (r.status === 401) throw new Error(`${why} Open this page as ${location.origin}/#token=YOUR_TOKEN`);
+  if (!r.ok) throw new Error(why);
   return body;
 });
 const post = (path, body) => api(path, { method: 'POST', body: JSON.stringify(body ?? {}) });
@@ -67,7 +72,8 @@ async function refreshScenes(select, reopen = false) {
   if (replay.active) return;
   const sel = $('scenes');
   sel.replaceChildren(...scenes.map((s) => new Option(`${s.scene_id}: ${s.name} (${s.particles} particles)`, s.scene_id)));
-  const id = select ?? (scenes.some((s) => s.scene_id === state.scene?.scene_id) ? state.scene.scene_id : scenes[0]?.scene_id);
+  const known = (i) => scenes.some((s) => s.scene_id === i);
+  const id = [select, state.scene?.scene_id].find(known) ?? scenes[0]?.scene_id;
   if (id != null) {
     sel.value = id;
     if (reopen || id !== state.scene?.scene_id) open(scenes.find((s) => s.scene_id === Number(id)));
@@ -138,7 +144,7 @@ function connect() {
   const url = new URL(`/api/v1/scenes/${state.scene.scene_id}/ws`, location.href);
   url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
   url.search = new URLSearchParams({ channels: channel === NONE ? '' : channel, max_fps: '60' });
-  const ws = new WebSocket(url);
+  const ws = new WebSocket(url, credentials.protocols());
   ws.binaryType = 'arraybuffer';
   state.socket = ws;
   ws.onmessage = (e) => {
@@ -482,4 +488,4 @@ requestAnimationFrame(frame);
 rtf();
 setView('surface');
 api('/presets').then((p) => $('preset').replaceChildren(...p.map((n) => new Option(n, n)))).catch((e) => showError('create-error', e.message));
-refreshScenes().catch((e) => banner(`Cannot reach the server: ${e.message}`));
+refreshScenes(askedScene).catch((e) => banner(`Cannot reach the server: ${e.message}`));

@@ -45,8 +45,9 @@ pub trait Backend: Stages + Send {
     /// the order each first ran.
     fn passes_run(&self) -> Vec<&'static str>;
 
-    /// Per kernel: label, total device seconds and dispatches so far, when the
-    /// backend was asked to profile (`floe bench --profile`); empty otherwise.
+    /// Per pass or kernel: label, total seconds and calls so far. The CPU backend
+    /// always reports wall time per pass; a GPU reports device time per kernel when
+    /// asked to profile (`floe bench --profile`), and nothing otherwise.
     fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
         Vec::new()
     }

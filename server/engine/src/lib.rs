@@ -6,25 +6,30 @@
 //! How a scene flows through it:
 //! ```text
 //! scene (TOML/JSON/preset + overrides) ──scene::load──► Scene (validated)
-//!     ──Model::build──► Model (mass, kernel, c, particles, walls)
-//!     ──CpuBackend::new──► Backend ──Simulation::step──► StepReport | Halted
+//!     ──Model::build (core, scheme, modules)──► Model (materials, attributes, plan, channels)
+//!     ──CpuBackend::new──► Backend ──Simulation::step (the scheme's stages)──► StepReport | Halted
 //!     ──Simulation::read──► Particles ──floe_proto::export──► VTK / CSV
 //! ```
 //!
 //! Modules:
 //! - [`scene`]: the scene spec (one serde definition, JSON Schema), presets,
-//!   loading with overrides, validation with field paths.
-//! - [`model`]: a scene resolved into the numbers a backend steps.
+//!   loading with overrides, validation with field paths, live settings.
+//! - [`model`]: a scene resolved into what a backend steps, built by the core, the
+//!   scheme and the scene's modules through a `ModelBuilder`.
+//! - [`attrs`], [`materials`], [`plan`], [`channels`]: the core's declarations: typed
+//!   attribute columns, the material table, the pass plan, the channels clients stream.
+//! - [`schemes`]: pressure solvers (WCSPH) driving the stages of a step; [`modules`]:
+//!   the physics modules (the fluid) and their registry.
 //! - [`math`], [`kernel`], [`neighbors`], [`periodic`]: numeric types, SPH kernels, the
 //!   uniform grid, periodic domains (minimum-image pairs).
-//! - [`eos`], [`viscosity`], [`boundary`], [`sampling`]: the physics pieces of
-//!   the fluid module (each names its paper and equation).
-//! - [`timestep`], [`guard`]: adaptive dt and the stability guard.
+//! - [`boundary`], [`sampling`]: wall particles and constraints, particle lattices.
+//! - [`clock`], [`timestep`], [`guard`]: the step control, adaptive dt and the
+//!   stability guard with the modules' bounds.
 //! - [`backend`], [`cpu`]: the backend trait and the rayon CPU backend.
-//! - [`simulation`], [`summary`]: a running scene and its run summary.
+//! - [`simulation`], [`summary`]: a running scene, its measures and run summary.
 //! - [`snapshot`]: a scene's full state as bytes, restored bit for bit.
-//! - [`channels`]: the per-particle quantities frames and exports carry.
-//! - [`validation`]: reference solutions and error measures.
+//! - [`quantize`]: positions on a frame's quantisation grid.
+//! - [`validation`]: reference solutions, error measures, the case registry.
 
 pub mod attrs;
 pub mod backend;

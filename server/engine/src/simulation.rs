@@ -314,12 +314,26 @@ impl Simulation {
         Self::restore_on(bytes, &cpu_backend)
     }
 
-    /// Rebuilds a scene from a snapshot, on the backend `make` builds.
-    pub fn restore_on(bytes: &[u8], make: &BackendFactory) -> Result<Self, SnapshotError> {
+    /// The scene a snapshot is of, read without building anything: a caller can check
+    /// it (its size, that it is the scene expected) before [`Simulation::restore_on`]
+    /// allocates its particles.
+    pub fn snapshot_scene(bytes: &[u8]) -> Result<Scene, SnapshotError> {
+        Ok(Self::read_scene(bytes)?.0)
+    }
+
+    /// The scene of a snapshot, and the snapshot's parts.
+    fn read_scene(bytes: &[u8]) -> Result<(Scene, snapshot::Parts), SnapshotError> {
         let bad = |m: String| SnapshotError::Malformed(m);
         let parts = snapshot::read(bytes)?;
         let value: serde_json::Value = serde_json::from_str(&parts.scene).map_err(|e| bad(format!("scene: {e}")))?;
         let scene = crate::scene::load::from_value(value).map_err(|e| bad(format!("scene: {e}")))?;
+        Ok((scene, parts))
+    }
+
+    /// Rebuilds a scene from a snapshot, on the backend `make` builds.
+    pub fn restore_on(bytes: &[u8], make: &BackendFactory) -> Result<Self, SnapshotError> {
+        let bad = |m: String| SnapshotError::Malformed(m);
+        let (scene, parts) = Self::read_scene(bytes)?;
         let mut sim = Self::new(scene, make).map_err(|e| bad(format!("scene: {e}")))?;
         let saved: SavedStats = serde_json::from_str(&parts.stats).map_err(|e| bad(format!("statistics: {e}")))?;
         sim.stats = RunStats { dt_sum: saved.dt_sum, compression_sum: saved.compression_sum, ..saved.stats };

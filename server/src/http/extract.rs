@@ -51,9 +51,9 @@ impl<S: Send + Sync> FromRequestParts<S> for SceneId {
     type Rejection = ApiError;
 
     async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
-        let Path(id) = Path::<u64>::from_request_parts(parts, state)
-            .await
-            .map_err(|e| ApiError(StatusCode::BAD_REQUEST, format!("scene id: {}", e.body_text())))?;
+        let Path(id) = Path::<u64>::from_request_parts(parts, state).await.map_err(|e| {
+            ApiError(StatusCode::BAD_REQUEST, format!("scene id: {}", crate::echo::cap(&e.body_text())))
+        })?;
         Ok(SceneId(id))
     }
 }
@@ -69,5 +69,19 @@ impl<S: Send + Sync, T: DeserializeOwned> FromRequestParts<S> for Params<T> {
         let Query(value) =
             Query::from_request_parts(parts, state).await.map_err(|e| ApiError(e.status(), e.body_text()))?;
         Ok(Params(value))
+    }
+}
+
+/// The caller [`super::guard::guard`] authenticated; a request that did not pass the
+/// guard is refused rather than trusted.
+#[derive(Debug, Clone)]
+pub struct Who(pub crate::auth::Caller);
+
+impl<S: Send + Sync> FromRequestParts<S> for Who {
+    type Rejection = ApiError;
+
+    async fn from_request_parts(parts: &mut Parts, _: &S) -> Result<Self, ApiError> {
+        let caller = parts.extensions.get::<crate::auth::Caller>().cloned();
+        caller.map(Who).ok_or_else(|| ApiError(StatusCode::UNAUTHORIZED, "the call was not authenticated".into()))
     }
 }

@@ -13,32 +13,45 @@
 //! | POST | `/api/v1/scenes/{id}/parameters` | `{"overrides": ["gravity=[0,-1,0]"]}`: change tunable settings |
 //! | GET, PUT | `/api/v1/scenes/{id}/snapshot` | the full state as bytes; restore a paused scene from them |
 //! | GET | `/api/v1/scenes/{id}/ws` | WebSocket: binary frames, JSON control and events |
+//! | POST | `/api/v1/scenes/{id}/checkpoint` | write a checkpoint now |
+//! | GET, POST | `/api/v1/scenes/{id}/shares` | share link ids; create a read-only share link (its token, once) |
+//! | DELETE | `/api/v1/scenes/{id}/shares/{share_id}` | revoke a share link |
+//! | GET | `/api/v1/me` | the calling user: quotas and usage |
+//! | GET | `/api/v1/users` | admin: every user with quotas and usage |
+//! | PUT, DELETE | `/api/v1/users/{name}/quotas/{quota}` | admin: `{"value": 4}` sets a user's quota; DELETE clears it |
+//! | GET | `/metrics` | admin: Prometheus metrics |
 //!
-//! Errors are `{"error": "..."}` with 400 (bad request, naming the field), 404
-//! (unknown scene), 409 (wrong state), 413 (body too large), 415 (a body that is not
-//! `application/json`) or 429 (server full); malformed bodies, ids and query parameters
-//! included ([`extract`]).
+//! Calls need `authorization: Bearer <token>` on a server with users ([`guard`]).
+//! Errors are `{"error": "..."}` with 400 (bad request, naming the field), 401 (no or a
+//! bad token), 403 (admin only; steering through a share link), 404 (unknown scene, or
+//! another user's), 405 (method), 409 (wrong state), 413 (body too large), 414 (URI too
+//! long), 415 (a body that is not `application/json`), 429 (server full, a quota reached)
+//! or 431 (headers too large); malformed bodies, ids and query parameters included
+//! ([`extract`]).
 
-use crate::service::{MAX_STEPS_PER_REQUEST, Shared, State};
+use crate::auth::Caller;
+use crate::service::{MAX_STEPS_PER_REQUEST, Need, Shared, State};
 use crate::service::{Registry, SceneSource, ServiceError};
 use axum::extract::{DefaultBodyLimit, State as AxState};
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
-use axum::{Json, Router};
+use axum::{Json, Router, middleware};
 use floe_engine::scene::load::Format;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 
 mod extract;
+pub mod guard;
+mod lab;
 
-pub use extract::{Body, Params, SceneId};
+pub use extract::{Body, Params, SceneId, Who};
 
 /// Largest request body (bytes), as for gRPC.
 pub const MAX_BODY_BYTES: usize = crate::serve::MAX_REQUEST_BYTES;
 
-/// The router: API plus the viewer's files from `web_root`.
+/// The router: API, metrics, and the viewer's files from `web_root`.
 pub fn router(registry: Arc<Registry>, web_root: std::path::PathBuf) -> Router {
     let api = Router::new()
         .route("/presets", get(presets))
@@ -52,10 +65,17 @@ pub fn router(registry: Arc<Registry>, web_root: std::path::PathBuf) -> Router {
         .route("/scenes/{id}/snapshot", get(snapshot).put(restore))
         .route("/scenes/{id}/parameters", post(parameters))
         .route("/scenes/{id}/ws", get(crate::ws::upgrade))
+        .merge(lab::routes())
         .fallback(|| async { ApiError(StatusCode::NOT_FOUND, "no such API route".into()) })
-        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
+        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES));
+    let guarded = Router::new()
+        .nest("/api/v1", api)
+        .route("/metrics", get(lab::metrics))
+        .route_layer(middleware::from_fn_with_state(registry.clone(), guard::guard))
         .with_state(registry);
-    Router::new().nest("/api/v1", api).fallback_service(tower_http::services::ServeDir::new(web_root))
+    guarded
+        .fallback_service(tower_http::services::ServeDir::new(web_root))
+        .layer(middleware::from_fn(guard::bounded_head_and_json_errors))
 }
 
 /// An error response: a status and a message naming what was wrong.
@@ -64,19 +84,32 @@ pub struct ApiError(pub StatusCode, pub String);
 
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
-        (self.0, Json(serde_json::json!({ "error": self.1 }))).into_response()
+        let body = Json(serde_json::json!({ "error": crate::echo::bounded(&self.1) }));
+        if self.0 == StatusCode::UNAUTHORIZED {
+            return (self.0, [(axum::http::header::WWW_AUTHENTICATE, "Bearer")], body).into_response();
+        }
+        (self.0, body).into_response()
     }
 }
 
 impl From<ServiceError> for ApiError {
     fn from(e: ServiceError) -> Self {
         let code = match e {
-            ServiceError::NotFound(_) => StatusCode::NOT_FOUND,
+            ServiceError::NotFound(_) | ServiceError::Missing(_) => StatusCode::NOT_FOUND,
             ServiceError::InvalidArgument(_) => StatusCode::BAD_REQUEST,
             ServiceError::FailedPrecondition(_) => StatusCode::CONFLICT,
             ServiceError::ResourceExhausted(_) => StatusCode::TOO_MANY_REQUESTS,
+            ServiceError::PermissionDenied(_) => StatusCode::FORBIDDEN,
+            ServiceError::Unavailable(_) => StatusCode::SERVICE_UNAVAILABLE,
+            ServiceError::Unauthenticated(_) => StatusCode::UNAUTHORIZED,
         };
         ApiError(code, e.to_string())
+    }
+}
+
+impl From<crate::service::CommandError> for ApiError {
+    fn from(e: crate::service::CommandError) -> Self {
+        ServiceError::from(e).into()
     }
 }
 
@@ -89,6 +122,8 @@ pub struct SceneView {
     pub scene_id: u64,
     /// Name.
     pub name: String,
+    /// The user who created it.
+    pub owner: String,
     /// `paused`, `running`, `halted` or `deleted`.
     pub state: &'static str,
     /// Simulated time (s).
@@ -205,6 +240,7 @@ impl SceneView {
         Self {
             scene_id: shared.id,
             name: shared.name.clone(),
+            owner: shared.owner.clone(),
             state: state_name(s.state),
             sim_time: s.time,
             steps: s.steps,
@@ -265,8 +301,8 @@ async fn presets() -> Json<Vec<&'static str>> {
     Json(floe_engine::scene::presets::names())
 }
 
-async fn list(AxState(r): AxState<Arc<Registry>>) -> Json<Vec<SceneView>> {
-    Json(r.list().iter().map(|h| SceneView::of(&h.shared)).collect())
+async fn list(AxState(r): AxState<Arc<Registry>>, Who(who): Who) -> Json<Vec<SceneView>> {
+    Json(r.list(&who).iter().map(|h| SceneView::of(&h.shared)).collect())
 }
 
 /// `POST /scenes` body.
@@ -283,6 +319,7 @@ struct CreateBody {
 
 async fn create(
     AxState(r): AxState<Arc<Registry>>,
+    Who(who): Who,
     Body(b): Body<CreateBody>,
 ) -> Result<(StatusCode, Json<SceneView>), ApiError> {
     let source = match (b.preset, b.document) {
@@ -294,7 +331,7 @@ async fn create(
                 Some(other) => {
                     return Err(ApiError(
                         StatusCode::BAD_REQUEST,
-                        format!("document_format: must be \"toml\" or \"json\", got {other:?}"),
+                        format!("document_format: must be \"toml\" or \"json\", got {:?}", crate::echo::cap(other)),
                     ));
                 }
             };
@@ -302,24 +339,25 @@ async fn create(
         }
         _ => return Err(ApiError(StatusCode::BAD_REQUEST, "give exactly one of \"preset\" and \"document\"".into())),
     };
-    let handle = tokio::task::spawn_blocking(move || r.create(source, &b.overrides))
-        .await
-        .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, e.to_string()))??;
+    let handle = r.create(&who, source, b.overrides).await?;
     Ok((StatusCode::CREATED, Json(SceneView::of(&handle.shared))))
 }
 
-async fn scene(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> ApiResult<SceneView> {
-    Ok(Json(SceneView::of(&r.get(id)?.shared)))
+/// The view of a scene the caller may watch.
+fn view(r: &Registry, who: &Caller, id: u64) -> ApiResult<SceneView> {
+    Ok(Json(SceneView::of(&r.get(who, id, Need::Watch)?.shared)))
 }
 
-async fn stats(state: AxState<Arc<Registry>>, id: SceneId) -> ApiResult<SceneView> {
-    scene(state, id).await
+async fn scene(AxState(r): AxState<Arc<Registry>>, Who(who): Who, SceneId(id): SceneId) -> ApiResult<SceneView> {
+    view(&r, &who, id)
 }
 
-async fn delete(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> ApiResult<SceneView> {
-    let handle = tokio::task::spawn_blocking(move || r.delete(id))
-        .await
-        .map_err(|e| ApiError(StatusCode::INTERNAL_SERVER_ERROR, e.to_string()))??;
+async fn stats(state: AxState<Arc<Registry>>, who: Who, id: SceneId) -> ApiResult<SceneView> {
+    scene(state, who, id).await
+}
+
+async fn delete(AxState(r): AxState<Arc<Registry>>, Who(who): Who, SceneId(id): SceneId) -> ApiResult<SceneView> {
+    let handle = r.delete(&who, id).await?;
     Ok(Json(SceneView::of(&handle.shared)))
 }
 
@@ -351,12 +389,13 @@ impl StepBody {
 
 async fn step(
     AxState(r): AxState<Arc<Registry>>,
+    Who(who): Who,
     SceneId(id): SceneId,
     Body(b): Body<StepBody>,
 ) -> ApiResult<SceneView> {
     let (steps, until) = b.checked().map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))?;
-    let h = r.get(id)?;
-    h.step(steps, until).await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
+    let h = r.get(&who, id, Need::Steer)?;
+    h.step(steps, until).await?;
     Ok(Json(SceneView::of(&h.shared)))
 }
 
@@ -369,66 +408,68 @@ pub struct RunBody {
     pub real_time_factor: f64,
 }
 
+impl RunBody {
+    /// Checks the body: the real-time factor.
+    pub fn checked(&self) -> Result<f64, String> {
+        let rtf = self.real_time_factor;
+        if rtf.is_finite() && rtf >= 0.0 { Ok(rtf) } else { Err(format!("real_time_factor: must be >= 0, got {rtf}")) }
+    }
+}
+
 async fn run(
     AxState(r): AxState<Arc<Registry>>,
+    Who(who): Who,
     SceneId(id): SceneId,
     body: Option<Body<RunBody>>,
 ) -> ApiResult<SceneView> {
-    let rtf = body.map(|b| b.0.real_time_factor).unwrap_or(0.0);
-    if !(rtf.is_finite() && rtf >= 0.0) {
-        return Err(ApiError(StatusCode::BAD_REQUEST, format!("real_time_factor: must be >= 0, got {rtf}")));
-    }
-    let h = r.get(id)?;
-    h.run(rtf).await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
-    Ok(Json(SceneView::of(&h.shared)))
+    let rtf = body.map(|b| b.0).unwrap_or_default().checked().map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))?;
+    r.run(&who, id, rtf).await?;
+    view(&r, &who, id)
 }
 
-async fn pause(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> ApiResult<SceneView> {
-    let h = r.get(id)?;
-    h.pause().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
-    Ok(Json(SceneView::of(&h.shared)))
+async fn pause(AxState(r): AxState<Arc<Registry>>, Who(who): Who, SceneId(id): SceneId) -> ApiResult<SceneView> {
+    r.pause(&who, id).await?;
+    view(&r, &who, id)
 }
 
-async fn snapshot(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> Result<Response, ApiError> {
-    let state = r.get(id)?.save().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
+async fn snapshot(
+    AxState(r): AxState<Arc<Registry>>,
+    Who(who): Who,
+    SceneId(id): SceneId,
+) -> Result<Response, ApiError> {
+    let state = r.get(&who, id, Need::Steer)?.save().await?;
     Ok(([(axum::http::header::CONTENT_TYPE, "application/octet-stream")], state).into_response())
 }
 
 async fn restore(
     AxState(r): AxState<Arc<Registry>>,
+    Who(who): Who,
     SceneId(id): SceneId,
     body: axum::body::Bytes,
 ) -> ApiResult<SceneView> {
-    let h = r.get(id)?;
-    h.restore(body.to_vec()).await.map_err(|e| match e {
-        crate::service::CommandError::BadSnapshot(_) => ApiError(StatusCode::BAD_REQUEST, e.to_string()),
-        _ => ApiError(StatusCode::CONFLICT, e.to_string()),
-    })?;
-    Ok(Json(SceneView::of(&h.shared)))
+    r.restore(&who, id, body.to_vec()).await?;
+    view(&r, &who, id)
 }
 
 /// `POST /scenes/{id}/parameters` body.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct ParametersBody {
-    overrides: Vec<String>,
+pub struct ParametersBody {
+    /// `key=value` overrides of tunable settings.
+    pub overrides: Vec<String>,
 }
 
 async fn parameters(
     AxState(r): AxState<Arc<Registry>>,
+    Who(who): Who,
     SceneId(id): SceneId,
     Body(b): Body<ParametersBody>,
 ) -> ApiResult<SceneView> {
-    let h = r.get(id)?;
-    h.set_parameters(b.overrides).await.map_err(|e| match e {
-        crate::service::CommandError::BadParameter(m) => ApiError(StatusCode::BAD_REQUEST, m),
-        _ => ApiError(StatusCode::CONFLICT, e.to_string()),
-    })?;
-    Ok(Json(SceneView::of(&h.shared)))
+    r.set_parameters(&who, id, b.overrides).await?;
+    view(&r, &who, id)
 }
 
-async fn reset(AxState(r): AxState<Arc<Registry>>, SceneId(id): SceneId) -> ApiResult<SceneView> {
-    let h = r.get(id)?;
-    h.reset().await.map_err(|e| ApiError(StatusCode::CONFLICT, e.to_string()))?;
-    Ok(Json(SceneView::of(&h.shared)))
+async fn reset(AxState(r): AxState<Arc<Registry>>, Who(who): Who, SceneId(id): SceneId) -> ApiResult<SceneView> {
+    r.reset(&who, id).await?;
+    view(&r, &who, id)
 }

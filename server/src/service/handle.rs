@@ -7,7 +7,7 @@ use super::worker::Worker;
 use floe_engine::Simulation;
 use floe_engine::quantize::PositionGrid;
 use floe_engine::simulation::BackendFactory;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
 use tokio::sync::oneshot;
@@ -37,6 +37,8 @@ pub(super) enum Command {
     Step {
         steps: u64,
         until: Option<f64>,
+        /// Set when the caller gave up: the worker stops at the next step.
+        abandoned: Arc<AtomicBool>,
         reply: oneshot::Sender<Result<Status, CommandError>>,
     },
     Run {
@@ -56,13 +58,34 @@ pub(super) enum Command {
         reply: oneshot::Sender<Result<Status, CommandError>>,
     },
     Save {
-        reply: oneshot::Sender<Vec<u8>>,
+        reply: oneshot::Sender<Saved>,
     },
     Restore {
         state: Vec<u8>,
         reply: oneshot::Sender<Result<Status, CommandError>>,
     },
     Delete,
+}
+
+/// A scene's complete state and where it was taken.
+#[derive(Debug)]
+pub struct Saved {
+    /// The snapshot (see `floe_engine::snapshot`).
+    pub state: Vec<u8>,
+    /// Steps taken.
+    pub step: u64,
+    /// Simulated time (s).
+    pub time: f64,
+}
+
+/// Sets a flag when dropped: a request's future dropped by a transport whose
+/// client went away (a cancelled call, a closed connection) stops its work.
+struct Abandon(Arc<AtomicBool>);
+
+impl Drop for Abandon {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
 }
 
 /// The server's handle on a scene.
@@ -78,9 +101,9 @@ pub struct SceneHandle {
 pub const MAX_STEPS_PER_REQUEST: u64 = 1_000_000;
 
 impl SceneHandle {
-    /// Starts the worker of a built simulation.
-    pub fn spawn(id: u64, sim: Simulation, backend: Arc<BackendFactory>) -> Self {
-        let shared = Arc::new(Shared::new(id, &sim));
+    /// Starts the worker of a built (or restored) simulation owned by `owner`.
+    pub fn spawn(id: u64, owner: String, sim: Simulation, backend: Arc<BackendFactory>) -> Self {
+        let shared = Arc::new(Shared::new(id, owner, &sim));
         let (tx, rx) = mpsc::channel();
         let worker_shared = shared.clone();
         let worker = std::thread::Builder::new()
@@ -101,9 +124,13 @@ impl SceneHandle {
         rx.await.map_err(|_| CommandError::Gone)
     }
 
-    /// Steps a paused scene `steps` times, or until simulated time `until` (s).
+    /// Steps a paused scene `steps` times, or until simulated time `until` (s) but
+    /// at most [`MAX_STEPS_PER_REQUEST`] steps. Dropping the future (the caller went
+    /// away) stops the stepping at the next step.
     pub async fn step(&self, steps: u64, until: Option<f64>) -> Result<Status, CommandError> {
-        self.request(|reply| Command::Step { steps, until, reply }).await?
+        let abandon = Abandon(Arc::new(AtomicBool::new(false)));
+        let abandoned = abandon.0.clone();
+        self.request(|reply| Command::Step { steps, until, abandoned, reply }).await?
     }
 
     /// Runs continuously at `real_time_factor` (0: as fast as possible).
@@ -128,6 +155,11 @@ impl SceneHandle {
 
     /// The scene's complete state (see `floe_engine::snapshot`).
     pub async fn save(&self) -> Result<Vec<u8>, CommandError> {
+        Ok(self.save_at().await?.state)
+    }
+
+    /// The scene's complete state with the step and time it was taken at.
+    pub async fn save_at(&self) -> Result<Saved, CommandError> {
         self.request(|reply| Command::Save { reply }).await
     }
 

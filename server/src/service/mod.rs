@@ -1,17 +1,30 @@
-//! The in-process service API: the scenes on this server and what can be done
-//! to them. gRPC (and, next, REST and WebSocket) are thin adapters over it.
+//! The in-process service API: the scenes on this server, who may do what to
+//! them, and what survives a restart. gRPC, REST and WebSocket are thin adapters
+//! over it, so every transport gets the same ownership checks and quotas.
 //!
 //! - [`handle`]: the server's handle on one scene; commands to its worker.
 //! - [`shared`]: what a scene's worker shares with the server's tasks (status, published state, events).
 //! - [`worker`]: a scene's worker thread, which owns its simulation and steps it.
 //! - [`frames`]: frame subscriptions with latest-frame semantics and shared encoding.
+//! - [`pump`]: moves a subscription's frames to a transport until either side ends.
+//! - `control`: the calls with consequences beyond the scene (quotas, checkpoints,
+//!   share links, users); `persist`: bringing scenes back at start-up, checkpoints
+//!   while running, and shutdown.
 
+mod control;
 pub mod frames;
 pub mod handle;
 pub mod options;
+mod persist;
+pub mod pump;
 pub mod shared;
 mod worker;
 
+use crate::auth::{Access, AuthMode, Caller};
+use crate::metrics::{Metrics, SceneSample, SceneSamples};
+use crate::quota::{Limit, QuotaSet, Quotas, StreamPermit};
+use crate::store::Store;
+pub use control::{UserView, require_admin};
 use floe_engine::Simulation;
 use floe_engine::scene::load::{self, Format};
 use floe_engine::simulation::BackendFactory;
@@ -22,32 +35,52 @@ pub use shared::{Event, Published, Shared, State, Status};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, RwLock};
+use std::time::Duration;
 
 /// Why a request failed; each transport maps these to its own codes.
 #[derive(Debug, thiserror::Error)]
 pub enum ServiceError {
-    /// No scene has this id.
+    /// No scene has this id, or none the caller may see (the same answer, so a
+    /// scene's existence does not leak to other users).
     #[error("no scene with id {0}")]
     NotFound(u64),
+    /// Something else named in the message does not exist (a user, a share link).
+    #[error("{0}")]
+    Missing(String),
     /// The request or the scene it carries is invalid; the message names the field.
     #[error("{0}")]
     InvalidArgument(String),
     /// The scene cannot do that in its current state.
     #[error("{0}")]
     FailedPrecondition(String),
-    /// A server limit was reached.
+    /// A server limit or a quota was reached; the message names it and its value.
     #[error("{0}")]
     ResourceExhausted(String),
+    /// The caller may not do this (an admin-only call, or steering through a share link).
+    #[error("{0}")]
+    PermissionDenied(String),
+    /// The database failed; the request may be retried.
+    #[error("{0}")]
+    Unavailable(String),
+    /// No valid credential.
+    #[error("{0}")]
+    Unauthenticated(#[from] crate::auth::AuthError),
 }
 
-/// At most the first 64 characters of `text`, for echoing client input in an error
-/// message without letting a huge input make a huge message.
-pub fn clip(text: &str) -> std::borrow::Cow<'_, str> {
-    const MAX: usize = 64;
-    match text.char_indices().nth(MAX) {
-        Some((at, _)) => format!("{}... ({} bytes)", &text[..at], text.len()).into(),
-        None => text.into(),
+impl From<CommandError> for ServiceError {
+    fn from(e: CommandError) -> Self {
+        match e {
+            CommandError::BadParameter(m) => ServiceError::InvalidArgument(m),
+            CommandError::BadSnapshot(_) => ServiceError::InvalidArgument(e.to_string()),
+            _ => ServiceError::FailedPrecondition(e.to_string()),
+        }
     }
+}
+
+/// A database failure as a service error, logged.
+fn unavailable(e: impl std::fmt::Display) -> ServiceError {
+    tracing::error!("{e}");
+    ServiceError::Unavailable(format!("the server's database failed: {e}"))
 }
 
 /// Where a new scene comes from.
@@ -77,6 +110,8 @@ pub struct Limits {
 pub const DEFAULT_MAX_SCENES: u64 = 64;
 /// Default of [`Limits::max_particles`].
 pub const DEFAULT_MAX_PARTICLES: u64 = 4_000_000;
+/// Default of [`Options::checkpoint_every`] (s).
+pub const DEFAULT_CHECKPOINT_SECONDS: u64 = 60;
 
 impl Default for Limits {
     fn default() -> Self {
@@ -84,99 +119,309 @@ impl Default for Limits {
     }
 }
 
+/// How a registry is set up.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Server limits.
+    pub limits: Limits,
+    /// Server-wide quota defaults.
+    pub quotas: QuotaSet,
+    /// How calls are authenticated.
+    pub auth: AuthMode,
+    /// Origins besides the server's own that may open a WebSocket.
+    pub origins: Vec<String>,
+    /// Wall time a scene runs between periodic checkpoints.
+    pub checkpoint_every: Duration,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            limits: Limits::default(),
+            quotas: QuotaSet::default(),
+            auth: AuthMode::SingleUser,
+            origins: Vec::new(),
+            checkpoint_every: Duration::from_secs(DEFAULT_CHECKPOINT_SECONDS),
+        }
+    }
+}
+
+/// What a call does to a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Need {
+    /// Reads it or watches its frames and events: its owner, an admin or a share link.
+    Watch,
+    /// Changes, steps, snapshots or deletes it: its owner or an admin.
+    Steer,
+}
+
 #[derive(Debug)]
 struct Entry {
     handle: Arc<SceneHandle>,
     cache: Arc<FrameCache>,
+    /// Serialises this scene's checkpoints; holds the wall time it has run since the last one.
+    checkpoint: Arc<tokio::sync::Mutex<Duration>>,
 }
 
-/// Every scene on this server.
+/// Every scene on a server, shared with the metrics.
+#[derive(Debug, Default)]
+pub struct Scenes(RwLock<BTreeMap<u64, Entry>>);
+
+impl SceneSamples for Scenes {
+    fn samples(&self) -> Vec<SceneSample> {
+        let scenes = self.0.read().expect("lock");
+        scenes
+            .values()
+            .map(|e| {
+                let sh = &e.handle.shared;
+                let s = sh.status();
+                SceneSample {
+                    id: sh.id,
+                    owner: sh.owner.clone(),
+                    name: sh.name.clone(),
+                    steps: s.steps,
+                    steps_per_second: s.steps_per_second,
+                    particles: sh.particles as u64,
+                    sim_time: s.time,
+                    subscribers: u64::from(sh.subscribers.load(Ordering::Relaxed)),
+                    frames_published: sh.published.load(Ordering::Relaxed),
+                    frame_bytes: sh.frame_bytes.load(Ordering::Relaxed),
+                    dropped_frames: sh.dropped_frames(),
+                    running: s.state == State::Running,
+                    passes: sh.passes.lock().expect("lock").clone(),
+                }
+            })
+            .collect()
+    }
+}
+
+/// Every scene on this server, who may use them, and what keeps them.
 pub struct Registry {
-    scenes: RwLock<BTreeMap<u64, Entry>>,
+    scenes: Arc<Scenes>,
     next_id: AtomicU64,
-    limits: Limits,
+    options: Options,
     /// Builds each scene's backend (the one `--backend` chose at start-up).
     backend: Arc<BackendFactory>,
+    access: Access,
+    quotas: Arc<Quotas>,
+    metrics: Arc<Metrics>,
+    /// The database and checkpoints; `None` keeps scenes in memory only.
+    store: Option<Store>,
+    /// Serialises the running-scene quota checks with the runs they admit.
+    run_gate: tokio::sync::Mutex<()>,
 }
 
 impl std::fmt::Debug for Registry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Registry").field("scenes", &self.scenes).field("limits", &self.limits).finish()
+        f.debug_struct("Registry").field("scenes", &self.scenes).field("options", &self.options).finish()
     }
 }
 
 impl Registry {
-    /// An empty registry whose scenes run on the backends `backend` builds.
-    pub fn new(limits: Limits, backend: Arc<BackendFactory>) -> Self {
-        Self { scenes: RwLock::new(BTreeMap::new()), next_id: AtomicU64::new(1), limits, backend }
+    /// An empty registry kept in memory only (nothing survives the process), whose
+    /// scenes run on the backends `backend` builds.
+    pub fn new(options: Options, backend: Arc<BackendFactory>) -> Self {
+        Self::with_store(options, backend, None)
     }
 
-    /// Builds a scene and starts its worker. Building samples every particle, so
-    /// call it from a blocking context for large scenes.
-    pub fn create(&self, source: SceneSource, overrides: &[String]) -> Result<Arc<SceneHandle>, ServiceError> {
-        if self.scenes.read().expect("lock").len() >= self.limits.max_scenes {
+    fn with_store(options: Options, backend: Arc<BackendFactory>, store: Option<Store>) -> Self {
+        let scenes = Arc::new(Scenes::default());
+        let metrics = Arc::new(Metrics::new(scenes.clone()));
+        Self {
+            scenes,
+            next_id: AtomicU64::new(1),
+            access: Access::new(options.auth, options.origins.clone()),
+            quotas: Arc::new(Quotas::new(options.quotas, metrics.clone())),
+            metrics,
+            options,
+            backend,
+            store,
+            run_gate: tokio::sync::Mutex::new(()),
+        }
+    }
+
+    /// Authentication.
+    pub fn access(&self) -> &Access {
+        &self.access
+    }
+
+    /// The metrics.
+    pub fn metrics(&self) -> &Metrics {
+        &self.metrics
+    }
+
+    /// Whose quotas a caller's requests count against: the user, or for a share
+    /// link the shared scene's owner.
+    pub fn account(&self, caller: &Caller) -> String {
+        match caller {
+            Caller::User { name, .. } => name.to_string(),
+            Caller::Viewer { scene } => self
+                .scenes
+                .0
+                .read()
+                .expect("lock")
+                .get(scene)
+                .map_or_else(|| format!("share of scene {scene}"), |e| e.handle.shared.owner.clone()),
+        }
+    }
+
+    /// The quotas of `account`: the server's defaults with the user's overrides.
+    pub fn quotas_of(&self, account: &str) -> QuotaSet {
+        self.access.quotas_of(account, self.quotas.defaults())
+    }
+
+    /// Takes one request from the caller's request rate, or refuses it.
+    pub fn admit(&self, caller: &Caller) -> Result<(), ServiceError> {
+        let account = self.account(caller);
+        self.quotas.admit(&account, &self.quotas_of(&account))
+    }
+
+    /// Whether `caller` may do `need` to scene `id`, owned by `owner`. Other users'
+    /// scenes are NotFound, not PermissionDenied: their existence does not leak.
+    fn check(caller: &Caller, id: u64, owner: &str, need: Need) -> Result<(), ServiceError> {
+        match caller {
+            Caller::User { name, admin } if *admin || **name == *owner => Ok(()),
+            Caller::Viewer { scene } if *scene == id => match need {
+                Need::Watch => Ok(()),
+                Need::Steer => {
+                    Err(ServiceError::PermissionDenied("a share link can watch this scene, not steer it".into()))
+                }
+            },
+            _ => Err(ServiceError::NotFound(id)),
+        }
+    }
+
+    fn entry<T>(&self, caller: &Caller, id: u64, need: Need, f: impl FnOnce(&Entry) -> T) -> Result<T, ServiceError> {
+        let scenes = self.scenes.0.read().expect("lock");
+        let e = scenes.get(&id).ok_or(ServiceError::NotFound(id))?;
+        Self::check(caller, id, &e.handle.shared.owner, need)?;
+        Ok(f(e))
+    }
+
+    /// The scene with this id, if `caller` may do `need` to it.
+    pub fn get(&self, caller: &Caller, id: u64, need: Need) -> Result<Arc<SceneHandle>, ServiceError> {
+        self.entry(caller, id, need, |e| e.handle.clone())
+    }
+
+    /// Every scene `caller` may watch, by id.
+    pub fn list(&self, caller: &Caller) -> Vec<Arc<SceneHandle>> {
+        let scenes = self.scenes.0.read().expect("lock");
+        scenes
+            .iter()
+            .filter(|(id, e)| Self::check(caller, **id, &e.handle.shared.owner, Need::Watch).is_ok())
+            .map(|(_, e)| e.handle.clone())
+            .collect()
+    }
+
+    /// Builds a scene owned by the calling user and starts its worker. Its size is
+    /// checked against the server's limit and the user's quota before anything is
+    /// allocated; building runs off the async workers.
+    pub async fn create(
+        &self,
+        caller: &Caller,
+        source: SceneSource,
+        overrides: Vec<String>,
+    ) -> Result<Arc<SceneHandle>, ServiceError> {
+        let Caller::User { name: owner, .. } = caller else {
+            return Err(ServiceError::PermissionDenied("a share link cannot create scenes".into()));
+        };
+        let max_scenes = self.options.limits.max_scenes;
+        if self.scenes.0.read().expect("lock").len() >= max_scenes {
             return Err(ServiceError::ResourceExhausted(format!(
-                "the server holds its limit of {} scenes; delete one first",
-                self.limits.max_scenes
+                "the server holds its limit of {max_scenes} scenes; delete one first"
             )));
         }
-        let scene = match source {
-            SceneSource::Preset(name) => load::from_preset(&name, overrides),
-            SceneSource::Document { text, format } => load::from_str(&text, format, overrides),
-        }
-        .map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
-        // Counted before the scene is built (every particle set the scene's modules
-        // create), so a scene over the limit allocates nothing.
-        let particles = floe_engine::modules::counts(&scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
-        if particles > self.limits.max_particles as u64 {
-            return Err(ServiceError::InvalidArgument(format!(
-                "particle_spacing: the scene has {particles} particles, more than this server's limit of {}",
-                self.limits.max_particles
-            )));
-        }
-        let sim = Simulation::new(scene, &*self.backend).map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
+        let (server_max, backend, quotas) =
+            (self.options.limits.max_particles, self.backend.clone(), self.quotas.clone());
+        let quota = self.quotas_of(owner).get(Limit::ParticlesPerScene);
+        let who = owner.to_string();
+        let sim = tokio::task::spawn_blocking(move || {
+            let scene = match source {
+                SceneSource::Preset(name) => load::from_preset(&name, &overrides),
+                SceneSource::Document { text, format } => load::from_str(&text, format, &overrides),
+            }
+            .map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
+            // Counted before the scene is built (every particle set the scene's modules
+            // create), so a scene over the limit allocates nothing.
+            let particles =
+                floe_engine::modules::counts(&scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
+            if particles > server_max as u64 {
+                return Err(ServiceError::InvalidArgument(format!(
+                    "particle_spacing: the scene has {particles} particles, more than this server's limit of {server_max}"
+                )));
+            }
+            if particles > quota {
+                let detail = format!("{who}'s scenes may have at most {quota} particles; this one has {particles}");
+                return Err(quotas.refuse(Limit::ParticlesPerScene, quota, detail));
+            }
+            Simulation::new(scene, &*backend).map_err(|e| ServiceError::InvalidArgument(e.to_string()))
+        })
+        .await
+        .expect("scene build task")?;
         let id = self.next_id.fetch_add(1, Ordering::Relaxed);
-        tracing::info!(scene = id, name = %sim.scene().name, particles = sim.particle_count(), "scene created");
-        let handle = Arc::new(SceneHandle::spawn(id, sim, self.backend.clone()));
-        let entry = Entry { handle: handle.clone(), cache: Arc::new(FrameCache::default()) };
-        self.scenes.write().expect("lock").insert(id, entry);
+        if let Some(store) = &self.store {
+            store.db.insert_scene(&persist::row(id, owner, &sim)).await.map_err(unavailable)?;
+        }
+        tracing::info!(scene = id, owner = %owner, name = %sim.scene().name, particles = sim.particle_count(), "scene created");
+        Ok(self.insert(id, owner.to_string(), sim))
+    }
+
+    /// Starts the worker of scene `id` and lists it.
+    fn insert(&self, id: u64, owner: String, sim: Simulation) -> Arc<SceneHandle> {
+        let handle = Arc::new(SceneHandle::spawn(id, owner, sim, self.backend.clone()));
+        let entry = Entry {
+            handle: handle.clone(),
+            cache: Arc::new(FrameCache::default()),
+            checkpoint: Arc::new(tokio::sync::Mutex::new(Duration::ZERO)),
+        };
+        self.scenes.0.write().expect("lock").insert(id, entry);
+        handle
+    }
+
+    /// Deletes a scene: forgets it in the database, stops its worker (after the
+    /// current step) and removes its checkpoints.
+    pub async fn delete(&self, caller: &Caller, id: u64) -> Result<Arc<SceneHandle>, ServiceError> {
+        self.entry(caller, id, Need::Steer, |_| ())?;
+        if let Some(store) = &self.store {
+            store.db.delete_scene(id).await.map_err(unavailable)?;
+        }
+        let entry = self.scenes.0.write().expect("lock").remove(&id).ok_or(ServiceError::NotFound(id))?;
+        let handle = entry.handle.clone();
+        tokio::task::spawn_blocking(move || entry.handle.delete()).await.expect("scene stop task");
+        if let Some(store) = &self.store {
+            let checkpoints = store.checkpoints.clone();
+            if let Err(e) = tokio::task::spawn_blocking(move || checkpoints.remove(id)).await.expect("remove task") {
+                tracing::warn!(scene = id, "checkpoints left behind: {e}");
+            }
+        }
+        if let Some(store) = &self.store
+            && !self.access.directory().shares_of(id).is_empty()
+        {
+            self.reload_directory(store).await?;
+        }
+        tracing::info!(scene = id, "scene deleted");
         Ok(handle)
     }
 
-    /// The scene with this id.
-    pub fn get(&self, id: u64) -> Result<Arc<SceneHandle>, ServiceError> {
-        self.scenes.read().expect("lock").get(&id).map(|e| e.handle.clone()).ok_or(ServiceError::NotFound(id))
-    }
-
-    /// Every scene, by id.
-    pub fn list(&self) -> Vec<Arc<SceneHandle>> {
-        self.scenes.read().expect("lock").values().map(|e| e.handle.clone()).collect()
-    }
-
-    /// Removes a scene and stops its worker (waits for the current step).
-    pub fn delete(&self, id: u64) -> Result<Arc<SceneHandle>, ServiceError> {
-        let entry = self.scenes.write().expect("lock").remove(&id).ok_or(ServiceError::NotFound(id))?;
-        entry.handle.delete();
-        tracing::info!(scene = id, "scene deleted");
-        Ok(entry.handle)
-    }
-
-    /// A frame subscription to scene `id` with the options `request` asks for.
-    pub fn subscribe(&self, id: u64, request: &FrameRequest) -> Result<Subscription, ServiceError> {
-        let (handle, cache) = {
-            let scenes = self.scenes.read().expect("lock");
-            let e = scenes.get(&id).ok_or(ServiceError::NotFound(id))?;
-            (e.handle.clone(), e.cache.clone())
-        };
+    /// A frame subscription to scene `id`, counted as one of the account's open streams.
+    pub fn subscribe(&self, caller: &Caller, id: u64, request: &FrameRequest) -> Result<pump::FrameFeed, ServiceError> {
+        let (handle, cache) = self.entry(caller, id, Need::Watch, |e| (e.handle.clone(), e.cache.clone()))?;
         let options = request.check(&handle.shared)?;
-        Subscription::new(handle, cache, options).map_err(|e| ServiceError::InvalidArgument(e.to_string()))
+        let permit = self.open_stream(caller)?;
+        let shared = handle.shared.clone();
+        let subscription =
+            Subscription::new(handle, cache, options).map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
+        Ok(pump::FrameFeed { subscription, permit, shared })
     }
 
-    /// Deletes every scene (server shutdown).
-    pub fn shutdown(&self) {
-        let ids: Vec<u64> = self.scenes.read().expect("lock").keys().copied().collect();
-        for id in ids {
-            let _ = self.delete(id);
-        }
+    /// Scene `id`'s events, counted as one of the account's open streams.
+    pub fn events(&self, caller: &Caller, id: u64) -> Result<pump::EventFeed, ServiceError> {
+        let handle = self.get(caller, id, Need::Watch)?;
+        Ok(pump::EventFeed { events: handle.shared.events.subscribe(), permit: self.open_stream(caller)? })
+    }
+
+    fn open_stream(&self, caller: &Caller) -> Result<StreamPermit, ServiceError> {
+        let account = self.account(caller);
+        self.quotas.open_stream(&account, &self.quotas_of(&account))
     }
 }

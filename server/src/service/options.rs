@@ -67,7 +67,7 @@ impl FrameRequest {
                         scene.channels.iter().filter(|c| c.spec.set == set_name).map(|c| c.spec.name).collect();
                     return bad(format!(
                         "channels: the scene has no channel {:?} in set {set_name}; it has {}",
-                        crate::service::clip(name),
+                        crate::echo::cap(name),
                         has.join(", ")
                     ));
                 }
@@ -85,10 +85,7 @@ impl FrameRequest {
             None | Some("") | Some("unordered") => Mode::Unordered,
             Some("identity") => Mode::IdentityOrdered,
             Some(other) => {
-                return bad(format!(
-                    "mode: must be \"unordered\" or \"identity\", got {:?}",
-                    crate::service::clip(other)
-                ));
+                return bad(format!("mode: must be \"unordered\" or \"identity\", got {:?}", crate::echo::cap(other)));
             }
         };
         let decimation = self.decimation.unwrap_or(1);

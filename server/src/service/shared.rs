@@ -84,6 +84,8 @@ pub struct Shared {
     pub id: u64,
     /// Scene name.
     pub name: String,
+    /// The user who created it.
+    pub owner: String,
     /// The resolved scene as JSON, as it is now (live changes included).
     pub(super) scene_json: Mutex<String>,
     /// Fluid particles.
@@ -119,19 +121,24 @@ pub struct Shared {
     delivered: Mutex<Vec<std::sync::Weak<AtomicU64>>>,
     /// Snapshots published.
     pub published: AtomicU64,
+    /// Encoded frame bytes sent to subscribers (counted by the transports).
+    pub frame_bytes: AtomicU64,
+    /// Backend time per pass so far (label, seconds, calls), refreshed after every step.
+    pub passes: Mutex<Vec<(&'static str, f64, u64)>>,
     /// Set on delete, so a long hand-step ends at the next step.
     pub(super) cancel: AtomicBool,
 }
 
 impl Shared {
-    /// The shared state of a new scene's simulation, paused at its start.
-    pub(super) fn new(id: u64, sim: &Simulation) -> Self {
+    /// The shared state of a scene's simulation (new or restored), paused.
+    pub(super) fn new(id: u64, owner: String, sim: &Simulation) -> Self {
         let domain = sim.domain();
         let (published_state, _) = watch::channel(None);
         let (events, _) = broadcast::channel(16);
         Self {
             id,
             name: sim.scene().name.clone(),
+            owner,
             scene_json: Mutex::new(serde_json::to_string(sim.scene()).expect("scenes serialise")),
             particles: sim.particle_count(),
             channels: scene_channels(sim.channels()),
@@ -141,12 +148,12 @@ impl Shared {
             backend: sim.backend_name(),
             bounds: (domain.min.to_array(), domain.max.to_array()),
             status: Mutex::new(Status {
-                state: State::Paused,
-                time: 0.0,
-                steps: 0,
+                state: if sim.halted().is_some() { State::Halted } else { State::Paused },
+                time: sim.time(),
+                steps: sim.steps(),
                 dt: 0.0,
                 steps_per_second: 0.0,
-                halt_reason: None,
+                halt_reason: sim.halted().map(|h| h.to_string()),
                 measures: Vec::new(),
             }),
             published_state,
@@ -156,6 +163,8 @@ impl Shared {
             dropped_frames: AtomicU64::new(0),
             delivered: Mutex::new(Vec::new()),
             published: AtomicU64::new(0),
+            frame_bytes: AtomicU64::new(0),
+            passes: Mutex::new(sim.kernel_times()),
             cancel: AtomicBool::new(false),
         }
     }

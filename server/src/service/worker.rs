@@ -2,12 +2,12 @@
 //! order, steps (by hand or continuously, paced to a real-time factor) and
 //! publishes particle state for frame subscribers.
 
-use super::handle::{Command, CommandError};
+use super::handle::{Command, CommandError, MAX_STEPS_PER_REQUEST, Saved};
 use super::shared::{Event, Published, Shared, State, Status};
 use floe_engine::simulation::BackendFactory;
 use floe_engine::{Halted, Simulation};
 use std::sync::Arc;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
@@ -88,7 +88,8 @@ impl Worker {
                     let _ = reply.send(r);
                 }
                 Some(Command::Save { reply }) => {
-                    let _ = reply.send(self.sim.snapshot());
+                    let (step, time) = (self.sim.steps(), self.sim.time());
+                    let _ = reply.send(Saved { state: self.sim.snapshot(), step, time });
                 }
                 Some(Command::Restore { state, reply }) => {
                     let r = if self.running.is_some() { Err(CommandError::Running) } else { self.restore(&state) };
@@ -109,12 +110,12 @@ impl Worker {
                     }
                     let _ = reply.send(r.map(|_| self.shared.status()));
                 }
-                Some(Command::Step { steps, until, reply }) => {
+                Some(Command::Step { steps, until, abandoned, reply }) => {
                     let r = if self.running.is_some() {
                         Err(CommandError::Running)
                     } else {
                         self.refuse_if_halted().map(|_| {
-                            self.step_by_hand(steps, until);
+                            self.step_by_hand(steps, until, &abandoned);
                             self.shared.status()
                         })
                     };
@@ -137,18 +138,22 @@ impl Worker {
                 self.publish_if_due();
             }
         }
-        self.set_state(State::Deleted);
+        // The event first: whoever sees the Deleted state can find the event already sent.
         let _ = self.shared.events.send(Event::Deleted);
+        self.set_state(State::Deleted);
         // Wakes frame subscribers waiting for a snapshot, so they see the deletion.
         self.shared.published_state.send_replace(None);
     }
 
     fn restore(&mut self, state: &[u8]) -> Result<Status, CommandError> {
-        let sim =
-            Simulation::restore_on(state, &*self.backend).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
-        if sim.scene() != self.sim.scene() {
+        // Checked before anything is built: a snapshot of another (maybe far larger)
+        // scene allocates nothing.
+        let scene = Simulation::snapshot_scene(state).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
+        if &scene != self.sim.scene() {
             return Err(CommandError::BadSnapshot("the snapshot is of a different scene".into()));
         }
+        let sim =
+            Simulation::restore_on(state, &*self.backend).map_err(|e| CommandError::BadSnapshot(e.to_string()))?;
         Ok(self.replace(sim))
     }
 
@@ -173,14 +178,17 @@ impl Worker {
         }
     }
 
-    fn step_by_hand(&mut self, steps: u64, until: Option<f64>) {
+    /// Steps `steps` times, or until `until` but at most [`MAX_STEPS_PER_REQUEST`]
+    /// steps; stops early when the scene is deleted or the caller is gone.
+    fn step_by_hand(&mut self, steps: u64, until: Option<f64>, abandoned: &AtomicBool) {
         let mut taken = 0;
         loop {
             let done = match until {
-                Some(t) => self.sim.time() >= t,
+                Some(t) => self.sim.time() >= t || taken >= MAX_STEPS_PER_REQUEST,
                 None => taken >= steps,
             };
-            if done || self.shared.cancel.load(Ordering::Relaxed) || !self.step_once() {
+            let stop = self.shared.cancel.load(Ordering::Relaxed) || abandoned.load(Ordering::Relaxed);
+            if done || stop || !self.step_once() {
                 break;
             }
             taken += 1;
@@ -219,6 +227,7 @@ impl Worker {
                     s.steps_per_second = self.rate.1 as f64 / elapsed;
                     self.rate = (Instant::now(), 0);
                 }
+                *self.shared.passes.lock().expect("lock") = self.sim.kernel_times();
                 s.time = self.sim.time();
                 s.steps = self.sim.steps();
                 s.dt = r.dt as f64;

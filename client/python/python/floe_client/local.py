@@ -21,7 +21,9 @@ _READY_LINE = re.compile(r"Floe viewer: (http://\S+?)/?$")
 
 
 class Server:
-    """``floe serve --scene none`` on ``127.0.0.1:0`` (free ports) with the given backend.
+    """``floe serve --scene none`` on ``127.0.0.1:0`` (free ports) with the given backend,
+    keeping its scenes in ``data_dir`` (by default a temporary directory removed on stop, so
+    a private server neither sees nor leaves scenes in the user's own data directory).
 
     Attributes:
         address: the gRPC address, ``http://127.0.0.1:PORT``, for :func:`floe_client.connect`.
@@ -34,6 +36,7 @@ class Server:
         *,
         backend: str = "auto",
         args: Sequence[str] = (),
+        data_dir: str | os.PathLike[str] | None = None,
         timeout: float = 60.0,
     ) -> None:
         """Starts ``floe`` (a path, or a name on PATH) and waits until it listens.
@@ -45,7 +48,9 @@ class Server:
         self._out = tempfile.TemporaryFile(mode="w+")
         self._log = tempfile.TemporaryFile(mode="w+")
         cmd = [os.fspath(floe), "serve", "--grpc", "127.0.0.1:0", "--http", "127.0.0.1:0", "--scene", "none"]
-        cmd += ["--backend", backend, *args]
+        self._data = tempfile.TemporaryDirectory(prefix="floe-") if data_dir is None else None
+        data = os.fspath(data_dir) if data_dir is not None else self._data.name
+        cmd += ["--backend", backend, "--data-dir", data, *args]
         env = {**os.environ, "FLOE_LOG": "info"}
         self._process = subprocess.Popen(cmd, stdout=self._out, stderr=self._log, stdin=subprocess.DEVNULL, env=env)
         try:
@@ -76,7 +81,7 @@ class Server:
         return _read(self._log)
 
     def stop(self) -> None:
-        """Stops the server (SIGTERM: scenes are deleted, streams end) and waits for it."""
+        """Stops the server (SIGTERM: scenes are checkpointed, streams end) and waits for it."""
         if self._process.poll() is None:
             self._process.terminate()
             try:
@@ -86,6 +91,8 @@ class Server:
                 self._process.wait()
         self._out.close()
         self._log.close()
+        if self._data is not None:
+            self._data.cleanup()
 
     def __enter__(self) -> Server:
         return self

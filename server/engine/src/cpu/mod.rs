@@ -83,8 +83,11 @@ pub struct CpuBackend {
     sort: SortScratch,
     /// The plan's passes with their implementations, in plan order.
     passes: Vec<(&'static PassSpec, &'static dyn CpuPass)>,
-    /// Every pass run so far, in the order first run.
+    /// Every plan pass run so far, in the order first run ([`Backend::passes_run`]).
     ran: Vec<&'static str>,
+    /// Wall time (s) and calls of every pass, kick and drift so far
+    /// ([`Backend::kernel_times`]).
+    times: Vec<(&'static str, f64, u64)>,
 }
 
 impl CpuBackend {
@@ -93,7 +96,16 @@ impl CpuBackend {
         let attrs = Attrs::new(model.layout.take_columns());
         let grid = Grid::new(model.domain, model.kernel.support(), model.periodic.axes);
         let passes = Self::resolve(&model);
-        Self { model, attrs, grid, nb: NeighborLists::default(), sort: SortScratch::default(), passes, ran: Vec::new() }
+        Self {
+            model,
+            attrs,
+            grid,
+            nb: NeighborLists::default(),
+            sort: SortScratch::default(),
+            passes,
+            ran: Vec::new(),
+            times: Vec::new(),
+        }
     }
 
     fn resolve(model: &Model) -> Vec<(&'static PassSpec, &'static dyn CpuPass)> {
@@ -107,6 +119,7 @@ impl CpuBackend {
         if !self.ran.contains(&pass.name) {
             self.ran.push(pass.name);
         }
+        let t0 = std::time::Instant::now();
         let mut cx = CpuCx {
             model: &self.model,
             attrs: &mut self.attrs,
@@ -116,6 +129,16 @@ impl CpuBackend {
             dt,
         };
         imp.run(&mut cx);
+        record(&mut self.times, pass.name, t0);
+    }
+}
+
+/// Adds the wall time since `t0` to pass `name` of `times`.
+fn record(times: &mut Vec<(&'static str, f64, u64)>, name: &'static str, t0: std::time::Instant) {
+    let seconds = t0.elapsed().as_secs_f64();
+    match times.iter_mut().find(|e| e.0 == name) {
+        Some(e) => (e.1, e.2) = (e.1 + seconds, e.2 + 1),
+        None => times.push((name, seconds, 1)),
     }
 }
 
@@ -156,11 +179,15 @@ impl Stages for CpuBackend {
     }
 
     fn kick(&mut self, dt: Real, keep: Real) {
+        let t0 = std::time::Instant::now();
         core::kick(&mut self.attrs, dt, keep);
+        record(&mut self.times, "kick", t0);
     }
 
     fn drift(&mut self, dt: Real) {
+        let t0 = std::time::Instant::now();
         core::drift(&self.model, &mut self.attrs, dt);
+        record(&mut self.times, "drift", t0);
     }
 
     fn particle_id(&mut self, slot: u32) -> u32 {
@@ -219,5 +246,10 @@ impl Backend for CpuBackend {
 
     fn passes_run(&self) -> Vec<&'static str> {
         self.ran.clone()
+    }
+
+    /// Wall time per pass, kick and drift (always measured: two clock reads each).
+    fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
+        self.times.clone()
     }
 }

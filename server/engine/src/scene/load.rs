@@ -73,8 +73,26 @@ pub fn parse_document(text: &str, format: Format) -> Result<Value, SceneError> {
         Format::Toml => {
             let table: toml::Table = toml::from_str(text)
                 .map_err(|e| SceneError::Syntax { format: "TOML", message: e.to_string().trim().to_owned() })?;
+            for (key, value) in &table {
+                refuse_non_finite(value, key.clone())?;
+            }
             Ok(serde_json::to_value(table).expect("TOML values are representable in JSON"))
         }
+    }
+}
+
+/// TOML has `nan` and `inf`, JSON has neither: converted, they would become `null`,
+/// which an optional field takes as unset. Refused here, naming the field.
+fn refuse_non_finite(value: &toml::Value, path: String) -> Result<(), SceneError> {
+    match value {
+        toml::Value::Float(f) if !f.is_finite() => {
+            Err(SceneError::Field { path, message: format!("must be a finite number, got {f}") })
+        }
+        toml::Value::Array(items) => {
+            items.iter().enumerate().try_for_each(|(i, v)| refuse_non_finite(v, format!("{path}[{i}]")))
+        }
+        toml::Value::Table(t) => t.iter().try_for_each(|(k, v)| refuse_non_finite(v, format!("{path}.{k}"))),
+        _ => Ok(()),
     }
 }
 
@@ -144,19 +162,26 @@ enum Segment {
     Index(usize),
 }
 
+/// Reads `name.name[i][j].name`: names of letters, digits and `_`, indices of digits,
+/// no empty part (a stray `.` or a `+1` index is an error, not a different path).
 fn parse_path(key: &str) -> Result<Vec<Segment>, String> {
     let mut out = Vec::new();
     for part in key.split('.') {
         let (name, mut rest) = part.split_at(part.find('[').unwrap_or(part.len()));
-        if name.is_empty() && out.is_empty() {
-            return Err(format!("empty key in '{key}'"));
+        if name.is_empty() {
+            return Err(format!("empty name in '{key}' (each part between dots needs a name)"));
         }
-        if !name.is_empty() {
-            out.push(Segment::Key(name.into()));
+        if let Some(c) = name.chars().find(|c| !(c.is_ascii_alphanumeric() || *c == '_')) {
+            return Err(format!("unexpected {c:?} in '{key}' (names are letters, digits and _)"));
         }
+        out.push(Segment::Key(name.into()));
         while let Some(inner) = rest.strip_prefix('[') {
             let close = inner.find(']').ok_or_else(|| format!("unclosed '[' in '{key}'"))?;
-            let index = inner[..close].parse().map_err(|_| format!("bad index '{}' in '{key}'", &inner[..close]))?;
+            let digits = &inner[..close];
+            let index = Some(digits)
+                .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+                .and_then(|d| d.parse().ok())
+                .ok_or_else(|| format!("bad index '{digits}' in '{key}'"))?;
             out.push(Segment::Index(index));
             rest = &inner[close + 1..];
         }
@@ -209,6 +234,28 @@ mod tests {
         );
         assert!(parse_path("a[x]").is_err());
         assert!(parse_path("a[1").is_err());
+        for bad in ["a..b", "a.", ".a", "a.[0]", "[0]", "a[+1]", "a[]", "a[0]b", "a b", "a]", "a[1]]", "a-b", ""] {
+            assert!(parse_path(bad).is_err(), "{bad:?} was accepted");
+        }
+        assert_eq!(parse_path("a[0][12]").unwrap().len(), 3);
+    }
+
+    #[test]
+    fn non_finite_numbers_are_refused_naming_the_field() {
+        let scene = r#"
+            particle_spacing = 0.05
+            [[fluids]]
+            xsph = nan
+            blocks = [{ min = [0, 0, 0], max = [0.5, 0.5, inf] }]
+        "#;
+        let e = from_str(scene, Format::Toml, &[]).unwrap_err().to_string();
+        assert_eq!(e, "fluids[0].blocks[0].max[2]: must be a finite number, got inf");
+        let e = from_str(&scene.replace("inf", "1"), Format::Toml, &[]).unwrap_err().to_string();
+        assert_eq!(e, "fluids[0].xsph: must be a finite number, got NaN");
+        let e = from_str("particle_spacing = -inf", Format::Toml, &[]).unwrap_err().to_string();
+        assert_eq!(e, "particle_spacing: must be a finite number, got -inf");
+        let e = from_preset("dam_break", &["particle_spacing=NaN".into()]).unwrap_err().to_string();
+        assert!(e.starts_with("particle_spacing: invalid type: string \"NaN\""), "{e}");
     }
 
     #[test]

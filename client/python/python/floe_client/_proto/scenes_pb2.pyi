@@ -57,7 +57,7 @@ class CreateSceneRequest(_message.Message):
     def __init__(self, preset: _Optional[str] = ..., document: _Optional[str] = ..., document_format: _Optional[str] = ..., overrides: _Optional[_Iterable[str]] = ...) -> None: ...
 
 class SceneInfo(_message.Message):
-    __slots__ = ("scene_id", "name", "state", "sim_time", "steps", "particles", "bounds_min", "bounds_max", "halt_reason", "scene_json", "backend", "channels", "sets", "tunables")
+    __slots__ = ("scene_id", "name", "state", "sim_time", "steps", "particles", "bounds_min", "bounds_max", "halt_reason", "scene_json", "backend", "channels", "sets", "tunables", "owner")
     SCENE_ID_FIELD_NUMBER: _ClassVar[int]
     NAME_FIELD_NUMBER: _ClassVar[int]
     STATE_FIELD_NUMBER: _ClassVar[int]
@@ -72,6 +72,7 @@ class SceneInfo(_message.Message):
     CHANNELS_FIELD_NUMBER: _ClassVar[int]
     SETS_FIELD_NUMBER: _ClassVar[int]
     TUNABLES_FIELD_NUMBER: _ClassVar[int]
+    OWNER_FIELD_NUMBER: _ClassVar[int]
     scene_id: int
     name: str
     state: SceneState
@@ -86,7 +87,8 @@ class SceneInfo(_message.Message):
     channels: _containers.RepeatedCompositeFieldContainer[ChannelDescription]
     sets: _containers.RepeatedCompositeFieldContainer[ParticleSet]
     tunables: _containers.RepeatedCompositeFieldContainer[Tunable]
-    def __init__(self, scene_id: _Optional[int] = ..., name: _Optional[str] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., bounds_min: _Optional[_Iterable[float]] = ..., bounds_max: _Optional[_Iterable[float]] = ..., halt_reason: _Optional[str] = ..., scene_json: _Optional[str] = ..., backend: _Optional[str] = ..., channels: _Optional[_Iterable[_Union[ChannelDescription, _Mapping]]] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., tunables: _Optional[_Iterable[_Union[Tunable, _Mapping]]] = ...) -> None: ...
+    owner: str
+    def __init__(self, scene_id: _Optional[int] = ..., name: _Optional[str] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., bounds_min: _Optional[_Iterable[float]] = ..., bounds_max: _Optional[_Iterable[float]] = ..., halt_reason: _Optional[str] = ..., scene_json: _Optional[str] = ..., backend: _Optional[str] = ..., channels: _Optional[_Iterable[_Union[ChannelDescription, _Mapping]]] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., tunables: _Optional[_Iterable[_Union[Tunable, _Mapping]]] = ..., owner: _Optional[str] = ...) -> None: ...
 
 class ChannelDescription(_message.Message):
     __slots__ = ("name", "tag", "unit", "components", "set", "exact", "about", "module")
@@ -187,7 +189,7 @@ class RunRequest(_message.Message):
     def __init__(self, scene_id: _Optional[int] = ..., real_time_factor: _Optional[float] = ...) -> None: ...
 
 class SceneStats(_message.Message):
-    __slots__ = ("scene_id", "state", "sim_time", "steps", "particles", "steps_per_second", "dt", "subscribers", "dropped_frames", "frames_published", "sets", "measures")
+    __slots__ = ("scene_id", "state", "sim_time", "steps", "particles", "steps_per_second", "dt", "subscribers", "dropped_frames", "frames_published", "sets", "measures", "name", "owner", "frame_bytes")
     SCENE_ID_FIELD_NUMBER: _ClassVar[int]
     STATE_FIELD_NUMBER: _ClassVar[int]
     SIM_TIME_FIELD_NUMBER: _ClassVar[int]
@@ -200,6 +202,9 @@ class SceneStats(_message.Message):
     FRAMES_PUBLISHED_FIELD_NUMBER: _ClassVar[int]
     SETS_FIELD_NUMBER: _ClassVar[int]
     MEASURES_FIELD_NUMBER: _ClassVar[int]
+    NAME_FIELD_NUMBER: _ClassVar[int]
+    OWNER_FIELD_NUMBER: _ClassVar[int]
+    FRAME_BYTES_FIELD_NUMBER: _ClassVar[int]
     scene_id: int
     state: SceneState
     sim_time: float
@@ -212,7 +217,10 @@ class SceneStats(_message.Message):
     frames_published: int
     sets: _containers.RepeatedCompositeFieldContainer[ParticleSet]
     measures: _containers.RepeatedCompositeFieldContainer[Measure]
-    def __init__(self, scene_id: _Optional[int] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., steps_per_second: _Optional[float] = ..., dt: _Optional[float] = ..., subscribers: _Optional[int] = ..., dropped_frames: _Optional[int] = ..., frames_published: _Optional[int] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., measures: _Optional[_Iterable[_Union[Measure, _Mapping]]] = ...) -> None: ...
+    name: str
+    owner: str
+    frame_bytes: int
+    def __init__(self, scene_id: _Optional[int] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., steps_per_second: _Optional[float] = ..., dt: _Optional[float] = ..., subscribers: _Optional[int] = ..., dropped_frames: _Optional[int] = ..., frames_published: _Optional[int] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., measures: _Optional[_Iterable[_Union[Measure, _Mapping]]] = ..., name: _Optional[str] = ..., owner: _Optional[str] = ..., frame_bytes: _Optional[int] = ...) -> None: ...
 
 class Measure(_message.Message):
     __slots__ = ("name", "value", "unit")
@@ -287,3 +295,99 @@ class Halted(_message.Message):
 class Deleted(_message.Message):
     __slots__ = ()
     def __init__(self) -> None: ...
+
+class CheckpointInfo(_message.Message):
+    __slots__ = ("scene_id", "sequence", "step", "sim_time")
+    SCENE_ID_FIELD_NUMBER: _ClassVar[int]
+    SEQUENCE_FIELD_NUMBER: _ClassVar[int]
+    STEP_FIELD_NUMBER: _ClassVar[int]
+    SIM_TIME_FIELD_NUMBER: _ClassVar[int]
+    scene_id: int
+    sequence: int
+    step: int
+    sim_time: float
+    def __init__(self, scene_id: _Optional[int] = ..., sequence: _Optional[int] = ..., step: _Optional[int] = ..., sim_time: _Optional[float] = ...) -> None: ...
+
+class ShareLink(_message.Message):
+    __slots__ = ("scene_id", "share_id", "token")
+    SCENE_ID_FIELD_NUMBER: _ClassVar[int]
+    SHARE_ID_FIELD_NUMBER: _ClassVar[int]
+    TOKEN_FIELD_NUMBER: _ClassVar[int]
+    scene_id: int
+    share_id: str
+    token: str
+    def __init__(self, scene_id: _Optional[int] = ..., share_id: _Optional[str] = ..., token: _Optional[str] = ...) -> None: ...
+
+class ShareList(_message.Message):
+    __slots__ = ("scene_id", "share_ids")
+    SCENE_ID_FIELD_NUMBER: _ClassVar[int]
+    SHARE_IDS_FIELD_NUMBER: _ClassVar[int]
+    scene_id: int
+    share_ids: _containers.RepeatedScalarFieldContainer[str]
+    def __init__(self, scene_id: _Optional[int] = ..., share_ids: _Optional[_Iterable[str]] = ...) -> None: ...
+
+class RevokeShareRequest(_message.Message):
+    __slots__ = ("scene_id", "share_id")
+    SCENE_ID_FIELD_NUMBER: _ClassVar[int]
+    SHARE_ID_FIELD_NUMBER: _ClassVar[int]
+    scene_id: int
+    share_id: str
+    def __init__(self, scene_id: _Optional[int] = ..., share_id: _Optional[str] = ...) -> None: ...
+
+class SceneStatsList(_message.Message):
+    __slots__ = ("scenes",)
+    SCENES_FIELD_NUMBER: _ClassVar[int]
+    scenes: _containers.RepeatedCompositeFieldContainer[SceneStats]
+    def __init__(self, scenes: _Optional[_Iterable[_Union[SceneStats, _Mapping]]] = ...) -> None: ...
+
+class WhoAmIRequest(_message.Message):
+    __slots__ = ()
+    def __init__(self) -> None: ...
+
+class QuotaValue(_message.Message):
+    __slots__ = ("name", "value", "overridden")
+    NAME_FIELD_NUMBER: _ClassVar[int]
+    VALUE_FIELD_NUMBER: _ClassVar[int]
+    OVERRIDDEN_FIELD_NUMBER: _ClassVar[int]
+    name: str
+    value: int
+    overridden: bool
+    def __init__(self, name: _Optional[str] = ..., value: _Optional[int] = ..., overridden: _Optional[bool] = ...) -> None: ...
+
+class UserInfo(_message.Message):
+    __slots__ = ("name", "admin", "quotas", "scenes", "running_scenes", "running_particles", "open_streams")
+    NAME_FIELD_NUMBER: _ClassVar[int]
+    ADMIN_FIELD_NUMBER: _ClassVar[int]
+    QUOTAS_FIELD_NUMBER: _ClassVar[int]
+    SCENES_FIELD_NUMBER: _ClassVar[int]
+    RUNNING_SCENES_FIELD_NUMBER: _ClassVar[int]
+    RUNNING_PARTICLES_FIELD_NUMBER: _ClassVar[int]
+    OPEN_STREAMS_FIELD_NUMBER: _ClassVar[int]
+    name: str
+    admin: bool
+    quotas: _containers.RepeatedCompositeFieldContainer[QuotaValue]
+    scenes: int
+    running_scenes: int
+    running_particles: int
+    open_streams: int
+    def __init__(self, name: _Optional[str] = ..., admin: _Optional[bool] = ..., quotas: _Optional[_Iterable[_Union[QuotaValue, _Mapping]]] = ..., scenes: _Optional[int] = ..., running_scenes: _Optional[int] = ..., running_particles: _Optional[int] = ..., open_streams: _Optional[int] = ...) -> None: ...
+
+class ListUsersRequest(_message.Message):
+    __slots__ = ()
+    def __init__(self) -> None: ...
+
+class ListUsersResponse(_message.Message):
+    __slots__ = ("users",)
+    USERS_FIELD_NUMBER: _ClassVar[int]
+    users: _containers.RepeatedCompositeFieldContainer[UserInfo]
+    def __init__(self, users: _Optional[_Iterable[_Union[UserInfo, _Mapping]]] = ...) -> None: ...
+
+class SetQuotaRequest(_message.Message):
+    __slots__ = ("user", "quota", "value")
+    USER_FIELD_NUMBER: _ClassVar[int]
+    QUOTA_FIELD_NUMBER: _ClassVar[int]
+    VALUE_FIELD_NUMBER: _ClassVar[int]
+    user: str
+    quota: str
+    value: int
+    def __init__(self, user: _Optional[str] = ..., quota: _Optional[str] = ..., value: _Optional[int] = ...) -> None: ...

@@ -675,3 +675,400 @@ class SceneService:
             timeout,
             metadata,
             _registered_method=True)
+
+
+class LabServiceStub:
+    """The lab server: checkpoints, read-only share links, users and quotas, and the
+    statistics of every scene at once. Calls need `authorization: Bearer <token>` on a
+    server with users (UNAUTHENTICATED otherwise); another user's scene is NOT_FOUND;
+    admin-only calls are PERMISSION_DENIED to others; a quota reached is
+    RESOURCE_EXHAUSTED naming the quota and its value.
+    """
+
+    def __init__(self, channel):
+        """Constructor.
+
+        Args:
+            channel: A grpc.Channel.
+        """
+        self.Checkpoint = channel.unary_unary(
+                '/floe.v1.LabService/Checkpoint',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.SceneRef.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.CheckpointInfo.FromString,
+                _registered_method=True)
+        self.ShareScene = channel.unary_unary(
+                '/floe.v1.LabService/ShareScene',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.SceneRef.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.ShareLink.FromString,
+                _registered_method=True)
+        self.ListShares = channel.unary_unary(
+                '/floe.v1.LabService/ListShares',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.SceneRef.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.ShareList.FromString,
+                _registered_method=True)
+        self.RevokeShare = channel.unary_unary(
+                '/floe.v1.LabService/RevokeShare',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.RevokeShareRequest.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.ShareList.FromString,
+                _registered_method=True)
+        self.ListStats = channel.unary_unary(
+                '/floe.v1.LabService/ListStats',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.ListScenesRequest.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.SceneStatsList.FromString,
+                _registered_method=True)
+        self.WhoAmI = channel.unary_unary(
+                '/floe.v1.LabService/WhoAmI',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.WhoAmIRequest.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.UserInfo.FromString,
+                _registered_method=True)
+        self.ListUsers = channel.unary_unary(
+                '/floe.v1.LabService/ListUsers',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.ListUsersRequest.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.ListUsersResponse.FromString,
+                _registered_method=True)
+        self.SetQuota = channel.unary_unary(
+                '/floe.v1.LabService/SetQuota',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.SetQuotaRequest.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.UserInfo.FromString,
+                _registered_method=True)
+
+
+class LabServiceServicer:
+    """The lab server: checkpoints, read-only share links, users and quotas, and the
+    statistics of every scene at once. Calls need `authorization: Bearer <token>` on a
+    server with users (UNAUTHENTICATED otherwise); another user's scene is NOT_FOUND;
+    admin-only calls are PERMISSION_DENIED to others; a quota reached is
+    RESOURCE_EXHAUSTED naming the quota and its value.
+    """
+
+    def Checkpoint(self, request, context):
+        """Writes a checkpoint of a scene now (the newest two are kept beside the database).
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def ShareScene(self, request, context):
+        """Creates a read-only share link of a scene: its token, shown once, lets a viewer
+        watch the scene (frames, events, stats) but not steer it.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def ListShares(self, request, context):
+        """The ids of a scene's share links.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def RevokeShare(self, request, context):
+        """Revokes a share link; its viewers are refused from then on.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def ListStats(self, request, context):
+        """Statistics of every scene the caller can see (every scene, for an admin).
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def WhoAmI(self, request, context):
+        """The calling user: quotas in force and what they use now.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def ListUsers(self, request, context):
+        """Admin only: every user with quotas and usage.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def SetQuota(self, request, context):
+        """Admin only: sets or clears (value 0) a user's override of one quota.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+
+def add_LabServiceServicer_to_server(servicer, server):
+    rpc_method_handlers = {
+            'Checkpoint': grpc.unary_unary_rpc_method_handler(
+                    servicer.Checkpoint,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.SceneRef.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.CheckpointInfo.SerializeToString,
+            ),
+            'ShareScene': grpc.unary_unary_rpc_method_handler(
+                    servicer.ShareScene,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.SceneRef.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.ShareLink.SerializeToString,
+            ),
+            'ListShares': grpc.unary_unary_rpc_method_handler(
+                    servicer.ListShares,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.SceneRef.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.ShareList.SerializeToString,
+            ),
+            'RevokeShare': grpc.unary_unary_rpc_method_handler(
+                    servicer.RevokeShare,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.RevokeShareRequest.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.ShareList.SerializeToString,
+            ),
+            'ListStats': grpc.unary_unary_rpc_method_handler(
+                    servicer.ListStats,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.ListScenesRequest.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.SceneStatsList.SerializeToString,
+            ),
+            'WhoAmI': grpc.unary_unary_rpc_method_handler(
+                    servicer.WhoAmI,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.WhoAmIRequest.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.UserInfo.SerializeToString,
+            ),
+            'ListUsers': grpc.unary_unary_rpc_method_handler(
+                    servicer.ListUsers,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.ListUsersRequest.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.ListUsersResponse.SerializeToString,
+            ),
+            'SetQuota': grpc.unary_unary_rpc_method_handler(
+                    servicer.SetQuota,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.SetQuotaRequest.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.UserInfo.SerializeToString,
+            ),
+    }
+    generic_handler = grpc.method_handlers_generic_handler(
+            'floe.v1.LabService', rpc_method_handlers)
+    server.add_generic_rpc_handlers((generic_handler,))
+    server.add_registered_method_handlers('floe.v1.LabService', rpc_method_handlers)
+
+
+ # This class is part of an EXPERIMENTAL API.
+class LabService:
+    """The lab server: checkpoints, read-only share links, users and quotas, and the
+    statistics of every scene at once. Calls need `authorization: Bearer <token>` on a
+    server with users (UNAUTHENTICATED otherwise); another user's scene is NOT_FOUND;
+    admin-only calls are PERMISSION_DENIED to others; a quota reached is
+    RESOURCE_EXHAUSTED naming the quota and its value.
+    """
+
+    @staticmethod
+    def Checkpoint(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/floe.v1.LabService/Checkpoint',
+            floe_dot_v1_dot_scenes__pb2.SceneRef.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.CheckpointInfo.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def ShareScene(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/floe.v1.LabService/ShareScene',
+            floe_dot_v1_dot_scenes__pb2.SceneRef.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.ShareLink.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def ListShares(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/floe.v1.LabService/ListShares',
+            floe_dot_v1_dot_scenes__pb2.SceneRef.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.ShareList.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def RevokeShare(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/floe.v1.LabService/RevokeShare',
+            floe_dot_v1_dot_scenes__pb2.RevokeShareRequest.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.ShareList.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def ListStats(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/floe.v1.LabService/ListStats',
+            floe_dot_v1_dot_scenes__pb2.ListScenesRequest.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.SceneStatsList.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def WhoAmI(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/floe.v1.LabService/WhoAmI',
+            floe_dot_v1_dot_scenes__pb2.WhoAmIRequest.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.UserInfo.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def ListUsers(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/floe.v1.LabService/ListUsers',
+            floe_dot_v1_dot_scenes__pb2.ListUsersRequest.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.ListUsersResponse.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def SetQuota(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/floe.v1.LabService/SetQuota',
+            floe_dot_v1_dot_scenes__pb2.SetQuotaRequest.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.UserInfo.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)

@@ -1,0 +1,4 @@
+//! cargo fuzz target: floe_server::fuzz::Target::Frame (see docs/fuzzing.md).
+#![no_main]
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| floe_server::fuzz::Target::Frame.run(data));
