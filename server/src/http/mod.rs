@@ -159,7 +159,7 @@ pub struct SceneView {
     /// The scene's particle sets, with counts and the index frames carry.
     pub sets: Vec<SetView>,
     /// The settings `parameters` may change.
-    pub tunables: Vec<TunableView>,
+    pub tunables: Vec<floe_engine::scene::tunable::Tunable>,
     /// What the scheme and modules measured (refreshed at most twice a second while
     /// running, and whenever stepping stops), by name.
     pub measures: std::collections::BTreeMap<String, MeasureView>,
@@ -195,23 +195,6 @@ pub struct SetView {
     pub count: usize,
     /// Its frames' set byte.
     pub index: usize,
-}
-
-/// A setting that may change while the scene exists.
-#[derive(Debug, Serialize)]
-pub struct TunableView {
-    /// Override path (`[*]`: any index).
-    pub path: &'static str,
-    /// SI unit.
-    pub unit: &'static str,
-    /// Lower bound, for a number.
-    pub min: Option<f64>,
-    /// Upper bound, for a number.
-    pub max: Option<f64>,
-    /// What it does.
-    pub about: &'static str,
-    /// Owning module.
-    pub module: &'static str,
 }
 
 /// A value a scene reports.
@@ -276,18 +259,7 @@ impl SceneView {
                 .enumerate()
                 .map(|(index, s)| SetView { name: s.name, count: s.count, index })
                 .collect(),
-            tunables: shared
-                .tunables
-                .iter()
-                .map(|t| TunableView {
-                    path: t.path,
-                    unit: t.unit,
-                    min: t.min,
-                    max: t.max,
-                    about: t.about,
-                    module: t.module,
-                })
-                .collect(),
+            tunables: shared.tunables.clone(),
             measures: s
                 .measures
                 .iter()

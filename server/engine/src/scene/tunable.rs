@@ -11,8 +11,9 @@ use super::Scene;
 use super::load::{SceneError, apply_overrides, from_value};
 use serde_json::Value;
 
-/// A setting that may change while a scene exists.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A setting that may change while a scene exists (serialised as the REST API
+/// lists it in a scene's view).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Tunable {
     /// Path in the scene document, as in overrides; `[*]` matches any index.
     pub path: &'static str,
