@@ -16,7 +16,16 @@ server encodes with, into numpy arrays. Units are SI.
 
 from . import export, local, recording
 from .client import DEFAULT_ADDRESS, Client, connect
-from .errors import FailedPrecondition, FloeError, InvalidArgument, NotFound, ResourceExhausted, Unavailable
+from .errors import (
+    FailedPrecondition,
+    FloeError,
+    InvalidArgument,
+    NotFound,
+    PermissionDenied,
+    ResourceExhausted,
+    Unauthenticated,
+    Unavailable,
+)
 from .frames import FORMAT_VERSION, Channel, DecodeError, Decoder, Frame, Header
 from .messages import Deleted, Event, Halted, ParameterChanged, SceneInfo, SceneStats
 from .streams import EventStream, FrameStream
@@ -40,9 +49,11 @@ __all__ = [
     "InvalidArgument",
     "NotFound",
     "ParameterChanged",
+    "PermissionDenied",
     "ResourceExhausted",
     "SceneInfo",
     "SceneStats",
+    "Unauthenticated",
     "Unavailable",
     "connect",
     "export",

@@ -54,12 +54,22 @@ class Unavailable(FloeError, ConnectionError):
     """The server cannot be reached, or went away."""
 
 
+class Unauthenticated(FloeError, PermissionError):
+    """A lab server needs a token and got none, or one it does not know (revoked, mistyped)."""
+
+
+class PermissionDenied(FloeError, PermissionError):
+    """The token is known but may not do this (an admin-only call, a share link steering)."""
+
+
 _BY_CODE: dict[grpc.StatusCode, type[FloeError]] = {
     grpc.StatusCode.INVALID_ARGUMENT: InvalidArgument,
     grpc.StatusCode.NOT_FOUND: NotFound,
     grpc.StatusCode.FAILED_PRECONDITION: FailedPrecondition,
     grpc.StatusCode.RESOURCE_EXHAUSTED: ResourceExhausted,
     grpc.StatusCode.UNAVAILABLE: Unavailable,
+    grpc.StatusCode.UNAUTHENTICATED: Unauthenticated,
+    grpc.StatusCode.PERMISSION_DENIED: PermissionDenied,
 }
 
 
