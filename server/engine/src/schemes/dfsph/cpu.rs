@@ -66,7 +66,8 @@ fn factor<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     cx.attrs.put(h, alpha);
 }
 
-/// A solve's warm start: `increment = WARM_START kappa`, `kappa = increment`.
+/// A solve's warm start: `increment = WARM_START kappa`, `kappa = 0` (the kick that
+/// follows adds the increment back).
 #[derive(Debug)]
 pub struct Warm {
     /// The stiffness attribute.
@@ -81,41 +82,46 @@ impl CpuPass for Warm {
         let (mut kappa, mut inc) = (cx.attrs.take(kh), cx.attrs.take(dh));
         kappa.par_iter_mut().zip(inc.par_iter_mut()).with_min_len(4096).for_each(|(k, d)| {
             *d = WARM_START * *k;
-            *k = *d;
+            *k = 0.0;
         });
         cx.attrs.put(kh, kappa);
         cx.attrs.put(dh, inc);
     }
 }
 
-/// `v_i -= dt (sum_j (m_i dP_i + m_j^2 dP_j / m_i) grad W_ij + 2 dP_i sum_b psi_b grad W_ib)`:
-/// the pressure force of the increments `dP` of one solve.
+/// `v_i -= dt (sum_j (m_i dP_i + m_j^2 dP_j / m_i) grad W_ij + dP_i sum_b psi_b grad W_ib)`:
+/// the pressure force of the increments `dP` of one solve, which are added to its
+/// stiffness.
 #[derive(Debug)]
 pub struct Kick {
+    /// The stiffness attribute.
+    pub kappa: &'static str,
     /// The increment attribute.
     pub increment: &'static str,
 }
 
 impl CpuPass for Kick {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        crate::with_separation!(&cx.model.periodic, |s| kick(cx, s, self.increment))
+        crate::with_separation!(&cx.model.periodic, |s| kick(cx, s, self))
     }
 }
 
-fn kick<S: Separation>(cx: &mut CpuCx<'_>, sep: S, increment: &str) {
+fn kick<S: Separation>(cx: &mut CpuCx<'_>, sep: S, pass: &Kick) {
     let model = cx.model;
     let (k, walls, materials) = (&model.kernel, &model.wall_particles, &model.materials);
     let dt = cx.dt;
-    let vh = cx.attrs.handle::<Vec3>("v");
-    let mut vel = cx.attrs.take(vh);
+    let (vh, kh) = (cx.attrs.handle::<Vec3>("v"), cx.attrs.handle::<Real>(pass.kappa));
+    let (mut vel, mut kappa) = (cx.attrs.take(vh), cx.attrs.take(kh));
     let attrs = &*cx.attrs;
     let pos = attrs.get(attrs.handle::<Vec3>("x"));
-    let dp = attrs.get(attrs.handle::<Real>(increment));
+    let dp = attrs.get(attrs.handle::<Real>(pass.increment));
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
-    vel.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (out, nb))| {
+    let outputs = vel.par_chunks_mut(CHUNK).zip(kappa.par_chunks_mut(CHUNK));
+    outputs.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((out, kappa), nb))| {
         for (n, v) in out.iter_mut().enumerate() {
             let i = c * CHUNK + n;
+            kappa[n] += dp[i];
             let (xi, mi) = (pos[i], material(i));
             let m_i = materials.get(mi).mass;
             let own = m_i * dp[i];
@@ -135,11 +141,12 @@ fn kick<S: Separation>(cx: &mut CpuCx<'_>, sep: S, increment: &str) {
         }
     });
     cx.attrs.put(vh, vel);
+    cx.attrs.put(kh, kappa);
 }
 
 /// A solve's error from the current velocities: its increment `dP = e alpha / dt^2`
-/// (density) or `e alpha / dt` (divergence) for the compression `e >= 0`, added to
-/// the stiffness, and its residual.
+/// (density) or `e alpha / dt` (divergence) for the compression `e >= 0`, and its
+/// residual.
 #[derive(Debug)]
 pub struct Error {
     /// The constant-density solve's (else the divergence-free solve's).
@@ -159,20 +166,17 @@ fn error<const DENSITY: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let model = cx.model;
     let (k, walls, materials) = (&model.kernel, &model.wall_particles, &model.materials);
     let dt = cx.dt;
-    let (names, scale) = if DENSITY {
-        (["dkappa", "density_error", "kappa"], dt * dt)
-    } else {
-        (["dkappa_v", "divergence_error", "kappa_v"], dt)
-    };
+    let (names, scale) =
+        if DENSITY { (["dkappa", "density_error"], dt * dt) } else { (["dkappa_v", "divergence_error"], dt) };
     let handles = names.map(|n| cx.attrs.handle::<Real>(n));
-    let [mut inc, mut err, mut kappa] = handles.map(|h| cx.attrs.take(h));
+    let [mut inc, mut err] = handles.map(|h| cx.attrs.take(h));
     let attrs = &*cx.attrs;
     let (pos, vel) = (attrs.get(attrs.handle::<Vec3>("x")), attrs.get(attrs.handle::<Vec3>("v")));
     let (rho, alpha) = (attrs.get(attrs.handle::<Real>("rho")), attrs.get(attrs.handle::<Real>("alpha")));
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
-    let outputs = inc.par_chunks_mut(CHUNK).zip(err.par_chunks_mut(CHUNK)).zip(kappa.par_chunks_mut(CHUNK));
-    outputs.zip(&cx.nb.chunks).enumerate().for_each(|(c, (((inc, err), kappa), nb))| {
+    let outputs = inc.par_chunks_mut(CHUNK).zip(err.par_chunks_mut(CHUNK));
+    outputs.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((inc, err), nb))| {
         for n in 0..inc.len() {
             let i = c * CHUNK + n;
             let (xi, vi, mi) = (pos[i], vel[i], material(i));
@@ -200,12 +204,11 @@ fn error<const DENSITY: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
             };
             let e = compression.max(0.0);
             inc[n] = e * alpha[i] / scale;
-            kappa[n] += inc[n];
             let residual = if DENSITY { e } else { dt * e };
             err[n] = residual / m.rest_density;
         }
     });
-    for (h, col) in handles.into_iter().zip([inc, err, kappa]) {
+    for (h, col) in handles.into_iter().zip([inc, err]) {
         cx.attrs.put(h, col);
     }
 }

@@ -30,9 +30,10 @@
 //! `s_i = m_i sum_j grad W_ij + sum_b psi_b grad W_ib` the diagonal of the system is
 //! `D_i = |s_i|^2 + m_i^3 sum_j |grad W_ij|^2 / m_j` (B&K's factor, eq. 9 of 2017,
 //! written for P) and `alpha_i = 1 / D_i`. An iteration computes each particle's error
-//! `e_i` from the current velocities, its increment `dP_i` (`e alpha / dt^2` for the
-//! density, `e alpha / dt` for the divergence), adds it to the stiffness and kicks
-//! the velocities by the increments' pressure force. Only compression is corrected
+//! `e_i` from the current velocities and its increment `dP_i` (`e alpha / dt^2` for
+//! the density, `e alpha / dt` for the divergence); the next kick applies the
+//! increments' pressure force to the velocities and adds them to the stiffness, so
+//! the stiffness is exactly what was applied. Only compression is corrected
 //! (`e >= 0`): a free surface is never pulled together, and the stiffness only
 //! grows within a step (as in SPlisHSPlasH); a Jacobi update with signed errors,
 //! measured on the resting column, oscillates and diverges. Particles with fewer than
@@ -42,7 +43,9 @@
 //! Warm start: each solve starts from the stiffness it ended the previous step with
 //! (`kappa`, `kappa_v`, state attributes: sorted with the particles and saved in
 //! snapshots, so a restored scene continues bit for bit), scaled by
-//! [`WARM_START`], applied as a first kick before the first residual.
+//! [`WARM_START`], applied as a first kick before the first residual. The
+//! stiffness is kept as `p / rho^2` of the step it was found in; dt changes
+//! slowly under the CFL condition, so it is not rescaled.
 
 pub mod cpu;
 
@@ -65,10 +68,10 @@ pub static SCHEME: SchemeDef = SchemeDef {
     cpu: &[
         ("dfsph.factor", &cpu::Factor),
         ("dfsph.divergence_warm", &cpu::Warm { kappa: "kappa_v", increment: "dkappa_v" }),
-        ("dfsph.divergence_kick", &cpu::Kick { increment: "dkappa_v" }),
+        ("dfsph.divergence_kick", &cpu::Kick { kappa: "kappa_v", increment: "dkappa_v" }),
         ("dfsph.divergence_error", &cpu::Error { density: false }),
         ("dfsph.density_warm", &cpu::Warm { kappa: "kappa", increment: "dkappa" }),
-        ("dfsph.density_kick", &cpu::Kick { increment: "dkappa" }),
+        ("dfsph.density_kick", &cpu::Kick { kappa: "kappa", increment: "dkappa" }),
         ("dfsph.density_error", &cpu::Error { density: true }),
     ],
     step,
@@ -138,18 +141,20 @@ pub static FACTOR: PassSpec = PassSpec {
 };
 /// The divergence solve's warm start: `dkappa_v = w kappa_v`, `kappa_v = dkappa_v`.
 pub static DIVERGENCE_WARM: PassSpec = solve_pass("dfsph.divergence_warm", &["kappa_v"], &["dkappa_v", "kappa_v"], &[]);
-/// The pressure force of the divergence increments, as a kick.
-pub static DIVERGENCE_KICK: PassSpec = solve_pass("dfsph.divergence_kick", &["x", "dkappa_v"], &[], &["v"]);
+/// The pressure force of the divergence increments, as a kick; the increments are
+/// added to the stiffness.
+pub static DIVERGENCE_KICK: PassSpec = solve_pass("dfsph.divergence_kick", &["x", "dkappa_v"], &[], &["v", "kappa_v"]);
 /// The compression rate, its increment and residual.
 pub static DIVERGENCE_ERROR_PASS: PassSpec =
-    solve_pass("dfsph.divergence_error", &["x", "v", "alpha"], &["dkappa_v", "divergence_error"], &["kappa_v"]);
+    solve_pass("dfsph.divergence_error", &["x", "v", "alpha"], &["dkappa_v", "divergence_error"], &[]);
 /// The density solve's warm start.
 pub static DENSITY_WARM: PassSpec = solve_pass("dfsph.density_warm", &["kappa"], &["dkappa", "kappa"], &[]);
-/// The pressure force of the density increments, as a kick.
-pub static DENSITY_KICK: PassSpec = solve_pass("dfsph.density_kick", &["x", "dkappa"], &[], &["v"]);
+/// The pressure force of the density increments, as a kick; the increments are
+/// added to the stiffness.
+pub static DENSITY_KICK: PassSpec = solve_pass("dfsph.density_kick", &["x", "dkappa"], &[], &["v", "kappa"]);
 /// The predicted compression, its increment and residual.
 pub static DENSITY_ERROR_PASS: PassSpec =
-    solve_pass("dfsph.density_error", &["x", "v", "rho", "alpha"], &["dkappa", "density_error"], &["kappa"]);
+    solve_pass("dfsph.density_error", &["x", "v", "rho", "alpha"], &["dkappa", "density_error"], &[]);
 
 /// Pressure `rho^2 (kappa + kappa_v)` (Pa): the pressure of both solves' forces.
 pub const PRESSURE: ChannelSpec = ChannelSpec {
