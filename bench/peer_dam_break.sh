@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Time to solution on the dam break, Floe against SPlisHSPlasH 2.19 (WCSPH, Akinci
-# boundary particles), same geometry, same machine, one run. Prints one table.
+# Time to solution on the dam break, Floe (WCSPH and DFSPH) against SPlisHSPlasH 2.19
+# (WCSPH and DFSPH, Akinci boundary particles), same geometry, same machine, one run.
+# Prints one table: wall time, steps, mean solver iterations per step, front RMS and
+# the wall time over the fastest peer's.
 #
 #   bash bench/peer_dam_break.sh            # 21,952 fluid particles, 0.5 s simulated
 #
@@ -23,18 +25,15 @@ particles=$((N * N * N))
 row() { # label, extra floe args...
   local label=$1; shift
   ./target/release/floe bench --particles "$particles" --solve "$SECONDS_SIM" "$@" | tail -1 |
-    awk -F'|' -v l="$label" '{gsub(/ /,""); printf "%s|%s|%s|%s|%s|%s\n", l, $2, $4, $6, $8, $11}'
+    awk -F'|' -v l="$label" '{gsub(/ /,""); printf "%s|%s|%s|%s|%s|%s|%s|floe\n", l, $2, $4, $6, $8, $11, $12}'
 }
-{
-  row "Floe WCSPH, c = 10 v_max (default)"
-  # SPlisHSPlasH's WCSPH stiffness 50000 Pa with gamma 7 is c = sqrt(50000*7/1000) = 18.7 m/s.
-  row "Floe WCSPH, c = 18.7 m/s (peer's stiffness)" --set solver.speed_of_sound=18.7
+peer() { # label, SPlisHSPlasH method (0 WCSPH, 4 DFSPH)
   LD_PRELOAD=/lib/x86_64-linux-gnu/libGLdispatch.so.0 "$VENV/bin/python" "$PEERS/splishsplash_dam_break.py" \
-    --n "$N" --method 0 --stop "$SECONDS_SIM" --out "$tmp/peer.json" > "$tmp/peer.log" 2>&1
-  python3 - "$tmp/peer.json" server/engine/data/dam_break_surge_front.csv <<'PY'
+    --n "$N" --method "$2" --stop "$SECONDS_SIM" --out "$tmp/peer$2.json" > "$tmp/peer$2.log" 2>&1
+  python3 - "$1" "$tmp/peer$2.json" server/engine/data/dam_break_surge_front.csv <<'PY'
 import json, sys
-peer = json.load(open(sys.argv[1]))
-ref = [(float(t), float(z)) for s, t, z in (l.strip().split(",") for l in open(sys.argv[2])
+peer = json.load(open(sys.argv[2]))
+ref = [(float(t), float(z)) for s, t, z in (l.strip().split(",") for l in open(sys.argv[3])
        if not l.startswith("#") and l.startswith("koshizuka"))]
 hist = [(f["T"], f["Z_max"]) for f in peer["front"]]
 diffs = []
@@ -48,13 +47,25 @@ for t, z in ref:
             break
 rms = (sum(d * d for d in diffs) / len(diffs)) ** 0.5
 z2 = next(z for t, z in hist if t >= 2.0)
-print(f"SPlisHSPlasH 2.19 WCSPH (dt 0.5 ms)|{peer['n_fluid']}|{peer['steps']}|{peer['run_wall_s']:.2f}|{rms:.3f}|{z2:.3f}")
+iters = peer.get("mean_iterations", "-")
+iters = f"{iters:.1f}" if isinstance(iters, (int, float)) else iters
+print(f"{sys.argv[1]}|{peer['n_fluid']}|{peer['steps']}|{peer['run_wall_s']:.2f}|{rms:.3f}|{z2:.3f}|{iters}|peer")
 PY
+}
+{
+  row "Floe WCSPH, c = 10 v_max (default)"
+  # SPlisHSPlasH's WCSPH stiffness 50000 Pa with gamma 7 is c = sqrt(50000*7/1000) = 18.7 m/s.
+  row "Floe WCSPH, c = 18.7 m/s (peer's stiffness)" --set solver.speed_of_sound=18.7
+  row "Floe DFSPH (tolerance 0.1 %)" --set 'solver.method="dfsph"'
+  row "Floe DFSPH (tolerance 0.01 %, the peer's)" --set 'solver.method="dfsph"' --set solver.dfsph.density_tolerance=1e-4
+  peer "SPlisHSPlasH 2.19 WCSPH (dt 0.5 ms)" 0
+  peer "SPlisHSPlasH 2.19 DFSPH (tolerance 0.01 %)" 4
 } > "$tmp/rows"
 echo "dam break, a = 0.5 m, $SECONDS_SIM s simulated, $(nproc) cores; front error against Koshizuka & Oka (T <= 3), reference Z(T=2) = 2.24"
-echo "| run | fluid particles | steps | wall s | front RMS | Z(T=2) | wall / peer |"
-echo "|---|---:|---:|---:|---:|---:|---:|"
-peer_wall=$(tail -1 "$tmp/rows" | cut -d'|' -f4)
-while IFS='|' read -r label n steps wall rms z2; do
-  printf "| %s | %s | %s | %s | %s | %s | %.2f |\n" "$label" "$n" "$steps" "$wall" "$rms" "$z2" "$(awk -v a="$wall" -v b="$peer_wall" 'BEGIN{print a/b}')"
+echo "| run | fluid particles | steps | wall s | iterations/step | front RMS | Z(T=2) | wall / fastest peer |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+fastest=$(awk -F'|' '$8 == "peer" {print $4}' "$tmp/rows" | sort -g | head -1)
+while IFS='|' read -r label n steps wall rms z2 iters _; do
+  printf "| %s | %s | %s | %s | %s | %s | %s | %.2f |\n" "$label" "$n" "$steps" "$wall" "$iters" "$rms" "$z2" \
+    "$(awk -v a="$wall" -v b="$fastest" 'BEGIN{print a/b}')"
 done < "$tmp/rows"

@@ -44,9 +44,9 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     }
     println!("dam break on {}, {} timed steps per size", backend.description, args.steps);
     println!(
-        "| fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle |"
+        "| fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle | solver iterations/step |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut profiles = Vec::new();
     for &n in &args.particles {
         let mut sim = dam_break(n, &args.overrides, &backend)?;
@@ -54,6 +54,7 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
             sim.step().context("warm-up")?;
         }
         let kernels_before = sim.kernel_times();
+        let iterations_before = iterations(&sim);
         let t0 = Instant::now();
         for _ in 0..args.steps {
             sim.step().context("timed step")?;
@@ -64,13 +65,15 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
         let per_particle = |b: u64| format!("{:.0}", b as f64 / p as f64);
         let mem = if args.memory { peak_rss().map(per_particle) } else { None };
         let device = sim.device_memory().map(per_particle);
+        let solved = iterations(&sim) - iterations_before;
         println!(
-            "| {p} | {} | {wall:.2} | {:.2} | {:.2} | {} | {} |",
+            "| {p} | {} | {wall:.2} | {:.2} | {:.2} | {} | {} | {} |",
             args.steps,
             wall * 1e3 / args.steps as f64,
             p as f64 * args.steps as f64 / wall / 1e6,
             mem.unwrap_or_else(|| "-".into()),
-            device.unwrap_or_else(|| "-".into())
+            device.unwrap_or_else(|| "-".into()),
+            per_step_iterations(&sim, solved, args.steps)
         );
     }
     for (p, kernels) in profiles.iter().filter(|k| args.profile && !k.1.is_empty()) {
@@ -84,6 +87,16 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// Iterations of every iterative solve so far (0 for schemes that do not iterate).
+fn iterations(sim: &Simulation) -> u64 {
+    sim.stats().solves.values().map(|s| s.total_iterations).sum()
+}
+
+/// `solved` iterations over `steps` steps, or "-" for a scheme without solves.
+fn per_step_iterations(sim: &Simulation, solved: u64, steps: u64) -> String {
+    if sim.stats().solves.is_empty() { "-".into() } else { format!("{:.1}", solved as f64 / steps.max(1) as f64) }
 }
 
 /// Per kernel, device milliseconds and dispatches per step between two
@@ -127,11 +140,11 @@ fn solve(particles: usize, overrides: &[String], seconds: f64, backend: &Selecte
     let err = dam_break::compare(&history, &reference, 3.0);
     let at = |t: f64| history.iter().find(|h| h.0 >= t).map_or(f64::NAN, |h| h.1);
     println!(
-        "| fluid particles | simulated s | steps | dt mean s | wall s | M particle-steps/s | front RMS (T<=3) | front max | front bias | Z(T=2) |"
+        "| fluid particles | simulated s | steps | dt mean s | wall s | M particle-steps/s | front RMS (T<=3) | front max | front bias | Z(T=2) | solver iterations/step |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     println!(
-        "| {} | {:.3} | {} | {:.2e} | {wall:.2} | {:.2} | {:.3} | {:.3} | {:+.3} | {:.3} |",
+        "| {} | {:.3} | {} | {:.2e} | {wall:.2} | {:.2} | {:.3} | {:.3} | {:+.3} | {:.3} | {} |",
         sim.particle_count(),
         sim.time(),
         sim.steps(),
@@ -140,7 +153,8 @@ fn solve(particles: usize, overrides: &[String], seconds: f64, backend: &Selecte
         err.rms,
         err.max,
         err.bias,
-        at(2.0)
+        at(2.0),
+        per_step_iterations(&sim, iterations(&sim), sim.steps())
     );
     Ok(())
 }

@@ -15,10 +15,10 @@ fn quick_validation_meets_every_stated_bound() {
     assert!(report.contains("**All stated bounds met.**"));
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("report.json")).unwrap()).unwrap();
-    // 2 cases x 4 variants x 3 resolutions, and every battery case.
-    assert_eq!(json["runs"].as_array().unwrap().len(), 24);
+    // 2 cases x 5 variants x 3 resolutions, Poiseuille x 2 schemes x 3, and every battery case.
+    assert_eq!(json["runs"].as_array().unwrap().len(), 36);
     assert_eq!(json["stability"].as_array().unwrap().len(), floe_engine::validation::stability::all().len());
-    for case in ["hydrostatic", "dam_break"] {
+    for case in ["hydrostatic", "dam_break", "poiseuille"] {
         for plot in ["work_precision", "convergence"] {
             let svg = std::fs::read_to_string(dir.path().join(format!("{case}_{plot}.svg"))).unwrap();
             assert!(svg.starts_with("<svg") && svg.contains("<polyline"), "{case}_{plot}.svg has no lines");
@@ -29,11 +29,13 @@ fn quick_validation_meets_every_stated_bound() {
 #[test]
 fn unknown_cases_are_named() {
     let dir = tempfile::tempdir().unwrap();
-    let cli = Cli::try_parse_from(["floe", "validate", "--case", "poiseuille", "--out", dir.path().to_str().unwrap()])
-        .unwrap();
+    let cli =
+        Cli::try_parse_from(["floe", "validate", "--case", "taylor_green", "--out", dir.path().to_str().unwrap()])
+            .unwrap();
     let err = floe_server::execute(cli).unwrap_err();
     assert!(
-        format!("{err}").starts_with("unknown case 'poiseuille'; cases are: hydrostatic, dam_break, stability"),
+        format!("{err}")
+            .starts_with("unknown case 'taylor_green'; cases are: hydrostatic, dam_break, poiseuille, stability"),
         "{err}"
     );
 }

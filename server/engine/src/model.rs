@@ -195,6 +195,7 @@ impl Model {
         self.damping = (scene.solver.damping, scene.solver.damping_until as f64);
         self.max_compression = scene.guard.max_compression;
         self.max_speed = scene.guard.max_speed.or(self.sound_speed).unwrap_or(Real::INFINITY);
+        (self.scheme.retune)(scene, self);
         for m in self.modules.clone() {
             (m.retune)(scene, self);
         }

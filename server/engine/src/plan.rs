@@ -21,6 +21,9 @@ pub enum Stage {
     PreForce,
     /// Accelerations.
     Force,
+    /// The passes of a scheme's iterative solves (DFSPH's): the scheme runs them by
+    /// name, iteration by iteration ([`crate::schemes::Iterate`]), never as a stage.
+    Solve,
     /// Velocity-level updates after the kick that follows an evaluation (XSPH), and
     /// fields integrated once per step (temperature).
     Kick,
@@ -32,8 +35,16 @@ pub enum Stage {
 
 impl Stage {
     /// Every stage, in the order a step goes through them.
-    pub const ALL: [Stage; 7] =
-        [Stage::Sort, Stage::Density, Stage::PreForce, Stage::Force, Stage::Kick, Stage::Drift, Stage::PostStep];
+    pub const ALL: [Stage; 8] = [
+        Stage::Sort,
+        Stage::Density,
+        Stage::PreForce,
+        Stage::Force,
+        Stage::Solve,
+        Stage::Kick,
+        Stage::Drift,
+        Stage::PostStep,
+    ];
 
     /// Lower-case name.
     pub fn name(self) -> &'static str {
@@ -42,6 +53,7 @@ impl Stage {
             Stage::Density => "density",
             Stage::PreForce => "pre-force",
             Stage::Force => "force",
+            Stage::Solve => "solve",
             Stage::Kick => "kick",
             Stage::Drift => "drift",
             Stage::PostStep => "post-step",
@@ -67,6 +79,11 @@ pub struct PassSpec {
     /// Largest difference between the GPU's and the CPU's results of what it writes,
     /// relative to the largest magnitude (f32 rounding and fused multiply-adds).
     pub tolerance: f32,
+}
+
+/// The module of the pass called `name` among `passes`.
+fn module_of(passes: &[&'static PassSpec], name: &str) -> &'static str {
+    passes.iter().find(|p| p.name == name).map_or("", |p| p.module)
 }
 
 /// Why a scene's passes cannot form a plan.
@@ -118,7 +135,13 @@ impl Plan {
         for p in &ordered {
             for &attr in p.writes {
                 if let Some(&(_, first)) = writer.iter().find(|(a, _)| *a == attr) {
-                    return Err(PlanError::Conflict { attr, first, second: p.name });
+                    // A solve's passes run in the order its scheme calls them, so two
+                    // of one solve may write the same attribute (a warm start and an
+                    // iteration both set the increment).
+                    let solve = |name: &str| ordered.iter().any(|q| q.name == name && q.stage == Stage::Solve);
+                    if !(solve(first) && p.stage == Stage::Solve && p.module == module_of(&ordered, first)) {
+                        return Err(PlanError::Conflict { attr, first, second: p.name });
+                    }
                 }
                 writer.push((attr, p.name));
             }
@@ -188,6 +211,9 @@ mod tests {
     static C: PassSpec = pass("c.force", Stage::Force, &["rho"], &["acc"]);
     static D: PassSpec = PassSpec { accumulates: &["acc"], writes: &[], ..pass("d.force", Stage::Force, &["t"], &[]) };
     static E: PassSpec = PassSpec { accumulates: &["acc"], writes: &[], ..pass("e.pre", Stage::PreForce, &[], &[]) };
+    static S1: PassSpec = pass("s.warm", Stage::Solve, &["x"], &["inc"]);
+    static S2: PassSpec = pass("s.error", Stage::Solve, &["x"], &["inc"]);
+    static S3: PassSpec = PassSpec { module: "other", ..pass("o.error", Stage::Solve, &["x"], &["inc"]) };
 
     #[test]
     fn orders_by_stage_then_declaration() {
@@ -208,5 +234,15 @@ mod tests {
         assert_eq!(e.to_string(), "d.force reads t, which no attribute of this scene holds and no pass of it writes");
         let e = Plan::build(vec![&E, &A], &["x"]).unwrap_err();
         assert_eq!(e.to_string(), "e.pre accumulates into acc before any pass writes it");
+    }
+
+    #[test]
+    fn passes_of_one_solve_may_share_an_output() {
+        assert!(Plan::build(vec![&S1, &S2], &["x"]).is_ok());
+        let e = Plan::build(vec![&S1, &S3], &["x"]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "passes s.warm and o.error both write inc; one of them must accumulate into it instead"
+        );
     }
 }

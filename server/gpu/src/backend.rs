@@ -33,6 +33,8 @@ struct PlanPass {
     kernel: Option<(Arc<Kernel>, BindGroup)>,
     /// Elements of the pass's space (threads).
     threads: u32,
+    /// Whether it reads the step's dt from the `dt` uniform.
+    uses_dt: bool,
 }
 
 /// The bind groups of the core's own kernels.
@@ -70,6 +72,8 @@ pub struct GpuBackend {
     slot: usize,
     /// Every pass recorded so far, in the order first recorded.
     ran: Vec<&'static str>,
+    /// The dt in the `dt` uniform (NaN before the first write).
+    pass_dt: Real,
 }
 
 impl GpuBackend {
@@ -110,6 +114,7 @@ impl GpuBackend {
             timer,
             slot: 0,
             ran: Vec::new(),
+            pass_dt: Real::NAN,
         })
     }
 
@@ -164,7 +169,13 @@ impl GpuBackend {
         p.slots.dispatch(e, &c.slots, n);
     }
 
-    fn record_pass(&mut self, i: usize) {
+    fn record_pass(&mut self, i: usize, dt: Real) {
+        if self.passes[i].uses_dt && dt.to_bits() != self.pass_dt.to_bits() {
+            // Work recorded so far reads the old dt: it goes first.
+            self.flush();
+            self.gpu.queue.write_buffer(self.buffers.get("dt"), 0, bytemuck::bytes_of(&[dt, 0.0, 0.0, 0.0]));
+            self.pass_dt = dt;
+        }
         let mut e = self.take_recorder();
         let pass = &self.passes[i];
         if !self.ran.contains(&pass.spec.name) {
@@ -308,13 +319,14 @@ fn plan_passes(gpu: &GpuContext, model: &Model, b: &Buffers) -> Vec<PlanPass> {
         .iter()
         .map(|&spec| {
             if spec.name == "core.sort" {
-                return PlanPass { spec, kernel: None, threads: model.particle_count() as u32 };
+                return PlanPass { spec, kernel: None, threads: model.particle_count() as u32, uses_dt: false };
             }
             let pass = crate::pass::find(spec.name, model).expect("checked at creation");
             let kernel = gpu.kernel(pass);
             let buffers: Vec<&Buffer> = pass.bindings.iter().map(|(_, name)| b.get(name)).collect();
             let bind = kernel.bind(&gpu.device, &buffers);
-            PlanPass { spec, kernel: Some((kernel, bind)), threads: model.layout.count(pass.space) as u32 }
+            let uses_dt = pass.bindings.iter().any(|(_, name)| *name == "dt");
+            PlanPass { spec, kernel: Some((kernel, bind)), threads: model.layout.count(pass.space) as u32, uses_dt }
         })
         .collect()
 }
@@ -324,17 +336,17 @@ impl Stages for GpuBackend {
         &self.model
     }
 
-    fn run(&mut self, stage: Stage, _dt: Real) {
+    fn run(&mut self, stage: Stage, dt: Real) {
         for i in 0..self.passes.len() {
             if self.passes[i].spec.stage == stage {
-                self.record_pass(i);
+                self.record_pass(i, dt);
             }
         }
     }
 
-    fn run_pass(&mut self, name: &str, _dt: Real) {
+    fn run_pass(&mut self, name: &str, dt: Real) {
         let i = self.passes.iter().position(|p| p.spec.name == name).unwrap_or_else(|| panic!("no pass {name}"));
-        self.record_pass(i);
+        self.record_pass(i, dt);
     }
 
     fn measure(&mut self) -> Result<floe_engine::guard::Measures, String> {

@@ -139,6 +139,8 @@ impl Buffers {
         }
         let core = vec![
             ("params", init(device, "params", &[Params::new(model, grid)], U::UNIFORM | U::COPY_DST)),
+            // The step's dt for the plan passes that bind it (x; the rest pads to 16 bytes).
+            ("dt", init(device, "pass dt", &[[0.0f32; 4]], U::UNIFORM | U::COPY_DST)),
             ("starts", init(device, "cell and wall run starts", &starts, U::STORAGE | U::COPY_DST | U::COPY_SRC)),
             ("cell_rank", storage(device, "cell and rank", 8 * n, U::empty())),
             ("order", storage(device, "sort order", 4 * n, U::empty())),

@@ -7,7 +7,8 @@
 //!
 //! Both backends start from one CPU state 40 steps into a dam break (a moving,
 //! splashing fluid against walls), so every term is non-trivial; one variant is
-//! periodic, so pairs across the periodic faces and the wrap are compared too.
+//! periodic, so pairs across the periodic faces and the wrap are compared too, and
+//! one is stepped by DFSPH.
 
 mod common;
 
@@ -101,6 +102,8 @@ const VARIANTS: &[&[&str]] = &[
         "boundaries[0].open=[\"-x\",\"+x\",\"-z\",\"+z\"]",
         "domain={\"min\":[0,-0.2,0],\"max\":[2,1.4,0.25]}",
     ],
+    // DFSPH: the factor and each solve's warm start, kick and error.
+    &["particle_spacing=0.05", "solver.method=\"dfsph\""],
 ];
 
 #[test]

@@ -93,15 +93,20 @@ pub fn write(dir: &Path, r: &Report) -> anyhow::Result<()> {
         let norms: Vec<&str> = runs[0].errors.iter().map(|(n, _)| *n).collect();
         writeln!(
             md,
-            "| variant | spacing m | particles | steps | dt mean s | wall s | {} | halted |",
+            "| variant | spacing m | particles | steps | dt mean s | wall s | {} | iterations (mean/max) | halted |",
             norms.join(" | ")
         )?;
-        writeln!(md, "|---|---:|---:|---:|---:|---:|{}---|", "---:|".repeat(norms.len()))?;
+        writeln!(md, "|---|---:|---:|---:|---:|---:|{}---|---|", "---:|".repeat(norms.len()))?;
         for o in &runs {
             let errs: Vec<String> = o.errors.iter().map(|(_, v)| format!("{v:.4}")).collect();
+            let solves: Vec<String> = o
+                .solves
+                .iter()
+                .map(|(name, s)| format!("{name} {:.1}/{}", s.mean_iterations, s.max_iterations))
+                .collect();
             writeln!(
                 md,
-                "| {} | {:.4} | {} | {} | {:.2e} | {:.2} | {} | {} |",
+                "| {} | {:.4} | {} | {} | {:.2e} | {:.2} | {} | {} | {} |",
                 o.variant,
                 o.spacing,
                 o.particles,
@@ -109,6 +114,7 @@ pub fn write(dir: &Path, r: &Report) -> anyhow::Result<()> {
                 o.dt_mean,
                 o.wall_seconds,
                 errs.join(" | "),
+                if solves.is_empty() { "-".into() } else { solves.join(", ") },
                 o.halted.as_deref().unwrap_or("")
             )?;
         }

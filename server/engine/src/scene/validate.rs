@@ -229,6 +229,9 @@ fn check_solver(c: &mut Checker, scene: &Scene) {
     }
     c.non_negative("solver.damping", s.damping);
     c.non_negative("solver.damping_until", s.damping_until);
+    c.within("solver.dfsph.density_tolerance", s.dfsph.density_tolerance, 1e-6, 0.1);
+    c.within("solver.dfsph.divergence_tolerance", s.dfsph.divergence_tolerance, 1e-6, 0.1);
+    c.within("solver.dfsph.max_iterations", s.dfsph.max_iterations as f32, 1.0, 10_000.0);
     match s.time_step {
         TimeStep::Adaptive { cfl, min, max } => {
             c.within("solver.time_step.cfl", cfl, 1e-3, 2.0);

@@ -4,9 +4,11 @@
 //! ([`crate::clock::Clock`]) chooses dt and applies the guard between the stages.
 //!
 //! - [`wcsph`]: weakly compressible SPH, the first scheme.
-//! - [`Iterate`]: runs a pass until a residual reduction falls below a tolerance,
+//! - [`dfsph`]: divergence-free SPH, two iterative pressure solves per step.
+//! - [`Iterate`]: runs passes until a residual reduction falls below a tolerance,
 //!   with at most one small readback per convergence check (solvers that iterate).
 
+pub mod dfsph;
 pub mod wcsph;
 
 use crate::clock::Clock;
@@ -66,6 +68,19 @@ pub enum ReduceOp {
     },
 }
 
+impl ReduceOp {
+    /// Lower-case name, as in messages (`mean density_error`).
+    pub fn name(self) -> &'static str {
+        match self {
+            ReduceOp::Sum => "sum of",
+            ReduceOp::Mean => "mean",
+            ReduceOp::Max => "largest",
+            ReduceOp::MaxAbs => "largest magnitude of",
+            ReduceOp::Outside { .. } => "count out of range of",
+        }
+    }
+}
+
 /// An attribute reduced to one number.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Reduction {
@@ -78,7 +93,7 @@ pub struct Reduction {
 /// What an iterative solve reached.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Solve {
-    /// The solve's name (its pass).
+    /// The solve's name.
     pub name: &'static str,
     /// Iterations run.
     pub iterations: u32,
@@ -86,14 +101,22 @@ pub struct Solve {
     pub residual: f64,
 }
 
-/// Runs a pass until its residual is at most a tolerance: PySPH's
+/// Runs passes until a residual is at most a tolerance: PySPH's
 /// `Group(iterate=True, min_iterations, max_iterations)` and the loop of every
 /// solver that iterates (DFSPH's two solves, implicit viscosity, shape matching).
+///
+/// `start` runs once (a warm start, the first residual), then the residual is
+/// checked before each iteration: a solve already within its tolerance after
+/// `start` runs `min` iterations and no more.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Iterate {
-    /// The pass one iteration runs.
-    pub pass: &'static str,
-    /// The residual after an iteration.
+    /// The solve's name, in step reports and statistics.
+    pub name: &'static str,
+    /// Passes run once before the first check.
+    pub start: &'static [&'static str],
+    /// The passes of one iteration, in order.
+    pub iteration: &'static [&'static str],
+    /// The residual, reduced after `start` and after each iteration.
     pub residual: Reduction,
     /// Converged at or below this residual.
     pub tolerance: f64,
@@ -106,21 +129,36 @@ pub struct Iterate {
 }
 
 impl Iterate {
-    /// Runs the iterations; the error says how far from converged the solve stopped.
+    /// Runs the solve; the error says how far from converged it stopped.
     pub fn run(&self, s: &mut dyn Stages, dt: Real) -> Result<Solve, String> {
+        for pass in self.start {
+            s.run_pass(pass, dt);
+        }
         let mut residual = f64::INFINITY;
-        for k in 1..=self.max {
-            s.run_pass(self.pass, dt);
+        for k in 0..=self.max {
             if k >= self.min && (k % self.check_every.max(1) == 0 || k == self.max) {
                 residual = s.reduce(&self.residual)?;
-                if residual <= self.tolerance {
-                    return Ok(Solve { name: self.pass, iterations: k, residual });
+                if residual.is_nan() {
+                    return Err(format!("{}: the residual is not a number after {k} iterations", self.name));
                 }
+                if residual <= self.tolerance {
+                    return Ok(Solve { name: self.name, iterations: k, residual });
+                }
+            }
+            if k == self.max {
+                break;
+            }
+            for pass in self.iteration {
+                s.run_pass(pass, dt);
             }
         }
         Err(format!(
-            "{} did not converge in {} iterations: residual {residual:.3e} above the tolerance {:.3e}",
-            self.pass, self.max, self.tolerance
+            "{} did not converge in {} iterations: {} {} {residual:.3e} above the tolerance {:.3e}",
+            self.name,
+            self.max,
+            self.residual.op.name(),
+            self.residual.attr,
+            self.tolerance
         ))
     }
 }
@@ -149,22 +187,26 @@ pub struct SchemeDef {
     pub about: &'static str,
     /// Its attributes, passes and constants.
     pub build: fn(&Scene, &mut ModelBuilder) -> Result<(), BuildError>,
+    /// Takes new tunable settings from the scene (tolerances).
+    pub retune: fn(&Scene, &mut Model),
     /// Its CPU passes, by pass name.
     pub cpu: &'static [(&'static str, &'static dyn CpuPass)],
     /// One step.
     pub step: fn(&mut Clock, &mut dyn Stages) -> Result<StepReport, Halted>,
-    /// The signal speed of the CFL condition (m/s): the speed of sound for WCSPH.
+    /// The signal speed of the CFL condition (m/s): the speed of sound for WCSPH, 0
+    /// for an incompressible scheme (the flow speed alone limits its steps).
     pub signal_speed: fn(&Model) -> Real,
 }
 
 /// Every scheme.
 pub fn all() -> Vec<&'static SchemeDef> {
-    vec![&wcsph::SCHEME]
+    vec![&wcsph::SCHEME, &dfsph::SCHEME]
 }
 
 /// The scheme a scene's `solver.method` names.
 pub fn of(scene: &Scene) -> &'static SchemeDef {
     match scene.solver.method {
         Method::Wcsph => &wcsph::SCHEME,
+        Method::Dfsph => &dfsph::SCHEME,
     }
 }

@@ -86,6 +86,9 @@ pub struct Outcome {
     pub wall_seconds: f64,
     /// Error norms by name (see each case's docs).
     pub errors: Vec<(&'static str, f64)>,
+    /// Each iterative solve's iterations and last residual over the run (schemes that iterate).
+    #[serde(skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub solves: std::collections::BTreeMap<String, crate::simulation::SolveStats>,
     /// The halt the user would have seen, if the run halted.
     pub halted: Option<String>,
 }
@@ -113,6 +116,7 @@ pub fn run(case: &'static Case, spacing: f64, variant: &Variant, make: &BackendF
         dt_mean: sim.stats().dt_mean,
         wall_seconds: wall,
         errors,
+        solves: sim.stats().solves.clone(),
         halted: halted.map(|h| h.to_string()),
     })
 }

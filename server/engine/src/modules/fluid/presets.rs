@@ -2,7 +2,7 @@
 //! `--set` overrides and `floe schema` apply to them exactly as to files.
 
 use crate::modules::Preset;
-use crate::scene::{Boundary, BoxRegion, Fluid, FluidBlock, Scene, Solver, Viscosity};
+use crate::scene::{Axis, Boundary, BoxRegion, Face, Fluid, FluidBlock, Scene, Solver, Viscosity};
 
 /// The presets, for the module registry.
 pub const PRESETS: &[Preset] = &[
@@ -16,7 +16,17 @@ pub const PRESETS: &[Preset] = &[
         about: "Water at rest in a closed tank, settling to rho0 g (H - y) (Adami et al. 2012).",
         scene: hydrostatic,
     },
+    Preset {
+        name: "poiseuille",
+        about: "Start-up flow between plates 1 m apart, periodic along them (Morris, Fox & Zhu 1997).",
+        scene: poiseuille,
+    },
 ];
+
+/// Plate distance L (m), kinematic viscosity (m^2/s) and driving force (m/s^2) of
+/// the Poiseuille preset: Morris et al.'s flow scaled to a 1 m channel (L^2 / nu =
+/// 1 s as theirs), steady peak velocity F L^2 / (8 nu) = 0.0125 m/s, Re = 0.0125.
+pub const POISEUILLE: (f32, f32, f32) = (1.0, 1.0, 0.1);
 
 /// Column width a (m) of the dam break.
 pub const DAM_BREAK_A: f32 = 0.5;
@@ -66,6 +76,33 @@ pub fn hydrostatic() -> Scene {
         domain: Some(BoxRegion { min: [-0.1, -0.1, -0.1], max: [0.4, 1.1, 0.25] }),
         periodic: Vec::new(),
         solver: Solver { damping: 5.0, damping_until: 0.5, ..Solver::default() },
+        guard: Default::default(),
+    }
+}
+
+/// Morris, Fox & Zhu (1997): plates at y = 0 and y = L, periodic along x and z
+/// (0.4 L each, a whole number of spacings for L/10 to L/40), the fluid at rest,
+/// driven by a body force along x from t = 0. Laplacian viscosity, two wall layers
+/// (a full support), and a speed of sound 80 times the peak velocity: the flow is
+/// bound by the viscous step limit, not by sound.
+pub fn poiseuille() -> Scene {
+    let (l, nu, force) = POISEUILLE;
+    let w = 0.4 * l;
+    Scene {
+        name: "poiseuille".into(),
+        modules: vec!["fluid".into()],
+        particle_spacing: l / 20.0,
+        gravity: [force, 0.0, 0.0],
+        fluids: vec![water(vec![block([0.0; 3], [w, l, w])], Viscosity::Laplacian { nu })],
+        boundaries: vec![Boundary::Box {
+            min: [0.0; 3],
+            max: [w, l, w],
+            open: vec![Face::MinusX, Face::PlusX, Face::MinusZ, Face::PlusZ],
+            layers: 2,
+        }],
+        domain: Some(BoxRegion { min: [0.0, -0.25 * l, 0.0], max: [w, 1.25 * l, w] }),
+        periodic: vec![Axis::X, Axis::Z],
+        solver: Solver { speed_of_sound: Some(1.0), ..Solver::default() },
         guard: Default::default(),
     }
 }

@@ -32,6 +32,7 @@ pub static SCHEME: SchemeDef = SchemeDef {
     id: "wcsph",
     about: "Weakly compressible SPH: equation of state, explicit steps at the speed of sound.",
     build,
+    retune: |_, _| {},
     cpu: &[("wcsph.eos", &cpu::EosPass), ("wcsph.wall_pressure", &cpu::WallPressure)],
     step,
     signal_speed: |model| model.sound_speed.unwrap_or(0.0),

@@ -1,0 +1,247 @@
+//! Divergence-free SPH (Bender & Koschier 2015, "Divergence-free smoothed particle
+//! hydrodynamics", SCA; 2017, "Divergence-free SPH for incompressible and viscous
+//! fluids", IEEE TVCG 23(3)): pressure from two iterative solves per step instead of
+//! an equation of state, so steps are limited by the flow speed, not by sound.
+//!
+//! A step:
+//! 1. sort, density and the factor `alpha` of each particle (`dfsph.factor`), the
+//!    non-pressure forces (the fluid module's pass without pressure), measure, dt
+//!    from the CFL condition on the flow speed;
+//! 2. the divergence-free solve: the velocities are corrected until the mean
+//!    compression rate `dt (Drho/Dt) / rho0` is at most
+//!    `solver.dfsph.divergence_tolerance` (B&K 2017, algorithm 2);
+//! 3. the kick `v += dt a` with the non-pressure accelerations (and the kick-stage
+//!    passes);
+//! 4. the constant-density solve: the velocities are corrected until the mean
+//!    predicted compression `(rho + dt Drho/Dt - rho0) / rho0` is at most
+//!    `solver.dfsph.density_tolerance` (algorithm 3);
+//! 5. the drift `x += dt v`.
+//!
+//! Step 2 corrects the velocities the last drift left at the positions this step
+//! sorted: the divergence-free solve B&K run at the end of a step, after its
+//! neighbour search, run before the next step's kick (the non-pressure forces see the
+//! velocities before it).
+//!
+//! Each solve is a Jacobi iteration on the stiffness of each particle, written as the
+//! pressure term `P = p / rho^2` that the pressure force uses (the quantity WCSPH's
+//! `pterm` holds):
+//! `a_i = -sum_j (m_i P_i + m_j^2 P_j / m_i) grad W_ij - P_i sum_b psi_b grad W_ib`
+//! (Solenthaler & Pajarola's multi-material form, Akinci's wall term). With
+//! `s_i = m_i sum_j grad W_ij + sum_b psi_b grad W_ib` the diagonal of the system is
+//! `D_i = |s_i|^2 + m_i^3 sum_j |grad W_ij|^2 / m_j` (B&K's factor, eq. 9 of 2017,
+//! written for P) and `alpha_i = 1 / D_i`. An iteration computes each particle's error
+//! `e_i` from the current velocities and its increment `dP_i` (`e alpha / dt^2` for
+//! the density, `e alpha / dt` for the divergence); the next kick applies the
+//! increments' pressure force to the velocities and adds them to the stiffness, so
+//! the stiffness is exactly what was applied. Only compression is corrected
+//! (`e >= 0`): a free surface is never pulled together, and the stiffness only
+//! grows within a step (as in SPlisHSPlasH); a Jacobi update with signed errors,
+//! measured on the resting column, oscillates and diverges. Particles with fewer than
+//! [`FULL_NEIGHBOURHOOD`] neighbours are left out of the divergence solve, as in
+//! SPlisHSPlasH: at a splash's edge the divergence says nothing about compression.
+//!
+//! Warm start: each solve starts from the stiffness it ended the previous step with
+//! (`kappa`, `kappa_v`, state attributes: sorted with the particles and saved in
+//! snapshots, so a restored scene continues bit for bit), scaled by
+//! [`WARM_START`], applied as a first kick before the first residual. The
+//! stiffness is kept as `p / rho^2` of the step it was found in; dt changes
+//! slowly under the CFL condition, so it is not rescaled.
+
+pub mod cpu;
+
+use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
+use crate::channels::{ChannelSpec, Source};
+use crate::clock::Clock;
+use crate::guard::Halted;
+use crate::math::Real;
+use crate::model::{BuildError, Model, ModelBuilder};
+use crate::plan::{PassSpec, Stage};
+use crate::scene::{DfsphSettings, Scene};
+use crate::schemes::{Iterate, ReduceOp, Reduction, SchemeDef, Stages, StepReport};
+
+/// The scheme's definition.
+pub static SCHEME: SchemeDef = SchemeDef {
+    id: "dfsph",
+    about: "Divergence-free SPH: a divergence-free and a constant-density solve per step, steps at the flow's CFL limit.",
+    build,
+    retune: |scene, model| model.set_consts(DfsphConsts { settings: scene.solver.dfsph }),
+    cpu: &[
+        ("dfsph.factor", &cpu::Factor),
+        ("dfsph.divergence_warm", &cpu::Warm { kappa: "kappa_v", increment: "dkappa_v" }),
+        ("dfsph.divergence_kick", &cpu::Kick { kappa: "kappa_v", increment: "dkappa_v" }),
+        ("dfsph.divergence_error", &cpu::Error { density: false }),
+        ("dfsph.density_warm", &cpu::Warm { kappa: "kappa", increment: "dkappa" }),
+        ("dfsph.density_kick", &cpu::Kick { kappa: "kappa", increment: "dkappa" }),
+        ("dfsph.density_error", &cpu::Error { density: true }),
+    ],
+    step,
+    signal_speed: |_| 0.0,
+};
+
+/// Fraction of the previous step's stiffness each solve starts from. The
+/// iterations only add to the stiffness, so a full warm start would let it grow
+/// from step to step; half (SPlisHSPlasH's choice) keeps it bounded and, measured on
+/// the resting column, needs fewer iterations than none.
+pub const WARM_START: Real = 0.5;
+
+/// Neighbours (fluid and wall, the particle itself not counted) a particle needs to
+/// take part in the divergence-free solve (SPlisHSPlasH's choice for 3D; a full
+/// lattice neighbourhood at the default support holds 26).
+pub const FULL_NEIGHBOURHOOD: u32 = 20;
+
+/// The solves' settings.
+#[derive(Debug, Clone, Copy)]
+pub struct DfsphConsts {
+    /// Tolerances and the iteration limit.
+    pub settings: DfsphSettings,
+}
+
+const fn attr(name: &'static str, unit: &'static str, role: Role, about: &'static str) -> AttrSpec {
+    AttrSpec { name, elem: Elem::F32, unit, role, space: PARTICLES, module: "dfsph", about }
+}
+
+/// The factor `alpha = 1 / D` of each particle.
+pub static ALPHA: AttrSpec =
+    attr("alpha", "m^8/kg^2", Role::Derived, "DFSPH factor: the inverse diagonal of the solve.");
+/// Stiffness of the constant-density solve, `p / rho^2`, summed over its iterations.
+pub static KAPPA: AttrSpec =
+    attr("kappa", "m^5/(kg s^2)", Role::State, "Constant-density solve's stiffness p/rho^2 (warm start).");
+/// Stiffness of the divergence-free solve, `p / rho^2`, summed over its iterations.
+pub static KAPPA_V: AttrSpec =
+    attr("kappa_v", "m^5/(kg s^2)", Role::State, "Divergence-free solve's stiffness p/rho^2 (warm start).");
+/// The constant-density solve's increment of the current iteration.
+pub static DKAPPA: AttrSpec = attr("dkappa", "m^5/(kg s^2)", Role::Derived, "Constant-density solve's increment.");
+/// The divergence-free solve's increment of the current iteration.
+pub static DKAPPA_V: AttrSpec = attr("dkappa_v", "m^5/(kg s^2)", Role::Derived, "Divergence-free solve's increment.");
+/// Predicted compression `max(rho + dt Drho/Dt - rho0, 0) / rho0`: the density residual.
+pub static DENSITY_ERROR: AttrSpec =
+    attr("density_error", "", Role::Derived, "Predicted relative compression (the density solve's residual).");
+/// Compression in one step `dt max(Drho/Dt, 0) / rho0`: the divergence residual.
+pub static DIVERGENCE_ERROR: AttrSpec =
+    attr("divergence_error", "", Role::Derived, "Relative compression per step (the divergence solve's residual).");
+
+const fn solve_pass(
+    name: &'static str,
+    reads: &'static [&'static str],
+    writes: &'static [&'static str],
+    accumulates: &'static [&'static str],
+) -> PassSpec {
+    PassSpec { name, module: "dfsph", stage: Stage::Solve, reads, writes, accumulates, tolerance: 1e-4 }
+}
+
+/// `alpha` from the step's neighbours.
+pub static FACTOR: PassSpec = PassSpec {
+    name: "dfsph.factor",
+    module: "dfsph",
+    stage: Stage::Density,
+    reads: &["x", "rho"],
+    writes: &["alpha"],
+    accumulates: &[],
+    tolerance: 1e-4,
+};
+/// The divergence solve's warm start: `dkappa_v = w kappa_v`, `kappa_v = dkappa_v`.
+pub static DIVERGENCE_WARM: PassSpec = solve_pass("dfsph.divergence_warm", &["kappa_v"], &["dkappa_v", "kappa_v"], &[]);
+/// The pressure force of the divergence increments, as a kick; the increments are
+/// added to the stiffness.
+pub static DIVERGENCE_KICK: PassSpec = solve_pass("dfsph.divergence_kick", &["x", "dkappa_v"], &[], &["v", "kappa_v"]);
+/// The compression rate, its increment and residual.
+pub static DIVERGENCE_ERROR_PASS: PassSpec =
+    solve_pass("dfsph.divergence_error", &["x", "v", "alpha"], &["dkappa_v", "divergence_error"], &[]);
+/// The density solve's warm start.
+pub static DENSITY_WARM: PassSpec = solve_pass("dfsph.density_warm", &["kappa"], &["dkappa", "kappa"], &[]);
+/// The pressure force of the density increments, as a kick; the increments are
+/// added to the stiffness.
+pub static DENSITY_KICK: PassSpec = solve_pass("dfsph.density_kick", &["x", "dkappa"], &[], &["v", "kappa"]);
+/// The predicted compression, its increment and residual.
+pub static DENSITY_ERROR_PASS: PassSpec =
+    solve_pass("dfsph.density_error", &["x", "v", "rho", "alpha"], &["dkappa", "density_error"], &[]);
+
+/// Pressure `rho^2 (kappa + kappa_v)` (Pa): the pressure of both solves' forces.
+pub const PRESSURE: ChannelSpec = ChannelSpec {
+    name: "pressure",
+    unit: "Pa",
+    components: 1,
+    exact: false,
+    set: crate::channels::PARTICLES,
+    module: "dfsph",
+    about: "Pressure of the last step's solves, rho^2 (kappa + kappa_v).",
+    source: Source::Derived { from: &["rho", "kappa", "kappa_v"], values: pressures },
+};
+
+fn pressures(_: &Model, columns: &[Column]) -> Vec<f32> {
+    match columns {
+        [Column::F32(rho), Column::F32(k), Column::F32(kv)] => {
+            rho.iter().zip(k).zip(kv).map(|((&r, &k), &kv)| r * r * (k + kv)).collect()
+        }
+        _ => panic!("pressures: densities and stiffnesses expected"),
+    }
+}
+
+fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    b.set_consts(DfsphConsts { settings: scene.solver.dfsph });
+    for spec in [&ALPHA, &KAPPA, &KAPPA_V, &DKAPPA, &DKAPPA_V, &DENSITY_ERROR, &DIVERGENCE_ERROR] {
+        b.zeros(spec);
+    }
+    for pass in [
+        &FACTOR,
+        &DIVERGENCE_WARM,
+        &DIVERGENCE_KICK,
+        &DIVERGENCE_ERROR_PASS,
+        &DENSITY_WARM,
+        &DENSITY_KICK,
+        &DENSITY_ERROR_PASS,
+    ] {
+        b.pass(pass);
+    }
+    b.channel(PRESSURE);
+    Ok(())
+}
+
+/// The divergence-free solve with the scene's settings.
+pub fn divergence_solve(s: &DfsphSettings) -> Iterate {
+    Iterate {
+        name: "dfsph.divergence",
+        start: &["dfsph.divergence_warm", "dfsph.divergence_kick", "dfsph.divergence_error"],
+        iteration: &["dfsph.divergence_kick", "dfsph.divergence_error"],
+        residual: Reduction { attr: "divergence_error", op: ReduceOp::Mean },
+        tolerance: f64::from(s.divergence_tolerance),
+        min: 1,
+        max: s.max_iterations,
+        check_every: 1,
+    }
+}
+
+/// The constant-density solve with the scene's settings.
+pub fn density_solve(s: &DfsphSettings) -> Iterate {
+    Iterate {
+        name: "dfsph.density",
+        start: &["dfsph.density_warm", "dfsph.density_kick", "dfsph.density_error"],
+        iteration: &["dfsph.density_kick", "dfsph.density_error"],
+        residual: Reduction { attr: "density_error", op: ReduceOp::Mean },
+        tolerance: f64::from(s.density_tolerance),
+        min: 2,
+        max: s.max_iterations,
+        check_every: 1,
+    }
+}
+
+/// The stages before the solves.
+const EVALUATE: [Stage; 4] = [Stage::Sort, Stage::Density, Stage::PreForce, Stage::Force];
+
+/// One step (see the module's documentation).
+fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
+    let n = s.model().particle_count();
+    let settings = s.model().consts::<DfsphConsts>().settings;
+    let m = clock.evaluate(s, &EVALUATE)?;
+    let dt = clock.dt(s.model(), &m)?;
+    let divergence = divergence_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?;
+    let keep = clock.keep(s.model(), dt);
+    s.kick(dt, keep);
+    s.run(Stage::Kick, dt);
+    let density = density_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?;
+    s.drift(dt);
+    s.run(Stage::Drift, dt);
+    s.run(Stage::PostStep, dt);
+    s.end_step();
+    Ok(clock.advance(dt, &m, n, vec![divergence, density]))
+}

@@ -1,0 +1,91 @@
+//! DFSPH on the CPU: it holds a resting column at its rest density, runs the dam
+//! break, reports its iterations, restores bit for bit (the warm-started stiffness
+//! is state), and halts naming the residual when a solve cannot converge.
+
+use floe_engine::Simulation;
+use floe_engine::scene::load::from_preset;
+use floe_engine::scene::presets::DAM_BREAK_A;
+use floe_engine::validation::{dam_break, hydrostatic};
+
+fn dfsph(name: &str, overrides: &[&str]) -> Simulation {
+    let mut o = vec!["solver.method=dfsph".to_string()];
+    o.extend(overrides.iter().map(|s| s.to_string()));
+    Simulation::new_cpu(from_preset(name, &o).unwrap()).unwrap()
+}
+
+#[test]
+fn a_resting_column_keeps_its_rest_density() {
+    let mut sim = dfsph("hydrostatic", &["particle_spacing=0.05"]);
+    sim.run_until(1.0, |_, _| {}).unwrap();
+    let p = sim.read(&["density", "pressure"]);
+    let e = hydrostatic::measure(&p, 1000.0, 9.81, 0.9, 0.05);
+    eprintln!("{} steps: {e:?}, {:?}", sim.steps(), sim.stats().solves);
+    // The default tolerance is a mean predicted compression of 0.1 %.
+    assert!(e.mean_density_deviation < 0.005, "mean density deviation {:.4}", e.mean_density_deviation);
+    // The top layer, uncompressed, is never pushed up: it settles up to a spacing lower.
+    assert!((e.surface - 0.9).abs() < 0.075, "free surface at {:.4} m", e.surface);
+    // Steps at the flow's limit, not the speed of sound's: the column rests, so dt
+    // is the largest allowed.
+    assert!(sim.stats().dt_min >= 4.9e-3, "dt fell to {}", sim.stats().dt_min);
+    let density = &sim.stats().solves["dfsph.density"];
+    assert!(density.mean_iterations >= 2.0 && density.last_residual <= 1e-3, "{density:?}");
+}
+
+#[test]
+fn the_dam_break_front_follows_koshizuka_and_oka_and_steps_report_iterations() {
+    let (a, d) = (DAM_BREAK_A as f64, DAM_BREAK_A as f64 / 12.0);
+    let mut sim = dfsph("dam_break", &[&format!("particle_spacing={d}")]);
+    let t_scale = (2.0 * 9.81 / a).sqrt();
+    let mut history = Vec::new();
+    let mut next = 0.0;
+    while sim.time() < dam_break::seconds(2.6, 9.81, a) {
+        let report = sim.step().unwrap();
+        let names: Vec<_> = report.solves.iter().map(|s| s.name).collect();
+        assert_eq!(names, ["dfsph.divergence", "dfsph.density"]);
+        assert!(report.solves.iter().all(|s| s.iterations >= 1 && s.residual <= 1e-3), "{:?}", report.solves);
+        if sim.time() >= next {
+            history.push((sim.time() * t_scale, dam_break::front(&sim.read(&[]).positions, 0.0, d, a)));
+            next += 0.01;
+        }
+    }
+    let e = dam_break::compare(&history, &dam_break::reference(dam_break::KOSHIZUKA_OKA), 2.5);
+    eprintln!("{} steps: {e:?}", sim.steps());
+    assert!(e.max <= 0.35, "surge front off by up to {:.3} in Z", e.max);
+}
+
+#[test]
+fn a_restored_snapshot_continues_bit_for_bit_with_its_warm_start() {
+    let mut sim = dfsph("dam_break", &["particle_spacing=0.05"]);
+    for _ in 0..30 {
+        sim.step().unwrap();
+    }
+    let saved = sim.snapshot();
+    for _ in 0..20 {
+        sim.step().unwrap();
+    }
+    let mut restored = Simulation::restore(&saved).unwrap();
+    for _ in 0..20 {
+        restored.step().unwrap();
+    }
+    assert_eq!(restored.snapshot(), sim.snapshot());
+    let all = ["velocity", "density", "pressure"];
+    assert_eq!(restored.read(&all), sim.read(&all));
+    // The warm start is part of the state: the pressure it holds is not zero.
+    let p = sim.read(&["pressure"]);
+    assert!(p.channel("pressure").unwrap().as_scalars().unwrap().iter().any(|&p| p > 0.0));
+}
+
+#[test]
+fn a_solve_that_cannot_converge_halts_naming_its_residual() {
+    let mut sim = dfsph(
+        "dam_break",
+        &["particle_spacing=0.05", "solver.dfsph.max_iterations=2", "solver.dfsph.density_tolerance=1e-6"],
+    );
+    let halted = sim.run_until(0.5, |_, _| {}).unwrap_err();
+    assert!(
+        halted.reason.starts_with("dfsph.density did not converge in 2 iterations: mean density_error "),
+        "{halted}"
+    );
+    assert!(halted.reason.ends_with("above the tolerance 1.000e-6"), "{halted}");
+    assert_eq!(sim.step().unwrap_err(), halted);
+}
