@@ -33,6 +33,8 @@ struct PlanPass {
     kernel: Option<(Arc<Kernel>, BindGroup)>,
     /// Elements of the pass's space (threads).
     threads: u32,
+    /// Whether it binds `pass_dt` (the dt its stage runs with: passes that integrate).
+    uses_dt: bool,
 }
 
 /// The bind groups of the core's own kernels.
@@ -70,6 +72,8 @@ pub struct GpuBackend {
     slot: usize,
     /// Every pass recorded so far, in the order first recorded.
     ran: Vec<&'static str>,
+    /// The dt last written to `pass_dt`, and whether unsubmitted work reads it.
+    pass_dt: (Real, bool),
 }
 
 impl GpuBackend {
@@ -110,6 +114,7 @@ impl GpuBackend {
             timer,
             slot: 0,
             ran: Vec::new(),
+            pass_dt: (0.0, false),
         })
     }
 
@@ -130,6 +135,7 @@ impl GpuBackend {
         let stamps = timer.as_ref().and_then(|t| t.resolve(&mut encoder)).map(|(b, len)| (b.clone(), len));
         self.gpu.queue.submit([encoder.finish()]);
         self.slot = 0;
+        self.pass_dt.1 = false;
         if let (Some(t), Some((buffer, len))) = (timer.as_mut(), stamps) {
             t.add(&self.download_words(&[(&buffer, 0, len)])[0]);
         }
@@ -164,7 +170,19 @@ impl GpuBackend {
         p.slots.dispatch(e, &c.slots, n);
     }
 
-    fn record_pass(&mut self, i: usize) {
+    /// Records plan pass `i`, run with step `dt`. A queue write lands before the
+    /// next submission, so a new dt first submits the work that read the old one.
+    fn record_pass(&mut self, i: usize, dt: Real) {
+        if self.passes[i].uses_dt {
+            if self.pass_dt.0 != dt {
+                if self.pass_dt.1 {
+                    self.flush();
+                }
+                self.gpu.queue.write_buffer(self.buffers.get("pass_dt"), 0, bytemuck::bytes_of(&[dt, 0.0, 0.0, 0.0]));
+                self.pass_dt.0 = dt;
+            }
+            self.pass_dt.1 = true;
+        }
         let mut e = self.take_recorder();
         let pass = &self.passes[i];
         if !self.ran.contains(&pass.spec.name) {
@@ -308,13 +326,14 @@ fn plan_passes(gpu: &GpuContext, model: &Model, b: &Buffers) -> Vec<PlanPass> {
         .iter()
         .map(|&spec| {
             if spec.name == "core.sort" {
-                return PlanPass { spec, kernel: None, threads: model.particle_count() as u32 };
+                return PlanPass { spec, kernel: None, threads: model.particle_count() as u32, uses_dt: false };
             }
             let pass = crate::pass::find(spec.name, model).expect("checked at creation");
             let kernel = gpu.kernel(pass);
             let buffers: Vec<&Buffer> = pass.bindings.iter().map(|(_, name)| b.get(name)).collect();
             let bind = kernel.bind(&gpu.device, &buffers);
-            PlanPass { spec, kernel: Some((kernel, bind)), threads: model.layout.count(pass.space) as u32 }
+            let uses_dt = pass.bindings.iter().any(|(_, name)| *name == "pass_dt");
+            PlanPass { spec, kernel: Some((kernel, bind)), threads: model.layout.count(pass.space) as u32, uses_dt }
         })
         .collect()
 }
@@ -324,17 +343,17 @@ impl Stages for GpuBackend {
         &self.model
     }
 
-    fn run(&mut self, stage: Stage, _dt: Real) {
+    fn run(&mut self, stage: Stage, dt: Real) {
         for i in 0..self.passes.len() {
             if self.passes[i].spec.stage == stage {
-                self.record_pass(i);
+                self.record_pass(i, dt);
             }
         }
     }
 
-    fn run_pass(&mut self, name: &str, _dt: Real) {
+    fn run_pass(&mut self, name: &str, dt: Real) {
         let i = self.passes.iter().position(|p| p.spec.name == name).unwrap_or_else(|| panic!("no pass {name}"));
-        self.record_pass(i);
+        self.record_pass(i, dt);
     }
 
     fn measure(&mut self) -> Result<floe_engine::guard::Measures, String> {

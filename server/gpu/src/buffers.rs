@@ -47,8 +47,10 @@ fn storage(device: &Device, label: &str, size: u64, extra: U) -> Buffer {
 
 fn init<T: bytemuck::Pod>(device: &Device, label: &str, data: &[T], usage: U) -> Buffer {
     let bytes: &[u8] = bytemuck::cast_slice(data);
-    // Bindings may not be empty: pad to one vec4.
-    let padded = [0u8; 16];
+    // Bindings may not be empty: pad to one element (at least one vec4), the
+    // smallest size a kernel binding an array of them accepts (a scene without
+    // walls has no wall constraints).
+    let padded = vec![0u8; std::mem::size_of::<T>().max(16)];
     let contents = if bytes.is_empty() { &padded[..] } else { bytes };
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
 }
@@ -148,6 +150,7 @@ impl Buffers {
             ("partials", storage(device, "measure partials", 32 * n.div_ceil(256), U::empty())),
             ("reduce_partials", storage(device, "reduction partials", 4 * n.div_ceil(256), U::empty())),
             ("reduce_words", init(device, "reduction", &[Words::default()], U::UNIFORM | U::COPY_DST)),
+            ("pass_dt", init(device, "plan pass dt", &[[0f32; 4]], U::UNIFORM | U::COPY_DST)),
             ("quant_grid", init(device, "frame position grid", &[QuantGrid::default()], U::UNIFORM | U::COPY_DST)),
             ("codes", storage(device, "frame position codes", 12 * n.div_ceil(2), U::empty())),
             ("measures_readback", readback(device, "measures readback", std::mem::size_of::<Measures>() as u64)),

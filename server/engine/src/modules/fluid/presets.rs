@@ -49,6 +49,7 @@ pub fn dam_break() -> Scene {
         periodic: Vec::new(),
         solver: Solver::default(),
         guard: Default::default(),
+        heat: None,
     }
 }
 
@@ -67,5 +68,6 @@ pub fn hydrostatic() -> Scene {
         periodic: Vec::new(),
         solver: Solver { damping: 5.0, damping_until: 0.5, ..Solver::default() },
         guard: Default::default(),
+        heat: None,
     }
 }
