@@ -105,3 +105,21 @@ fn a_heat_section_must_match_the_fluids() {
     assert!(err.contains("heat.fluids: must hold one entry per fluid (1), got 0"), "{err}");
     assert!(err.contains("heat.range[1]: must exceed range[0]"), "{err}");
 }
+
+/// Conductivity and expansion are live settings; switching expansion off removes
+/// the buoyancy pass, and on again restores it.
+#[test]
+fn conductivity_and_expansion_change_while_the_scene_runs() {
+    let mut s = sim("convection", &["particle_spacing=0.01"]);
+    let buoyant = |s: &Simulation| s.model().plan.passes().iter().any(|p| p.name == "heat.buoyancy");
+    assert!(buoyant(&s));
+    s.step().unwrap();
+    s.set_parameters(&["heat.fluids[0].expansion=0".into(), "heat.fluids[0].conductivity=500".into()]).unwrap();
+    assert!(!buoyant(&s));
+    let k = s.model().consts::<floe_engine::modules::heat::HeatConsts>().conductivity[0];
+    assert_eq!(k, 500.0);
+    s.step().unwrap();
+    s.set_parameters(&["heat.fluids[0].expansion=1e-3".into()]).unwrap();
+    assert!(buoyant(&s));
+    s.step().unwrap();
+}
