@@ -46,6 +46,11 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
             let run = run_cells(bw, k, params.wall_dims);
             for (var j = starts[params.wall_start + run.x]; j < starts[params.wall_start + run.y]; j++) {
                 let w = walls[j];
+                let x_ib = separation(xi, w.xyz);
+                let r2 = dot(x_ib, x_ib);
+                if (r2 >= params.h2 || r2 == 0.0) {
+                    continue;
+                }
                 // The first box holding the wall particle gives its temperature.
                 var box = heat.n_walls;
                 for (var q = 0u; q < heat.n_walls; q++) {
@@ -55,11 +60,6 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
                     }
                 }
                 if (box == heat.n_walls) {
-                    continue;
-                }
-                let x_ib = separation(xi, w.xyz);
-                let r2 = dot(x_ib, x_ib);
-                if (r2 >= params.h2 || r2 == 0.0) {
                     continue;
                 }
                 let f = pair_factor(sqrt(r2));
