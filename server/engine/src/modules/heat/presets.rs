@@ -14,12 +14,12 @@ pub const PRESETS: &[Preset] = &[
     },
     Preset {
         name: "convection",
-        about: "Water in a closed tank over a floor at 330 K under a lid at 290 K: rising plumes (16,000 particles).",
+        about: "Water in a closed tank over a floor at 330 K under a lid at 290 K: rising plumes (25,600 particles).",
         scene: convection,
     },
     Preset {
         name: "two_fluids",
-        about: "Rayleigh-Taylor: a cold fluid three times as dense over a warm light one (16,000 particles).",
+        about: "Rayleigh-Taylor: a cold fluid three times as dense over a warm light one (25,600 particles).",
         scene: two_fluids,
     },
     Preset {
