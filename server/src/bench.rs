@@ -1,4 +1,5 @@
-//! `floe bench`: fluid particle-steps per second on the dam break, peak memory,
+//! `floe bench`: fluid particle-steps per second on the dam break (with `--heat`,
+//! also with the heat module, side by side), peak memory,
 //! time to solution with the surge-front error, and (`--codec`) the frame codec.
 
 use crate::cli::BenchArgs;
@@ -23,6 +24,14 @@ fn dam_break(particles: usize, overrides: &[String], backend: &Selected) -> anyh
     Ok(Simulation::new(load::from_preset("dam_break", &all)?, &*backend.factory)?)
 }
 
+/// The heat module on the dam break (`--heat`): water's properties with a tenfold
+/// expansion, a floor held at 350 K under water at 300 K.
+const HEAT: &[&str] = &[
+    "modules=[\"fluid\",\"heat\"]",
+    "heat={\"fluids\":[{\"conductivity\":0.6,\"heat_capacity\":4186,\"expansion\":2e-3,\"temperature\":300}],\
+     \"walls\":[{\"min\":[-1,-1,-1],\"max\":[3,0,1],\"temperature\":350}]}",
+];
+
 /// Peak resident set size of this process (bytes), from /proc.
 fn peak_rss() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -44,12 +53,18 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     }
     println!("dam break on {}, {} timed steps per size", backend.description, args.steps);
     println!(
-        "| fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle | solver iterations/step |"
+        "| modules | fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle | solver iterations/step |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut heated = args.overrides.clone();
+    heated.extend(HEAT.iter().map(|s| s.to_string()));
+    let mut variants = vec![("fluid", &args.overrides)];
+    if args.heat {
+        variants.push(("fluid, heat", &heated));
+    }
     let mut profiles = Vec::new();
-    for &n in &args.particles {
-        let mut sim = dam_break(n, &args.overrides, &backend)?;
+    for (&n, (modules, overrides)) in args.particles.iter().flat_map(|n| variants.iter().map(move |v| (n, v))) {
+        let mut sim = dam_break(n, overrides, &backend)?;
         for _ in 0..5 {
             sim.step().context("warm-up")?;
         }
@@ -60,14 +75,15 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
             sim.step().context("timed step")?;
         }
         let wall = t0.elapsed().as_secs_f64();
-        profiles.push((sim.particle_count(), per_step(&kernels_before, &sim.kernel_times(), args.steps)));
+        let label = format!("{} particles ({modules})", sim.particle_count());
+        profiles.push((label, per_step(&kernels_before, &sim.kernel_times(), args.steps)));
         let p = sim.particle_count();
         let per_particle = |b: u64| format!("{:.0}", b as f64 / p as f64);
         let mem = if args.memory { peak_rss().map(per_particle) } else { None };
         let device = sim.device_memory().map(per_particle);
         let solved = iterations(&sim) - iterations_before;
         println!(
-            "| {p} | {} | {wall:.2} | {:.2} | {:.2} | {} | {} | {} |",
+            "| {modules} | {p} | {} | {wall:.2} | {:.2} | {:.2} | {} | {} | {} |",
             args.steps,
             wall * 1e3 / args.steps as f64,
             p as f64 * args.steps as f64 / wall / 1e6,
@@ -76,10 +92,10 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
             per_step_iterations(&sim, solved, args.steps)
         );
     }
-    for (p, kernels) in profiles.iter().filter(|k| args.profile && !k.1.is_empty()) {
+    for (label, kernels) in profiles.iter().filter(|k| args.profile && !k.1.is_empty()) {
         let total: f64 = kernels.iter().map(|k| k.1).sum();
         let how = if backend.name == "cpu" { "CPU wall time" } else { "GPU timestamp queries" };
-        println!("\nTime per step by pass at {p} particles ({how}), {total:.3} ms in all:");
+        println!("\nTime per step by pass at {label} ({how}), {total:.3} ms in all:");
         println!("| pass | calls/step | ms/step | share |");
         println!("|---|---:|---:|---:|");
         for (label, ms, dispatches) in kernels.iter() {

@@ -170,6 +170,10 @@ pub struct BenchArgs {
     /// this many dam-break frames at the first particle count.
     #[arg(long, value_name = "FRAMES", conflicts_with = "solve")]
     pub codec: Option<usize>,
+    /// Also time each size with the heat module (conduction, buoyancy, a floor held
+    /// at 350 K), each size's two rows side by side.
+    #[arg(long, conflicts_with_all = ["codec", "solve"])]
+    pub heat: bool,
     /// Time to solution instead: simulate this many seconds of the dam break
     /// at the first particle count and report wall time and surge-front error.
     #[arg(long, value_name = "SECONDS")]
@@ -208,8 +212,8 @@ pub struct ValidateArgs {
     /// Backend.
     #[arg(long, value_enum, default_value = "cpu")]
     pub backend: BackendChoice,
-    /// Run only these cases (repeatable): hydrostatic, dam_break, stability, or one
-    /// stability case by name.
+    /// Run only these cases (repeatable): a case by name (`floe validate` lists them
+    /// when given an unknown one), `stability`, or one stability case by name.
     #[arg(long = "case", value_name = "NAME")]
     pub cases: Vec<String>,
     /// Directory for report.md, report.json and the SVG plots.

@@ -178,9 +178,10 @@ pub fn serve(args: crate::cli::ServeArgs) -> anyhow::Result<()> {
             let (preset, overrides) = if args.scene == "auto" {
                 let c = tokio::task::spawn_blocking(move || crate::default_scene::choose(&*factory)).await??;
                 tracing::info!(
-                    "default scene: the dam break at {} particles, measured at {:.2} times real time on the {} \
-                     backend (--scene dam_break for the full 21,952)",
+                    "default scene: the dam break at {} particles with {}, measured at {:.2} times real time on \
+                     the {} backend (--scene dam_break for the full 21,952)",
                     c.particles,
+                    c.scheme,
                     c.rtf,
                     backend.name
                 );

@@ -29,7 +29,22 @@ async fn rest_mirrors_the_control_calls() {
     let registry = common::cpu_registry();
     let app = floe_server::http::router(registry.clone(), "../web".into());
     let (s, v) = call(&app, "GET", "/api/v1/presets", None).await;
-    assert_eq!((s, v), (StatusCode::OK, serde_json::json!(["dam_break", "hydrostatic", "poiseuille"])));
+    assert_eq!(
+        (s, v),
+        (
+            StatusCode::OK,
+            serde_json::json!([
+                "dam_break",
+                "hydrostatic",
+                "poiseuille",
+                "conduction",
+                "convection",
+                "two_fluids",
+                "heated_cavity",
+                "layers"
+            ])
+        )
+    );
 
     let body = r#"{"preset": "dam_break", "overrides": ["particle_spacing=0.05"]}"#;
     let (s, v) = call(&app, "POST", "/api/v1/scenes", Some(body.into())).await;

@@ -103,8 +103,12 @@ fn an_absent_module_allocates_and_runs_nothing() {
     floe_engine::modules::register(&tracer::MODULE);
     for (backend, make) in factories() {
         for preset in floe_engine::scene::presets::names() {
-            let mut sim =
-                Simulation::new(from_preset(preset, &["particle_spacing=0.05".into()]).unwrap(), &make).unwrap();
+            // Presets too small for a 0.05 m spacing run at their own.
+            let build = |o: &[String]| {
+                let scene = from_preset(preset, o).map_err(|e| e.to_string())?;
+                Simulation::new(scene, &make).map_err(|e| e.to_string())
+            };
+            let mut sim = build(&["particle_spacing=0.05".into()]).or_else(|_| build(&[])).unwrap();
             for _ in 0..3 {
                 sim.step().unwrap();
             }

@@ -377,6 +377,12 @@ impl<'s> ModelBuilder<'s> {
         self.layout.attrs.push((spec, initial));
     }
 
+    /// The initial values of attribute `name`, if allocated (a module deriving its own
+    /// initial state from the particles' positions or materials).
+    pub fn column(&self, name: &str) -> Option<&Column> {
+        self.layout.attrs.iter().find(|(s, _)| s.name == name).map(|(_, c)| c)
+    }
+
     /// Allocates attribute `spec`, zeroed.
     pub fn zeros(&mut self, spec: &'static AttrSpec) {
         let n = self.count(spec.space);

@@ -47,8 +47,10 @@ fn storage(device: &Device, label: &str, size: u64, extra: U) -> Buffer {
 
 fn init<T: bytemuck::Pod>(device: &Device, label: &str, data: &[T], usage: U) -> Buffer {
     let bytes: &[u8] = bytemuck::cast_slice(data);
-    // Bindings may not be empty: pad to one vec4.
-    let padded = [0u8; 16];
+    // Bindings may not be empty: pad to one element (at least one vec4), the
+    // smallest size a kernel binding an array of them accepts (a scene without
+    // walls has no wall constraints).
+    let padded = vec![0u8; std::mem::size_of::<T>().max(16)];
     let contents = if bytes.is_empty() { &padded[..] } else { bytes };
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
 }

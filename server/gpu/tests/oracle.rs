@@ -104,7 +104,25 @@ const VARIANTS: &[&[&str]] = &[
     ],
     // DFSPH: the factor and each solve's warm start, kick and error.
     &["particle_spacing=0.05", "solver.method=\"dfsph\""],
+    // With heat: a hot corner of the column, a source, a floor held at 400 K and
+    // buoyancy; and with a second, denser fluid of other thermal properties.
+    &["particle_spacing=0.05", "modules=[\"fluid\",\"heat\"]", HEAT],
+    &[
+        "particle_spacing=0.05",
+        "modules=[\"fluid\",\"heat\"]",
+        HEAT,
+        "fluids=[{\"blocks\":[{\"min\":[0,0,0],\"max\":[0.5,1,0.25]}]},\
+          {\"name\":\"heavy\",\"rest_density\":3000,\"blocks\":[{\"min\":[1.2,0,0],\"max\":[1.7,0.5,0.25]}]}]",
+        "heat.fluids=[{\"conductivity\":50,\"heat_capacity\":1000,\"expansion\":0.01,\"temperature\":300},\
+          {\"conductivity\":5,\"heat_capacity\":500,\"expansion\":0.002,\"temperature\":280}]",
+    ],
 ];
+
+/// The heat section of the oracle's heat variants.
+const HEAT: &str = "heat={\"fluids\":[{\"conductivity\":50,\"heat_capacity\":1000,\"expansion\":0.01,\"temperature\":300}],\
+    \"regions\":[{\"min\":[0,0,0],\"max\":[0.3,0.3,0.25],\"temperature\":350}],\
+    \"walls\":[{\"min\":[-1,-1,-1],\"max\":[3,0,1],\"temperature\":400}],\
+    \"sources\":[{\"min\":[0,0.5,0],\"max\":[0.5,1,0.25],\"power\":1e7}]}";
 
 #[test]
 fn every_pass_of_the_plan_matches_the_cpu() {
@@ -234,4 +252,28 @@ fn positions_quantised_on_the_gpu_match_the_cpu() {
             .fold(0.0, f32::max);
         assert!(worst <= 0.5 * step * 1.001, "{bits} bits: error {worst} m, half a step is {} m", 0.5 * step);
     }
+}
+
+/// Whole steps with heat, dt changing from step to step (the integration reads the
+/// stage's dt from the core uniform `dt`): the slab's temperatures after 30 steps agree with
+/// the CPU's, and both follow the erf solution.
+#[test]
+fn heat_steps_like_the_cpu() {
+    let Some(gpu) = common::gpu("heat_steps_like_the_cpu") else { return };
+    let (mut cpu, mut g) = pair(gpu, "conduction", &["particle_spacing=0.002"], 10);
+    let (mut hc, mut hg) = pair(gpu, "convection", &["particle_spacing=0.01", "heat.fluids[0].conductivity=500"], 10);
+    for _ in 0..30 {
+        for sim in [&mut cpu, &mut g, &mut hc, &mut hg] {
+            sim.step().unwrap();
+        }
+    }
+    let temperature = |s: &Simulation| s.backend().download(&["temperature"]).remove(0);
+    let (d, scale) = diff(&temperature(&cpu), &temperature(&g));
+    assert!(d <= 1e-5 * scale, "conduction: temperatures differ by {d} K");
+    assert_eq!(cpu.time(), g.time());
+    let (l2, _) = floe_engine::modules::heat::cases::conduction_errors(&g);
+    assert!(l2 < 0.01, "GPU conduction: L2 {l2} against the erf solution");
+    let mean = |s: &Simulation| s.measures().into_iter().find(|m| m.name == "heat.mean_temperature").unwrap().value;
+    assert!((mean(&hc) - mean(&hg)).abs() < 1e-3, "convection: mean {} vs {}", mean(&hc), mean(&hg));
+    assert!(mean(&hg) > 310.0 + 1e-4, "the GPU's hot floor did not warm the water: {}", mean(&hg));
 }

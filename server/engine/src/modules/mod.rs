@@ -14,6 +14,7 @@
 //! then known to every scene loaded afterwards in this process.
 
 pub mod fluid;
+pub mod heat;
 
 use crate::cpu::CpuPass;
 use crate::math::Real;
@@ -79,7 +80,7 @@ pub struct ModuleDef {
 }
 
 /// The modules shipped with the engine, in the order their passes run within a stage.
-pub static BUILTIN: &[&ModuleDef] = &[&fluid::MODULE];
+pub static BUILTIN: &[&ModuleDef] = &[&fluid::MODULE, &heat::MODULE];
 
 static EXTRA: RwLock<Vec<&'static ModuleDef>> = RwLock::new(Vec::new());
 

@@ -60,6 +60,9 @@ pub struct Scene {
     /// Bounds beyond which the scene halts instead of producing garbage.
     #[serde(default)]
     pub guard: Guard,
+    /// Temperature, conduction and buoyancy (the `heat` module).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub heat: Option<crate::modules::heat::spec::Heat>,
 }
 
 fn default_name() -> String {

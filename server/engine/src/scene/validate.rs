@@ -277,7 +277,10 @@ mod tests {
             errors(&["modules=[]"]),
             "modules: must list \"fluid\", since the scene has its section\nmodules: must list at least one module"
         );
-        assert_eq!(errors(&["modules=[\"fluid\",\"lava\"]"]), "modules[1]: unknown module \"lava\"; modules are fluid");
+        assert_eq!(
+            errors(&["modules=[\"fluid\",\"lava\"]"]),
+            "modules[1]: unknown module \"lava\"; modules are fluid, heat"
+        );
         // Several problems are reported together.
         let both = errors(&["particle_spacing=-1", "guard.max_compression=0"]);
         assert_eq!(both.lines().count(), 2, "{both}");

@@ -1,11 +1,20 @@
 //! The GPU halves of the engine's modules, in folders named as the engine's.
 
 pub mod fluid;
+pub mod heat;
 
 use crate::pass::{GpuPass, UniformSource};
 
 /// Every module's GPU passes.
-pub static PASSES: &[&GpuPass] = &[&fluid::FORCES_WITH_PRESSURE, &fluid::FORCES, &fluid::XSPH, &fluid::XSPH_KICK];
+pub static PASSES: &[&GpuPass] = &[
+    &fluid::FORCES_WITH_PRESSURE,
+    &fluid::FORCES,
+    &fluid::XSPH,
+    &fluid::XSPH_KICK,
+    &heat::CONDUCTION,
+    &heat::BUOYANCY,
+    &heat::INTEGRATE,
+];
 
 /// Every module's uniform.
-pub static UNIFORMS: &[(&str, UniformSource)] = &[("fluid", fluid::uniform)];
+pub static UNIFORMS: &[(&str, UniformSource)] = &[("fluid", fluid::uniform), ("heat", heat::uniform)];

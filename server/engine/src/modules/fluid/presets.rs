@@ -59,6 +59,7 @@ pub fn dam_break() -> Scene {
         periodic: Vec::new(),
         solver: Solver::default(),
         guard: Default::default(),
+        heat: None,
     }
 }
 
@@ -77,6 +78,7 @@ pub fn hydrostatic() -> Scene {
         periodic: Vec::new(),
         solver: Solver { damping: 5.0, damping_until: 0.5, ..Solver::default() },
         guard: Default::default(),
+        heat: None,
     }
 }
 
@@ -104,5 +106,6 @@ pub fn poiseuille() -> Scene {
         periodic: vec![Axis::X, Axis::Z],
         solver: Solver { speed_of_sound: Some(1.0), ..Solver::default() },
         guard: Default::default(),
+        heat: None,
     }
 }

@@ -1,0 +1,307 @@
+//! The heat module: a temperature per particle, conduction between particles of
+//! one fluid or of several, walls held at a temperature or insulated, volumetric
+//! heat sources, and the Boussinesq buoyancy that couples temperature back to the
+//! flow. docs/heat.md states the model with its units and references.
+//!
+//! - [`spec`]: the scene section (`heat`).
+//! - [`conduction`]: the conduction pass (Cleary & Monaghan 1999).
+//! - [`passes`]: buoyancy (a force pass accumulating into `a`) and the
+//!   integration `T += dt dT/dt` in the kick stage.
+//! - [`presets`]: `conduction`, `convection`, `two_fluids`, `heated_cavity`, `layers`.
+//! - [`cases`]: validation cases and the stability battery.
+
+pub mod cases;
+pub mod conduction;
+pub mod passes;
+pub mod presets;
+pub mod spec;
+
+use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
+use crate::channels::{ChannelSpec, Source};
+use crate::guard::Bound;
+use crate::kernel::Kernel;
+use crate::math::{Aabb, Real, Vec3};
+use crate::model::{BuildError, Model, ModelBuilder};
+use crate::modules::ModuleDef;
+use crate::scene::Scene;
+use crate::scene::tunable::Tunable;
+use crate::scene::validate::Checker;
+use crate::simulation::Measure;
+
+/// The module's definition.
+pub static MODULE: ModuleDef = ModuleDef {
+    id: "heat",
+    about: "Temperature: conduction between fluids and with walls, heat sources, Boussinesq buoyancy.",
+    requires: &["fluid"],
+    has_section: Some(|scene| scene.heat.is_some()),
+    validate,
+    count: |_| Vec::new(),
+    particles: |_, _| Ok(()),
+    build,
+    retune,
+    tunables: TUNABLES,
+    cpu: &[
+        ("heat.conduction", &conduction::Conduction),
+        ("heat.buoyancy", &passes::Buoyancy),
+        ("heat.integrate", &passes::Integrate),
+    ],
+    presets: presets::PRESETS,
+    dt_limit,
+    measures,
+    cases: cases::CASES,
+    stability: cases::STABILITY,
+};
+
+/// The module's live settings.
+pub const TUNABLES: &[Tunable] = &[
+    Tunable {
+        path: "heat.fluids[*].conductivity",
+        unit: "W/(m K)",
+        min: Some(0.0),
+        max: Some(1e6),
+        about: "A fluid's thermal conductivity.",
+        module: "heat",
+    },
+    Tunable {
+        path: "heat.fluids[*].expansion",
+        unit: "1/K",
+        min: Some(0.0),
+        max: Some(0.1),
+        about: "A fluid's thermal expansion coefficient (Boussinesq buoyancy).",
+        module: "heat",
+    },
+];
+
+/// Temperature (K), the module's state.
+pub static TEMPERATURE: AttrSpec = AttrSpec {
+    name: "temperature",
+    elem: Elem::F32,
+    unit: "K",
+    role: Role::State,
+    space: PARTICLES,
+    module: "heat",
+    about: "Absolute temperature.",
+};
+
+/// dT/dt of the last evaluation (K/s): conduction and sources.
+pub static HEAT_RATE: AttrSpec = AttrSpec {
+    name: "heat_rate",
+    elem: Elem::F32,
+    unit: "K/s",
+    role: Role::Derived,
+    space: PARTICLES,
+    module: "heat",
+    about: "Rate of change of temperature from conduction and sources.",
+};
+
+/// The temperature channel (a row of proto/channels.json).
+pub const TEMPERATURE_CHANNEL: ChannelSpec = ChannelSpec {
+    name: "temperature",
+    unit: "K",
+    components: 1,
+    exact: false,
+    set: PARTICLES,
+    module: "heat",
+    about: "Temperature.",
+    source: Source::Attr("temperature"),
+};
+
+/// Most wall boxes and heat sources a scene may declare (the GPU uniform's arrays).
+pub const MAX_BOXES: usize = 8;
+
+/// The module's constants.
+#[derive(Debug, Clone)]
+pub struct HeatConsts {
+    /// Conductivity k of each material (W/(m K)).
+    pub conductivity: Vec<Real>,
+    /// Specific heat capacity c of each material (J/(kg K)).
+    pub capacity: Vec<Real>,
+    /// Thermal expansion beta of each material (1/K).
+    pub expansion: Vec<Real>,
+    /// `4 k_a k_b / (k_a + k_b)` (twice the harmonic mean) at `a * materials + b`,
+    /// times the lattice normalisation of [`conduction::lattice_scale`].
+    pub pair_conductivity: Vec<Real>,
+    /// Boussinesq reference temperature T0 (K).
+    pub reference: Real,
+    /// Walls held at a temperature: box and temperature (K).
+    pub walls: Vec<(Aabb, Real)>,
+    /// Heat sources: box and power density (W/m^3).
+    pub sources: Vec<(Aabb, Real)>,
+}
+
+impl HeatConsts {
+    fn new(heat: &spec::Heat, kernel: &Kernel, spacing: Real) -> Self {
+        let conductivity: Vec<Real> = heat.fluids.iter().map(|f| f.conductivity).collect();
+        let n = conductivity.len();
+        let scale = conduction::lattice_scale(kernel, spacing);
+        let mut pair_conductivity = Vec::with_capacity(n * n);
+        for &a in &conductivity {
+            for &b in &conductivity {
+                pair_conductivity.push(if a + b > 0.0 { scale * 4.0 * a * b / (a + b) } else { 0.0 });
+            }
+        }
+        let aabb = |min: [f32; 3], max: [f32; 3]| Aabb::new(min.into(), max.into());
+        Self {
+            conductivity,
+            capacity: heat.fluids.iter().map(|f| f.heat_capacity).collect(),
+            expansion: heat.fluids.iter().map(|f| f.expansion).collect(),
+            pair_conductivity,
+            reference: heat.reference_temperature,
+            walls: heat.walls.iter().map(|w| (aabb(w.min, w.max), w.temperature)).collect(),
+            sources: heat.sources.iter().map(|s| (aabb(s.min, s.max), s.power)).collect(),
+        }
+    }
+
+    /// The temperature of the wall particle at `x`, or `None` where it is insulated.
+    pub fn wall_temperature(&self, x: Vec3) -> Option<Real> {
+        self.walls.iter().find(|(b, _)| b.contains(x)).map(|&(_, t)| t)
+    }
+
+    /// The power density of the sources at `x` (W/m^3).
+    pub fn source(&self, x: Vec3) -> Real {
+        self.sources.iter().filter(|(b, _)| b.contains(x)).map(|&(_, q)| q).sum()
+    }
+
+    /// Whether any material feels buoyancy.
+    pub fn buoyant(&self) -> bool {
+        self.expansion.iter().any(|&b| b != 0.0)
+    }
+}
+
+fn section(scene: &Scene) -> &spec::Heat {
+    scene.heat.as_ref().expect("the registry builds heat only for scenes with a heat section")
+}
+
+fn validate(scene: &Scene, c: &mut Checker) {
+    let Some(heat) = &scene.heat else { return };
+    if heat.fluids.len() != scene.fluids.len() {
+        c.fail(
+            "heat.fluids",
+            format!("must hold one entry per fluid ({}), got {}", scene.fluids.len(), heat.fluids.len()),
+        );
+    }
+    let [lo, hi] = heat.range;
+    c.positive("heat.range[0]", lo);
+    if c.finite("heat.range[1]", hi) && hi <= lo {
+        c.fail("heat.range[1]", format!("must exceed range[0] = {lo}, got {hi}"));
+    }
+    let temperature = |c: &mut Checker, path: &str, t: f32| {
+        if c.finite(path, t) && !(lo..=hi).contains(&t) {
+            c.fail(path, format!("must lie within heat.range [{lo}, {hi}] K, got {t}"));
+        }
+    };
+    temperature(c, "heat.reference_temperature", heat.reference_temperature);
+    for (i, f) in heat.fluids.iter().enumerate() {
+        let p = format!("heat.fluids[{i}]");
+        c.within(&format!("{p}.conductivity"), f.conductivity, 0.0, 1e6);
+        c.positive(&format!("{p}.heat_capacity"), f.heat_capacity);
+        c.within(&format!("{p}.expansion"), f.expansion, -0.1, 0.1);
+        temperature(c, &format!("{p}.temperature"), f.temperature);
+    }
+    for (name, boxes) in [("regions", &heat.regions), ("walls", &heat.walls)] {
+        for (i, b) in boxes.iter().enumerate() {
+            let p = format!("heat.{name}[{i}]");
+            c.ordered_box(&p, b.min, b.max);
+            temperature(c, &format!("{p}.temperature"), b.temperature);
+        }
+    }
+    for (i, s) in heat.sources.iter().enumerate() {
+        c.ordered_box(&format!("heat.sources[{i}]"), s.min, s.max);
+        c.finite(&format!("heat.sources[{i}].power"), s.power);
+    }
+    for (name, count) in [("walls", heat.walls.len()), ("sources", heat.sources.len())] {
+        if count > MAX_BOXES {
+            c.fail(&format!("heat.{name}"), format!("at most {MAX_BOXES} boxes, got {count}"));
+        }
+    }
+}
+
+/// Each particle starts at its fluid's temperature, or its region's.
+fn initial_temperatures(heat: &spec::Heat, b: &ModelBuilder) -> Vec<Real> {
+    let Some(Column::Vec3(x)) = b.column("x") else { panic!("the core allocates positions first") };
+    let material = match b.column("material") {
+        Some(Column::U32(m)) => Some(m),
+        _ => None,
+    };
+    x.iter()
+        .enumerate()
+        .map(|(i, &p)| {
+            let own = heat.fluids[material.map_or(0, |m| m[i] as usize)].temperature;
+            let region = heat.regions.iter().rev().find(|r| Aabb::new(r.min.into(), r.max.into()).contains(p));
+            region.map_or(own, |r| r.temperature)
+        })
+        .collect()
+}
+
+fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    let heat = section(scene);
+    let t = initial_temperatures(heat, b);
+    b.attr(&TEMPERATURE, Column::F32(t));
+    b.zeros(&HEAT_RATE);
+    let consts = HeatConsts::new(heat, &b.kernel, scene.particle_spacing);
+    b.pass(&conduction::CONDUCTION);
+    if consts.buoyant() {
+        b.pass(&passes::BUOYANCY);
+    }
+    b.pass(&passes::INTEGRATE);
+    b.bound(Bound { attr: "temperature", what: "temperature", unit: "K", min: heat.range[0], max: heat.range[1] });
+    b.channel(TEMPERATURE_CHANNEL);
+    b.set_consts(consts);
+    Ok(())
+}
+
+/// Conductivities and expansion may change; buoyancy's pass comes and goes with it.
+fn retune(scene: &Scene, model: &mut Model) {
+    let consts = HeatConsts::new(section(scene), &model.kernel, model.spacing);
+    let names: Vec<&str> = model.plan.passes().iter().map(|p| p.name).collect();
+    if consts.buoyant() != names.contains(&passes::BUOYANCY.name) {
+        let mut list: Vec<_> =
+            model.plan.passes().iter().copied().filter(|p| p.name != passes::BUOYANCY.name).collect();
+        if consts.buoyant() {
+            list.push(&passes::BUOYANCY);
+        }
+        let attrs: Vec<&str> = model.layout.specs().map(|s| s.name).collect();
+        model.plan = crate::plan::Plan::build(list, &attrs).expect("buoyancy keeps the plan valid");
+    }
+    model.set_consts(consts);
+}
+
+/// The explicit diffusion limit `dt <= 0.1 rho c h^2 / k` (Cleary & Monaghan 1999,
+/// section 5) for the most diffusive material.
+fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
+    let c = model.consts::<HeatConsts>();
+    let alpha = c
+        .conductivity
+        .iter()
+        .zip(&c.capacity)
+        .zip(model.materials.iter())
+        .map(|((&k, &cp), m)| k / (m.rest_density * cp))
+        .fold(0.0, Real::max);
+    let h = 0.5 * model.kernel.support();
+    (alpha > 0.0).then(|| ("heat conduction", 0.1 * h * h / alpha))
+}
+
+/// Mean, smallest and largest temperature (K) and the heat content
+/// `sum_i m_i c_i T_i` (J), summed in f64.
+fn measures(sim: &crate::Simulation) -> Vec<Measure> {
+    let several = sim.channels().iter().any(|c| c.name == "material");
+    let p = sim.read(if several { &["temperature", "material"] } else { &["temperature"] });
+    let Some(t) = p.channel("temperature").and_then(|t| t.as_scalars()) else { return Vec::new() };
+    let material = p.channel("material").and_then(|m| m.as_exact());
+    let (model, c) = (sim.model(), sim.model().consts::<HeatConsts>());
+    let (mut sum, mut heat, mut lo, mut hi) = (0.0f64, 0.0f64, f64::INFINITY, f64::NEG_INFINITY);
+    for (i, &t) in t.iter().enumerate() {
+        let m = material.map_or(0, |m| usize::from(m[i]));
+        let t = f64::from(t);
+        sum += t;
+        heat += f64::from(model.materials.get(m).mass) * f64::from(c.capacity[m]) * t;
+        (lo, hi) = (lo.min(t), hi.max(t));
+    }
+    let mean = sum / t.len().max(1) as f64;
+    vec![
+        Measure::new("heat.mean_temperature", mean, "K"),
+        Measure::new("heat.min_temperature", lo, "K"),
+        Measure::new("heat.max_temperature", hi, "K"),
+        Measure::new("heat.total_heat", heat, "J"),
+    ]
+}

@@ -1,0 +1,189 @@
+//! The heat module's built-in scenes: ordinary [`Scene`] values, so `--set`
+//! overrides and `floe schema` apply to them as to files.
+
+use super::spec::{Heat, TemperatureBox, ThermalFluid};
+use crate::modules::Preset;
+use crate::scene::{Axis, Boundary, BoxRegion, Face, Fluid, FluidBlock, Scene, Solver, TimeStep, Viscosity};
+
+/// The presets, for the module registry.
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "conduction",
+        about: "Two half-spaces at 280 K and 320 K in contact, at rest, periodic (VALIDATION.md §5): 4,096 particles.",
+        scene: conduction,
+    },
+    Preset {
+        name: "convection",
+        about: "Water in a closed tank over a floor at 330 K under a lid at 290 K: rising plumes (25,600 particles).",
+        scene: convection,
+    },
+    Preset {
+        name: "two_fluids",
+        about: "Rayleigh-Taylor: a cold fluid three times as dense over a warm light one (25,600 particles).",
+        scene: two_fluids,
+    },
+    Preset {
+        name: "heated_cavity",
+        about: "Differentially heated square cavity at Ra = 1e4, Pr = 0.71 (de Vahl Davis 1983), a thin periodic slab.",
+        scene: heated_cavity,
+    },
+    Preset {
+        name: "layers",
+        about: "A light fluid at rest on one ten times as dense, in a closed tank: spurious currents at the interface.",
+        scene: layers,
+    },
+];
+
+/// Temperatures (K) of the two halves of `conduction`.
+pub const CONDUCTION_T: (f32, f32) = (280.0, 320.0);
+/// Length (m) of the `conduction` slab along x (periodic: two interfaces, at 0 and L/2).
+pub const CONDUCTION_L: f32 = 0.064;
+/// Thermal diffusivity (m^2/s) of the `conduction` material: k = 100 W/(m K),
+/// rho = 1000 kg/m^3, c = 1000 J/(kg K).
+pub const CONDUCTION_ALPHA: f32 = 1e-4;
+
+fn fluid(name: &str, rest_density: f32, viscosity: Viscosity, blocks: Vec<FluidBlock>) -> Fluid {
+    Fluid { name: name.into(), rest_density, eos: Default::default(), viscosity, xsph: 0.0, blocks }
+}
+
+fn block(min: [f32; 3], max: [f32; 3]) -> FluidBlock {
+    FluidBlock { min, max, velocity: [0.0; 3] }
+}
+
+fn water(temperature: f32, expansion: f32) -> ThermalFluid {
+    ThermalFluid { conductivity: 0.6, heat_capacity: 4186.0, expansion, temperature }
+}
+
+fn heat(fluids: Vec<ThermalFluid>, walls: Vec<TemperatureBox>) -> Heat {
+    Heat { fluids, reference_temperature: 293.15, regions: Vec::new(), walls, sources: Vec::new(), range: [1.0, 1e4] }
+}
+
+fn wall_box(min: [f32; 3], max: [f32; 3], temperature: f32) -> TemperatureBox {
+    TemperatureBox { min, max, temperature }
+}
+
+fn scene(name: &str, spacing: f32, fluids: Vec<Fluid>, boundaries: Vec<Boundary>, heat: Heat) -> Scene {
+    Scene {
+        name: name.into(),
+        modules: vec!["fluid".into(), "heat".into()],
+        particle_spacing: spacing,
+        gravity: [0.0, -9.81, 0.0],
+        fluids,
+        boundaries,
+        domain: None,
+        periodic: Vec::new(),
+        solver: Solver::default(),
+        guard: Default::default(),
+        heat: Some(heat),
+    }
+}
+
+/// A slab 64 mm long, 8 mm square in section, periodic on every axis, with no
+/// gravity: x < L/2 at 280 K, x > L/2 at 320 K. The material's diffusivity is
+/// 1e-4 m^2/s so a run is limited by conduction, not sound (c = 0.1 m/s).
+pub fn conduction() -> Scene {
+    let (l, w) = (CONDUCTION_L, 0.008);
+    let mut heat = heat(
+        vec![ThermalFluid { conductivity: 100.0, heat_capacity: 1000.0, expansion: 0.0, temperature: CONDUCTION_T.0 }],
+        Vec::new(),
+    );
+    heat.regions.push(TemperatureBox { min: [0.5 * l, 0.0, 0.0], max: [l, w, w], temperature: CONDUCTION_T.1 });
+    let mut s = scene(
+        "conduction",
+        0.001,
+        vec![fluid("conductor", 1000.0, Viscosity::None, vec![block([0.0; 3], [l, w, w])])],
+        Vec::new(),
+        heat,
+    );
+    s.gravity = [0.0; 3];
+    s.domain = Some(BoxRegion { min: [0.0; 3], max: [l, w, w] });
+    s.periodic = vec![Axis::X, Axis::Y, Axis::Z];
+    s.solver.speed_of_sound = Some(0.1);
+    s
+}
+
+/// A tank 0.4 x 0.2 x 0.04 m full of water with an exaggerated expansion
+/// (2e-3 1/K), the floor held at 330 K and the lid at 290 K; side walls insulated.
+pub fn convection() -> Scene {
+    let (lx, ly, lz) = (0.4, 0.2, 0.04);
+    let floor = wall_box([-1.0, -1.0, -1.0], [1.0, 0.0, 1.0], 330.0);
+    let lid = wall_box([-1.0, ly, -1.0], [1.0, 1.0, 1.0], 290.0);
+    scene(
+        "convection",
+        0.005,
+        vec![fluid("water", 1000.0, Viscosity::Laplacian { nu: 1e-4 }, vec![block([0.0; 3], [lx, ly, lz])])],
+        vec![Boundary::Box { min: [0.0; 3], max: [lx, ly, lz], open: Vec::new(), layers: 1 }],
+        heat(vec![water(310.0, 2e-3)], vec![floor, lid]),
+    )
+}
+
+/// A tank 0.2 x 0.4 x 0.04 m: a cold fluid of 3000 kg/m^3 over warm water,
+/// separated by a flat interface at half height; the heavy one sinks in fingers.
+pub fn two_fluids() -> Scene {
+    let (lx, ly, lz) = (0.2, 0.4, 0.04);
+    let visc = Viscosity::Laplacian { nu: 1e-4 };
+    let fluids = vec![
+        fluid("light", 1000.0, visc, vec![block([0.0; 3], [lx, 0.5 * ly, lz])]),
+        fluid("heavy", 3000.0, visc, vec![block([0.0, 0.5 * ly, 0.0], [lx, ly, lz])]),
+    ];
+    let mut s = scene(
+        "two_fluids",
+        0.005,
+        fluids,
+        vec![Boundary::Box { min: [0.0; 3], max: [lx, ly, lz], open: Vec::new(), layers: 1 }],
+        heat(vec![water(320.0, 2.1e-4), ThermalFluid { heat_capacity: 1500.0, ..water(280.0, 1e-4) }], Vec::new()),
+    );
+    s.solver.speed_of_sound = Some(20.0);
+    s
+}
+
+/// The square cavity of de Vahl Davis (1983), side L = 0.05 m, a slab 4 spacings
+/// thick, periodic in z: the left wall at 298 K, the right at 288 K, top and bottom
+/// insulated; Pr = nu / alpha = 0.71, beta chosen for Ra = g beta dT L^3 / (nu alpha) = 1e4.
+pub fn heated_cavity() -> Scene {
+    let (l, d) = (0.05, 0.002);
+    let (nu, rho, c) = (1e-4, 1000.0, 1000.0);
+    let alpha = nu / 0.71;
+    let dt = 10.0;
+    let beta = 1e4 * nu * alpha / (9.81 * dt * l * l * l);
+    let k = alpha * rho * c;
+    let hot = wall_box([-1.0, -1.0, -1.0], [0.0, 1.0, 1.0], 298.0);
+    let cold = wall_box([l, -1.0, -1.0], [1.0, 1.0, 1.0], 288.0);
+    let thermal = ThermalFluid { conductivity: k, heat_capacity: c, expansion: beta, temperature: 293.0 };
+    let mut heat = heat(vec![thermal], vec![hot, cold]);
+    heat.reference_temperature = 293.0;
+    let depth = 4.0 * d;
+    let mut s = scene(
+        "heated_cavity",
+        d,
+        vec![fluid("air-like", rho, Viscosity::Laplacian { nu }, vec![block([0.0; 3], [l, l, depth])])],
+        vec![Boundary::Box { min: [0.0; 3], max: [l, l, depth], open: vec![Face::MinusZ, Face::PlusZ], layers: 2 }],
+        heat,
+    );
+    s.domain = Some(BoxRegion { min: [-0.01, -0.01, 0.0], max: [l + 0.01, l + 0.01, depth] });
+    s.periodic = vec![Axis::Z];
+    s.solver.speed_of_sound = Some(7.0);
+    s
+}
+
+/// A tank 0.2 x 0.2 x 0.04 m: a light fluid (100 kg/m^3) on a heavy one
+/// (1000 kg/m^3), each 0.1 m deep, at one temperature, settling under damping.
+pub fn layers() -> Scene {
+    let (lx, ly, lz) = (0.2, 0.2, 0.04);
+    let visc = Viscosity::Artificial { alpha: 0.02 };
+    let fluids = vec![
+        fluid("heavy", 1000.0, visc, vec![block([0.0; 3], [lx, 0.5 * ly, lz])]),
+        fluid("light", 100.0, visc, vec![block([0.0, 0.5 * ly, 0.0], [lx, ly, lz])]),
+    ];
+    let mut s = scene(
+        "layers",
+        0.005,
+        fluids,
+        vec![Boundary::Box { min: [0.0; 3], max: [lx, ly, lz], open: Vec::new(), layers: 1 }],
+        heat(vec![water(293.15, 0.0), ThermalFluid { heat_capacity: 1000.0, ..water(293.15, 0.0) }], Vec::new()),
+    );
+    s.solver.damping = 5.0;
+    s.solver.damping_until = 0.5;
+    s.solver.time_step = TimeStep::Adaptive { cfl: 0.5, min: 1e-7, max: 5e-3 };
+    s
+}

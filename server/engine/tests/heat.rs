@@ -1,0 +1,125 @@
+//! The heat module on the CPU: conduction against the erf solution (VALIDATION.md
+//! §5), heat conserved in an insulated box, walls held at a temperature, the
+//! temperature guard, and the section's validation.
+
+use floe_engine::Simulation;
+use floe_engine::modules::heat::cases::{conduction_errors, erf};
+use floe_engine::scene::load::from_preset;
+
+fn sim(preset: &str, overrides: &[&str]) -> Simulation {
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    Simulation::new_cpu(from_preset(preset, &overrides).unwrap()).unwrap()
+}
+
+fn measure(sim: &Simulation, name: &str) -> f64 {
+    sim.measures().into_iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no measure {name}")).value
+}
+
+#[test]
+fn erf_matches_tabulated_values() {
+    for (x, want) in [(0.0, 0.0), (0.5, 0.520_499_877_8), (1.0, 0.842_700_792_9), (2.0, 0.995_322_265_0)] {
+        assert!((erf(x) - want).abs() < 2e-7, "erf({x}) = {}", erf(x));
+        assert!((erf(-x) + want).abs() < 2e-7);
+    }
+}
+
+/// The slab at two resolutions: the error against the erf solution is at most 1 %
+/// at the finer and smaller than at the coarser.
+#[test]
+fn conduction_between_half_spaces_follows_the_erf_solution() {
+    let mut errors = Vec::new();
+    for spacing in [0.002, 0.001] {
+        let mut s = sim("conduction", &[&format!("particle_spacing={spacing}")]);
+        while s.time() < 0.16 {
+            s.step().unwrap();
+        }
+        let (l2, linf) = conduction_errors(&s);
+        eprintln!("spacing {spacing}: {} steps, L2 {l2:.3e}, Linf {linf:.3e}", s.steps());
+        errors.push(l2);
+    }
+    assert!(errors[1] <= 0.01, "L2 {} above 1 %", errors[1]);
+    assert!(errors[1] < errors[0], "no convergence: {errors:?}");
+}
+
+/// Insulated walls and no sources: conduction only moves heat between particles,
+/// and the pairwise form is antisymmetric, so the total stays put while a hot
+/// corner spreads out.
+#[test]
+fn an_insulated_box_conserves_heat_over_1000_steps() {
+    let mut s = sim(
+        "convection",
+        &[
+            "particle_spacing=0.01",
+            "heat.walls=[]",
+            "heat.fluids[0].conductivity=5000",
+            "heat.regions=[{\"min\":[0,0.05,0],\"max\":[0.2,0.06,0.04],\"temperature\":350}]",
+        ],
+    );
+    let (q0, hot0) = (measure(&s, "heat.total_heat"), measure(&s, "heat.max_temperature"));
+    for _ in 0..1000 {
+        s.step().unwrap();
+    }
+    let (q1, hot1) = (measure(&s, "heat.total_heat"), measure(&s, "heat.max_temperature"));
+    eprintln!("total heat {q0:.9e} -> {q1:.9e} J (relative {:.2e}); hottest {hot0} -> {hot1} K", (q1 - q0) / q0);
+    assert!(hot1 < hot0 - 1.0, "heat did not spread: hottest {hot0} -> {hot1} K");
+    assert!(((q1 - q0) / q0).abs() <= 1e-6, "total heat {q0} -> {q1} J");
+}
+
+/// A floor held at 330 K warms water at 310 K, never beyond the floor's temperature.
+#[test]
+fn a_hot_floor_warms_the_fluid() {
+    let mut s = sim(
+        "convection",
+        &[
+            "particle_spacing=0.01",
+            "heat.fluids[0].conductivity=500",
+            "heat.walls=[{\"min\":[-1,-1,-1],\"max\":[1,0,1],\"temperature\":330}]",
+        ],
+    );
+    let mean0 = measure(&s, "heat.mean_temperature");
+    for _ in 0..200 {
+        s.step().unwrap();
+    }
+    let (mean1, hot) = (measure(&s, "heat.mean_temperature"), measure(&s, "heat.max_temperature"));
+    assert!(mean1 > mean0 + 1e-3, "mean temperature {mean0} -> {mean1} K");
+    assert!(hot <= 330.0 + 1e-3, "hottest particle {hot} K above the floor's 330 K");
+}
+
+/// A source far too strong drives a particle above the scene's temperature range:
+/// the scene halts, naming the quantity and the particle.
+#[test]
+fn temperature_outside_its_range_halts_the_scene() {
+    let mut s = sim(
+        "conduction",
+        &["particle_spacing=0.002", "heat.sources=[{\"min\":[0,0,0],\"max\":[0.01,0.01,0.01],\"power\":1e12}]"],
+    );
+    let halted = (0..200).find_map(|_| s.step().err()).expect("the scene halts");
+    assert!(halted.reason.contains("temperature") && halted.reason.contains("outside its range"), "{}", halted.reason);
+    assert!(halted.particle.is_some());
+}
+
+#[test]
+fn a_heat_section_must_match_the_fluids() {
+    let overrides = vec!["heat.fluids=[]".to_string(), "heat.range=[300,200]".to_string()];
+    let err = from_preset("conduction", &overrides).unwrap_err().to_string();
+    assert!(err.contains("heat.fluids: must hold one entry per fluid (1), got 0"), "{err}");
+    assert!(err.contains("heat.range[1]: must exceed range[0]"), "{err}");
+}
+
+/// Conductivity and expansion are live settings; switching expansion off removes
+/// the buoyancy pass, and on again restores it.
+#[test]
+fn conductivity_and_expansion_change_while_the_scene_runs() {
+    let mut s = sim("convection", &["particle_spacing=0.01"]);
+    let buoyant = |s: &Simulation| s.model().plan.passes().iter().any(|p| p.name == "heat.buoyancy");
+    assert!(buoyant(&s));
+    s.step().unwrap();
+    s.set_parameters(&["heat.fluids[0].expansion=0".into(), "heat.fluids[0].conductivity=500".into()]).unwrap();
+    assert!(!buoyant(&s));
+    let k = s.model().consts::<floe_engine::modules::heat::HeatConsts>().conductivity[0];
+    assert_eq!(k, 500.0);
+    s.step().unwrap();
+    s.set_parameters(&["heat.fluids[0].expansion=1e-3".into()]).unwrap();
+    assert!(buoyant(&s));
+    s.step().unwrap();
+}

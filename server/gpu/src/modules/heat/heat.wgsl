@@ -1,0 +1,28 @@
+// The heat module's uniform (floe-gpu `modules::heat::uniform`), shared by its kernels.
+
+struct Heat {
+    // Per material: conductivity k (W/(m K)), heat capacity c (J/(kg K)),
+    // expansion beta (1/K), unused.
+    material: array<vec4<f32>, 16>,
+    // Per material pair (a * 16 + b): 4 k_a k_b / (k_a + k_b) with the lattice
+    // normalisation, in x.
+    pair: array<vec4<f32>, 256>,
+    // Boussinesq reference temperature T0 (K).
+    reference: f32,
+    // 0.01 h^2 (m^2), the pair factor's singularity guard.
+    eps_h2: f32,
+    n_walls: u32,
+    n_sources: u32,
+    // Walls held at a temperature: box corners, the temperature (K) in min.w.
+    wall_min: array<vec4<f32>, 8>,
+    wall_max: array<vec4<f32>, 8>,
+    // Heat sources: box corners, the power density (W/m^3) in min.w.
+    source_min: array<vec4<f32>, 8>,
+    source_max: array<vec4<f32>, 8>,
+}
+
+@group(0) @binding(1) var<uniform> heat: Heat;
+
+fn inside(p: vec3<f32>, lo: vec4<f32>, hi: vec4<f32>) -> bool {
+    return all(p >= lo.xyz) && all(p <= hi.xyz);
+}

@@ -1,0 +1,96 @@
+//! The heat module on the GPU: conduction, Boussinesq buoyancy and the
+//! temperature integration, with the module uniform `heat` (per material:
+//! conductivity, heat capacity, expansion; per pair: the combined conductivity;
+//! the walls held at a temperature and the heat sources).
+
+use crate::layout::MAX_MATERIALS;
+use crate::pass::{GpuPass, always};
+use crate::passes::particle_kernel;
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
+use bytemuck::{Pod, Zeroable};
+use floe_engine::attrs::PARTICLES;
+use floe_engine::model::Model;
+use floe_engine::modules::heat::{HeatConsts, MAX_BOXES};
+
+/// dT/dt from conduction, walls and sources.
+pub static CONDUCTION: GpuPass = GpuPass {
+    name: "heat.conduction",
+    source: particle_kernel!("heat.wgsl", "conduction.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "heat"),
+        (R, "x"),
+        (R, "rho"),
+        (R, "temperature"),
+        (R, "starts"),
+        (R, "walls"),
+        (W, "heat_rate"),
+    ],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The Boussinesq term of the body force.
+pub static BUOYANCY: GpuPass = GpuPass {
+    name: "heat.buoyancy",
+    source: particle_kernel!("heat.wgsl", "buoyancy.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "heat"), (R, "x"), (R, "temperature"), (W, "a")],
+    space: PARTICLES,
+    when: always,
+};
+
+/// `T += dt dT/dt`.
+pub static INTEGRATE: GpuPass = GpuPass {
+    name: "heat.integrate",
+    source: particle_kernel!("integrate.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "dt"), (W, "temperature"), (R, "heat_rate")],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The `heat` uniform (`Heat` in heat.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct HeatParams {
+    material: [[f32; 4]; MAX_MATERIALS],
+    pair: [[f32; 4]; MAX_MATERIALS * MAX_MATERIALS],
+    reference: f32,
+    eps_h2: f32,
+    n_walls: u32,
+    n_sources: u32,
+    wall_min: [[f32; 4]; MAX_BOXES],
+    wall_max: [[f32; 4]; MAX_BOXES],
+    source_min: [[f32; 4]; MAX_BOXES],
+    source_max: [[f32; 4]; MAX_BOXES],
+}
+
+/// The uniform's bytes, when the scene has the heat module.
+pub fn uniform(model: &Model) -> Option<Vec<u8>> {
+    if !model.has_module("heat") {
+        return None;
+    }
+    let c: &HeatConsts = model.consts();
+    let n = model.materials.len();
+    let h = 0.5 * model.kernel.support();
+    let mut p = HeatParams::zeroed();
+    for a in 0..n {
+        p.material[a] = [c.conductivity[a], c.capacity[a], c.expansion[a], 0.0];
+        for b in 0..n {
+            p.pair[a * MAX_MATERIALS + b][0] = c.pair_conductivity[a * n + b];
+        }
+    }
+    (p.reference, p.eps_h2) = (c.reference, 0.01 * h * h);
+    (p.n_walls, p.n_sources) = (c.walls.len() as u32, c.sources.len() as u32);
+    for (k, (b, t)) in c.walls.iter().enumerate() {
+        p.wall_min[k] = [b.min.x, b.min.y, b.min.z, *t];
+        p.wall_max[k] = [b.max.x, b.max.y, b.max.z, 0.0];
+    }
+    for (k, (b, q)) in c.sources.iter().enumerate() {
+        p.source_min[k] = [b.min.x, b.min.y, b.min.z, *q];
+        p.source_max[k] = [b.max.x, b.max.y, b.max.z, 0.0];
+    }
+    Some(bytemuck::bytes_of(&p).to_vec())
+}
