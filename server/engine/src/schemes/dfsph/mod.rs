@@ -80,8 +80,7 @@ pub static SCHEME: SchemeDef = SchemeDef {
 
 /// Fraction of the previous step's stiffness each solve starts from. The
 /// iterations only add to the stiffness, so a full warm start would let it grow
-/// from step to step; half (SPlisHSPlasH's choice) keeps it bounded and, measured on
-/// the resting column, needs fewer iterations than none.
+/// from step to step; half (SPlisHSPlasH's choice) keeps it bounded.
 pub const WARM_START: Real = 0.5;
 
 /// Neighbours (fluid and wall, the particle itself not counted) a particle needs to
