@@ -73,6 +73,20 @@ fn run_exports_frames_and_a_summary() {
 }
 
 #[test]
+fn a_dfsph_run_summary_lists_its_solves() {
+    let dir = tempfile::tempdir().unwrap();
+    let summary = dir.path().join("summary.json");
+    let args = ["run", "dam_break", "--set", "particle_spacing=0.05", "--set", "solver.method=\"dfsph\""];
+    floe(&[&args[..], &["--until", "0.02", "--summary", summary.to_str().unwrap(), "--quiet"]].concat()).unwrap();
+    let s: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
+    for solve in ["dfsph.divergence", "dfsph.density"] {
+        let stats = &s["solves"][solve];
+        assert!(stats["total_iterations"].as_u64().unwrap() >= s["steps"].as_u64().unwrap(), "{solve}: {stats}");
+        assert!(stats["max_iterations"].as_u64().unwrap() >= 1, "{solve}: {stats}");
+    }
+}
+
+#[test]
 fn a_halted_run_reports_why_and_still_writes_its_summary() {
     let dir = tempfile::tempdir().unwrap();
     let summary = dir.path().join("summary.json");

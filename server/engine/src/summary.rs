@@ -1,7 +1,8 @@
 //! The summary of a run, as written by `floe run --summary FILE.json`.
 
-use crate::simulation::Simulation;
+use crate::simulation::{Simulation, SolveStats};
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// What a finished (or halted) run did and what it cost.
 #[derive(Debug, Clone, Serialize)]
@@ -34,6 +35,10 @@ pub struct Summary {
     pub mean_density_deviation: f64,
     /// Largest particle speed seen (m/s).
     pub max_speed: f64,
+    /// Each iterative solve of the scheme (DFSPH's `dfsph.divergence`, `dfsph.density`):
+    /// mean and most iterations per step, the last residual, total iterations. Empty for
+    /// schemes that do not iterate.
+    pub solves: BTreeMap<String, SolveStats>,
     /// Why the run halted, if it did (the message a user sees).
     pub halted: Option<String>,
 }
@@ -58,6 +63,7 @@ impl Summary {
             max_density_deviation: s.max_density_deviation,
             mean_density_deviation: s.mean_density_deviation,
             max_speed: s.max_speed,
+            solves: s.solves.clone(),
             halted: sim.halted().map(|h| h.to_string()),
         }
     }
