@@ -41,7 +41,10 @@ async fn rest_mirrors_the_control_calls() {
                 "convection",
                 "two_fluids",
                 "heated_cavity",
-                "layers"
+                "layers",
+                "power_law_channel",
+                "bingham_channel",
+                "cross_channel"
             ])
         )
     );

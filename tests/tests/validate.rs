@@ -20,7 +20,7 @@ fn quick_validation_meets_every_stated_bound() {
         floe_engine::validation::cases::all().iter().map(|c| c.variants.len() * c.spacings(false).len()).sum();
     assert_eq!(json["runs"].as_array().unwrap().len(), runs);
     assert_eq!(json["stability"].as_array().unwrap().len(), floe_engine::validation::stability::all().len());
-    for case in ["hydrostatic", "dam_break", "poiseuille"] {
+    for case in ["hydrostatic", "dam_break", "poiseuille", "bingham_channel"] {
         for plot in ["work_precision", "convergence"] {
             let svg = std::fs::read_to_string(dir.path().join(format!("{case}_{plot}.svg"))).unwrap();
             assert!(svg.starts_with("<svg") && svg.contains("<polyline"), "{case}_{plot}.svg has no lines");
@@ -38,7 +38,7 @@ fn unknown_cases_are_named() {
     assert!(
         format!("{err}").starts_with(
             "unknown case 'taylor_green'; cases are: hydrostatic, dam_break, poiseuille, conduction, layers_at_rest, \
-             stability"
+             power_law_channel, bingham_channel, cross_channel, stability"
         ),
         "{err}"
     );

@@ -111,12 +111,35 @@ const VARIANTS: &[&[&str]] = &[
         "particle_spacing=0.05",
         "modules=[\"fluid\",\"heat\"]",
         HEAT,
-        "fluids=[{\"blocks\":[{\"min\":[0,0,0],\"max\":[0.5,1,0.25]}]},\
-          {\"name\":\"heavy\",\"rest_density\":3000,\"blocks\":[{\"min\":[1.2,0,0],\"max\":[1.7,0.5,0.25]}]}]",
+        TWO_FLUIDS,
         "heat.fluids=[{\"conductivity\":50,\"heat_capacity\":1000,\"expansion\":0.01,\"temperature\":300},\
           {\"conductivity\":5,\"heat_capacity\":500,\"expansion\":0.002,\"temperature\":280}]",
     ],
+    // With snow: each viscosity law, alone and as two fluids of different laws.
+    &[
+        "particle_spacing=0.05",
+        "modules=[\"fluid\",\"snow\"]",
+        "snow={\"fluids\":[{\"model\":\"cross\",\"mu_0\":20,\"mu_inf\":0.2,\"k\":2,\"n\":0.8}],\"max_viscosity\":20}",
+    ],
+    &[
+        "particle_spacing=0.05",
+        "modules=[\"fluid\",\"snow\"]",
+        TWO_FLUIDS,
+        "snow={\"fluids\":[{\"model\":\"carreau\",\"mu_0\":20,\"mu_inf\":1,\"lambda\":0.5,\"n\":0.4},\
+          {\"model\":\"herschel_bulkley\",\"yield_stress\":5,\"k\":2,\"n\":0.6,\"m\":20}],\"max_viscosity\":50}",
+    ],
+    &[
+        "particle_spacing=0.05",
+        "modules=[\"fluid\",\"snow\"]",
+        TWO_FLUIDS,
+        "snow={\"fluids\":[{\"model\":\"power_law\",\"k\":3,\"n\":0.7},\
+          {\"model\":\"bingham\",\"yield_stress\":5,\"mu_p\":1,\"m\":20}],\"max_viscosity\":50}",
+    ],
 ];
+
+/// Two fluids: the dam break's column and a denser block beside it.
+const TWO_FLUIDS: &str = "fluids=[{\"blocks\":[{\"min\":[0,0,0],\"max\":[0.5,1,0.25]}]},\
+    {\"name\":\"heavy\",\"rest_density\":3000,\"blocks\":[{\"min\":[1.2,0,0],\"max\":[1.7,0.5,0.25]}]}]";
 
 /// The heat section of the oracle's heat variants.
 const HEAT: &str = "heat={\"fluids\":[{\"conductivity\":50,\"heat_capacity\":1000,\"expansion\":0.01,\"temperature\":300}],\

@@ -15,6 +15,7 @@
 
 pub mod fluid;
 pub mod heat;
+pub mod snow;
 
 use crate::cpu::CpuPass;
 use crate::math::Real;
@@ -80,7 +81,7 @@ pub struct ModuleDef {
 }
 
 /// The modules shipped with the engine, in the order their passes run within a stage.
-pub static BUILTIN: &[&ModuleDef] = &[&fluid::MODULE, &heat::MODULE];
+pub static BUILTIN: &[&ModuleDef] = &[&fluid::MODULE, &heat::MODULE, &snow::MODULE];
 
 static EXTRA: RwLock<Vec<&'static ModuleDef>> = RwLock::new(Vec::new());
 

@@ -63,6 +63,9 @@ pub struct Scene {
     /// Temperature, conduction and buoyancy (the `heat` module).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub heat: Option<crate::modules::heat::spec::Heat>,
+    /// Non-Newtonian viscosity (the `snow` module).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snow: Option<crate::modules::snow::spec::Snow>,
 }
 
 fn default_name() -> String {

@@ -279,7 +279,7 @@ mod tests {
         );
         assert_eq!(
             errors(&["modules=[\"fluid\",\"lava\"]"]),
-            "modules[1]: unknown module \"lava\"; modules are fluid, heat"
+            "modules[1]: unknown module \"lava\"; modules are fluid, heat, snow"
         );
         // Several problems are reported together.
         let both = errors(&["particle_spacing=-1", "guard.max_compression=0"]);

@@ -2,6 +2,7 @@
 
 pub mod fluid;
 pub mod heat;
+pub mod snow;
 
 use crate::pass::{GpuPass, UniformSource};
 
@@ -14,7 +15,10 @@ pub static PASSES: &[&GpuPass] = &[
     &heat::CONDUCTION,
     &heat::BUOYANCY,
     &heat::INTEGRATE,
+    &snow::SHEAR,
+    &snow::VISCOSITY,
 ];
 
 /// Every module's uniform.
-pub static UNIFORMS: &[(&str, UniformSource)] = &[("fluid", fluid::uniform), ("heat", heat::uniform)];
+pub static UNIFORMS: &[(&str, UniformSource)] =
+    &[("fluid", fluid::uniform), ("heat", heat::uniform), ("snow", snow::uniform)];

@@ -77,6 +77,20 @@ pub static XSPH: AttrSpec = AttrSpec {
     about: "XSPH velocity correction of the last evaluation.",
 };
 
+/// Dynamic viscosity per particle (Pa s): the one path for viscosity that varies
+/// from particle to particle. A module whose viscosity depends on the flow (the
+/// snow module's rheology) writes it; it is allocated only in scenes that have
+/// such a module.
+pub static VISCOSITY: AttrSpec = AttrSpec {
+    name: "mu",
+    elem: Elem::F32,
+    unit: "Pa s",
+    role: Role::Derived,
+    space: PARTICLES,
+    module: "fluid",
+    about: "Dynamic viscosity of the particle at its current state.",
+};
+
 /// The module's constants, per material.
 #[derive(Debug, Clone)]
 pub struct FluidConsts {

@@ -60,6 +60,7 @@ pub fn dam_break() -> Scene {
         solver: Solver::default(),
         guard: Default::default(),
         heat: None,
+        snow: None,
     }
 }
 
@@ -79,6 +80,7 @@ pub fn hydrostatic() -> Scene {
         solver: Solver { damping: 5.0, damping_until: 0.5, ..Solver::default() },
         guard: Default::default(),
         heat: None,
+        snow: None,
     }
 }
 
@@ -107,5 +109,6 @@ pub fn poiseuille() -> Scene {
         solver: Solver { speed_of_sound: Some(1.0), ..Solver::default() },
         guard: Default::default(),
         heat: None,
+        snow: None,
     }
 }

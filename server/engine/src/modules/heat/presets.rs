@@ -75,6 +75,7 @@ fn scene(name: &str, spacing: f32, fluids: Vec<Fluid>, boundaries: Vec<Boundary>
         solver: Solver::default(),
         guard: Default::default(),
         heat: Some(heat),
+        snow: None,
     }
 }
 

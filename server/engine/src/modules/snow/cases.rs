@@ -1,0 +1,115 @@
+//! The snow module's validation cases (VALIDATION.md §6) and stability battery.
+
+use super::SnowConsts;
+use super::channel::{self, l2_error};
+use super::presets::CHANNEL;
+use super::rheology::Kind;
+use crate::Simulation;
+use crate::validation::cases::{Case, Measured, Variant};
+use crate::validation::run_probed;
+use crate::validation::stability::{Expect, StabilityCase};
+
+/// Spacings of the channel cases (m): 10 to 20 layers across the quick runs.
+const SPACINGS: (&[f64], &[f64]) = (&[0.1, 1.0 / 15.0, 0.05], &[0.1, 1.0 / 15.0, 0.05, 1.0 / 30.0]);
+
+/// The variants every case runs: the default scheme only, as each run is bound by
+/// the explicit viscous step (`--set solver.method=\"dfsph\"` runs them with DFSPH).
+const DEFAULT: &[Variant] = &[Variant { name: "default", overrides: &[] }];
+
+/// The module's accuracy cases.
+pub const CASES: &[Case] = &[
+    Case {
+        name: "power_law_channel",
+        module: "snow",
+        reference: "VALIDATION.md §6: steady power-law channel flow, closed form",
+        preset: "power_law_channel",
+        primary_error: "velocity_l2",
+        spacings: SPACINGS,
+        bounds: &[("velocity_l2", 0.03)],
+        variants: DEFAULT,
+        measure: channel_case,
+    },
+    Case {
+        name: "bingham_channel",
+        module: "snow",
+        reference: "VALIDATION.md §6: steady Bingham channel flow with its plug, closed form",
+        preset: "bingham_channel",
+        primary_error: "velocity_l2",
+        spacings: SPACINGS,
+        bounds: &[("velocity_l2", 0.03)],
+        variants: DEFAULT,
+        measure: channel_case,
+    },
+    Case {
+        name: "cross_channel",
+        module: "snow",
+        reference: "VALIDATION.md §6: steady Cross-model channel flow against the 1D grid solution of the same ODE",
+        preset: "cross_channel",
+        primary_error: "velocity_l2",
+        spacings: SPACINGS,
+        bounds: &[("velocity_l2", 0.03)],
+        variants: DEFAULT,
+        measure: channel_case,
+    },
+];
+
+/// Simulated time (s) of the channel cases: measured, the layer velocities change by
+/// less than 0.1 % between 0.75 s and 1.5 s.
+pub const CHANNEL_T_END: f64 = 1.0;
+
+/// Runs to [`CHANNEL_T_END`] and compares the velocities with the steady profile of
+/// the scene's law: the closed form for a power law and a Bingham plastic (with
+/// the plug width's error), the 1D grid solution otherwise.
+fn channel_case(sim: &mut Simulation, spacing: f64) -> Measured {
+    let (wall, halted) = run_probed(sim, CHANNEL_T_END, CHANNEL_T_END, |_| {});
+    if halted.is_some() {
+        return (wall, halted, Vec::new());
+    }
+    let law = sim.model().consts::<SnowConsts>().laws[0];
+    let (rho, _, l) = CHANNEL;
+    let rho_f = f64::from(rho) * f64::from(sim.scene().gravity[0]);
+    let l = f64::from(l);
+    let p = sim.read(&["velocity"]);
+    let [a, b, ..] = law.p.map(f64::from);
+    let mut errors = match law.kind {
+        Kind::PowerLaw => vec![("velocity_l2", l2_error(&p, |y| channel::power_law(y, rho_f, a, b, l)))],
+        Kind::Bingham => {
+            let reference = |y| channel::bingham(y, rho_f, a, b, l);
+            let ideal: Vec<f64> =
+                (0..(l / spacing).round() as usize).map(|k| reference((k as f64 + 0.5) * spacing)).collect();
+            let (w, w_ref) = (
+                channel::plug_half_width(&channel::layers(&p, spacing, l), spacing, l),
+                channel::plug_half_width(&ideal, spacing, l),
+            );
+            vec![("velocity_l2", l2_error(&p, reference)), ("plug_width_error", (w - w_ref).abs() / w_ref)]
+        }
+        _ => {
+            let profile = channel::steady_profile(&law, rho_f, l, 2000);
+            vec![("velocity_l2", l2_error(&p, |y| profile.at(y)))]
+        }
+    };
+    errors.push(("max_viscosity_pa_s", f64::from(law.max)));
+    (wall, None, errors)
+}
+
+/// The stability battery: stiff viscosities under the explicit viscous limit.
+pub const STABILITY: &[StabilityCase] = &[
+    StabilityCase {
+        name: "cross_ratio_1e4",
+        what: "Cross model with mu_0 / mu_inf = 1e4 (3e4 over 3 Pa s)",
+        preset: "cross_channel",
+        spacing: (0.1, 0.05),
+        overrides: &["snow.fluids[0].mu_0=3e4", "snow.fluids[0].mu_inf=3", "snow.max_viscosity=3e4"],
+        until: (0.05, 0.5),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "cross_ratio_1e6",
+        what: "Cross model with mu_0 / mu_inf = 1e6 (3e5 over 0.3 Pa s)",
+        preset: "cross_channel",
+        spacing: (0.1, 0.05),
+        overrides: &["snow.fluids[0].mu_0=3e5", "snow.fluids[0].mu_inf=0.3", "snow.max_viscosity=3e5"],
+        until: (0.005, 0.05),
+        expect: Expect::Finish,
+    },
+];

@@ -1,0 +1,244 @@
+//! The snow module: generalised Newtonian fluids (Cross, power law, Bingham,
+//! Herschel-Bulkley, Carreau) for snow avalanches and other non-Newtonian flows.
+//! The viscosity of each particle follows from its shear rate; the viscous force
+//! is that of the stress `2 mu D` between each pair. docs/snow.md states the models with
+//! their units and references.
+//!
+//! - [`spec`]: the scene section (`snow`).
+//! - [`rheology`]: the viscosity laws.
+//! - [`viscous`]: the shear-rate pass and the viscous force pass.
+//! - [`presets`]: channel flows and the avalanche.
+//! - [`channel`]: reference profiles of the channel flows; [`cases`]: validation
+//!   cases and the stability battery.
+
+pub mod cases;
+pub mod channel;
+pub mod presets;
+pub mod rheology;
+pub mod spec;
+pub mod viscous;
+
+use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
+use crate::channels::{ChannelSpec, Source};
+use crate::math::Real;
+use crate::model::{BuildError, Model, ModelBuilder};
+use crate::modules::ModuleDef;
+use crate::modules::fluid::VISCOSITY;
+use crate::scene::Scene;
+use crate::scene::tunable::Tunable;
+use crate::scene::validate::Checker;
+use crate::simulation::Measure;
+use rheology::Law;
+use spec::Rheology;
+
+/// The module's definition.
+pub static MODULE: ModuleDef = ModuleDef {
+    id: "snow",
+    about: "Non-Newtonian viscosity (Cross, power law, Bingham, Herschel-Bulkley, Carreau) for snow avalanches.",
+    requires: &["fluid"],
+    has_section: Some(|scene| scene.snow.is_some()),
+    validate,
+    count: |_| Vec::new(),
+    particles: |_, _| Ok(()),
+    build,
+    retune,
+    tunables: TUNABLES,
+    cpu: &[("snow.shear", &viscous::Shear), ("snow.viscosity", &viscous::Viscosity)],
+    presets: presets::PRESETS,
+    dt_limit,
+    measures,
+    cases: cases::CASES,
+    stability: cases::STABILITY,
+};
+
+/// The module's live settings.
+pub const TUNABLES: &[Tunable] = &[
+    Tunable {
+        path: "snow.fluids[*]",
+        unit: "",
+        min: None,
+        max: None,
+        about: "A fluid's rheology, e.g. {\"model\": \"cross\", \"mu_0\": Pa s, \"mu_inf\": Pa s, \"k\": s, \"n\": 1}.",
+        module: "snow",
+    },
+    Tunable {
+        path: "snow.max_viscosity",
+        unit: "Pa s",
+        min: Some(0.0),
+        max: Some(1e9),
+        about: "The viscosity clamp (it also sets the viscous time-step limit).",
+        module: "snow",
+    },
+];
+
+/// The shear rate `sqrt(2 D:D)` (1/s) of the last evaluation.
+pub static SHEAR_RATE: AttrSpec = AttrSpec {
+    name: "shear_rate",
+    elem: Elem::F32,
+    unit: "1/s",
+    role: Role::Derived,
+    space: PARTICLES,
+    module: "snow",
+    about: "Shear rate sqrt(2 D:D) of the last evaluation.",
+};
+
+/// The viscosity channel.
+pub const VISCOSITY_CHANNEL: ChannelSpec = ChannelSpec {
+    name: "viscosity",
+    unit: "Pa s",
+    components: 1,
+    exact: false,
+    set: PARTICLES,
+    module: "snow",
+    about: "Dynamic viscosity of the particle's rheology at its shear rate.",
+    source: Source::Attr("mu"),
+};
+
+/// The shear-rate channel.
+pub const SHEAR_RATE_CHANNEL: ChannelSpec = ChannelSpec {
+    name: "shear_rate",
+    unit: "1/s",
+    components: 1,
+    exact: false,
+    set: PARTICLES,
+    module: "snow",
+    about: "Shear rate sqrt(2 D:D).",
+    source: Source::Attr("shear_rate"),
+};
+
+/// The module's constants.
+#[derive(Debug, Clone)]
+pub struct SnowConsts {
+    /// The law of each material.
+    pub laws: Vec<Law>,
+}
+
+impl SnowConsts {
+    fn new(snow: &spec::Snow) -> Self {
+        Self { laws: snow.fluids.iter().map(|r| Law::new(r, snow.max_viscosity)).collect() }
+    }
+
+    /// Whether material `m` has a rheology (is snow, for the measures).
+    pub fn is_snow(&self, m: usize) -> bool {
+        self.laws[m].kind != rheology::Kind::None
+    }
+}
+
+fn section(scene: &Scene) -> &spec::Snow {
+    scene.snow.as_ref().expect("the registry builds snow only for scenes with a snow section")
+}
+
+fn validate(scene: &Scene, c: &mut Checker) {
+    let Some(snow) = &scene.snow else { return };
+    if snow.fluids.len() != scene.fluids.len() {
+        c.fail(
+            "snow.fluids",
+            format!("must hold one entry per fluid ({}), got {}", scene.fluids.len(), snow.fluids.len()),
+        );
+    }
+    c.positive("snow.max_viscosity", snow.max_viscosity);
+    for (i, r) in snow.fluids.iter().enumerate() {
+        let p = |f: &str| format!("snow.fluids[{i}].{f}");
+        match *r {
+            Rheology::None => {}
+            Rheology::Newtonian { mu } => c.non_negative(&p("mu"), mu),
+            Rheology::Cross { mu_0, mu_inf, k, n } | Rheology::Carreau { mu_0, mu_inf, lambda: k, n } => {
+                c.non_negative(&p("mu_0"), mu_0);
+                c.non_negative(&p("mu_inf"), mu_inf);
+                let time = if matches!(r, Rheology::Cross { .. }) { "k" } else { "lambda" };
+                c.non_negative(&p(time), k);
+                c.within(&p("n"), n, 0.0, 10.0);
+            }
+            Rheology::PowerLaw { k, n } => {
+                c.non_negative(&p("k"), k);
+                c.within(&p("n"), n, 0.05, 10.0);
+            }
+            Rheology::Bingham { yield_stress, mu_p, m } => {
+                c.non_negative(&p("yield_stress"), yield_stress);
+                c.non_negative(&p("mu_p"), mu_p);
+                c.positive(&p("m"), m);
+            }
+            Rheology::HerschelBulkley { yield_stress, k, n, m } => {
+                c.non_negative(&p("yield_stress"), yield_stress);
+                c.non_negative(&p("k"), k);
+                c.within(&p("n"), n, 0.05, 10.0);
+                c.positive(&p("m"), m);
+            }
+        }
+    }
+}
+
+fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    b.zeros(&VISCOSITY);
+    b.zeros(&SHEAR_RATE);
+    b.pass(&viscous::SHEAR);
+    b.pass(&viscous::VISCOSITY);
+    b.channel(VISCOSITY_CHANNEL);
+    b.channel(SHEAR_RATE_CHANNEL);
+    let consts = SnowConsts::new(section(scene));
+    b.set_consts(Front::new(b, &consts));
+    b.set_consts(consts);
+    Ok(())
+}
+
+fn retune(scene: &Scene, model: &mut Model) {
+    model.set_consts(SnowConsts::new(section(scene)));
+}
+
+/// The explicit viscous limit `0.125 h^2 rho0 / mu_max` (Morris et al. 1997, eq. 20)
+/// at each material's clamp.
+fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
+    let c = model.consts::<SnowConsts>();
+    let nu = c.laws.iter().zip(model.materials.iter()).map(|(l, m)| l.max / m.rest_density).fold(0.0, Real::max);
+    let h = 0.5 * model.kernel.support();
+    (nu > 0.0).then(|| ("non-Newtonian viscosity", 0.125 * h * h / nu))
+}
+
+/// Where the snow's front started: its largest x (m) at build.
+#[derive(Debug, Clone, Copy)]
+pub struct Front {
+    /// x of the foremost snow particle at the start (m).
+    pub start: Real,
+}
+
+impl Front {
+    fn new(b: &ModelBuilder, c: &SnowConsts) -> Self {
+        let Some(Column::Vec3(x)) = b.column("x") else { panic!("the core allocates positions first") };
+        let material = match b.column("material") {
+            Some(Column::U32(m)) => Some(m),
+            _ => None,
+        };
+        let start = x
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| c.is_snow(material.map_or(0, |m| m[*i] as usize)))
+            .map(|(_, p)| p.x)
+            .fold(Real::NEG_INFINITY, Real::max);
+        Front { start }
+    }
+}
+
+/// The snow's front (its largest x, m; avalanches run along +x), its run-out (how
+/// far the front has moved from where it started, m) and the largest viscosity (Pa s).
+fn measures(sim: &crate::Simulation) -> Vec<Measure> {
+    let several = sim.channels().iter().any(|c| c.name == "material");
+    let p = sim.read(if several { &["viscosity", "material"] } else { &["viscosity"] });
+    let Some(mu) = p.channel("viscosity").and_then(|t| t.as_scalars()) else { return Vec::new() };
+    let material = p.channel("material").and_then(|m| m.as_exact());
+    let (c, start) = (sim.model().consts::<SnowConsts>(), sim.model().consts::<Front>().start);
+    let mut front = f64::NEG_INFINITY;
+    for (i, x) in p.positions.iter().enumerate() {
+        if c.is_snow(material.map_or(0, |m| usize::from(m[i]))) {
+            front = front.max(f64::from(x[0]));
+        }
+    }
+    let max_mu = mu.iter().fold(0.0f64, |m, &v| m.max(f64::from(v)));
+    if !front.is_finite() {
+        return vec![Measure::new("snow.max_viscosity", max_mu, "Pa s")];
+    }
+    vec![
+        Measure::new("snow.front", front, "m"),
+        Measure::new("snow.runout", front - f64::from(start), "m"),
+        Measure::new("snow.max_viscosity", max_mu, "Pa s"),
+    ]
+}

@@ -1,0 +1,102 @@
+//! The snow module on the CPU: the viscous force only dissipates, a channel flow at
+//! CI's coarsest resolution against its closed form, the section's validation and
+//! the live rheology.
+
+use floe_engine::Simulation;
+use floe_engine::attrs::Column;
+use floe_engine::modules::snow::SnowConsts;
+use floe_engine::modules::snow::cases::CHANNEL_T_END;
+use floe_engine::modules::snow::channel;
+use floe_engine::plan::Stage;
+use floe_engine::scene::load::from_preset;
+
+fn sim(preset: &str, overrides: &[&str]) -> Simulation {
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    Simulation::new_cpu(from_preset(preset, &overrides).unwrap()).unwrap()
+}
+
+/// A velocity field with no structure, of magnitudes from 1 to 50 mm/s: every pair
+/// of neighbours shears, some slowly, some fast.
+fn scrambled(n: usize) -> Column {
+    let mut state = 0x2545_f491_u32;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        (state as f32 / u32::MAX as f32) - 0.5
+    };
+    let v = (0..n).map(|i| floe_engine::math::Vec3::new(next(), next(), next()) * (1e-3 * (1 + i % 50) as f32));
+    Column::Vec3(v.collect())
+}
+
+/// `sum_i m_i v_i . a_i` of the viscous force alone is negative for any velocity
+/// field, with viscosities that differ from particle to particle (a shear-thinning
+/// law on a scrambled flow) and with walls.
+#[test]
+fn the_viscous_force_only_dissipates() {
+    let mut s = sim("cross_channel", &["particle_spacing=0.1"]);
+    let n = s.particle_count();
+    let b = s.backend_mut();
+    b.upload("v", scrambled(n));
+    for stage in [Stage::Sort, Stage::Density, Stage::PreForce] {
+        b.run(stage, 1e-3);
+    }
+    b.upload("a", Column::Vec3(vec![Default::default(); n]));
+    b.run_pass("snow.viscosity", 1e-3);
+    b.end_step();
+    let columns = b.download(&["v", "a", "mu"]);
+    let (Column::Vec3(v), Column::Vec3(a), Column::F32(mu)) = (&columns[0], &columns[1], &columns[2]) else {
+        panic!("velocities, accelerations and viscosities")
+    };
+    let spread = mu.iter().fold(0.0f32, |m, &x| m.max(x)) / mu.iter().fold(f32::MAX, |m, &x| m.min(x));
+    assert!(spread > 2.0, "the viscosities differ between particles (max/min {spread})");
+    let power: f64 = v.iter().zip(a).map(|(v, a)| f64::from(v.dot(*a))).sum();
+    let scale: f64 = a.iter().map(|a| f64::from(a.length())).sum::<f64>() * 0.5;
+    assert!(power < -1e-3 * scale, "viscous power {power} (scale {scale})");
+}
+
+/// The power-law channel at 10 layers across: within 3 % of the closed form.
+#[test]
+fn a_power_law_channel_reaches_its_closed_form() {
+    let mut s = sim("power_law_channel", &["particle_spacing=0.1"]);
+    while s.time() < CHANNEL_T_END {
+        s.step().unwrap();
+    }
+    let law = s.model().consts::<SnowConsts>().laws[0];
+    let p = s.read(&["velocity"]);
+    let (k, n) = (f64::from(law.p[0]), f64::from(law.p[1]));
+    let l2 = channel::l2_error(&p, |y| channel::power_law(y, 100.0, k, n, 1.0));
+    assert!(l2 < 0.03, "velocity L2 {l2}");
+    // A Newtonian fluid of the wall's viscosity flows slower in the middle: the
+    // shear-thickening profile is blunter than the parabola.
+    let newtonian = channel::l2_error(&p, |y| 0.05 * y * (1.0 - y));
+    assert!(newtonian > 0.1, "L2 against the parabola {newtonian}");
+}
+
+#[test]
+fn a_snow_section_is_checked_field_by_field() {
+    let overrides = vec![
+        "snow.fluids=[{\"model\":\"power_law\",\"k\":1,\"n\":20},{\"model\":\"none\"}]".to_string(),
+        "snow.max_viscosity=-1".to_string(),
+    ];
+    let err = from_preset("power_law_channel", &overrides).unwrap_err().to_string();
+    assert!(err.contains("snow.fluids: must hold one entry per fluid (1), got 2"), "{err}");
+    assert!(err.contains("snow.fluids[0].n"), "{err}");
+    assert!(err.contains("snow.max_viscosity"), "{err}");
+    let negative = vec!["snow.fluids[0].yield_stress=-5".to_string()];
+    let err = from_preset("bingham_channel", &negative).unwrap_err().to_string();
+    assert!(err.contains("snow.fluids[0].yield_stress"), "{err}");
+}
+
+/// The rheology is a live setting: the new law's viscosity reaches the particles
+/// at the next step.
+#[test]
+fn the_rheology_changes_while_the_scene_runs() {
+    let mut s = sim("cross_channel", &["particle_spacing=0.1"]);
+    s.step().unwrap();
+    s.set_parameters(&["snow.fluids[0]={\"model\":\"newtonian\",\"mu\":42}".into()]).unwrap();
+    s.step().unwrap();
+    let p = s.read(&["viscosity"]);
+    let mu = p.channel("viscosity").and_then(|c| c.as_scalars()).unwrap();
+    assert!(mu.iter().all(|&m| m == 42.0), "{:?}", &mu[..4]);
+}

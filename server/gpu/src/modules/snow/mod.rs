@@ -1,0 +1,73 @@
+//! The snow module on the GPU: the shear-rate pass and the viscous force pass, with the module uniform `snow` (per material: the viscosity law and its
+//! clamp).
+
+use crate::layout::MAX_MATERIALS;
+use crate::pass::{GpuPass, always};
+use crate::passes::particle_kernel;
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
+use bytemuck::{Pod, Zeroable};
+use floe_engine::attrs::PARTICLES;
+use floe_engine::model::Model;
+use floe_engine::modules::snow::SnowConsts;
+
+/// Shear rate and viscosity per particle.
+pub static SHEAR: GpuPass = GpuPass {
+    name: "snow.shear",
+    source: particle_kernel!("snow.wgsl", "shear.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "snow"),
+        (R, "x"),
+        (R, "v"),
+        (R, "rho"),
+        (R, "starts"),
+        (R, "walls"),
+        (W, "mu"),
+        (W, "shear_rate"),
+    ],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The viscous force, added to the accelerations.
+pub static VISCOSITY: GpuPass = GpuPass {
+    name: "snow.viscosity",
+    source: particle_kernel!("snow.wgsl", "viscosity.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "snow"),
+        (R, "x"),
+        (R, "v"),
+        (R, "rho"),
+        (R, "mu"),
+        (R, "starts"),
+        (R, "walls"),
+        (W, "a"),
+    ],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The `snow` uniform (`Snow` in snow.wgsl).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct SnowParams {
+    kind: [[f32; 4]; MAX_MATERIALS],
+    p: [[f32; 4]; MAX_MATERIALS],
+}
+
+/// The uniform's bytes, when the scene has the snow module.
+pub fn uniform(model: &Model) -> Option<Vec<u8>> {
+    if !model.has_module("snow") {
+        return None;
+    }
+    let c: &SnowConsts = model.consts();
+    let mut u = SnowParams::zeroed();
+    for (m, law) in c.laws.iter().enumerate() {
+        u.kind[m] = [f32::from_bits(law.kind as u32), law.max, 0.0, 0.0];
+        u.p[m] = law.p;
+    }
+    Some(bytemuck::bytes_of(&u).to_vec())
+}
