@@ -90,7 +90,7 @@ pub fn read_assets(scene: &mut Scene, dir: Option<&Path>) -> Result<(), Vec<Stri
             _ if !plain_name(name) => Err(format!(
                 "must be a plain file name in the server's assets directory (no '/', '\\', '..' or absolute path), got {name:?}"
             )),
-            None => Err(format!("{name:?}: this server has no assets directory (start it with --assets DIR)")),
+            None => Err(format!("{name:?}: no assets directory was given (--assets DIR)")),
             Some(dir) => read_asset(&dir.join(name), name),
         };
         match read {
