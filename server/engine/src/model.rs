@@ -329,15 +329,7 @@ impl<'s> ModelBuilder<'s> {
     /// from `bounds` (for the default domain and the fall height of the sound speed).
     /// Those a terrain buries are dropped.
     pub fn particles(&mut self, material: u32, mut positions: Vec<Vec3>, mut velocities: Vec<Vec3>, bounds: Aabb) {
-        let terrains: Vec<&HeightGrid> = self.grids.iter().flatten().map(|g| &**g).collect();
-        if !terrains.is_empty() {
-            let keep: Vec<bool> =
-                positions.iter().map(|&x| !terrains.iter().any(|g| g.buried(x, self.spacing))).collect();
-            let mut k = keep.iter();
-            positions.retain(|_| *k.next().expect("one flag per particle"));
-            let mut k = keep.iter();
-            velocities.retain(|_| *k.next().expect("one flag per particle"));
-        }
+        crate::terrain::drop_buried(&self.grids, self.spacing, &mut positions, &mut velocities);
         let p = &mut self.particles;
         p.materials.extend(std::iter::repeat_n(material, positions.len()));
         p.fastest = velocities.iter().map(|v| v.length()).fold(p.fastest, Real::max);

@@ -82,6 +82,20 @@ impl HeightGrid {
     }
 }
 
+/// Removes the particles (positions and their velocities) that a terrain among `grids`
+/// buries on a lattice of `spacing` ([`HeightGrid::buried`]).
+pub fn drop_buried(grids: &[Option<Arc<HeightGrid>>], spacing: Real, x: &mut Vec<Vec3>, v: &mut Vec<Vec3>) {
+    let terrains: Vec<&HeightGrid> = grids.iter().flatten().map(|g| &**g).collect();
+    if terrains.is_empty() {
+        return;
+    }
+    let keep: Vec<bool> = x.iter().map(|&p| !terrains.iter().any(|g| g.buried(p, spacing))).collect();
+    let mut k = keep.iter();
+    x.retain(|_| *k.next().expect("one flag per particle"));
+    let mut k = keep.iter();
+    v.retain(|_| *k.next().expect("one flag per particle"));
+}
+
 /// Boundary particles of a terrain: `layers` layers below the surface, the `l`-th
 /// `(l + 1/2) spacing` along the inward normal, on rows about `spacing` apart along z
 /// and, within a row, about `spacing` apart along the surface (so a steep slope is
