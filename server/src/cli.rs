@@ -131,6 +131,10 @@ pub struct RunArgs {
     /// Never draw the progress bar (it is drawn only on a terminal anyway).
     #[arg(long)]
     pub quiet: bool,
+    /// Directory of the files scenes may name as terrain assets (`heights.asset`); a
+    /// scene names only plain file names in it. Without it, scenes naming an asset are refused.
+    #[arg(long, value_name = "DIR")]
+    pub assets: Option<PathBuf>,
 }
 
 /// `floe plan`.
@@ -141,6 +145,10 @@ pub struct PlanArgs {
     /// Override a scene field (repeatable), as in `floe run`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub overrides: Vec<String>,
+    /// Directory of the files scenes may name as terrain assets (`heights.asset`); a
+    /// scene names only plain file names in it. Without it, scenes naming an asset are refused.
+    #[arg(long, value_name = "DIR")]
+    pub assets: Option<PathBuf>,
 }
 
 /// `floe bench`.
@@ -314,6 +322,10 @@ pub struct ServeArgs {
     /// Wall seconds a scene runs between periodic checkpoints.
     #[arg(long, env = "FLOE_CHECKPOINT_EVERY", value_name = "SECONDS", default_value_t = crate::service::DEFAULT_CHECKPOINT_SECONDS, value_parser = clap::value_parser!(u64).range(1..))]
     pub checkpoint_every: u64,
+    /// Directory of the files scenes may name as terrain assets (`heights.asset`); a
+    /// scene names only plain file names in it. Without it, scenes naming an asset are refused.
+    #[arg(long, env = "FLOE_ASSETS_DIR", value_name = "DIR")]
+    pub assets: Option<PathBuf>,
 }
 
 impl ServeArgs {
@@ -335,6 +347,7 @@ impl ServeArgs {
             auth,
             origins: self.allow_origins.clone(),
             checkpoint_every: std::time::Duration::from_secs(self.checkpoint_every),
+            assets: self.assets.clone(),
         }
     }
 }

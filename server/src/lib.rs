@@ -57,7 +57,7 @@ pub fn execute(cli: cli::Cli) -> anyhow::Result<()> {
         cli::Command::Validate(args) => validate::validate(args),
         cli::Command::Serve(args) => serve::serve(args),
         cli::Command::Plan(args) => {
-            print!("{}", plan::describe(&args.scene, &args.overrides)?);
+            print!("{}", plan::describe(&args.scene, &args.overrides, args.assets.as_deref())?);
             Ok(())
         }
         cli::Command::Schema => {

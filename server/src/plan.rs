@@ -7,9 +7,10 @@ use floe_engine::model::Model;
 use floe_engine::scene::load;
 use std::fmt::Write as _;
 
-/// The plan of `source` (a preset or a file) with `overrides`, as text.
-pub fn describe(source: &str, overrides: &[String]) -> anyhow::Result<String> {
-    let scene = load::resolve(source, overrides)?;
+/// The plan of `source` (a preset or a file) with `overrides`, its terrain assets
+/// read from `assets`, as text.
+pub fn describe(source: &str, overrides: &[String], assets: Option<&std::path::Path>) -> anyhow::Result<String> {
+    let scene = load::with_assets(load::resolve(source, overrides)?, assets)?;
     let model = Model::build(&scene)?;
     let mut out = String::new();
     let modules: Vec<&str> = model.modules.iter().map(|m| m.id).collect();

@@ -17,7 +17,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     if !(args.every.is_finite() && args.every > 0.0) {
         bail!("--every must be a positive number of seconds, got {}", args.every);
     }
-    let scene = load::resolve(&args.scene, &args.overrides)?;
+    let scene = load::with_assets(load::resolve(&args.scene, &args.overrides)?, args.assets.as_deref())?;
     let backend = floe_gpu::select::select(args.backend.into())?;
     let mut sim = Simulation::new(scene, &*backend.factory)?;
     tracing::info!(

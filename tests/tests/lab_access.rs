@@ -63,6 +63,7 @@ async fn users_see_and_touch_only_their_own_scenes() {
     for (method, path, body) in [
         ("GET", format!("/api/v1/scenes/{id}"), ""),
         ("GET", format!("/api/v1/scenes/{id}/stats"), ""),
+        ("GET", format!("/api/v1/scenes/{id}/terrain"), ""),
         ("POST", format!("/api/v1/scenes/{id}/step"), r#"{"steps": 1}"#),
         ("POST", format!("/api/v1/scenes/{id}/run"), r#"{"real_time_factor": 1}"#),
         ("POST", format!("/api/v1/scenes/{id}/pause"), ""),

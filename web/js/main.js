@@ -100,12 +100,22 @@ function open(scene) {
   showTunables(scene);
   const tank = scene.scene?.boundaries?.find((b) => b.kind === 'box');
   showScene({ min: scene.bounds_min, max: scene.bounds_max }, wallLines(scene.scene), scene.particle_spacing, changed, tank);
+  if (changed) showTerrain(scene);
   if (changed) {
     recorder.stop();
     plots.reset(`scene-${scene.scene_id}`);
     state.requestedRtf = null;
   }
   connect();
+}
+
+/** Draws the scene's terrains (fetched once per scene: walls never change), or none. */
+function showTerrain(scene) {
+  renderer.setTerrain([]);
+  if (!scene.scene?.boundaries?.some((b) => b.kind === 'terrain')) return;
+  api(`/scenes/${scene.scene_id}/terrain`)
+    .then((t) => { if (state.scene?.scene_id === scene.scene_id) renderer.setTerrain(t.terrains); })
+    .catch((e) => showError('view-error', `terrain: ${e.message}`));
 }
 
 /**

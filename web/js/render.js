@@ -2,7 +2,8 @@
 // sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection) and
 // the fluid's surface (surface.js); particles hidden deep inside the fluid are left out or
 // merged (cull.js). Both draw particles at their physical size (spacing.js); the scene's box walls
-// are lines (outline.js) and its floor a checkerboard (floor.js).
+// are lines (outline.js), its floor a checkerboard (floor.js) and its terrains lit meshes
+// (terrain.js).
 
 import { innerCubes, lumpedParticles, outerParticles } from './cull.js';
 import { ATTRIBUTES, programWith } from './gl.js';
@@ -11,6 +12,7 @@ import { Outline } from './outline.js';
 import { physicalRadius } from './spacing.js';
 import { SPHERE_POINT, SPRITE_VERT } from './sprite.js';
 import { Surface } from './surface.js';
+import { TerrainMeshes } from './terrain.js';
 
 const FRAG = `#version 300 es
 precision highp float;
@@ -56,6 +58,8 @@ export class Renderer {
     this.outline = new Outline(gl);
     /** The scene's floor; `floor.set(min, max)` when the scene changes. */
     this.floor = new Floor(gl);
+    /** The scene's terrains; `setTerrain(list)` when they arrive. */
+    this.terrain = new TerrainMeshes(gl);
     this.vao = gl.createVertexArray();
     gl.bindVertexArray(this.vao);
     this.posBuf = gl.createBuffer();
@@ -97,6 +101,12 @@ export class Renderer {
     this.radius = physicalRadius(spacing);
     this.drawable = null;
     this.buffered = null;
+    this.version += 1;
+  }
+
+  /** The scene's terrains, as `GET /api/v1/scenes/{id}/terrain` lists them ([] for none). */
+  setTerrain(terrains) {
+    this.terrain.set(terrains);
     this.version += 1;
   }
 
@@ -191,7 +201,7 @@ export class Renderer {
     return true;
   }
 
-  /** Clears the bound framebuffer to the background and draws the floor and walls. */
+  /** Clears the bound framebuffer to the background and draws the floor, terrains and walls. */
   #background(proj, view) {
     const gl = this.gl;
     gl.clearColor(...BACKGROUND, 1);
@@ -199,6 +209,7 @@ export class Renderer {
     gl.enable(gl.DEPTH_TEST);
     gl.depthFunc(gl.LESS);
     this.floor.draw(proj, view);
+    this.terrain.draw(proj, view);
     this.outline.draw(proj, view);
   }
 }

@@ -19,7 +19,9 @@ use crate::kernel::Kernel;
 use crate::math::{Aabb, Real, Vec3};
 use crate::neighbors::{Grid, permute};
 use crate::periodic::Periodicity;
+use crate::terrain::{HeightGrid, TerrainConstraint};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Wall particles sorted by cell, with their pseudo-masses and their own grid.
 #[derive(Debug, Clone)]
@@ -133,11 +135,14 @@ pub enum WallConstraint {
         /// How far behind the surface the constraint reaches (m).
         reach: Real,
     },
+    /// Keep particles above a heightfield, with Coulomb friction in contact.
+    Terrain(TerrainConstraint),
 }
 
 impl WallConstraint {
-    /// The constraint of a scene wall sampled at `spacing`.
-    pub fn new(b: &crate::scene::Boundary, spacing: Real) -> Self {
+    /// The constraint of a scene wall sampled at `spacing`; a terrain's comes with
+    /// its rasterised heights (`grid`, `None` for the other walls).
+    pub fn new(b: &crate::scene::Boundary, spacing: Real, grid: Option<&Arc<HeightGrid>>) -> Self {
         use crate::scene::{Boundary, Face};
         match b {
             Boundary::Box { min, max, open, layers } => {
@@ -163,13 +168,19 @@ impl WallConstraint {
                     reach: (*layers as Real + 1.0) * spacing,
                 }
             }
+            Boundary::Terrain(t) => WallConstraint::Terrain(TerrainConstraint {
+                grid: grid.expect("a terrain is built with its height grid").clone(),
+                friction: t.friction,
+                contact: spacing,
+            }),
         }
     }
 
     /// Projects `x` back onto the wall if it crossed it, removing the velocity
-    /// component into the wall.
+    /// component into the wall; a terrain also applies friction, for which `g_dt` is
+    /// gravity times the drift's dt (m/s).
     #[inline]
-    pub fn apply(&self, x: &mut Vec3, v: &mut Vec3) {
+    pub fn apply(&self, x: &mut Vec3, v: &mut Vec3, g_dt: Vec3) {
         match self {
             WallConstraint::Box { min, max, closed, reach } => {
                 // Only particles within the wall's slab (not far outside the box,
@@ -205,6 +216,7 @@ impl WallConstraint {
                     *v -= *normal * vn;
                 }
             }
+            WallConstraint::Terrain(t) => t.apply(x, v, g_dt),
         }
     }
 }
@@ -217,25 +229,25 @@ mod tests {
     #[test]
     fn box_constraint_returns_escaped_particles() {
         let b = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![Face::PlusY], layers: 1 };
-        let c = WallConstraint::new(&b, 0.1);
+        let c = WallConstraint::new(&b, 0.1, None);
         let (mut x, mut v) = (Vec3::new(-0.05, 0.5, 0.5), Vec3::new(-1.0, 0.0, 2.0));
-        c.apply(&mut x, &mut v);
+        c.apply(&mut x, &mut v, Vec3::ZERO);
         assert_eq!((x, v), (Vec3::new(0.0, 0.5, 0.5), Vec3::new(0.0, 0.0, 2.0)));
         // The open top lets particles out.
         let (mut x, mut v) = (Vec3::new(0.5, 1.05, 0.5), Vec3::Y);
-        c.apply(&mut x, &mut v);
+        c.apply(&mut x, &mut v, Vec3::ZERO);
         assert_eq!(x.y, 1.05);
     }
 
     #[test]
     fn plane_constraint_acts_only_behind_its_rectangle() {
         let b = Boundary::Plane { center: [0.0; 3], normal: [0.0, 1.0, 0.0], size: [1.0, 1.0], layers: 1 };
-        let c = WallConstraint::new(&b, 0.1);
+        let c = WallConstraint::new(&b, 0.1, None);
         let (mut x, mut v) = (Vec3::new(0.1, -0.05, 0.1), Vec3::new(1.0, -1.0, 0.0));
-        c.apply(&mut x, &mut v);
+        c.apply(&mut x, &mut v, Vec3::ZERO);
         assert!((x - Vec3::new(0.1, 0.0, 0.1)).length() < 1e-6 && (v - Vec3::X).length() < 1e-6);
         let (mut x, mut v) = (Vec3::new(2.0, -0.05, 0.0), -Vec3::Y);
-        c.apply(&mut x, &mut v);
+        c.apply(&mut x, &mut v, Vec3::ZERO);
         assert_eq!(x.y, -0.05);
     }
 
@@ -252,6 +264,7 @@ mod tests {
                 &Boundary::Box { min: [-1.0; 3], max: [1.0; 3], open: vec![], layers: 1 },
                 d,
                 [false; 3],
+                None,
             );
             let walls = BoundaryParticles::new(
                 floor,

@@ -22,7 +22,8 @@
 //!   the physics modules (the fluid) and their registry.
 //! - [`math`], [`kernel`], [`neighbors`], [`periodic`]: numeric types, SPH kernels, the
 //!   uniform grid, periodic domains (minimum-image pairs).
-//! - [`boundary`], [`sampling`]: wall particles and constraints, particle lattices.
+//! - [`boundary`], [`sampling`]: wall particles and constraints, particle lattices;
+//!   [`terrain`]: heightfield ground (procedural or PNG) with Coulomb friction.
 //! - [`clock`], [`timestep`], [`guard`]: the step control, adaptive dt and the
 //!   stability guard with the modules' bounds.
 //! - [`backend`], [`cpu`]: the backend trait and the rayon CPU backend.
@@ -53,6 +54,7 @@ pub mod schemes;
 pub mod simulation;
 pub mod snapshot;
 pub mod summary;
+pub mod terrain;
 pub mod timestep;
 pub mod validation;
 

@@ -21,6 +21,8 @@ use crate::plan::{PassSpec, Plan};
 use crate::sampling::sample_boundary;
 use crate::scene::{Boundary, Integrator, Scene, TimeStep};
 use crate::schemes::SchemeDef;
+use crate::terrain::HeightGrid;
+use crate::terrain::source::rasterise_all;
 use std::any::{Any, TypeId};
 use std::sync::Arc;
 
@@ -43,6 +45,9 @@ pub enum BuildError {
     /// The scene's passes do not form a plan.
     #[error("modules: {0}")]
     Plan(#[from] crate::plan::PlanError),
+    /// A terrain's heights cannot be read (e.g. an asset never read from the assets directory).
+    #[error("{0}")]
+    Terrain(String),
     /// The backend cannot hold or run the scene (e.g. it exceeds a GPU's limits).
     #[error("backend: {0}")]
     Backend(String),
@@ -277,6 +282,8 @@ pub struct ModelBuilder<'s> {
     materials: Vec<Material>,
     particles: NewParticles,
     walls: Vec<Vec3>,
+    /// Each boundary's rasterised heights (terrains only).
+    grids: Vec<Option<Arc<HeightGrid>>>,
     sound_speed: Option<Real>,
     layout: Layout,
     passes: Vec<&'static PassSpec>,
@@ -289,13 +296,18 @@ pub struct ModelBuilder<'s> {
 impl<'s> ModelBuilder<'s> {
     fn new(scene: &'s Scene) -> Result<Self, BuildError> {
         let d = scene.particle_spacing;
+        let grids: Vec<Option<Arc<HeightGrid>>> =
+            rasterise_all(scene).map_err(BuildError::Terrain)?.into_iter().map(|g| g.map(Arc::new)).collect();
+        let sample =
+            |(b, g): (&Boundary, &Option<Arc<HeightGrid>>)| sample_boundary(b, d, scene.periodic_axes(), g.as_deref());
         Ok(Self {
             scene,
             kernel: Kernel::new(scene.solver.kernel, scene.solver.support_factor * d),
             spacing: d,
             materials: Vec::new(),
             particles: NewParticles::default(),
-            walls: scene.boundaries.iter().flat_map(|b| sample_boundary(b, d, scene.periodic_axes())).collect(),
+            walls: scene.boundaries.iter().zip(&grids).flat_map(sample).collect(),
+            grids,
             sound_speed: None,
             layout: Layout::default(),
             passes: Vec::new(),
@@ -315,7 +327,9 @@ impl<'s> ModelBuilder<'s> {
 
     /// Adds particles of material `material` at `positions` with `velocities`, sampled
     /// from `bounds` (for the default domain and the fall height of the sound speed).
-    pub fn particles(&mut self, material: u32, positions: Vec<Vec3>, velocities: Vec<Vec3>, bounds: Aabb) {
+    /// Those a terrain buries are dropped.
+    pub fn particles(&mut self, material: u32, mut positions: Vec<Vec3>, mut velocities: Vec<Vec3>, bounds: Aabb) {
+        crate::terrain::drop_buried(&self.grids, self.spacing, &mut positions, &mut velocities);
         let p = &mut self.particles;
         p.materials.extend(std::iter::repeat_n(material, positions.len()));
         p.fastest = velocities.iter().map(|v| v.length()).fold(p.fastest, Real::max);
@@ -443,6 +457,7 @@ impl<'s> ModelBuilder<'s> {
         }
         let layers = scene.boundaries.iter().map(|b| match b {
             Boundary::Box { layers, .. } | Boundary::Plane { layers, .. } => *layers,
+            Boundary::Terrain(t) => t.layers,
         });
         let rest: Vec<Real> = self.materials.iter().map(|m| m.rest_density).collect();
         let walls = std::mem::take(&mut self.walls);
@@ -472,7 +487,12 @@ impl<'s> ModelBuilder<'s> {
             sound_speed,
             materials: Materials::new(self.materials),
             wall_particles,
-            wall_constraints: scene.boundaries.iter().map(|b| WallConstraint::new(b, d)).collect(),
+            wall_constraints: scene
+                .boundaries
+                .iter()
+                .zip(&self.grids)
+                .map(|(b, g)| WallConstraint::new(b, d, g.as_ref()))
+                .collect(),
             scheme,
             modules,
             layout: self.layout,

@@ -3,6 +3,7 @@
 
 use crate::math::{Real, Vec3};
 use crate::scene::{Boundary, Face, FluidBlock, Scene};
+use crate::terrain::HeightGrid;
 
 /// Particles along each axis of `block` on a lattice of `spacing`.
 fn lattice_counts(block: &FluidBlock, spacing: Real) -> [u32; 3] {
@@ -11,7 +12,8 @@ fn lattice_counts(block: &FluidBlock, spacing: Real) -> [u32; 3] {
 }
 
 /// How many particles [`fill_block`] places in the fluid blocks of `scene`, counted without
-/// placing them, so a scene too large for a server can be refused before it is built.
+/// placing them, so a scene too large for a server can be refused before it is built
+/// (an upper bound when a terrain buries part of a block: those are dropped at build).
 pub fn fluid_particle_count(scene: &Scene) -> u64 {
     let blocks = scene.fluids.iter().flat_map(|f| &f.blocks);
     blocks
@@ -55,8 +57,14 @@ fn axis_coords(lo: Real, hi: Real, spacing: Real, layers: u32) -> Vec<(Real, i8)
 }
 
 /// Boundary particle positions for one wall. Along the axes flagged in `periodic`
-/// a box has no faces: its walls tile the period with no layers beyond it.
-pub fn sample_boundary(boundary: &Boundary, spacing: Real, periodic: [bool; 3]) -> Vec<Vec3> {
+/// a box has no faces: its walls tile the period with no layers beyond it. A terrain
+/// is sampled from its rasterised heights (`grid`, `None` for the other walls).
+pub fn sample_boundary(
+    boundary: &Boundary,
+    spacing: Real,
+    periodic: [bool; 3],
+    grid: Option<&HeightGrid>,
+) -> Vec<Vec3> {
     match boundary {
         Boundary::Box { min, max, open, layers } => {
             let axes: Vec<Vec<(Real, i8)>> =
@@ -108,6 +116,9 @@ pub fn sample_boundary(boundary: &Boundary, spacing: Real, periodic: [bool; 3]) 
             }
             out
         }
+        Boundary::Terrain(t) => {
+            crate::terrain::sample_surface(grid.expect("a terrain is sampled from its height grid"), spacing, t.layers)
+        }
     }
 }
 
@@ -136,17 +147,17 @@ mod tests {
     #[test]
     fn box_walls_form_a_closed_shell() {
         let b = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![], layers: 1 };
-        let p = sample_boundary(&b, 0.1, [false; 3]);
+        let p = sample_boundary(&b, 0.1, [false; 3], None);
         assert_eq!(p.len(), 12 * 12 * 12 - 10 * 10 * 10);
         assert!(p.iter().all(|q| q.min_element() < 0.0 || q.max_element() > 1.0));
         let open = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![Face::PlusY], layers: 2 };
-        let p = sample_boundary(&open, 0.1, [false; 3]);
+        let p = sample_boundary(&open, 0.1, [false; 3], None);
         assert!(p.iter().all(|q| q.y < 1.0));
         assert_eq!(p.len(), 14 * 12 * 14 - 10 * 10 * 10);
         // Periodic along x: two plates (y faces) and two side walls (z faces), no x faces,
         // nothing beyond the period.
         let channel = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![Face::MinusX, Face::PlusX], layers: 2 };
-        let p = sample_boundary(&channel, 0.1, [true, false, false]);
+        let p = sample_boundary(&channel, 0.1, [true, false, false], None);
         assert_eq!(p.len(), 10 * (14 * 14 - 10 * 10));
         assert!(p.iter().all(|q| (0.0..1.0).contains(&q.x)));
     }
@@ -154,7 +165,7 @@ mod tests {
     #[test]
     fn planes_sit_behind_their_normal() {
         let b = Boundary::Plane { center: [0.0; 3], normal: [0.0, 2.0, 0.0], size: [1.0, 0.5], layers: 2 };
-        let p = sample_boundary(&b, 0.1, [false; 3]);
+        let p = sample_boundary(&b, 0.1, [false; 3], None);
         assert_eq!(p.len(), 2 * 10 * 5);
         assert!(p.iter().all(|q| q.y < 0.0 && q.y > -0.2));
     }

@@ -243,7 +243,10 @@ fn core_binds(gpu: &GpuContext, b: &Buffers, grid: &Grid) -> CoreBinds {
         integrate: b
             .steps
             .iter()
-            .map(|s| p.kick.bind(d, &[b.get("params"), s, b.get("x"), b.get("v"), b.get("a"), b.get("constraints")]))
+            .map(|s| {
+                let (x, v, a) = (b.get("x"), b.get("v"), b.get("a"));
+                p.kick.bind(d, &[b.get("params"), s, x, v, a, b.get("constraints"), b.get("heights")])
+            })
             .collect(),
         quantize: p
             .quantize

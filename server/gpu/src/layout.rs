@@ -125,22 +125,45 @@ const _: () = assert!(std::mem::size_of::<Step>() == 16);
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, Pod, Zeroable)]
 pub struct Constraint {
-    /// 0 box, 1 plane.
+    /// 0 box, 1 plane, 2 terrain.
     pub kind: u32,
-    /// Box: bit `2 axis + side` set for each closed face.
+    /// Box: bit `2 axis + side` set for each closed face; terrain: index of its first
+    /// height in the `heights` buffer.
     pub closed: u32,
     /// How far outside the surface the constraint reaches (m).
     pub reach: f32,
     pub _pad: u32,
-    /// Box: lower interior corner; plane: centre (m).
+    /// Box: lower interior corner; plane: centre (m); terrain: the grid's lower
+    /// corner `[x, z]` and node spacing `[x, z]` (m).
     pub a: [f32; 4],
-    /// Box: upper interior corner; plane: unit normal.
+    /// Box: upper interior corner; plane: unit normal; terrain: friction
+    /// coefficient, contact distance (m), nodes along x and along z.
     pub b: [f32; 4],
     /// Plane: unit tangents with half edge lengths (m) in `w`.
     pub t1: [f32; 4],
     pub t2: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<Constraint>() == 80);
+
+impl Constraint {
+    /// The GPU constraints of `walls`, and every terrain's heights one after another
+    /// (each terrain's constraint gives where its own start).
+    pub fn all(walls: &[WallConstraint]) -> (Vec<Constraint>, Vec<f32>) {
+        let mut heights = Vec::new();
+        let constraints = walls
+            .iter()
+            .map(|w| {
+                let mut c = Constraint::from(w);
+                if let WallConstraint::Terrain(t) = w {
+                    c.closed = heights.len() as u32;
+                    heights.extend_from_slice(&t.grid.heights);
+                }
+                c
+            })
+            .collect();
+        (constraints, heights)
+    }
+}
 
 impl From<&WallConstraint> for Constraint {
     fn from(w: &WallConstraint) -> Self {
@@ -173,6 +196,15 @@ impl From<&WallConstraint> for Constraint {
                 t2: v4(tangents[1].0, tangents[1].1),
                 ..Default::default()
             },
+            WallConstraint::Terrain(t) => {
+                let g = &t.grid;
+                Constraint {
+                    kind: 2,
+                    a: [g.min[0], g.min[1], g.cell[0], g.cell[1]],
+                    b: [t.friction, t.contact, g.nx as f32, g.nz as f32],
+                    ..Default::default()
+                }
+            }
         }
     }
 }

@@ -7,8 +7,9 @@
 //!
 //! Both backends start from one CPU state 40 steps into a dam break (a moving,
 //! splashing fluid against walls), so every term is non-trivial; one variant is
-//! periodic, so pairs across the periodic faces and the wrap are compared too, and
-//! one is stepped by DFSPH.
+//! periodic, so pairs across the periodic faces and the wrap are compared too, one
+//! is stepped by DFSPH, and one flows onto a terrain (its wall particles, and the
+//! drift's heightfield constraint with friction).
 
 mod common;
 
@@ -104,6 +105,8 @@ const VARIANTS: &[&[&str]] = &[
     ],
     // DFSPH: the factor and each solve's warm start, kick and error.
     &["particle_spacing=0.05", "solver.method=\"dfsph\""],
+    // A rippled slope with friction across the tank under the column.
+    &["particle_spacing=0.05", TERRAIN],
     // With heat: a hot corner of the column, a source, a floor held at 400 K and
     // buoyancy; and with a second, denser fluid of other thermal properties.
     &["particle_spacing=0.05", "modules=[\"fluid\",\"heat\"]", HEAT],
@@ -140,6 +143,11 @@ const VARIANTS: &[&[&str]] = &[
 /// Two fluids: the dam break's column and a denser block beside it.
 const TWO_FLUIDS: &str = "fluids=[{\"blocks\":[{\"min\":[0,0,0],\"max\":[0.5,1,0.25]}]},\
     {\"name\":\"heavy\",\"rest_density\":3000,\"blocks\":[{\"min\":[1.2,0,0],\"max\":[1.7,0.5,0.25]}]}]";
+
+/// The tank of the dam break with a terrain inside, under the collapsing column.
+const TERRAIN: &str = "boundaries=[{\"kind\":\"box\",\"min\":[0,0,0],\"max\":[2,1.2,0.25]},\
+    {\"kind\":\"terrain\",\"min\":[0,0],\"max\":[2,0.25],\"friction\":0.5,\"layers\":2,\
+    \"heights\":{\"source\":\"slope\",\"top\":0.4,\"angle\":25,\"ripple\":0.05,\"wavelength\":0.2}}]";
 
 /// The heat section of the oracle's heat variants.
 const HEAT: &str = "heat={\"fluids\":[{\"conductivity\":50,\"heat_capacity\":1000,\"expansion\":0.01,\"temperature\":300}],\

@@ -10,6 +10,7 @@
 //! | POST | `/api/v1/scenes/{id}/reset` | back to t = 0 with the current settings |
 //! | POST | `/api/v1/scenes/{id}/run`, `/pause` | `{"real_time_factor": 1.0}` (0 = as fast as possible) |
 //! | GET | `/api/v1/scenes/{id}/stats` | throughput and streaming statistics |
+//! | GET | `/api/v1/scenes/{id}/terrain` | each terrain's height grid: `{"terrains": [{"boundary", "min", "max", "nx", "nz", "heights"}]}` |
 //! | POST | `/api/v1/scenes/{id}/parameters` | `{"overrides": ["gravity=[0,-1,0]"]}`: change tunable settings |
 //! | GET, PUT | `/api/v1/scenes/{id}/snapshot` | the full state as bytes; restore a paused scene from them |
 //! | GET | `/api/v1/scenes/{id}/ws` | WebSocket: binary frames, JSON control and events |
@@ -45,6 +46,7 @@ use std::sync::atomic::Ordering;
 mod extract;
 pub mod guard;
 mod lab;
+mod terrain;
 
 pub use extract::{Body, Params, SceneId, Who};
 
@@ -62,6 +64,7 @@ pub fn router(registry: Arc<Registry>, web_root: std::path::PathBuf) -> Router {
         .route("/scenes/{id}/pause", post(pause))
         .route("/scenes/{id}/reset", post(reset))
         .route("/scenes/{id}/stats", get(stats))
+        .route("/scenes/{id}/terrain", get(terrain::terrain))
         .route("/scenes/{id}/snapshot", get(snapshot).put(restore))
         .route("/scenes/{id}/parameters", post(parameters))
         .route("/scenes/{id}/ws", get(crate::ws::upgrade))

@@ -132,6 +132,8 @@ pub struct Options {
     pub origins: Vec<String>,
     /// Wall time a scene runs between periodic checkpoints.
     pub checkpoint_every: Duration,
+    /// Directory of the terrain assets scenes may name (`--assets`); none: refused.
+    pub assets: Option<std::path::PathBuf>,
 }
 
 impl Default for Options {
@@ -142,6 +144,7 @@ impl Default for Options {
             auth: AuthMode::SingleUser,
             origins: Vec::new(),
             checkpoint_every: Duration::from_secs(DEFAULT_CHECKPOINT_SECONDS),
+            assets: None,
         }
     }
 }
@@ -335,11 +338,13 @@ impl Registry {
             (self.options.limits.max_particles, self.backend.clone(), self.quotas.clone());
         let quota = self.quotas_of(owner).get(Limit::ParticlesPerScene);
         let who = owner.to_string();
+        let assets = self.options.assets.clone();
         let sim = tokio::task::spawn_blocking(move || {
             let scene = match source {
                 SceneSource::Preset(name) => load::from_preset(&name, &overrides),
                 SceneSource::Document { text, format } => load::from_str(&text, format, &overrides),
             }
+            .and_then(|scene| load::with_assets(scene, assets.as_deref()))
             .map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
             // Counted before the scene is built (every particle set the scene's modules
             // create), so a scene over the limit allocates nothing.

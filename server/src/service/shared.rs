@@ -102,6 +102,9 @@ pub struct Shared {
     pub backend: &'static str,
     /// Domain (m): frames quantise positions over it.
     pub bounds: ([f32; 3], [f32; 3]),
+    /// Each terrain's heights with its index in the scene's boundaries (shared with
+    /// the model: walls never change).
+    pub terrains: Vec<(usize, Arc<floe_engine::terrain::HeightGrid>)>,
     /// Latest status.
     pub status: Mutex<Status>,
     /// Latest snapshot (latest-frame semantics: a receiver sees only the newest).
@@ -147,6 +150,12 @@ impl Shared {
             particle_spacing: sim.scene().particle_spacing,
             backend: sim.backend_name(),
             bounds: (domain.min.to_array(), domain.max.to_array()),
+            terrains: (sim.model().wall_constraints.iter().enumerate())
+                .filter_map(|(i, w)| match w {
+                    floe_engine::boundary::WallConstraint::Terrain(t) => Some((i, t.grid.clone())),
+                    _ => None,
+                })
+                .collect(),
             status: Mutex::new(Status {
                 state: if sim.halted().is_some() { State::Halted } else { State::Paused },
                 time: sim.time(),

@@ -153,17 +153,19 @@ pub fn kick(attrs: &mut crate::attrs::Attrs, dt: Real, keep: Real) {
     attrs.put(v, vel);
 }
 
-/// `x += dt v`, then the walls' non-penetration constraints; positions that left
+/// `x += dt v`, then the walls' non-penetration constraints (and a terrain's
+/// friction, which takes gravity times dt as part of the normal load); positions that left
 /// through a periodic face come back through the opposite one.
 pub fn drift(model: &Model, attrs: &mut crate::attrs::Attrs, dt: Real) {
     let (x, v) = (attrs.handle::<Vec3>("x"), attrs.handle::<Vec3>("v"));
     let (mut pos, mut vel) = (attrs.take(x), attrs.take(v));
     let walls = &model.wall_constraints;
     let periodic = &model.periodic;
+    let g_dt = model.gravity * dt;
     pos.par_iter_mut().zip(vel.par_iter_mut()).with_min_len(4096).for_each(|(x, v)| {
         *x += *v * dt;
         for w in walls {
-            w.apply(x, v);
+            w.apply(x, v, g_dt);
         }
         if periodic.any() {
             *x = periodic.wrap(*x);

@@ -132,6 +132,15 @@ pub fn from_preset(name: &str, overrides: &[String]) -> Result<Scene, SceneError
     from_value(value)
 }
 
+/// Reads the terrain assets `scene` names from the assets directory `dir` into the
+/// scene (see `terrain::source::read_assets`): a name that is not a plain file name,
+/// any asset when there is no directory, and a missing or unusable file are refused
+/// naming the field.
+pub fn with_assets(mut scene: Scene, dir: Option<&Path>) -> Result<Scene, SceneError> {
+    crate::terrain::source::read_assets(&mut scene, dir).map_err(SceneError::Invalid)?;
+    Ok(scene)
+}
+
 /// Loads `source`: a preset name if one has that name, otherwise a file path.
 pub fn resolve(source: &str, overrides: &[String]) -> Result<Scene, SceneError> {
     if presets::names().contains(&source) {

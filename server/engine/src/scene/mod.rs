@@ -153,9 +153,12 @@ pub enum Boundary {
         #[serde(default = "default_layers")]
         layers: u32,
     },
+    /// The ground: a heightfield over `[min, max]` in x and z with Coulomb friction
+    /// (`floe_engine::terrain`); fluid stays above it.
+    Terrain(crate::terrain::spec::Terrain),
 }
 
-fn default_layers() -> u32 {
+pub(crate) fn default_layers() -> u32 {
     1
 }
 

@@ -105,6 +105,7 @@ pub fn validate(scene: &Scene) -> Result<(), Vec<String>> {
                 c.positive(&format!("{path}.size[1]"), size[1]);
                 c.within(&format!("{path}.layers"), *layers as f32, 1.0, 4.0);
             }
+            Boundary::Terrain(t) => t.validate(&mut c, &path, scene.particle_spacing),
         }
     }
     if let Some(d) = &scene.domain {
@@ -156,9 +157,9 @@ fn check_periodic(c: &mut Checker, scene: &Scene) {
         for (i, b) in scene.boundaries.iter().enumerate() {
             let path = format!("boundaries[{i}]");
             match b {
-                Boundary::Plane { .. } => c.fail(
+                Boundary::Plane { .. } | Boundary::Terrain(_) => c.fail(
                     &path,
-                    format!("a scene periodic along {axis} takes box walls open across {axis}, not planes"),
+                    format!("a scene periodic along {axis} takes box walls open across {axis}, not planes or terrains"),
                 ),
                 Boundary::Box { min, max, open, .. } => {
                     if !faces(a).iter().all(|f| open.contains(f)) {
