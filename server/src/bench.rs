@@ -51,6 +51,9 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     if let Some(seconds) = args.solve {
         return solve(args.particles[0], &args.overrides, seconds, &backend);
     }
+    if let Some(seconds) = args.avalanche {
+        return avalanche(args.particles[0], &args.overrides, seconds, &backend, args.profile);
+    }
     println!("dam break on {}, {} timed steps per size", backend.description, args.steps);
     println!(
         "| modules | fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle | solver iterations/step |"
@@ -93,14 +96,66 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
         );
     }
     for (label, kernels) in profiles.iter().filter(|k| args.profile && !k.1.is_empty()) {
-        let total: f64 = kernels.iter().map(|k| k.1).sum();
-        let how = if backend.name == "cpu" { "CPU wall time" } else { "GPU timestamp queries" };
-        println!("\nTime per step by pass at {label} ({how}), {total:.3} ms in all:");
-        println!("| pass | calls/step | ms/step | share |");
-        println!("|---|---:|---:|---:|");
-        for (label, ms, dispatches) in kernels.iter() {
-            println!("| {label} | {dispatches:.1} | {ms:.3} | {:.1} % |", 100.0 * ms / total.max(f64::MIN_POSITIVE));
-        }
+        print_profile(label, kernels, backend.name);
+    }
+    Ok(())
+}
+
+/// The table of time per step by pass.
+fn print_profile(label: &str, kernels: &[(&'static str, f64, f64)], backend: &str) {
+    let total: f64 = kernels.iter().map(|k| k.1).sum();
+    let how = if backend == "cpu" { "CPU wall time" } else { "GPU timestamp queries" };
+    println!("\nTime per step by pass at {label} ({how}), {total:.3} ms in all:");
+    println!("| pass | calls/step | ms/step | share |");
+    println!("|---|---:|---:|---:|");
+    for (label, ms, dispatches) in kernels.iter() {
+        println!("| {label} | {dispatches:.1} | {ms:.3} | {:.1} % |", 100.0 * ms / total.max(f64::MIN_POSITIVE));
+    }
+}
+
+/// `--avalanche`: the avalanche preset scaled to about `particles` (its particle
+/// count goes as the cube of the spacing), simulated for `seconds`.
+fn avalanche(
+    particles: usize,
+    overrides: &[String],
+    seconds: f64,
+    backend: &Selected,
+    profile: bool,
+) -> anyhow::Result<()> {
+    let reference = load::from_preset("avalanche", overrides)?;
+    let counted = Simulation::new_cpu(reference.clone())?.particle_count();
+    let spacing = reference.particle_spacing * (counted as f32 / particles as f32).cbrt();
+    let all: Vec<String> =
+        std::iter::once(format!("particle_spacing={spacing}")).chain(overrides.iter().cloned()).collect();
+    let mut sim = Simulation::new(load::from_preset("avalanche", &all)?, &*backend.factory)?;
+    let viscous = sim.model().modules.iter().find(|m| m.id == "snow").and_then(|m| (m.dt_limit)(sim.model()));
+    let kernels_before = sim.kernel_times();
+    let t0 = Instant::now();
+    while sim.time() < seconds {
+        sim.step()?;
+    }
+    let wall = t0.elapsed().as_secs_f64();
+    let steps = sim.steps();
+    let measure = |name: &str| sim.measures().into_iter().find(|m| m.name == name).map_or(f64::NAN, |m| m.value);
+    println!("avalanche on {}, spacing {spacing:.4} m", backend.description);
+    println!(
+        "| particles | simulated s | steps | dt mean s | explicit viscous limit s | wall s | M particle-steps/s | real-time factor | front m | run-out m |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| {} | {:.3} | {steps} | {:.2e} | {} | {wall:.2} | {:.3} | {:.4} | {:.3} | {:.3} |",
+        sim.particle_count(),
+        sim.time(),
+        sim.stats().dt_mean,
+        viscous.map_or("-".into(), |v| format!("{:.2e}", v.1)),
+        sim.particle_count() as f64 * steps as f64 / wall / 1e6,
+        sim.time() / wall,
+        measure("snow.front"),
+        measure("snow.runout"),
+    );
+    if profile {
+        let label = format!("{} particles (avalanche)", sim.particle_count());
+        print_profile(&label, &per_step(&kernels_before, &sim.kernel_times(), steps), backend.name);
     }
     Ok(())
 }

@@ -186,6 +186,12 @@ pub struct BenchArgs {
     /// at the first particle count and report wall time and surge-front error.
     #[arg(long, value_name = "SECONDS")]
     pub solve: Option<f64>,
+    /// The snow avalanche instead: simulate this many seconds of the `avalanche`
+    /// preset at about the first particle count and report particle-steps/s, the
+    /// real-time factor, the time step against the viscous limit and the run-out
+    /// (with `--profile`, time per pass).
+    #[arg(long, value_name = "SECONDS", conflicts_with_all = ["codec", "solve", "heat"])]
+    pub avalanche: Option<f64>,
     /// A lab server under load instead: this binary serving with users and tokens, a
     /// dam break of the first particle count running flat out, viewers and scripted
     /// users; the solver's steps/s alone and under load, lost calls, memory.

@@ -76,6 +76,10 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         summary.dt_mean,
         summary.max_density_deviation * 100.0
     );
+    // The modules' own measures (the core's are on the line above).
+    for m in summary.measures.iter().filter(|m| m.name.contains('.')) {
+        tracing::info!("{} = {:.4} {}", m.name, m.value, m.unit);
+    }
     if let Some(path) = &args.summary {
         std::fs::write(path, serde_json::to_string_pretty(&summary)? + "\n")
             .with_context(|| format!("cannot write summary {}", path.display()))?;

@@ -1,6 +1,6 @@
 //! The summary of a run, as written by `floe run --summary FILE.json`.
 
-use crate::simulation::{Simulation, SolveStats};
+use crate::simulation::{Measure, Simulation, SolveStats};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -39,6 +39,9 @@ pub struct Summary {
     /// mean and most iterations per step, the last residual, total iterations. Empty for
     /// schemes that do not iterate.
     pub solves: BTreeMap<String, SolveStats>,
+    /// What the scene's modules report at the end of the run (`snow.runout`,
+    /// `heat.mean_temperature`, ...), with units.
+    pub measures: Vec<Measure>,
     /// Why the run halted, if it did (the message a user sees).
     pub halted: Option<String>,
 }
@@ -64,6 +67,7 @@ impl Summary {
             mean_density_deviation: s.mean_density_deviation,
             max_speed: s.max_speed,
             solves: s.solves.clone(),
+            measures: sim.measures(),
             halted: sim.halted().map(|h| h.to_string()),
         }
     }

@@ -112,4 +112,13 @@ pub const STABILITY: &[StabilityCase] = &[
         until: (0.005, 0.05),
         expect: Expect::Finish,
     },
+    StabilityCase {
+        name: "avalanche_dropped_from_high",
+        what: "the avalanche's snow dropped 2.5 m onto the mountain side (about 7 m/s at impact)",
+        preset: "avalanche",
+        spacing: (0.05, 0.025),
+        overrides: &["fluids[0].blocks[0]={\"min\":[0.1,4.0,0.0],\"max\":[1.0,4.5,0.8]}"],
+        until: (1.0, 3.0),
+        expect: Expect::Finish,
+    },
 ];

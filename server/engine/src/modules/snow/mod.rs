@@ -62,6 +62,14 @@ pub const TUNABLES: &[Tunable] = &[
         module: "snow",
     },
     Tunable {
+        path: "snow.walls",
+        unit: "",
+        min: None,
+        max: None,
+        about: "Walls' viscous condition: \"no_slip\" or \"slip\" (the terrain's Coulomb friction alone holds the base).",
+        module: "snow",
+    },
+    Tunable {
         path: "snow.max_viscosity",
         unit: "Pa s",
         min: Some(0.0),
@@ -111,11 +119,19 @@ pub const SHEAR_RATE_CHANNEL: ChannelSpec = ChannelSpec {
 pub struct SnowConsts {
     /// The law of each material.
     pub laws: Vec<Law>,
+    /// 1 where walls hold the fluid at rest (no slip), 0 where they exert no shear.
+    pub wall_shear: Real,
 }
 
 impl SnowConsts {
     fn new(snow: &spec::Snow) -> Self {
-        Self { laws: snow.fluids.iter().map(|r| Law::new(r, snow.max_viscosity)).collect() }
+        Self {
+            laws: snow.fluids.iter().map(|r| Law::new(r, snow.max_viscosity)).collect(),
+            wall_shear: match snow.walls {
+                spec::WallShear::NoSlip => 1.0,
+                spec::WallShear::Slip => 0.0,
+            },
+        }
     }
 
     /// Whether material `m` has a rheology (is snow, for the measures).

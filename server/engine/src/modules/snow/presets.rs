@@ -1,15 +1,22 @@
-//! The snow module's built-in scenes: three channel flows of VALIDATION.md §6
-//! (non-Newtonian Poiseuille flow between plates 1 m apart, periodic along them,
-//! the fluid preset `poiseuille` with another rheology). Their viscosities are
-//! about 1000 Pa s at the walls (kinematic 1 m^2/s, as the Newtonian preset's), so
-//! each settles within a second and is bound by the viscous step, not by sound.
+//! The snow module's built-in scenes: the avalanche, and three channel flows of
+//! VALIDATION.md §6 (non-Newtonian Poiseuille flow between plates 1 m apart,
+//! periodic along them, the fluid preset `poiseuille` with another rheology). The
+//! channels' viscosities are about 1000 Pa s at the walls (kinematic 1 m^2/s, as
+//! the Newtonian preset's), so each settles within a second and is bound by the
+//! viscous step, not by sound.
 
-use super::spec::{Rheology, Snow};
+use super::spec::{Rheology, Snow, WallShear};
 use crate::modules::Preset;
-use crate::scene::{Scene, Viscosity};
+use crate::scene::{Boundary, Face, Fluid, FluidBlock, Scene, Solver, Viscosity};
+use crate::terrain::spec::{Heights, Slope, Terrain};
 
 /// The presets, for the module registry.
 pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "avalanche",
+        about: "A wedge of snow (Cross model) released on a 35 degree mountain side runs out into the valley.",
+        scene: avalanche,
+    },
     Preset {
         name: "power_law_channel",
         about: "Shear-thickening power-law fluid (n = 1.5) driven between plates (VALIDATION.md §6).",
@@ -35,7 +42,7 @@ fn channel(name: &str, rheology: Rheology, max_viscosity: f32) -> Scene {
     s.name = name.into();
     s.modules = vec!["fluid".into(), "snow".into()];
     s.fluids[0].viscosity = Viscosity::None;
-    s.snow = Some(Snow { fluids: vec![rheology], max_viscosity });
+    s.snow = Some(Snow { fluids: vec![rheology], max_viscosity, walls: WallShear::NoSlip });
     s
 }
 
@@ -57,4 +64,61 @@ pub fn bingham_channel() -> Scene {
 /// the shear rate near the walls.
 pub fn cross_channel() -> Scene {
     channel("cross_channel", Rheology::Cross { mu_0: 3000.0, mu_inf: 300.0, k: 20.0, n: 1.0 }, 3000.0)
+}
+
+/// Extent of the avalanche's ground along x and z (m), its top height (m) and slope
+/// angle (degrees).
+pub const AVALANCHE: (f32, f32, f32, f32) = (10.0, 0.8, 2.0, 35.0);
+
+/// A chute-sized avalanche: a mountain side falling 2 m at 35 degrees into a flat
+/// valley 10 m from the top, 0.8 m wide between side walls, with Coulomb friction 0.5
+/// (rest below 27 degrees: the snow slides down the slope and stops in the valley) and walls
+/// that exert no viscous shear (`snow.walls = "slip"`: friction alone holds the base). The snow is
+/// the block `x` 0.1 to 1.0 m below 1.95 m, less what lies under the ground: a wedge
+/// 0.6 m thick at its foot. Snow of 300 kg/m^3 is a Cross fluid (mu_0 = 200 Pa s at
+/// rest, thinning to 5 Pa s, K = 1 s), the law of the avalanche model the module
+/// follows; about 11,000 particles at 2.5 cm. `snow.front` and `snow.runout` report
+/// where its foremost particle is.
+pub fn avalanche() -> Scene {
+    let (length, width, top, angle) = AVALANCHE;
+    let ground = Terrain {
+        min: [0.0, 0.0],
+        max: [length, width],
+        heights: Heights::Slope(Slope { top, valley: 0.0, angle, foot: 0.2, ripple: 0.05, wavelength: width }),
+        friction: 0.5,
+        layers: 2,
+    };
+    Scene {
+        name: "avalanche".into(),
+        modules: vec!["fluid".into(), "snow".into()],
+        particle_spacing: 0.025,
+        gravity: [0.0, -9.81, 0.0],
+        fluids: vec![Fluid {
+            name: "snow".into(),
+            rest_density: 300.0,
+            eos: Default::default(),
+            viscosity: Viscosity::None,
+            xsph: 0.0,
+            blocks: vec![FluidBlock { min: [0.1, 0.0, 0.0], max: [1.0, top - 0.05, width], velocity: [0.0; 3] }],
+        }],
+        boundaries: vec![
+            Boundary::Box {
+                min: [0.0, -0.5, 0.0],
+                max: [length, top + 1.0, width],
+                open: vec![Face::MinusY, Face::PlusY],
+                layers: 1,
+            },
+            Boundary::Terrain(ground),
+        ],
+        domain: None,
+        periodic: Vec::new(),
+        solver: Solver::default(),
+        guard: Default::default(),
+        heat: None,
+        snow: Some(Snow {
+            fluids: vec![Rheology::Cross { mu_0: 200.0, mu_inf: 5.0, k: 1.0, n: 1.0 }],
+            max_viscosity: 200.0,
+            walls: WallShear::Slip,
+        }),
+    }
 }

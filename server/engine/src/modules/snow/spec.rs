@@ -16,6 +16,23 @@ pub struct Snow {
     /// and with it the explicit viscous time-step limit `0.125 h^2 rho0 / mu`.
     #[serde(default = "default_max_viscosity")]
     pub max_viscosity: f32,
+    /// How walls (boxes, planes, terrain) act on the viscous stress: `no_slip`
+    /// (the fluid at rest on the wall surface, as between the plates of a channel)
+    /// or `slip` (no shear from walls: an avalanche slides on its bed, held back by
+    /// the terrain's Coulomb friction instead).
+    #[serde(default)]
+    pub walls: WallShear,
+}
+
+/// The viscous condition at walls.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum WallShear {
+    /// Zero velocity on the wall surface.
+    #[default]
+    NoSlip,
+    /// No shear stress from walls.
+    Slip,
 }
 
 /// A generalised Newtonian fluid: dynamic viscosity as a function of the shear rate

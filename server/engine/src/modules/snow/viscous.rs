@@ -25,6 +25,7 @@
 //! particle b (pseudo-mass `psi_b`) is the mirror image of the fluid particle it acts
 //! on: velocity `-v_i`, viscosity `mu_i`, density `rho_i` (no slip on the wall surface,
 //! half a spacing in front of the first wall layer, instead of at the wall particles).
+//! With `snow.walls = "slip"` walls take no part in either pass (no shear from them).
 
 use super::SnowConsts;
 use crate::cpu::neighbors::CHUNK;
@@ -137,7 +138,7 @@ fn shear<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
                 }
                 let r = r2.sqrt();
                 let grad = x_ib * (k.dw_dr(r) / r);
-                let dv = vi * (-2.0 * psi[b] * inv_rho);
+                let dv = vi * (-2.0 * sc.wall_shear * psi[b] * inv_rho);
                 l[0] += grad * dv.x;
                 l[1] += grad * dv.y;
                 l[2] += grad * dv.z;
@@ -154,6 +155,7 @@ fn shear<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
 fn viscosity<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let model = cx.model;
     let k = &model.kernel;
+    let sc: &SnowConsts = model.consts();
     let materials = &model.materials;
     let walls = &model.wall_particles;
     let eps_h2 = 0.01 * 0.25 * k.support() * k.support();
@@ -187,7 +189,7 @@ fn viscosity<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
                 a += (vi - vel[j]) * (m * (mu_i + mu[j]) * inv_rho / rho[j] * f);
             }
             let psi = &walls.psi[ma];
-            let mirror = vi * (4.0 * mu_i * inv_rho * inv_rho);
+            let mirror = vi * (4.0 * sc.wall_shear * mu_i * inv_rho * inv_rho);
             for &b in nb.walls(n) {
                 let b = b as usize;
                 let r2 = sep.between(xi, walls.positions[b]).length_squared();

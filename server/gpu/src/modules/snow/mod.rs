@@ -66,7 +66,7 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     let c: &SnowConsts = model.consts();
     let mut u = SnowParams::zeroed();
     for (m, law) in c.laws.iter().enumerate() {
-        u.kind[m] = [f32::from_bits(law.kind as u32), law.max, 0.0, 0.0];
+        u.kind[m] = [f32::from_bits(law.kind as u32), law.max, c.wall_shear, 0.0];
         u.p[m] = law.p;
     }
     Some(bytemuck::bytes_of(&u).to_vec())

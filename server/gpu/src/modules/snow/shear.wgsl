@@ -55,7 +55,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
                 }
                 let r = sqrt(r2);
                 let grad = x_ib * (kernel_dw_dr(r) / r);
-                let dv = vi * (-2.0 * (w.w * mat.w) * inv_rho);
+                let dv = vi * (-2.0 * snow.kind[ma].z * (w.w * mat.w) * inv_rho);
                 lx += grad * dv.x;
                 ly += grad * dv.y;
                 lz += grad * dv.z;

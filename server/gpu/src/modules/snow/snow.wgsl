@@ -2,7 +2,8 @@
 // laws (floe-engine `modules::snow::rheology::Law::viscosity`, term by term).
 
 struct Snow {
-    // Per material: the law's kind (as u32 bits), the clamp (Pa s), unused, unused.
+    // Per material: the law's kind (as u32 bits), the clamp (Pa s), the walls'
+    // shear factor (1 no slip, 0 slip; the same for every material), unused.
     kind: array<vec4<f32>, 16>,
     // Per material: the law's four parameters.
     p: array<vec4<f32>, 16>,
