@@ -34,14 +34,20 @@ export function colourModes(channels) {
 
 /**
  * One value per particle of `channel` in a decoded frame (the magnitude of a vector channel),
- * or null when the frame lacks the channel.
- * @param {{positions: Float32Array, channels: {name: string, components: number, values: ArrayLike<number>}[]}} frame
+ * or null when the frame lacks the channel. A module's channel without a row in the channel
+ * table arrives under its per-scene tag (decoded as `channel <tag>`): the scene's channel list
+ * gives that tag.
+ * @param {{positions: Float32Array, channels: {tag?: number, name: string, components: number, values: ArrayLike<number>}[]}} frame
  *   a decoded frame (see the codec's `Frame`)
  * @param {string} channel a channel name, or {@link NONE}
+ * @param {{name: string, tag?: number}[]} [sceneChannels] the scene's channels, with their tags
  * @returns {Float32Array|null}
  */
-export function colourValues(frame, channel) {
-  const found = channel === NONE ? undefined : frame.channels?.find((c) => c.name === channel);
+export function colourValues(frame, channel, sceneChannels = []) {
+  const tag = sceneChannels.find((c) => c.name === channel)?.tag;
+  const found = channel === NONE
+    ? undefined
+    : frame.channels?.find((c) => c.name === channel || (tag !== undefined && c.tag === tag));
   if (!found) return null;
   const data = found.values;
   const n = frame.positions.length / 3;

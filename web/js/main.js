@@ -9,7 +9,7 @@ import { acting, showError } from './notify.js';
 import { wallLines } from './outline.js';
 import { PlotPanel } from './plots.js';
 import { Recorder } from './recorder.js';
-import { Renderer } from './render.js';
+import { Renderer, SNOW, WATER } from './render.js';
 import { Replay } from './replay.js';
 import { sliders } from './tunables.js';
 
@@ -97,6 +97,7 @@ function open(scene) {
   state.wantOpen = true;
   banner(scene.halt_reason ? `Halted: ${scene.halt_reason}` : null);
   showColourModes(scene.channels ?? DEFAULT_CHANNELS);
+  renderer.plain = scene.scene?.modules?.includes('snow') ? SNOW : WATER;
   showTunables(scene);
   const tank = scene.scene?.boundaries?.find((b) => b.kind === 'box');
   showScene({ min: scene.bounds_min, max: scene.bounds_max }, wallLines(scene.scene), scene.particle_spacing, changed, tank);
@@ -208,7 +209,7 @@ function onText(msg) {
 
 /** Draws a decoded frame (live or replayed), coloured by the chosen channel. */
 function showFrame(frame) {
-  const values = colourValues(frame, $('colour').value);
+  const values = colourValues(frame, $('colour').value, state.scene?.channels);
   if (values) {
     const [lo, hi] = valueRange(values);
     renderer.range = [lo, hi];

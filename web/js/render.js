@@ -14,9 +14,14 @@ import { SPHERE_POINT, SPRITE_VERT } from './sprite.js';
 import { Surface } from './surface.js';
 import { TerrainMeshes } from './terrain.js';
 
+/** Plain particle colours (RGB, 0 to 1). */
+export const WATER = [0.25, 0.55, 0.9];
+export const SNOW = [0.93, 0.95, 0.98];
+
 const FRAG = `#version 300 es
 precision highp float;
 uniform bool u_coloured;
+uniform vec3 u_plain;
 in float v_t, v_radius;
 in vec3 v_center;
 out vec4 colour;
@@ -33,7 +38,7 @@ void main() {
   spherePoint(v_center, v_radius, n);
   vec3 l = normalize(vec3(0.4, 0.7, 0.6));
   vec3 h = normalize(l + vec3(0.0, 0.0, 1.0));
-  vec3 base = u_coloured ? ramp(v_t) : vec3(0.25, 0.55, 0.9);
+  vec3 base = u_coloured ? ramp(v_t) : u_plain;
   float diffuse = max(dot(n, l), 0.0), specular = pow(max(dot(n, h), 0.0), 48.0);
   colour = vec4(base * (0.25 + 0.75 * diffuse) + vec3(0.35) * specular, 1.0);
 }`;
@@ -53,7 +58,7 @@ export class Renderer {
     this.gl = gl;
     this.canvas = canvas;
     this.spheres = programWith(gl, SPRITE_VERT, FRAG,
-      ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured', 'u_scaled']);
+      ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured', 'u_plain', 'u_scaled']);
     /** The scene's walls; `outline.set(wallLines(scene))` when the scene changes. */
     this.outline = new Outline(gl);
     /** The scene's floor; `floor.set(min, max)` when the scene changes. */
@@ -84,6 +89,8 @@ export class Renderer {
     this.radius = physicalRadius(this.spacing);
     this.range = [0, 1];
     this.coloured = false;
+    /** RGB of particles drawn without a colour map: water blue, or white for snow. */
+    this.plain = WATER;
     /** `'surface'` or `'spheres'`. */
     this.view = 'spheres';
     /** @type {Surface|null} made when first drawn */
@@ -194,6 +201,7 @@ export class Renderer {
     gl.uniform1f(u.u_viewport_h, h);
     gl.uniform2f(u.u_range, this.range[0], this.range[1]);
     gl.uniform1i(u.u_coloured, this.coloured ? 1 : 0);
+    gl.uniform3fv(u.u_plain, this.plain);
     gl.uniform1i(u.u_scaled, 0);
     gl.bindVertexArray(this.vao);
     gl.drawArrays(gl.POINTS, 0, this.drawnCount);

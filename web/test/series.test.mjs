@@ -81,6 +81,11 @@ test('colour modes come from a channel list; vectors colour by magnitude', () =>
   assert.equal(colourValues(frame, 'density'), density);
   assert.equal(colourValues(frame, 'pressure'), null);
   assert.equal(colourValues(frame, 'none'), null);
+  // A module's channel under its per-scene tag, named by the scene's channel list.
+  const viscosity = new Float32Array([200, 5]);
+  const dynamic = { ...frame, channels: [...frame.channels, { tag: 64, name: 'channel 64', components: 1, values: viscosity }] };
+  assert.equal(colourValues(dynamic, 'viscosity'), null);
+  assert.equal(colourValues(dynamic, 'viscosity', [{ name: 'viscosity', tag: 64 }]), viscosity);
   assert.deepEqual(valueRange(new Float32Array([2, NaN, -1, Infinity, 7])), [-1, 7]);
   assert.deepEqual(valueRange([]), [0, 0]);
 });
