@@ -42,6 +42,7 @@ async fn rest_mirrors_the_control_calls() {
                 "two_fluids",
                 "heated_cavity",
                 "layers",
+                "avalanche",
                 "power_law_channel",
                 "bingham_channel",
                 "cross_channel"

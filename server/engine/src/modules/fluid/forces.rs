@@ -13,7 +13,9 @@
 //!   Akinci's own wall term keeps only `p_i/rho_i^2`; measured on a resting column it
 //!   needs twice the hydrostatic pressure next to every wall to hold the fluid up,
 //!   and mirroring `p_b = p_i` instead pumped energy into the column until it blew up.
-//! - Viscosity from [`super::viscosity`], walls acting as particles at rest.
+//! - Viscosity from [`super::viscosity`]; walls act as the mirror image of the
+//!   particle under Laplacian viscosity and as particles at rest under artificial
+//!   viscosity ([`super::viscosity::ViscosityModel::wall`]).
 
 use super::FluidConsts;
 use crate::cpu::neighbors::{CHUNK, ChunkNeighbors};
@@ -132,7 +134,7 @@ fn forces<const PRESSURE: bool, const MULTI: bool, S: Separation>(cx: &mut CpuCx
             if PRESSURE {
                 a -= grad * (psi * (pt_i + wall_p[b] * inv_rho0_2[ma]));
             }
-            a += fc.viscosity[ma].pair(k, x_ib, r, vi, psi, rho_i, rho0, grad);
+            a += fc.viscosity[ma].wall(k, x_ib, r, vi, psi, rho_i, rho0, grad);
         }
         a
     };

@@ -70,6 +70,29 @@ impl ViscosityModel {
         }
     }
 
+    /// Acceleration on i from wall particle b (pseudo-mass `psi_b`, density `rho0`).
+    /// Laplacian viscosity sees the wall as the mirror image of i (velocity `-v_i`,
+    /// Morris, Fox & Zhu 1997, with the fluid and wall particles at equal distance
+    /// from the wall surface), so the fluid is at rest on the wall surface rather
+    /// than half a spacing behind it, at the wall particles; artificial viscosity sees
+    /// the wall at rest.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn wall(
+        &self,
+        kernel: &Kernel,
+        x_ib: Vec3,
+        r: Real,
+        v_i: Vec3,
+        psi_b: Real,
+        rho_i: Real,
+        rho0: Real,
+        grad: Vec3,
+    ) -> Vec3 {
+        let v_ib = if let ViscosityModel::Laplacian { .. } = self { v_i * 2.0 } else { v_i };
+        self.pair(kernel, x_ib, r, v_ib, psi_b, rho_i, rho0, grad)
+    }
+
     /// The model acting between particles of two different materials: the harmonic
     /// mean of two Laplacian viscosities (the interface flux of Cleary 1998, as in
     /// Morris et al. 1997 for variable viscosity), otherwise the larger artificial

@@ -86,7 +86,10 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
                 let grad = x_ib * (kernel_dw_dr(r) / r);
                 let psi = w.w * mat.w;
                 a -= grad * pressure_wall(pt_i, j, psi, mat.z);
-                a += viscosity(own, x_ib, r, vi, psi, rho_i, mat.x, grad);
+                // Laplacian viscosity sees the wall as the mirror image of i
+                // (`ViscosityModel::wall`).
+                let v_ib = select(vi, vi * 2.0, own.x == VISC_LAPLACIAN);
+                a += viscosity(own, x_ib, r, v_ib, psi, rho_i, mat.x, grad);
             }
         }
     }
