@@ -22,7 +22,9 @@ export function valueAt(doc, path) {
 }
 
 /**
- * The sliders for `tunables` in the scene document `doc`.
+ * The sliders for `tunables` in the scene document `doc`: one per bounded number whose current
+ * value lies on the slider's 100 steps. A setting whose range is too wide for its value (a
+ * viscosity clamp of 200 on 0 to 1e9 would snap to 0) gets no slider; the settings field takes it.
  * @param {{path: string, unit?: string, min?: number|null, max?: number|null, about?: string}[]} tunables
  * @param {object} doc the scene document (`scene.scene` in the REST view)
  * @returns {{path: string, unit: string, min: number, max: number, step: number, value: number, about: string}[]}
@@ -36,7 +38,10 @@ export function sliders(tunables, doc) {
     for (const path of paths) {
       const value = valueAt(doc, path);
       if (typeof value !== 'number') continue;
-      out.push({ path, unit: t.unit ?? '', min: t.min, max: t.max, step: (t.max - t.min) / 100, value, about: t.about ?? '' });
+      const step = (t.max - t.min) / 100;
+      const k = (value - t.min) / step;
+      if (Math.abs(k - Math.round(k)) > 1e-6 * Math.max(1, Math.abs(k))) continue;
+      out.push({ path, unit: t.unit ?? '', min: t.min, max: t.max, step, value, about: t.about ?? '' });
     }
   }
   return out;
