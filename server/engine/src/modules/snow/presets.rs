@@ -77,7 +77,7 @@ pub const AVALANCHE: (f32, f32, f32, f32) = (10.0, 0.8, 2.0, 35.0);
 /// the block `x` 0.1 to 1.0 m below 1.95 m, less what lies under the ground: a wedge
 /// 0.6 m thick at its foot. Snow of 300 kg/m^3 is a Cross fluid (mu_0 = 200 Pa s at
 /// rest, thinning to 5 Pa s, K = 1 s), the law of the avalanche model the module
-/// follows; about 11,000 particles at 2.5 cm. `snow.front` and `snow.runout` report
+/// follows; 14,726 particles at 2.5 cm. `snow.front` and `snow.runout` report
 /// where its foremost particle is.
 pub fn avalanche() -> Scene {
     let (length, width, top, angle) = AVALANCHE;
