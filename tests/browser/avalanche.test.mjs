@@ -4,19 +4,14 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { launchBrowser, root, startServer, statAtLeast, watchProblems } from './harness.mjs';
+import { canvasPixels, launchBrowser, root, startServer, statAtLeast, watchProblems } from './harness.mjs';
 
 /** Pixels close to white (the snow's plain colour). */
-function whitePixels(page) {
-  return page.evaluate(() => {
-    const c = document.querySelector('#view');
-    const gl = c.getContext('webgl2');
-    const px = new Uint8Array(c.width * c.height * 4);
-    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    let n = 0;
-    for (let i = 0; i < px.length; i += 4) if (px[i] > 170 && px[i + 1] > 170 && px[i + 2] > 170) n++;
-    return n;
-  });
+async function whitePixels(page) {
+  const px = await canvasPixels(page);
+  let n = 0;
+  for (let i = 0; i < px.length; i += 4) if (px[i] > 170 && px[i + 1] > 170 && px[i + 2] > 170) n++;
+  return n;
 }
 
 test('snow is white and can be coloured by viscosity and shear rate', { timeout: 120_000 }, async () => {

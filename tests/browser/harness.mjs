@@ -105,6 +105,24 @@ export function statAtLeast(page, label, least, timeout = 60_000) {
 }
 
 /**
+ * The canvas's pixels as RGBA bytes (rows bottom first), read in the page and handed to the test
+ * for counting.
+ * @returns {Promise<Uint8Array>}
+ */
+export async function canvasPixels(page) {
+  const b64 = await page.evaluate(() => {
+    const c = document.querySelector('#view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    let s = '';
+    for (let i = 0; i < px.length; i += 0x8000) s += String.fromCharCode(...px.subarray(i, i + 0x8000));
+    return btoa(s);
+  });
+  return new Uint8Array(Buffer.from(b64, 'base64'));
+}
+
+/**
  * What the canvas shows, measured in the page (CSS pixels, y down): `fluid` pixels (blue or
  * teal: blue over red by 20 or more, as water and particles are drawn; background, floor and
  * walls are grey), their bounding `box`, `gaps` (grey pixels between the first and last fluid

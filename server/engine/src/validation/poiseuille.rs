@@ -25,13 +25,19 @@ pub fn velocity(y: f64, t: f64, force: f64, nu: f64, l: f64) -> f64 {
 /// `||v_x - v_ref||_2 / ||v_ref||_2` over the particles between the plates at time
 /// `t`, with the cross-channel velocities counted as error too.
 pub fn l2_error(p: &Particles, t: f64, force: f64, nu: f64, l: f64) -> f64 {
+    profile_l2_error(p, |y| velocity(y, t, force, nu, l))
+}
+
+/// `||v_x - u(y)||_2 / ||u||_2` over the particles for any channel profile `u(y)`,
+/// the cross-channel velocities counted as error too.
+pub fn profile_l2_error(p: &Particles, reference: impl Fn(f64) -> f64) -> f64 {
     let v = p.channel("velocity").and_then(|v| v.as_vectors()).expect("velocities requested");
     let (mut num, mut den) = (0.0, 0.0);
     for (x, v) in p.positions.iter().zip(v) {
-        let reference = velocity(f64::from(x[1]), t, force, nu, l);
-        let d = [f64::from(v[0]) - reference, f64::from(v[1]), f64::from(v[2])];
+        let u = reference(f64::from(x[1]));
+        let d = [f64::from(v[0]) - u, f64::from(v[1]), f64::from(v[2])];
         num += d.iter().map(|d| d * d).sum::<f64>();
-        den += reference * reference;
+        den += u * u;
     }
     (num / den.max(f64::MIN_POSITIVE)).sqrt()
 }

@@ -79,19 +79,7 @@ pub fn steady_profile(law: &Law, rho_f: f64, l: f64, cells: usize) -> Profile {
     Profile { dy, u }
 }
 
-/// `||v_x - u(y)||_2 / ||u||_2` over the particles, the cross-channel velocities
-/// counted as error too.
-pub fn l2_error(p: &Particles, reference: impl Fn(f64) -> f64) -> f64 {
-    let v = p.channel("velocity").and_then(|v| v.as_vectors()).expect("velocities requested");
-    let (mut num, mut den) = (0.0, 0.0);
-    for (x, v) in p.positions.iter().zip(v) {
-        let u = reference(f64::from(x[1]));
-        let d = [f64::from(v[0]) - u, f64::from(v[1]), f64::from(v[2])];
-        num += d.iter().map(|d| d * d).sum::<f64>();
-        den += u * u;
-    }
-    (num / den.max(f64::MIN_POSITIVE)).sqrt()
-}
+pub use crate::validation::poiseuille::profile_l2_error as l2_error;
 
 /// Mean velocity along the channel (m/s) of each lattice layer `y = (k + 1/2) d`.
 pub fn layers(p: &Particles, spacing: f64, l: f64) -> Vec<f64> {
