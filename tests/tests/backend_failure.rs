@@ -40,6 +40,9 @@ impl Stages for Faulty {
     fn reduce(&mut self, r: &Reduction) -> Result<f64, String> {
         self.0.reduce(r)
     }
+    fn sum_into(&mut self, attr: &'static str, into: &'static str, slot: u32) {
+        self.0.sum_into(attr, into, slot)
+    }
     fn kick(&mut self, dt: f32, keep: f32) {
         self.0.kick(dt, keep)
     }

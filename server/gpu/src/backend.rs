@@ -203,6 +203,22 @@ impl GpuBackend {
         self.model.layout.count(space) as u64
     }
 
+    /// Records the reduction of attribute `attr` with operation code `op` (reduce.wgsl)
+    /// after what is pending; its total lands in `reduce_partials[0]`. Returns the
+    /// recorder (not submitted) and the count of values reduced.
+    fn record_reduction(&mut self, attr: &str, op: u32, lo: Real, hi: Real) -> Result<(Recorder, u32), String> {
+        let spec = self.model.layout.spec(attr).ok_or_else(|| format!("no attribute {attr}"))?;
+        let n = self.count(spec.space) as u32;
+        let words = Words { n, stride: 1, op, lo, hi, ..Words::default() };
+        self.gpu.queue.write_buffer(self.buffers.get("reduce_words"), 0, bytemuck::bytes_of(&words));
+        let bind = self.reduction(spec.name).clone();
+        let mut e = self.take_recorder();
+        let p = &self.gpu.programs;
+        p.reduce_partials.dispatch(&mut e, &bind, n);
+        p.reduce_total.dispatch(&mut e, &bind, PER_PARTIAL);
+        Ok((e, n))
+    }
+
     /// The reduction bind group of attribute `attr`, made on first use.
     fn reduction(&mut self, attr: &'static str) -> &BindGroup {
         if !self.reductions.iter().any(|(a, _)| *a == attr) {
@@ -306,27 +322,31 @@ impl Stages for GpuBackend {
     }
 
     fn reduce(&mut self, r: &Reduction) -> Result<f64, String> {
-        let spec = self.model.layout.spec(r.attr).ok_or_else(|| format!("no attribute {}", r.attr))?;
-        let n = self.count(spec.space) as u32;
         let (op, lo, hi) = match r.op {
-            ReduceOp::Sum | ReduceOp::Mean => (0, 0.0, 0.0),
+            ReduceOp::Sum | ReduceOp::Mean | ReduceOp::Norm => (0, 0.0, 0.0),
             ReduceOp::Max => (1, 0.0, 0.0),
             ReduceOp::MaxAbs => (2, 0.0, 0.0),
             ReduceOp::Outside { min, max } => (3, min, max),
         };
-        let words = Words { n, stride: 1, op, lo, hi, ..Words::default() };
-        self.gpu.queue.write_buffer(self.buffers.get("reduce_words"), 0, bytemuck::bytes_of(&words));
-        let bind = self.reduction(spec.name).clone();
-        let mut e = self.take_recorder();
-        let p = &self.gpu.programs;
-        p.reduce_partials.dispatch(&mut e, &bind, n);
-        p.reduce_total.dispatch(&mut e, &bind, PER_PARTIAL);
+        let (mut e, n) = self.record_reduction(r.attr, op, lo, hi)?;
         let readback = self.buffers.get("reduce_readback").clone();
         e.encoder.copy_buffer_to_buffer(self.buffers.get("reduce_partials"), 0, &readback, 0, 4);
         self.submit(e);
         let got = self.read_mapped(&[(&readback, 4)])?;
         let value = f64::from(f32::from_bits(got[0][0]));
-        Ok(if r.op == ReduceOp::Mean { value / f64::from(n.max(1)) } else { value })
+        Ok(match r.op {
+            ReduceOp::Mean => value / f64::from(n.max(1)),
+            ReduceOp::Norm => value.sqrt(),
+            _ => value,
+        })
+    }
+
+    fn sum_into(&mut self, attr: &'static str, into: &'static str, slot: u32) {
+        let (mut e, _) = self.record_reduction(attr, 0, 0.0, 0.0).unwrap_or_else(|e| panic!("sum_into: {e}"));
+        let target = self.buffers.get(into);
+        e.encoder.copy_buffer_to_buffer(self.buffers.get("reduce_partials"), 0, target, 4 * u64::from(slot), 4);
+        // Submitted now: the next reduction rewrites the shared `reduce_words`.
+        self.submit(e);
     }
 
     fn kick(&mut self, dt: Real, keep: Real) {

@@ -9,12 +9,13 @@
 //! splashing fluid against walls), so every term is non-trivial; one variant is
 //! periodic, so pairs across the periodic faces and the wrap are compared too, one
 //! is stepped by DFSPH, and one flows onto a terrain (its wall particles, and the
-//! drift's heightfield constraint with friction).
+//! drift's heightfield constraint with friction). A solve's passes read scalars its
+//! sums leave on the device: the oracle gives both backends the same test values.
 
 mod common;
 
 use floe_engine::Simulation;
-use floe_engine::attrs::Column;
+use floe_engine::attrs::{Column, PARTICLES, WALLS};
 use floe_engine::backend::Backend;
 use floe_engine::model::Model;
 use floe_engine::plan::{PassSpec, Stage};
@@ -66,6 +67,17 @@ fn check_pass(cpu: &mut Simulation, gpu: &mut Simulation, pass: &'static PassSpe
         b.end_step();
     }
     let inputs: Vec<&str> = pass.reads.iter().chain(pass.accumulates).copied().collect();
+    // A solve's scalars are sums its iterations leave in a small space of their own
+    // (never filled by a pass): both backends get the same test values.
+    for &name in &inputs {
+        let spec = cpu.model().layout.spec(name).expect("a pass reads declared attributes");
+        if spec.space != PARTICLES && spec.space != WALLS {
+            let n = cpu.model().layout.count(spec.space);
+            let values = Column::F32((0..n).map(|k| 0.5 + k as f32).collect());
+            cpu.backend_mut().upload(name, values.clone());
+            gpu.backend_mut().upload(name, values);
+        }
+    }
     for (name, column) in inputs.iter().zip(cpu.backend().download(&inputs)) {
         gpu.backend_mut().upload(name, column);
     }
@@ -137,6 +149,14 @@ const VARIANTS: &[&[&str]] = &[
         TWO_FLUIDS,
         "snow={\"fluids\":[{\"model\":\"power_law\",\"k\":3,\"n\":0.7},\
           {\"model\":\"bingham\",\"yield_stress\":5,\"mu_p\":1,\"m\":20}],\"max_viscosity\":50}",
+    ],
+    // Implicit viscosity (each conjugate-gradient pass), two fluids, no-slip walls.
+    &[
+        "particle_spacing=0.05",
+        "modules=[\"fluid\",\"snow\"]",
+        TWO_FLUIDS,
+        "snow={\"fluids\":[{\"model\":\"cross\",\"mu_0\":2000,\"mu_inf\":2,\"k\":2,\"n\":0.8},\
+          {\"model\":\"newtonian\",\"mu\":50}],\"max_viscosity\":2000,\"solver\":{\"method\":\"implicit\"}}",
     ],
 ];
 
@@ -239,11 +259,54 @@ fn reductions_match_the_cpu() {
         sim.backend_mut().run(Stage::Density, 0.0);
     }
     let outside = ReduceOp::Outside { min: 999.0, max: 1001.0 };
-    for op in [ReduceOp::Sum, ReduceOp::Mean, ReduceOp::Max, ReduceOp::MaxAbs, outside] {
+    for op in [ReduceOp::Sum, ReduceOp::Mean, ReduceOp::Norm, ReduceOp::Max, ReduceOp::MaxAbs, outside] {
         let r = Reduction { attr: "rho", op };
         let (c, v) = (cpu.backend_mut().reduce(&r).unwrap(), g.backend_mut().reduce(&r).unwrap());
         assert!((c - v).abs() <= 1e-5 * c.abs(), "{op:?}: CPU {c}, GPU {v}");
     }
+}
+
+/// A sum a solve keeps on the device lands in the slot it names, as on the CPU.
+#[test]
+fn sums_into_a_solves_scalars_match_the_cpu() {
+    let Some(gpu) = common::gpu("sums_into_a_solves_scalars_match_the_cpu") else { return };
+    let (mut cpu, mut g) = pair(gpu, "cross_channel", &["particle_spacing=0.1", IMPLICIT], 5);
+    let mut scalars = Vec::new();
+    for sim in [&mut cpu, &mut g] {
+        let b = sim.backend_mut();
+        b.run(Stage::Sort, 0.0);
+        b.run(Stage::Density, 0.0);
+        b.sum_into("rho", "visc_scalars", 2);
+        b.end_step();
+        scalars.push(b.download(&["visc_scalars"]).remove(0));
+    }
+    let (Column::F32(c), Column::F32(v)) = (&scalars[0], &scalars[1]) else { panic!("f32 scalars") };
+    assert!(c[2] > 0.0 && (c[2] - v[2]).abs() <= 1e-5 * c[2], "CPU {c:?}, GPU {v:?}");
+    assert_eq!((c[0], c[1], c[3]), (v[0], v[1], v[3]), "the other slots are untouched");
+}
+
+/// The implicit viscosity solve of the channel presets.
+const IMPLICIT: &str = "snow.solver={\"method\":\"implicit\"}";
+
+/// Whole steps with implicit viscosity (a stiff Cross fluid, 1e4 between its
+/// viscosities, at 100 times the explicit limit on dt): the GPU's solve takes as
+/// many iterations as the CPU's, to the same residual, and the velocities agree.
+#[test]
+fn implicit_viscosity_steps_like_the_cpu() {
+    let Some(gpu) = common::gpu("implicit_viscosity_steps_like_the_cpu") else { return };
+    let stiff = ["snow.fluids[0].mu_0=3e4", "snow.fluids[0].mu_inf=3", "snow.max_viscosity=3e4"];
+    let overrides = [&["particle_spacing=0.1", IMPLICIT][..], &stiff].concat();
+    let (mut cpu, mut g) = pair(gpu, "cross_channel", &overrides, 5);
+    for _ in 0..20 {
+        let (rc, rg) = (cpu.step().unwrap(), g.step().unwrap());
+        let limit = cpu.measures().into_iter().find(|m| m.name == "snow.explicit_dt_limit").unwrap().value;
+        assert!(f64::from(rc.dt) > 100.0 * limit, "dt {} against the explicit limit {limit}", rc.dt);
+        let (sc, sg) = (rc.solves[0], rg.solves[0]);
+        assert!(sc.iterations.abs_diff(sg.iterations) <= 1, "iterations: CPU {sc:?}, GPU {sg:?}");
+        assert!(sc.residual <= 1e-3 && sg.residual <= 1e-3, "CPU {sc:?}, GPU {sg:?}");
+    }
+    let (d, scale) = diff(&cpu.backend().download(&["v"])[0], &g.backend().download(&["v"])[0]);
+    assert!(scale > 0.0 && d <= 2e-3 * scale, "velocities differ by {d:e} (scale {scale:e})");
 }
 
 #[test]

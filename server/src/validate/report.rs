@@ -128,14 +128,14 @@ pub fn write(dir: &Path, r: &Report) -> anyhow::Result<()> {
         )?;
         writeln!(
             md,
-            "| case | preset | what | particles | result | max density deviation | energy growth | steps (sub-steps) | largest stable CFL | its mean dt s | error the user saw | passed |"
+            "| case | preset | what | particles | result | max density deviation | energy growth | steps (sub-steps) | mean dt s | farthest particle moved m | largest stable CFL | its mean dt s | error the user saw | passed |"
         )?;
-        writeln!(md, "|---|---|---|---:|---|---:|---:|---:|---:|---:|---|---|")?;
+        writeln!(md, "|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|---|")?;
         for o in &r.stability {
             let t = &o.trial;
             writeln!(
                 md,
-                "| {} | {} | {} | {} | {} | {:.2} % | {:+.3} | {} ({}) | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {:.2} % | {:+.3} | {} ({}) | {:.2e} | {:.2e} | {} | {} | {} | {} |",
                 o.case.name,
                 o.case.preset,
                 o.case.what,
@@ -151,11 +151,26 @@ pub fn write(dir: &Path, r: &Report) -> anyhow::Result<()> {
                 t.energy_growth,
                 t.steps,
                 t.substeps,
+                t.dt_mean,
+                t.max_displacement,
                 o.largest_stable_cfl.map_or("-".into(), |c| format!("{c:.3}")),
                 o.largest_stable_dt.map_or("-".into(), |d| format!("{d:.2e}")),
                 t.halted.as_deref().unwrap_or(""),
                 if o.passed { "yes" } else { "NO" }
             )?;
+        }
+        writeln!(md, "\nWhat the modules measured at the end of each run:\n")?;
+        for o in &r.stability {
+            let module: Vec<String> = o
+                .trial
+                .measures
+                .iter()
+                .filter(|m| m.name.contains('.'))
+                .map(|m| format!("{} {:.3e} {}", m.name, m.value, m.unit).trim_end().to_string())
+                .collect();
+            if !module.is_empty() {
+                writeln!(md, "- {}: {}", o.case.name, module.join(", "))?;
+            }
         }
     }
     std::fs::write(dir.join("report.md"), md)?;

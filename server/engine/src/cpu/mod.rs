@@ -22,7 +22,8 @@ use crate::model::Model;
 use crate::neighbors::Grid;
 use crate::plan::{PassSpec, Stage};
 use crate::schemes::{ReduceOp, Reduction, Stages};
-use neighbors::NeighborLists;
+use neighbors::{CHUNK, NeighborLists};
+use rayon::prelude::*;
 
 /// What a CPU pass works on.
 #[derive(Debug)]
@@ -172,10 +173,24 @@ impl Stages for CpuBackend {
         Ok(match r.op {
             ReduceOp::Sum => sum(),
             ReduceOp::Mean => sum() / n,
+            ReduceOp::Norm => sum().sqrt(),
             ReduceOp::Max => values.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(f64::from(v))),
             ReduceOp::MaxAbs => values.iter().fold(0.0, |m: f64, &v| m.max(f64::from(v.abs()))),
             ReduceOp::Outside { min, max } => values.iter().filter(|&&v| !(min..=max).contains(&v)).count() as f64,
         })
+    }
+
+    fn sum_into(&mut self, attr: &'static str, into: &'static str, slot: u32) {
+        let t0 = std::time::Instant::now();
+        let values = self.attrs.get(self.attrs.handle::<Real>(attr));
+        // Fixed chunks summed in order: the same sum on every run.
+        let partial: Vec<f64> = values.par_chunks(CHUNK).map(|c| c.iter().map(|&v| f64::from(v)).sum()).collect();
+        let sum: f64 = partial.iter().sum();
+        let h = self.attrs.handle::<Real>(into);
+        let mut scalars = self.attrs.take(h);
+        scalars[slot as usize] = sum as Real;
+        self.attrs.put(h, scalars);
+        record(&mut self.times, "sum", t0);
     }
 
     fn kick(&mut self, dt: Real, keep: Real) {

@@ -32,6 +32,7 @@ pub struct ModelBuilder<'s> {
     sound_speed: Option<Real>,
     layout: Layout,
     passes: Vec<&'static PassSpec>,
+    velocity_solves: Vec<crate::schemes::Iterate>,
     channels: Vec<ChannelSpec>,
     sets: Vec<SetSpec>,
     bounds: Vec<Bound>,
@@ -56,6 +57,7 @@ impl<'s> ModelBuilder<'s> {
             sound_speed: None,
             layout: Layout::default(),
             passes: Vec::new(),
+            velocity_solves: Vec::new(),
             channels: Vec::new(),
             bounds: Vec::new(),
             sets: vec![crate::channels::PARTICLE_SET],
@@ -153,6 +155,11 @@ impl<'s> ModelBuilder<'s> {
         self.passes.push(spec);
     }
 
+    /// Adds a velocity solve run after every kick (its passes added with [`Self::pass`]).
+    pub fn velocity_solve(&mut self, solve: crate::schemes::Iterate) {
+        self.velocity_solves.push(solve);
+    }
+
     /// Offers a channel.
     pub fn channel(&mut self, spec: ChannelSpec) {
         self.channels.push(spec);
@@ -242,6 +249,7 @@ impl<'s> ModelBuilder<'s> {
             modules,
             layout: self.layout,
             plan,
+            velocity_solves: self.velocity_solves,
             channels: self.channels,
             bounds: self.bounds,
             sets: self.sets,

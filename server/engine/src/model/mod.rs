@@ -181,6 +181,9 @@ pub struct Model {
     pub layout: Layout,
     /// The passes of a step, in order.
     pub plan: Plan,
+    /// The modules' velocity solves after each kick, in order
+    /// ([`crate::schemes::velocity_solves`]).
+    pub velocity_solves: Vec<crate::schemes::Iterate>,
     /// The channels frames and exports can carry.
     pub channels: Vec<ChannelSpec>,
     /// The particle sets frames can carry.

@@ -6,7 +6,11 @@
 //! - [`wcsph`]: weakly compressible SPH, the first scheme.
 //! - [`dfsph`]: divergence-free SPH, two iterative pressure solves per step.
 //! - [`Iterate`]: runs passes until a residual reduction falls below a tolerance,
-//!   with at most one small readback per convergence check (solvers that iterate).
+//!   with at most one small readback per convergence check (solvers that iterate);
+//!   sums a solve needs between its passes (a conjugate gradient's dot products)
+//!   stay on the device ([`Op::Sum`]).
+//! - [`velocity_solves`]: the modules' implicit velocity updates after a kick
+//!   (implicit viscosity), which every scheme runs at the same point of its step.
 
 pub mod dfsph;
 pub mod wcsph;
@@ -35,6 +39,10 @@ pub trait Stages {
     fn measure(&mut self) -> Result<Measures, String>;
     /// Reduces an attribute to one number (one small readback on a GPU).
     fn reduce(&mut self, r: &Reduction) -> Result<f64, String>;
+    /// The sum of attribute `attr` into element `slot` of attribute `into` (a
+    /// solver's scalars, read by its next passes): no readback, the value stays
+    /// where the passes run.
+    fn sum_into(&mut self, attr: &'static str, into: &'static str, slot: u32);
     /// `v = (v + dt a) keep`.
     fn kick(&mut self, dt: Real, keep: Real);
     /// `x += dt v`, then the walls' non-penetration constraints.
@@ -55,6 +63,8 @@ pub enum ReduceOp {
     Sum,
     /// The mean.
     Mean,
+    /// The square root of the sum (a norm, from squares summed per element).
+    Norm,
     /// The largest value.
     Max,
     /// The largest magnitude.
@@ -74,6 +84,7 @@ impl ReduceOp {
         match self {
             ReduceOp::Sum => "sum of",
             ReduceOp::Mean => "mean",
+            ReduceOp::Norm => "square root of the summed",
             ReduceOp::Max => "largest",
             ReduceOp::MaxAbs => "largest magnitude of",
             ReduceOp::Outside { .. } => "count out of range of",
@@ -101,6 +112,32 @@ pub struct Solve {
     pub residual: f64,
 }
 
+/// One operation of an iterative solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Op {
+    /// A plan pass (of stage [`crate::plan::Stage::Solve`]), by name.
+    Pass(&'static str),
+    /// The sum of attribute `attr` into element `slot` of attribute `into`
+    /// ([`Stages::sum_into`]).
+    Sum {
+        /// The summed attribute (one f32 per element).
+        attr: &'static str,
+        /// The solver's scalars.
+        into: &'static str,
+        /// The element of `into` written.
+        slot: u32,
+    },
+}
+
+impl Op {
+    fn run(self, s: &mut dyn Stages, dt: Real) {
+        match self {
+            Op::Pass(name) => s.run_pass(name, dt),
+            Op::Sum { attr, into, slot } => s.sum_into(attr, into, slot),
+        }
+    }
+}
+
 /// Runs passes until a residual is at most a tolerance: PySPH's
 /// `Group(iterate=True, min_iterations, max_iterations)` and the loop of every
 /// solver that iterates (DFSPH's two solves, implicit viscosity, shape matching).
@@ -112,10 +149,10 @@ pub struct Solve {
 pub struct Iterate {
     /// The solve's name, in step reports and statistics.
     pub name: &'static str,
-    /// Passes run once before the first check.
-    pub start: &'static [&'static str],
-    /// The passes of one iteration, in order.
-    pub iteration: &'static [&'static str],
+    /// Operations run once before the first check.
+    pub start: &'static [Op],
+    /// The operations of one iteration, in order.
+    pub iteration: &'static [Op],
     /// The residual, reduced after `start` and after each iteration.
     pub residual: Reduction,
     /// Converged at or below this residual.
@@ -131,8 +168,8 @@ pub struct Iterate {
 impl Iterate {
     /// Runs the solve; the error says how far from converged it stopped.
     pub fn run(&self, s: &mut dyn Stages, dt: Real) -> Result<Solve, String> {
-        for pass in self.start {
-            s.run_pass(pass, dt);
+        for op in self.start {
+            op.run(s, dt);
         }
         let mut residual = f64::INFINITY;
         for k in 0..=self.max {
@@ -148,8 +185,8 @@ impl Iterate {
             if k == self.max {
                 break;
             }
-            for pass in self.iteration {
-                s.run_pass(pass, dt);
+            for op in self.iteration {
+                op.run(s, dt);
             }
         }
         Err(format!(
@@ -161,6 +198,14 @@ impl Iterate {
             self.tolerance
         ))
     }
+}
+
+/// Runs the model's velocity solves (implicit updates of the velocities after a
+/// kick of `dt`, such as implicit viscosity) in the order the modules declared
+/// them; a solve that does not converge halts the scene.
+pub fn velocity_solves(clock: &Clock, s: &mut dyn Stages, dt: Real) -> Result<Vec<Solve>, Halted> {
+    let solves = s.model().velocity_solves.clone();
+    solves.iter().map(|v| v.run(s, dt).map_err(|e| clock.halt(e, None))).collect()
 }
 
 /// What one step did.

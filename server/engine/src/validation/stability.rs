@@ -13,13 +13,16 @@ use crate::simulation::BackendFactory;
 use serde::Serialize;
 
 /// What a case must do to pass.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Expect {
     /// Run to the end.
     Finish,
     /// Run to the end, or halt with a reason (an impossible start state).
     FinishOrHalt,
+    /// Run to the end with no particle farther than this many particle spacings
+    /// from where it started (a material strong enough to hold: it must not creep).
+    StayPut(f64),
 }
 
 /// One stiff or extreme scene: a preset with overrides. Modules declare theirs
@@ -70,6 +73,12 @@ pub struct Trial {
     pub wall_seconds: f64,
     /// Fluid particles.
     pub particles: usize,
+    /// Farthest any particle ended from where it started (m).
+    pub max_displacement: f64,
+    /// Particle spacing (m).
+    pub spacing: f64,
+    /// The scene's measures at the end (solver iterations, module measures).
+    pub measures: Vec<crate::simulation::Measure>,
 }
 
 /// A case's result: the run at default settings and the bisection.
@@ -97,6 +106,7 @@ pub fn trial(case: &StabilityCase, full: bool, extra: &[String], make: &BackendF
     let g = scene.gravity;
     let mut sim = Simulation::new(scene, make).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;
     let mass = sim.particle_mass() as f64;
+    let start = sim.read(&[]).positions;
     let mut energies = Vec::new();
     let until = if full { case.until.1 } else { case.until.0 };
     let (wall, halted) = run_probed(&mut sim, until, until / 50.0, |s| {
@@ -105,6 +115,11 @@ pub fn trial(case: &StabilityCase, full: bool, extra: &[String], make: &BackendF
     let last = sim.read(&["velocity", "density"]);
     let finite = last.positions.iter().flatten().all(|v| v.is_finite())
         && last.channels.iter().all(|(_, v)| (0..v.len()).flat_map(|i| v.get(i)).all(f32::is_finite));
+    let max_displacement = start
+        .iter()
+        .zip(&last.positions)
+        .map(|(a, b)| a.iter().zip(b).map(|(p, q)| f64::from(p - q).powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
     let e0 = energies.first().copied().unwrap_or(0.0);
     let e_max = energies.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     Ok(Trial {
@@ -118,6 +133,9 @@ pub fn trial(case: &StabilityCase, full: bool, extra: &[String], make: &BackendF
         dt_mean: sim.stats().dt_mean,
         wall_seconds: wall,
         particles: sim.particle_count(),
+        max_displacement,
+        spacing,
+        measures: sim.measures(),
     })
 }
 
@@ -156,6 +174,7 @@ pub fn run(
         && match case.expect {
             Expect::Finish => base.finished,
             Expect::FinishOrHalt => base.finished || base.halted.is_some(),
+            Expect::StayPut(spacings) => base.finished && base.max_displacement <= spacings * base.spacing,
         };
     Ok(StabilityOutcome {
         case: case.clone(),

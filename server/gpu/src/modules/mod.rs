@@ -17,6 +17,11 @@ pub static PASSES: &[&GpuPass] = &[
     &heat::INTEGRATE,
     &snow::SHEAR,
     &snow::VISCOSITY,
+    &snow::implicit::DIAGONAL,
+    &snow::implicit::PRECONDITION,
+    &snow::implicit::PRODUCT,
+    &snow::implicit::UPDATE,
+    &snow::implicit::DIRECTION,
 ];
 
 /// Every module's uniform.

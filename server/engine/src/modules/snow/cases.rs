@@ -12,9 +12,13 @@ use crate::validation::stability::{Expect, StabilityCase};
 /// Spacings of the channel cases (m): 10 to 20 layers across the quick runs.
 const SPACINGS: (&[f64], &[f64]) = (&[0.1, 1.0 / 15.0, 0.05], &[0.1, 1.0 / 15.0, 0.05, 1.0 / 30.0]);
 
-/// The variants every case runs: the default scheme only, as each run is bound by
-/// the explicit viscous step (`--set solver.method=\"dfsph\"` runs them with DFSPH).
-const DEFAULT: &[Variant] = &[Variant { name: "default", overrides: &[] }];
+/// The variants every case runs: the explicit viscous force (bound by the explicit
+/// viscous step) and the implicit solve, with the default scheme
+/// (`--set solver.method=\"dfsph\"` runs them with DFSPH).
+const DEFAULT: &[Variant] = &[
+    Variant { name: "explicit", overrides: &[] },
+    Variant { name: "implicit", overrides: &["snow.solver={\"method\":\"implicit\"}"] },
+];
 
 /// The module's accuracy cases.
 pub const CASES: &[Case] = &[
@@ -92,7 +96,8 @@ fn channel_case(sim: &mut Simulation, spacing: f64) -> Measured {
     (wall, None, errors)
 }
 
-/// The stability battery: stiff viscosities under the explicit viscous limit.
+/// The stability battery: stiff viscosities under the explicit viscous limit and
+/// with the implicit solve, a yield stress that must hold, a hard impact.
 pub const STABILITY: &[StabilityCase] = &[
     StabilityCase {
         name: "cross_ratio_1e4",
@@ -111,6 +116,36 @@ pub const STABILITY: &[StabilityCase] = &[
         overrides: &["snow.fluids[0].mu_0=3e5", "snow.fluids[0].mu_inf=0.3", "snow.max_viscosity=3e5"],
         until: (0.005, 0.05),
         expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "cross_ratio_1e6_implicit",
+        what: "Cross model with mu_0 / mu_inf = 1e6, implicit viscosity at the pressure-limited dt",
+        preset: "cross_channel",
+        spacing: (0.1, 0.05),
+        overrides: &[
+            "snow.fluids[0].mu_0=3e5",
+            "snow.fluids[0].mu_inf=0.3",
+            "snow.max_viscosity=3e5",
+            "snow.solver={\"method\":\"implicit\"}",
+        ],
+        until: (0.5, 1.5),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "bingham_slab_holds",
+        what: "the avalanche's slab as a Bingham plastic (yield stress 1e4 Pa, ten times the basal shear stress) on the \
+               35-degree slope without Coulomb friction, no-slip bed, implicit viscosity: it must stay put",
+        preset: "avalanche",
+        spacing: (0.05, 0.025),
+        overrides: &[
+            "snow.fluids[0]={\"model\":\"bingham\",\"yield_stress\":1e4,\"mu_p\":1,\"m\":100}",
+            "snow.max_viscosity=1e6",
+            "snow.walls=\"no_slip\"",
+            "boundaries[1].friction=0",
+            "snow.solver={\"method\":\"implicit\"}",
+        ],
+        until: (0.2, 1.0),
+        expect: Expect::StayPut(0.5),
     },
     StabilityCase {
         name: "avalanche_dropped_from_high",

@@ -7,12 +7,15 @@
 //! - [`spec`]: the scene section (`snow`).
 //! - [`rheology`]: the viscosity laws.
 //! - [`viscous`]: the shear-rate pass and the viscous force pass.
+//! - [`implicit`]: the viscous force by backward Euler (conjugate gradients), for
+//!   stiff viscosities.
 //! - [`presets`]: channel flows and the avalanche.
 //! - [`channel`]: reference profiles of the channel flows; [`cases`]: validation
 //!   cases and the stability battery.
 
 pub mod cases;
 pub mod channel;
+pub mod implicit;
 pub mod presets;
 pub mod rheology;
 pub mod spec;
@@ -29,7 +32,7 @@ use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
 use crate::simulation::Measure;
 use rheology::Law;
-use spec::Rheology;
+use spec::{Rheology, ViscousSolver};
 
 /// The module's definition.
 pub static MODULE: ModuleDef = ModuleDef {
@@ -43,7 +46,15 @@ pub static MODULE: ModuleDef = ModuleDef {
     build,
     retune,
     tunables: TUNABLES,
-    cpu: &[("snow.shear", &viscous::Shear), ("snow.viscosity", &viscous::Viscosity)],
+    cpu: &[
+        ("snow.shear", &viscous::Shear),
+        ("snow.viscosity", &viscous::Viscosity),
+        ("snow.implicit_diagonal", &implicit::Diagonal),
+        ("snow.implicit_precondition", &implicit::Precondition),
+        ("snow.implicit_product", &implicit::Product),
+        ("snow.implicit_update", &implicit::Update),
+        ("snow.implicit_direction", &implicit::Direction),
+    ],
     presets: presets::PRESETS,
     dt_limit,
     measures,
@@ -153,6 +164,12 @@ fn validate(scene: &Scene, c: &mut Checker) {
         );
     }
     c.positive("snow.max_viscosity", snow.max_viscosity);
+    if let ViscousSolver::Implicit { tolerance, max_iterations } = snow.solver {
+        c.within("snow.solver.tolerance", tolerance, 1e-7, 0.5);
+        if !(1..=10_000).contains(&max_iterations) {
+            c.fail("snow.solver.max_iterations", format!("must be 1 to 10000, got {max_iterations}"));
+        }
+    }
     for (i, r) in snow.fluids.iter().enumerate() {
         let p = |f: &str| format!("snow.fluids[{i}].{f}");
         match *r {
@@ -188,7 +205,19 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.zeros(&VISCOSITY);
     b.zeros(&SHEAR_RATE);
     b.pass(&viscous::SHEAR);
-    b.pass(&viscous::VISCOSITY);
+    match section(scene).solver {
+        ViscousSolver::Explicit => b.pass(&viscous::VISCOSITY),
+        ViscousSolver::Implicit { tolerance, max_iterations } => {
+            b.space(implicit::SCALARS_SPACE, 4);
+            for spec in implicit::ATTRS {
+                b.zeros(spec);
+            }
+            for pass in implicit::PASSES {
+                b.pass(pass);
+            }
+            b.velocity_solve(implicit::solve(tolerance, max_iterations));
+        }
+    }
     b.channel(VISCOSITY_CHANNEL);
     b.channel(SHEAR_RATE_CHANNEL);
     let consts = SnowConsts::new(section(scene));
@@ -198,16 +227,30 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 }
 
 fn retune(scene: &Scene, model: &mut Model) {
-    model.set_consts(SnowConsts::new(section(scene)));
+    let snow = section(scene);
+    model.set_consts(SnowConsts::new(snow));
+    if let ViscousSolver::Implicit { tolerance, max_iterations } = snow.solver {
+        let solve = implicit::solve(tolerance, max_iterations);
+        for s in model.velocity_solves.iter_mut().filter(|s| s.name == solve.name) {
+            *s = solve;
+        }
+    }
 }
 
 /// The explicit viscous limit `0.125 h^2 rho0 / mu_max` (Morris et al. 1997, eq. 20)
-/// at each material's clamp.
-fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
+/// at each material's clamp, if any material has a viscosity.
+pub fn explicit_dt_limit(model: &Model) -> Option<Real> {
     let c = model.consts::<SnowConsts>();
     let nu = c.laws.iter().zip(model.materials.iter()).map(|(l, m)| l.max / m.rest_density).fold(0.0, Real::max);
     let h = 0.5 * model.kernel.support();
-    (nu > 0.0).then(|| ("non-Newtonian viscosity", 0.125 * h * h / nu))
+    (nu > 0.0).then(|| 0.125 * h * h / nu)
+}
+
+/// The explicit viscous limit, unless the viscosity is implicit (no limit on dt).
+fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
+    let implicit = model.velocity_solves.iter().any(|s| s.name == implicit::NAME);
+    let limit = explicit_dt_limit(model).filter(|_| !implicit)?;
+    Some(("non-Newtonian viscosity", limit))
 }
 
 /// Where the snow's front started: its largest x (m) at build.
@@ -235,8 +278,17 @@ impl Front {
 }
 
 /// The snow's front (its largest x, m; avalanches run along +x), its run-out (how
-/// far the front has moved from where it started, m) and the largest viscosity (Pa s).
+/// far the front has moved from where it started, m), the largest viscosity (Pa s)
+/// and the explicit viscous limit on dt (s; what an implicit solve lifts).
 fn measures(sim: &crate::Simulation) -> Vec<Measure> {
+    let mut m = front_and_viscosity(sim);
+    if let Some(limit) = explicit_dt_limit(sim.model()) {
+        m.push(Measure::new("snow.explicit_dt_limit", f64::from(limit), "s"));
+    }
+    m
+}
+
+fn front_and_viscosity(sim: &crate::Simulation) -> Vec<Measure> {
     let several = sim.channels().iter().any(|c| c.name == "material");
     let p = sim.read(if several { &["viscosity", "material"] } else { &["viscosity"] });
     let Some(mu) = p.channel("viscosity").and_then(|t| t.as_scalars()) else { return Vec::new() };

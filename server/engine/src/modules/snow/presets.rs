@@ -5,7 +5,7 @@
 //! the Newtonian preset's), so each settles within a second and is bound by the
 //! viscous step, not by sound.
 
-use super::spec::{Rheology, Snow, WallShear};
+use super::spec::{Rheology, Snow, ViscousSolver, WallShear};
 use crate::modules::Preset;
 use crate::scene::{Boundary, Face, Fluid, FluidBlock, Scene, Solver, Viscosity};
 use crate::terrain::spec::{Heights, Slope, Terrain};
@@ -42,7 +42,8 @@ fn channel(name: &str, rheology: Rheology, max_viscosity: f32) -> Scene {
     s.name = name.into();
     s.modules = vec!["fluid".into(), "snow".into()];
     s.fluids[0].viscosity = Viscosity::None;
-    s.snow = Some(Snow { fluids: vec![rheology], max_viscosity, walls: WallShear::NoSlip });
+    s.snow =
+        Some(Snow { fluids: vec![rheology], max_viscosity, walls: WallShear::NoSlip, solver: ViscousSolver::Explicit });
     s
 }
 
@@ -119,6 +120,7 @@ pub fn avalanche() -> Scene {
             fluids: vec![Rheology::Cross { mu_0: 200.0, mu_inf: 5.0, k: 1.0, n: 1.0 }],
             max_viscosity: 200.0,
             walls: WallShear::Slip,
+            solver: ViscousSolver::Explicit,
         }),
     }
 }

@@ -22,6 +22,40 @@ pub struct Snow {
     /// the terrain's Coulomb friction instead).
     #[serde(default)]
     pub walls: WallShear,
+    /// How the viscous force advances: `explicit` (a force, with the explicit
+    /// viscous time-step limit) or `implicit` (backward Euler, solved by conjugate
+    /// gradients after each kick: no viscous limit on dt).
+    #[serde(default)]
+    pub solver: ViscousSolver,
+}
+
+/// The integration of the viscous force.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "method", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ViscousSolver {
+    /// The force of the velocities at the start of the step; dt at most
+    /// `0.125 h^2 rho0 / max_viscosity` (Morris et al. 1997, eq. 20).
+    #[default]
+    Explicit,
+    /// Backward Euler (Weiler et al. 2018): `(M + dt K) v = M v*`, K the viscous
+    /// operator at the step's viscosities, by Jacobi-preconditioned conjugate
+    /// gradients.
+    Implicit {
+        /// Relative residual `|r| / |b|` (in the preconditioner's norm) to reach.
+        #[serde(default = "default_tolerance")]
+        tolerance: f32,
+        /// Iterations at most; a solve not converged by then halts the scene.
+        #[serde(default = "default_max_iterations")]
+        max_iterations: u32,
+    },
+}
+
+fn default_tolerance() -> f32 {
+    1e-3
+}
+
+fn default_max_iterations() -> u32 {
+    200
 }
 
 /// The viscous condition at walls.

@@ -10,8 +10,8 @@
 //! 2. the divergence-free solve: the velocities are corrected until the mean
 //!    compression rate `dt (Drho/Dt) / rho0` is at most
 //!    `solver.dfsph.divergence_tolerance` (B&K 2017, algorithm 2);
-//! 3. the kick `v += dt a` with the non-pressure accelerations (and the kick-stage
-//!    passes);
+//! 3. the kick `v += dt a` with the non-pressure accelerations, the modules'
+//!    velocity solves (implicit viscosity) and the kick-stage passes;
 //! 4. the constant-density solve: the velocities are corrected until the mean
 //!    predicted compression `(rho + dt Drho/Dt - rho0) / rho0` is at most
 //!    `solver.dfsph.density_tolerance` (algorithm 3);
@@ -57,7 +57,7 @@ use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::plan::{PassSpec, Stage};
 use crate::scene::{DfsphSettings, Scene};
-use crate::schemes::{Iterate, ReduceOp, Reduction, SchemeDef, Stages, StepReport};
+use crate::schemes::{Iterate, Op, ReduceOp, Reduction, SchemeDef, Stages, StepReport, velocity_solves};
 
 /// The scheme's definition.
 pub static SCHEME: SchemeDef = SchemeDef {
@@ -200,8 +200,12 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 pub fn divergence_solve(s: &DfsphSettings) -> Iterate {
     Iterate {
         name: "dfsph.divergence",
-        start: &["dfsph.divergence_warm", "dfsph.divergence_kick", "dfsph.divergence_error"],
-        iteration: &["dfsph.divergence_kick", "dfsph.divergence_error"],
+        start: &[
+            Op::Pass("dfsph.divergence_warm"),
+            Op::Pass("dfsph.divergence_kick"),
+            Op::Pass("dfsph.divergence_error"),
+        ],
+        iteration: &[Op::Pass("dfsph.divergence_kick"), Op::Pass("dfsph.divergence_error")],
         residual: Reduction { attr: "divergence_error", op: ReduceOp::Mean },
         tolerance: f64::from(s.divergence_tolerance),
         min: 1,
@@ -214,8 +218,8 @@ pub fn divergence_solve(s: &DfsphSettings) -> Iterate {
 pub fn density_solve(s: &DfsphSettings) -> Iterate {
     Iterate {
         name: "dfsph.density",
-        start: &["dfsph.density_warm", "dfsph.density_kick", "dfsph.density_error"],
-        iteration: &["dfsph.density_kick", "dfsph.density_error"],
+        start: &[Op::Pass("dfsph.density_warm"), Op::Pass("dfsph.density_kick"), Op::Pass("dfsph.density_error")],
+        iteration: &[Op::Pass("dfsph.density_kick"), Op::Pass("dfsph.density_error")],
         residual: Reduction { attr: "density_error", op: ReduceOp::Mean },
         tolerance: f64::from(s.density_tolerance),
         min: 2,
@@ -236,11 +240,13 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     let divergence = divergence_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?;
     let keep = clock.keep(s.model(), dt);
     s.kick(dt, keep);
+    let mut solves = vec![divergence];
+    solves.extend(velocity_solves(clock, s, dt)?);
     s.run(Stage::Kick, dt);
-    let density = density_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?;
+    solves.push(density_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?);
     s.drift(dt);
     s.run(Stage::Drift, dt);
     s.run(Stage::PostStep, dt);
     s.end_step();
-    Ok(clock.advance(dt, &m, n, vec![divergence, density]))
+    Ok(clock.advance(dt, &m, n, solves))
 }

@@ -11,7 +11,8 @@
 //!   section 6): `v += dt/2 a`, `x += dt v`, evaluate, `v += dt/2 a`, reusing the
 //!   previous step's measures to choose dt.
 //!
-//! The kick-stage passes (XSPH) follow the kick after an evaluation; damping
+//! The modules' velocity solves (implicit viscosity, over the whole dt) and then the
+//! kick-stage passes (XSPH) follow the kick after an evaluation; damping
 //! multiplies velocities by `exp(-rate dt)` until its end time.
 
 pub mod cpu;
@@ -24,7 +25,7 @@ use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::plan::{PassSpec, Stage};
 use crate::scene::{Integrator, Scene};
-use crate::schemes::{SchemeDef, Stages, StepReport};
+use crate::schemes::{SchemeDef, Stages, StepReport, velocity_solves};
 use eos::Eos;
 
 /// The scheme's definition.
@@ -108,16 +109,17 @@ const EVALUATE: [Stage; 4] = [Stage::Sort, Stage::Density, Stage::PreForce, Stag
 fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     let model: &Model = s.model();
     let (integrator, n) = (model.integrator, model.particle_count());
-    let (dt, m) = match integrator {
+    let (dt, m, solves) = match integrator {
         Integrator::SymplecticEuler => {
             let m = clock.evaluate(s, &EVALUATE)?;
             let dt = clock.dt(s.model(), &m)?;
             let keep = clock.keep(s.model(), dt);
             s.kick(dt, keep);
+            let solves = velocity_solves(clock, s, dt)?;
             s.run(Stage::Kick, dt);
             s.drift(dt);
             s.run(Stage::Drift, dt);
-            (dt, m)
+            (dt, m, solves)
         }
         Integrator::Leapfrog => {
             let m0 = match clock.measures() {
@@ -132,13 +134,14 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
             s.run(Stage::Drift, dt);
             let m = clock.evaluate(s, &EVALUATE)?;
             s.kick(half, keep);
+            let solves = velocity_solves(clock, s, dt)?;
             s.run(Stage::Kick, dt);
-            (dt, m)
+            (dt, m, solves)
         }
     };
     s.run(Stage::PostStep, dt);
     s.end_step();
-    Ok(clock.advance(dt, &m, n, Vec::new()))
+    Ok(clock.advance(dt, &m, n, solves))
 }
 
 /// Pressures (Pa) of particles with densities `columns[0]` (and materials

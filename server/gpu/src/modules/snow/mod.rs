@@ -1,5 +1,7 @@
 //! The snow module on the GPU: the shear-rate pass and the viscous force pass, with the module uniform `snow` (per material: the viscosity law and its
-//! clamp).
+//! clamp); [`implicit`]: the implicit viscosity solve's passes.
+
+pub mod implicit;
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};

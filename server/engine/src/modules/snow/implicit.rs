@@ -1,0 +1,381 @@
+//! Implicit viscosity (`snow.solver = { method = "implicit" }`): the viscous force of
+//! [`super::viscous`] integrated by backward Euler after each kick, as Weiler,
+//! Koschier, Brand & Bender (2018, "A physically consistent implicit viscosity
+//! solver for SPH fluids", Computer Graphics Forum 37(2)) do for theirs, so stiff
+//! viscosities (mu_0 / mu_inf of 1e4 and more) run at the pressure-limited dt.
+//!
+//! With the velocities `v*` of the kick and the viscosities `mu` of the step's
+//! evaluation (frozen for the solve: one Picard step per time step, as Weiler et al.),
+//! the new velocities solve
+//!
+//! `(M + dt K) v = M v*`, where `(K v)_i = sum_j w_ij (v_i - v_j) + w_iw v_i`,
+//!
+//! `w_ij = m_i m_j (mu_i + mu_j) / (rho_i rho_j) |F_ij|` (the explicit pass's pair
+//! term times `m_i`, symmetric) and `w_iw` the no-slip walls' mirror term
+//! `m_i 4 mu_i / rho_i^2 sum_b psi_b |F_ib|` (0 for slip walls). The matrix is
+//! symmetric and positive definite (M positive, K a weighted graph Laplacian plus a
+//! non-negative diagonal), so conjugate gradients converge; the preconditioner is
+//! its diagonal `d_i = m_i + dt (sum_j w_ij + w_iw)` (Jacobi). The start is `v*`,
+//! whose residual `r = M v* - (M + dt K) v* = dt m a` is the explicit force's impulse.
+//!
+//! Passes (stage `Solve`, run by the solve, [`solve`]) and the sums between them,
+//! which stay on the device in `visc_scalars` (`RZ`, `BB`, `PAP`, `RZ_NEW`):
+//! 1. `snow.implicit_diagonal`: `d`, `r`;
+//! 2. `snow.implicit_precondition`: `p = z = r / d`; per particle `r.z` and
+//!    `b.b / d` (`b = m v*`), summed into `RZ` and `BB`;
+//! 3. per iteration: `snow.implicit_product` (`Ap`, `p.Ap` summed into `PAP`),
+//!    `snow.implicit_update` (`alpha = RZ / PAP`, `v += alpha p`, `r -= alpha Ap`,
+//!    `r.z` summed into `RZ_NEW`), `snow.implicit_direction`
+//!    (`p = z + (RZ_NEW / RZ) p`, then `RZ = RZ_NEW`).
+//!
+//! The residual is `sqrt(r.z / b.b)` in the preconditioner's norm (`r.z` summed
+//! over `b.D^-1.b`): converged at `snow.solver.tolerance`. A flow at rest has
+//! `b = 0` and `r = 0`: its residual is 0 after the one iteration every solve runs.
+
+use super::SnowConsts;
+use crate::attrs::{AttrSpec, Attrs, Elem, PARTICLES, Role};
+use crate::cpu::neighbors::CHUNK;
+use crate::cpu::{CpuCx, CpuPass};
+use crate::math::{Real, Vec3};
+use crate::periodic::Separation;
+use crate::plan::{PassSpec, Stage};
+use crate::schemes::{Iterate, Op, ReduceOp, Reduction};
+use rayon::prelude::*;
+
+/// The space of the solve's scalars.
+pub const SCALARS_SPACE: &str = "snow.solve";
+/// Slots of `visc_scalars`: `r.z` (the current one), `b.D^-1.b`, `p.Ap`, `r.z` (the new one).
+pub const RZ: u32 = 0;
+/// See [`RZ`].
+pub const BB: u32 = 1;
+/// See [`RZ`].
+pub const PAP: u32 = 2;
+/// See [`RZ`].
+pub const RZ_NEW: u32 = 3;
+
+const fn attr(name: &'static str, elem: Elem, unit: &'static str, about: &'static str) -> AttrSpec {
+    AttrSpec { name, elem, unit, role: Role::Derived, space: PARTICLES, module: "snow", about }
+}
+
+/// The residual `M v* - (M + dt K) v`.
+pub static R: AttrSpec = attr("visc_r", Elem::Vec3, "kg m/s", "Implicit viscosity: the residual.");
+/// The search direction.
+pub static P: AttrSpec = attr("visc_p", Elem::Vec3, "m/s", "Implicit viscosity: the search direction.");
+/// The matrix times the search direction.
+pub static AP: AttrSpec = attr("visc_ap", Elem::Vec3, "kg m/s", "Implicit viscosity: the matrix times p.");
+/// The diagonal `m + dt (sum_j w_ij + w_iw)`.
+pub static DIAGONAL: AttrSpec = attr("visc_diag", Elem::F32, "kg", "Implicit viscosity: the matrix diagonal.");
+/// Each particle's term of the dot product summed next.
+pub static DOT: AttrSpec = attr("visc_dot", Elem::F32, "kg m^2/s^2", "Implicit viscosity: dot-product terms.");
+/// Each particle's `r.z / BB` (the start leaves `b.b / d` in it, summed into `BB`).
+pub static RESIDUAL: AttrSpec = attr("visc_residual", Elem::F32, "", "Implicit viscosity: residual terms.");
+/// The solve's scalars.
+pub static SCALARS: AttrSpec = AttrSpec {
+    name: "visc_scalars",
+    elem: Elem::F32,
+    unit: "kg m^2/s^2",
+    role: Role::Derived,
+    space: SCALARS_SPACE,
+    module: "snow",
+    about: "Implicit viscosity: r.z, b.b, p.Ap and the new r.z, summed on the device.",
+};
+
+/// Every attribute of the solve.
+pub const ATTRS: [&AttrSpec; 7] = [&R, &P, &AP, &DIAGONAL, &DOT, &RESIDUAL, &SCALARS];
+
+const fn solve_pass(
+    name: &'static str,
+    reads: &'static [&'static str],
+    writes: &'static [&'static str],
+    accumulates: &'static [&'static str],
+) -> PassSpec {
+    PassSpec { name, module: "snow", stage: Stage::Solve, reads, writes, accumulates, tolerance: 1e-4 }
+}
+
+/// `d` and the starting residual `r = dt m a`.
+pub static DIAGONAL_PASS: PassSpec =
+    solve_pass("snow.implicit_diagonal", &["x", "v", "rho", "mu"], &["visc_diag", "visc_r"], &[]);
+/// `p = r / d`, the terms of `r.z` and of `b.D^-1.b`.
+pub static PRECONDITION: PassSpec = solve_pass(
+    "snow.implicit_precondition",
+    &["x", "v", "visc_r", "visc_diag"],
+    &["visc_p", "visc_dot", "visc_residual"],
+    &[],
+);
+/// `Ap` and the terms of `p.Ap`.
+pub static PRODUCT: PassSpec =
+    solve_pass("snow.implicit_product", &["x", "rho", "mu", "visc_p", "visc_diag"], &["visc_ap", "visc_dot"], &[]);
+/// The step along `p`: velocities and residual, the terms of the new `r.z`.
+pub static UPDATE: PassSpec = solve_pass(
+    "snow.implicit_update",
+    &["visc_scalars", "visc_p", "visc_ap", "visc_diag"],
+    &["visc_dot", "visc_residual"],
+    &["v", "visc_r"],
+);
+/// The next search direction.
+pub static DIRECTION: PassSpec =
+    solve_pass("snow.implicit_direction", &["visc_scalars", "visc_r", "visc_diag"], &[], &["visc_p"]);
+
+/// Every pass of the solve.
+pub const PASSES: [&PassSpec; 5] = [&DIAGONAL_PASS, &PRECONDITION, &PRODUCT, &UPDATE, &DIRECTION];
+
+const fn sum(slot: u32) -> Op {
+    Op::Sum { attr: "visc_dot", into: "visc_scalars", slot }
+}
+
+/// The start: diagonal, residual, preconditioned direction and the first sums.
+const START: &[Op] = &[
+    Op::Pass("snow.implicit_diagonal"),
+    Op::Pass("snow.implicit_precondition"),
+    sum(RZ),
+    Op::Sum { attr: "visc_residual", into: "visc_scalars", slot: BB },
+];
+
+/// One conjugate-gradient iteration.
+const ITERATION: &[Op] = &[
+    Op::Pass("snow.implicit_product"),
+    sum(PAP),
+    Op::Pass("snow.implicit_update"),
+    sum(RZ_NEW),
+    Op::Pass("snow.implicit_direction"),
+    sum(RZ),
+];
+
+/// The solve's name (in step reports and statistics).
+pub const NAME: &str = "snow.viscosity";
+
+/// The solve at relative residual `tolerance`, with at most `max` iterations.
+pub fn solve(tolerance: f32, max: u32) -> Iterate {
+    Iterate {
+        name: NAME,
+        start: START,
+        iteration: ITERATION,
+        residual: Reduction { attr: "visc_residual", op: ReduceOp::Norm },
+        tolerance: f64::from(tolerance),
+        min: 1,
+        max,
+        check_every: 1,
+    }
+}
+
+/// `a / b`, or 0 where `b` is not positive (a flow at rest: nothing left to solve).
+#[inline(always)]
+pub fn ratio(a: Real, b: Real) -> Real {
+    if b > 0.0 { a / b } else { 0.0 }
+}
+
+/// The CPU passes by name.
+pub const CPU: [(&str, &dyn CpuPass); 5] = [
+    ("snow.implicit_diagonal", &Diagonal),
+    ("snow.implicit_precondition", &Precondition),
+    ("snow.implicit_product", &Product),
+    ("snow.implicit_update", &Update),
+    ("snow.implicit_direction", &Direction),
+];
+
+/// `snow.implicit_diagonal` on the CPU.
+#[derive(Debug)]
+pub struct Diagonal;
+/// `snow.implicit_precondition` on the CPU.
+#[derive(Debug)]
+pub struct Precondition;
+/// `snow.implicit_product` on the CPU.
+#[derive(Debug)]
+pub struct Product;
+/// `snow.implicit_update` on the CPU.
+#[derive(Debug)]
+pub struct Update;
+/// `snow.implicit_direction` on the CPU.
+#[derive(Debug)]
+pub struct Direction;
+
+impl CpuPass for Diagonal {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        crate::with_separation!(&cx.model.periodic, |s| diagonal(cx, s))
+    }
+}
+
+impl CpuPass for Product {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        crate::with_separation!(&cx.model.periodic, |s| product(cx, s))
+    }
+}
+
+/// The material of every particle (none in single-material scenes).
+fn materials(attrs: &Attrs) -> Option<&[u32]> {
+    attrs.find::<u32>("material").map(|m| attrs.get(m))
+}
+
+fn diagonal<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+    let (model, dt) = (cx.model, cx.dt);
+    let k = &model.kernel;
+    let sc: &SnowConsts = model.consts();
+    let walls = &model.wall_particles;
+    let eps_h2 = 0.01 * 0.25 * k.support() * k.support();
+    let (d_h, r_h) = (cx.attrs.handle::<Real>("visc_diag"), cx.attrs.handle::<Vec3>("visc_r"));
+    let (mut diag, mut res) = (cx.attrs.take(d_h), cx.attrs.take(r_h));
+    let attrs = &*cx.attrs;
+    let mat = materials(attrs);
+    let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
+    let (pos, vel, rho, mu) = (
+        attrs.get(attrs.handle::<Vec3>("x")),
+        attrs.get(attrs.handle::<Vec3>("v")),
+        attrs.get(attrs.handle::<Real>("rho")),
+        attrs.get(attrs.handle::<Real>("mu")),
+    );
+    let chunks = diag.par_chunks_mut(CHUNK).zip(res.par_chunks_mut(CHUNK));
+    chunks.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((d_c, r_c), nb))| {
+        for (n, (d_out, r_out)) in d_c.iter_mut().zip(r_c.iter_mut()).enumerate() {
+            let i = c * CHUNK + n;
+            let (xi, vi, mu_i, ma) = (pos[i], vel[i], mu[i], material(i));
+            let m_i = model.materials.get(ma).mass;
+            let inv_rho = 1.0 / rho[i];
+            let (mut sum_w, mut force) = (0.0, Vec3::ZERO);
+            for &j in nb.fluid(n) {
+                let j = j as usize;
+                let r2 = sep.between(xi, pos[j]).length_squared();
+                if r2 == 0.0 {
+                    continue;
+                }
+                let r = r2.sqrt();
+                let f = -r * k.dw_dr(r) / (r2 + eps_h2);
+                let w = m_i * model.materials.get(material(j)).mass * (mu_i + mu[j]) * inv_rho / rho[j] * f;
+                sum_w += w;
+                force += (vel[j] - vi) * w;
+            }
+            let psi = &walls.psi[ma];
+            let mut wall = 0.0;
+            for &b in nb.walls(n) {
+                let b = b as usize;
+                let r2 = sep.between(xi, walls.positions[b]).length_squared();
+                if r2 == 0.0 {
+                    continue;
+                }
+                let r = r2.sqrt();
+                wall += psi[b] * (-r * k.dw_dr(r) / (r2 + eps_h2));
+            }
+            let w_wall = m_i * 4.0 * sc.wall_shear * mu_i * inv_rho * inv_rho * wall;
+            *d_out = m_i + dt * (sum_w + w_wall);
+            *r_out = (force - vi * w_wall) * dt;
+        }
+    });
+    cx.attrs.put(d_h, diag);
+    cx.attrs.put(r_h, res);
+}
+
+impl CpuPass for Precondition {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let model = cx.model;
+        let (p_h, dot_h, res_h) = (
+            cx.attrs.handle::<Vec3>("visc_p"),
+            cx.attrs.handle::<Real>("visc_dot"),
+            cx.attrs.handle::<Real>("visc_residual"),
+        );
+        let (mut p, mut dot, mut bb) = (cx.attrs.take(p_h), cx.attrs.take(dot_h), cx.attrs.take(res_h));
+        let attrs = &*cx.attrs;
+        let mat = materials(attrs);
+        let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
+        let (vel, r, d) = (
+            attrs.get(attrs.handle::<Vec3>("v")),
+            attrs.get(attrs.handle::<Vec3>("visc_r")),
+            attrs.get(attrs.handle::<Real>("visc_diag")),
+        );
+        p.par_iter_mut().zip(dot.par_iter_mut()).zip(bb.par_iter_mut()).enumerate().for_each(|(i, ((p, dot), bb))| {
+            let z = r[i] / d[i];
+            let b = vel[i] * model.materials.get(material(i)).mass;
+            *p = z;
+            *dot = r[i].dot(z);
+            *bb = b.dot(b) / d[i];
+        });
+        cx.attrs.put(p_h, p);
+        cx.attrs.put(dot_h, dot);
+        cx.attrs.put(res_h, bb);
+    }
+}
+
+fn product<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+    let (model, dt) = (cx.model, cx.dt);
+    let k = &model.kernel;
+    let eps_h2 = 0.01 * 0.25 * k.support() * k.support();
+    let (ap_h, dot_h) = (cx.attrs.handle::<Vec3>("visc_ap"), cx.attrs.handle::<Real>("visc_dot"));
+    let (mut ap, mut dot) = (cx.attrs.take(ap_h), cx.attrs.take(dot_h));
+    let attrs = &*cx.attrs;
+    let mat = materials(attrs);
+    let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
+    let (pos, rho, mu, p, d) = (
+        attrs.get(attrs.handle::<Vec3>("x")),
+        attrs.get(attrs.handle::<Real>("rho")),
+        attrs.get(attrs.handle::<Real>("mu")),
+        attrs.get(attrs.handle::<Vec3>("visc_p")),
+        attrs.get(attrs.handle::<Real>("visc_diag")),
+    );
+    let chunks = ap.par_chunks_mut(CHUNK).zip(dot.par_chunks_mut(CHUNK));
+    chunks.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((ap_c, dot_c), nb))| {
+        for (n, (ap_out, dot_out)) in ap_c.iter_mut().zip(dot_c.iter_mut()).enumerate() {
+            let i = c * CHUNK + n;
+            let (xi, mu_i) = (pos[i], mu[i]);
+            let m_i = model.materials.get(material(i)).mass;
+            let inv_rho = 1.0 / rho[i];
+            let mut off = Vec3::ZERO;
+            for &j in nb.fluid(n) {
+                let j = j as usize;
+                let r2 = sep.between(xi, pos[j]).length_squared();
+                if r2 == 0.0 {
+                    continue;
+                }
+                let r = r2.sqrt();
+                let f = -r * k.dw_dr(r) / (r2 + eps_h2);
+                let w = m_i * model.materials.get(material(j)).mass * (mu_i + mu[j]) * inv_rho / rho[j] * f;
+                off += p[j] * w;
+            }
+            let out = p[i] * d[i] - off * dt;
+            *ap_out = out;
+            *dot_out = p[i].dot(out);
+        }
+    });
+    cx.attrs.put(ap_h, ap);
+    cx.attrs.put(dot_h, dot);
+}
+
+impl CpuPass for Update {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let s = cx.attrs.get(cx.attrs.handle::<Real>("visc_scalars")).to_vec();
+        let (alpha, bb) = (ratio(s[RZ as usize], s[PAP as usize]), s[BB as usize]);
+        let (v_h, r_h) = (cx.attrs.handle::<Vec3>("v"), cx.attrs.handle::<Vec3>("visc_r"));
+        let (dot_h, res_h) = (cx.attrs.handle::<Real>("visc_dot"), cx.attrs.handle::<Real>("visc_residual"));
+        let (mut v, mut r) = (cx.attrs.take(v_h), cx.attrs.take(r_h));
+        let (mut dot, mut res) = (cx.attrs.take(dot_h), cx.attrs.take(res_h));
+        let attrs = &*cx.attrs;
+        let (p, ap, d) = (
+            attrs.get(attrs.handle::<Vec3>("visc_p")),
+            attrs.get(attrs.handle::<Vec3>("visc_ap")),
+            attrs.get(attrs.handle::<Real>("visc_diag")),
+        );
+        let outs = v.par_iter_mut().zip(r.par_iter_mut()).zip(dot.par_iter_mut()).zip(res.par_iter_mut());
+        outs.enumerate().for_each(|(i, (((v, r), dot), res))| {
+            *v += p[i] * alpha;
+            *r -= ap[i] * alpha;
+            let rz = r.dot(*r / d[i]);
+            *dot = rz;
+            *res = ratio(rz, bb);
+        });
+        for (h, col) in [(v_h, v), (r_h, r)] {
+            cx.attrs.put(h, col);
+        }
+        cx.attrs.put(dot_h, dot);
+        cx.attrs.put(res_h, res);
+    }
+}
+
+impl CpuPass for Direction {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let s = cx.attrs.get(cx.attrs.handle::<Real>("visc_scalars")).to_vec();
+        let beta = ratio(s[RZ_NEW as usize], s[RZ as usize]);
+        let p_h = cx.attrs.handle::<Vec3>("visc_p");
+        let mut p = cx.attrs.take(p_h);
+        let attrs = &*cx.attrs;
+        let (r, d) = (attrs.get(attrs.handle::<Vec3>("visc_r")), attrs.get(attrs.handle::<Real>("visc_diag")));
+        p.par_iter_mut().enumerate().for_each(|(i, p)| *p = r[i] / d[i] + *p * beta);
+        cx.attrs.put(p_h, p);
+    }
+}

@@ -1,0 +1,100 @@
+//! Implicit viscosity on the GPU: the conjugate-gradient passes of floe-engine
+//! `modules::snow::implicit`, one kernel each; the sums between them stay on the
+//! device (`visc_scalars`).
+
+use crate::pass::{GpuPass, always};
+use crate::passes::particle_kernel;
+use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
+use floe_engine::attrs::PARTICLES;
+
+/// `d` and the starting residual.
+pub static DIAGONAL: GpuPass = GpuPass {
+    name: "snow.implicit_diagonal",
+    source: particle_kernel!("snow.wgsl", "implicit/shared.wgsl", "implicit/diagonal.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "snow"),
+        (U, "dt"),
+        (R, "x"),
+        (R, "v"),
+        (R, "rho"),
+        (R, "mu"),
+        (R, "starts"),
+        (R, "walls"),
+        (W, "visc_diag"),
+        (W, "visc_r"),
+    ],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The first direction and the terms of `r.z` and `b.D^-1.b`.
+pub static PRECONDITION: GpuPass = GpuPass {
+    name: "snow.implicit_precondition",
+    source: particle_kernel!("implicit/precondition.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (R, "x"),
+        (R, "v"),
+        (R, "visc_r"),
+        (R, "visc_diag"),
+        (W, "visc_p"),
+        (W, "visc_dot"),
+        (W, "visc_residual"),
+    ],
+    space: PARTICLES,
+    when: always,
+};
+
+/// `Ap` and the terms of `p.Ap`.
+pub static PRODUCT: GpuPass = GpuPass {
+    name: "snow.implicit_product",
+    source: particle_kernel!("implicit/shared.wgsl", "implicit/product.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "dt"),
+        (R, "x"),
+        (R, "rho"),
+        (R, "mu"),
+        (R, "starts"),
+        (R, "visc_p"),
+        (R, "visc_diag"),
+        (W, "visc_ap"),
+        (W, "visc_dot"),
+    ],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The step along the direction.
+pub static UPDATE: GpuPass = GpuPass {
+    name: "snow.implicit_update",
+    source: particle_kernel!("implicit/shared.wgsl", "implicit/update.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (R, "visc_scalars"),
+        (R, "visc_p"),
+        (R, "visc_ap"),
+        (R, "visc_diag"),
+        (W, "v"),
+        (W, "visc_r"),
+        (W, "visc_dot"),
+        (W, "visc_residual"),
+    ],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The next direction.
+pub static DIRECTION: GpuPass = GpuPass {
+    name: "snow.implicit_direction",
+    source: particle_kernel!("implicit/shared.wgsl", "implicit/direction.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (R, "visc_scalars"), (R, "visc_r"), (R, "visc_diag"), (W, "visc_p")],
+    space: PARTICLES,
+    when: always,
+};
