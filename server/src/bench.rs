@@ -128,7 +128,6 @@ fn avalanche(
     let all: Vec<String> =
         std::iter::once(format!("particle_spacing={spacing}")).chain(overrides.iter().cloned()).collect();
     let mut sim = Simulation::new(load::from_preset("avalanche", &all)?, &*backend.factory)?;
-    let viscous = sim.model().modules.iter().find(|m| m.id == "snow").and_then(|m| (m.dt_limit)(sim.model()));
     let kernels_before = sim.kernel_times();
     let t0 = Instant::now();
     while sim.time() < seconds {
@@ -139,15 +138,16 @@ fn avalanche(
     let measure = |name: &str| sim.measures().into_iter().find(|m| m.name == name).map_or(f64::NAN, |m| m.value);
     println!("avalanche on {}, spacing {spacing:.4} m", backend.description);
     println!(
-        "| particles | simulated s | steps | dt mean s | explicit viscous limit s | wall s | M particle-steps/s | real-time factor | front m | run-out m |"
+        "| particles | simulated s | steps | dt mean s | explicit viscous limit s | solver iterations/step | wall s | M particle-steps/s | real-time factor | front m | run-out m |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     println!(
-        "| {} | {:.3} | {steps} | {:.2e} | {} | {wall:.2} | {:.3} | {:.4} | {:.3} | {:.3} |",
+        "| {} | {:.3} | {steps} | {:.2e} | {:.2e} | {} | {wall:.2} | {:.3} | {:.4} | {:.3} | {:.3} |",
         sim.particle_count(),
         sim.time(),
         sim.stats().dt_mean,
-        viscous.map_or("-".into(), |v| format!("{:.2e}", v.1)),
+        measure("snow.explicit_dt_limit"),
+        per_step_iterations(&sim, iterations(&sim), steps),
         sim.particle_count() as f64 * steps as f64 / wall / 1e6,
         sim.time() / wall,
         measure("snow.front"),
