@@ -1,5 +1,5 @@
-// The avalanche in the viewer: snow drawn white on its terrain, coloured by viscosity or shear
-// rate on request. Leaves screenshots in target/viewer-avalanche*.png.
+// The avalanche in the viewer: snow drawn white on its terrain (spheres and surface), coloured by
+// viscosity or shear rate on request. Leaves screenshots in target/viewer-avalanche*.png.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -28,6 +28,12 @@ test('snow is white and can be coloured by viscosity and shear rate', { timeout:
     const problems = watchProblems(page);
     await page.goto(url);
     await statAtLeast(page, 'frames', 1);
+    // The surface view draws the snow as an opaque white body, not as blue water.
+    await page.selectOption('#view-mode', 'surface');
+    await page.waitForTimeout(800);
+    await page.screenshot({ path: path.join(root, 'target/viewer-avalanche-surface.png') });
+    const surface = await whitePixels(page);
+    assert.ok(surface > 500, `snow's surface drawn white: ${surface} white pixels`);
     await page.selectOption('#view-mode', 'spheres');
     const modes = await page.$$eval('#colour option', (o) => o.map((x) => x.value));
     assert.ok(modes.includes('viscosity') && modes.includes('shear_rate'), `colour modes ${modes}`);

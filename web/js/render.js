@@ -187,7 +187,7 @@ export class Renderer {
     if (this.view === 'surface' && this.surfaceUnsupported() === null) {
       this.surface ??= new Surface(gl);
       this.surface.draw({ proj, view, vao: this.vao, count: this.drawnCount, radius: this.radius, box: this.box,
-        width: w, height: h, distance, background: (p, v) => this.#background(p, v) });
+        width: w, height: h, distance, background: (p, v) => this.#background(p, v), opaque: this.plain === SNOW ? SNOW : null });
       // Walls in front of the water.
       this.outline.draw(proj, view);
       return true;

@@ -18,8 +18,8 @@
 // 5. shading (full resolution, the normals filtered between texels): the background refracted
 //    along the normal and tinted by Beer-Lambert absorption over the thickness, light scattered
 //    back in water's colour the more the thicker it is, Fresnel (Schlick) reflection of a sky,
-//    and a specular highlight. The surface's depth goes to the depth buffer, so walls drawn
-//    after it hide behind the water.
+//    and a specular highlight; snow is opaque and matte instead: its white, lit by the normal.
+//    The surface's depth goes to the depth buffer, so walls drawn after it hide behind it.
 //
 // Passes 1 to 4 run at `scale` times the canvas's resolution, and passes 3 to 5 only over the
 // particles' bounding box on screen: on software GL (no GPU) their cost decides the frame rate.
@@ -129,6 +129,8 @@ ${VIEW_POINT}
 uniform sampler2D u_normals, u_thickness, u_background;
 uniform mat4 u_view;
 uniform vec2 u_size;
+// An opaque, matte body's colour (rgb, a = 1: snow), or a = 0 for water.
+uniform vec4 u_opaque;
 out vec4 colour;
 ${WINDOW_DEPTH}
 vec3 sky(vec3 dir) {
@@ -152,7 +154,13 @@ void main() {
   vec3 tint = exp(-vec3(2.2, 0.7, 0.3) * thickness);
   float opacity = 1.0 - exp(-4.0 * thickness);
   vec3 l = normalize(vec3(0.4, 0.7, 0.6));
-  vec3 water = vec3(0.13, 0.48, 0.78) * (0.55 + 0.45 * max(dot(n, l), 0.0));
+  float lit = 0.55 + 0.45 * max(dot(n, l), 0.0);
+  if (u_opaque.a > 0.5) {
+    colour = vec4(u_opaque.rgb * lit, 1.0);
+    gl_FragDepth = windowDepth(u_proj, p);
+    return;
+  }
+  vec3 water = vec3(0.13, 0.48, 0.78) * lit;
   vec3 body = mix(behind * tint, water, opacity);
   float cosine = max(dot(n, v), 0.0);
   float fresnel = 0.02 + 0.98 * pow(1.0 - cosine, 5.0);
@@ -201,7 +209,7 @@ export class Surface {
     this.smoothPass = programWith(gl, FULL_SCREEN, SMOOTH_FRAG, ['u_depth', 'u_c', 'u_jump', 'u_rate']);
     this.normalPass = programWith(gl, FULL_SCREEN, NORMAL_FRAG, ['u_depth', 'u_proj', 'u_low', 'u_jump']);
     this.shadePass = programWith(gl, FULL_SCREEN, SHADE_FRAG,
-      ['u_depth', 'u_normals', 'u_thickness', 'u_background', 'u_proj', 'u_view', 'u_size', 'u_low']);
+      ['u_depth', 'u_normals', 'u_thickness', 'u_background', 'u_proj', 'u_view', 'u_size', 'u_low', 'u_opaque']);
     this.empty = gl.createVertexArray();
     this.targets = null;
   }
@@ -243,10 +251,11 @@ export class Surface {
    * already), depth included.
    * @param {{proj: Float32Array, view: Float32Array, vao: WebGLVertexArrayObject, count: number,
    *   radius: number, box: {min: number[], max: number[]}, width: number, height: number,
-   *   distance: number, background: (proj: Float32Array, view: Float32Array) => void}} o the
-   *   particles (`vao` with positions and radius scales, `count`, a particle's drawing `radius`
-   *   in m, bounding `box`), the canvas's size in pixels, the camera's distance to what it looks
-   *   at (m; sets how much to smooth) and what draws the scene behind the water
+   *   distance: number, background: (proj: Float32Array, view: Float32Array) => void,
+   *   opaque: number[] | null}} o the particles (`vao` with positions and radius scales, `count`, a
+   *   particle's drawing `radius` in m, bounding `box`), the canvas's size in pixels, the
+   *   camera's distance to what it looks at (m; sets how much to smooth), what draws the scene
+   *   behind the water, and the colour of an opaque, matte body (snow), or null for water
    */
   draw(o) {
     const gl = this.gl;
@@ -316,6 +325,7 @@ export class Surface {
     gl.uniformMatrix4fv(c.u.u_view, false, o.view);
     gl.uniform2f(c.u.u_size, t.w, t.h);
     gl.uniform2f(c.u.u_low, t.lw, t.lh);
+    gl.uniform4f(c.u.u_opaque, ...(o.opaque ?? [0, 0, 0]), o.opaque ? 1 : 0);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.disable(gl.SCISSOR_TEST);
     gl.depthFunc(gl.LESS);

@@ -16,6 +16,14 @@ fn sim(preset: &str, overrides: &[&str]) -> Simulation {
     Simulation::new_cpu(from_preset(preset, &overrides).unwrap()).unwrap()
 }
 
+/// The implicit solve (the default), and the explicit force.
+const IMPLICIT: &str = "snow.solver={\"method\":\"implicit\"}";
+const EXPLICIT: &str = "snow.solver={\"method\":\"explicit\"}";
+
+fn measure(s: &Simulation, name: &str) -> f64 {
+    s.measures().into_iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no measure {name}")).value
+}
+
 /// A velocity field with no structure, of magnitudes from 1 to 50 mm/s: every pair
 /// of neighbours shears, some slowly, some fast.
 fn scrambled(n: usize) -> Column {
@@ -35,7 +43,7 @@ fn scrambled(n: usize) -> Column {
 /// law on a scrambled flow) and with walls.
 #[test]
 fn the_viscous_force_only_dissipates() {
-    let mut s = sim("cross_channel", &["particle_spacing=0.1"]);
+    let mut s = sim("cross_channel", &["particle_spacing=0.1", EXPLICIT]);
     let n = s.particle_count();
     let b = s.backend_mut();
     b.upload("v", scrambled(n));
@@ -56,13 +64,16 @@ fn the_viscous_force_only_dissipates() {
     assert!(power < -1e-3 * scale, "viscous power {power} (scale {scale})");
 }
 
-/// The power-law channel at 10 layers across: within 3 % of the closed form.
+/// The power-law channel at 10 layers across with the explicit force, stepping at
+/// its viscous limit: within 3 % of the closed form.
 #[test]
 fn a_power_law_channel_reaches_its_closed_form() {
-    let mut s = sim("power_law_channel", &["particle_spacing=0.1"]);
+    let mut s = sim("power_law_channel", &["particle_spacing=0.1", EXPLICIT]);
     while s.time() < CHANNEL_T_END {
         s.step().unwrap();
     }
+    let limit = measure(&s, "snow.explicit_dt_limit");
+    assert!((s.stats().dt_mean - limit).abs() < 1e-3 * limit, "dt {} at the limit {limit}", s.stats().dt_mean);
     let law = s.model().consts::<SnowConsts>().laws[0];
     let p = s.read(&["velocity"]);
     let (k, n) = (f64::from(law.p[0]), f64::from(law.p[1]));
@@ -72,13 +83,6 @@ fn a_power_law_channel_reaches_its_closed_form() {
     // shear-thickening profile is blunter than the parabola.
     let newtonian = channel::l2_error(&p, |y| 0.05 * y * (1.0 - y));
     assert!(newtonian > 0.1, "L2 against the parabola {newtonian}");
-}
-
-/// The implicit solve of the channel presets.
-const IMPLICIT: &str = "snow.solver={\"method\":\"implicit\"}";
-
-fn measure(s: &Simulation, name: &str) -> f64 {
-    s.measures().into_iter().find(|m| m.name == name).unwrap_or_else(|| panic!("no measure {name}")).value
 }
 
 /// With the implicit solve the Cross channel reaches its steady profile as the

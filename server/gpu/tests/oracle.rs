@@ -130,11 +130,13 @@ const VARIANTS: &[&[&str]] = &[
         "heat.fluids=[{\"conductivity\":50,\"heat_capacity\":1000,\"expansion\":0.01,\"temperature\":300},\
           {\"conductivity\":5,\"heat_capacity\":500,\"expansion\":0.002,\"temperature\":280}]",
     ],
-    // With snow: each viscosity law, alone and as two fluids of different laws.
+    // With snow: each viscosity law, alone (the explicit force) and as two fluids of
+    // different laws (the implicit solve, the default).
     &[
         "particle_spacing=0.05",
         "modules=[\"fluid\",\"snow\"]",
-        "snow={\"fluids\":[{\"model\":\"cross\",\"mu_0\":20,\"mu_inf\":0.2,\"k\":2,\"n\":0.8}],\"max_viscosity\":20}",
+        "snow={\"fluids\":[{\"model\":\"cross\",\"mu_0\":20,\"mu_inf\":0.2,\"k\":2,\"n\":0.8}],\"max_viscosity\":20,\
+          \"solver\":{\"method\":\"explicit\"}}",
     ],
     &[
         "particle_spacing=0.05",

@@ -12,13 +12,14 @@ use crate::validation::stability::{Expect, StabilityCase};
 /// Spacings of the channel cases (m): 10 to 20 layers across the quick runs.
 const SPACINGS: (&[f64], &[f64]) = (&[0.1, 1.0 / 15.0, 0.05], &[0.1, 1.0 / 15.0, 0.05, 1.0 / 30.0]);
 
-/// The variants every case runs: the explicit viscous force (bound by the explicit
-/// viscous step) and the implicit solve, with the default scheme
+/// The variants every case runs: the implicit solve (the default) and the explicit
+/// viscous force (bound by the explicit viscous step), with the default scheme
 /// (`--set solver.method=\"dfsph\"` runs them with DFSPH).
-const DEFAULT: &[Variant] = &[
-    Variant { name: "explicit", overrides: &[] },
-    Variant { name: "implicit", overrides: &["snow.solver={\"method\":\"implicit\"}"] },
-];
+const DEFAULT: &[Variant] =
+    &[Variant { name: "implicit", overrides: &[] }, Variant { name: "explicit", overrides: &[EXPLICIT] }];
+
+/// The explicit viscous force.
+const EXPLICIT: &str = "snow.solver={\"method\":\"explicit\"}";
 
 /// The module's accuracy cases.
 pub const CASES: &[Case] = &[
@@ -101,19 +102,19 @@ fn channel_case(sim: &mut Simulation, spacing: f64) -> Measured {
 pub const STABILITY: &[StabilityCase] = &[
     StabilityCase {
         name: "cross_ratio_1e4",
-        what: "Cross model with mu_0 / mu_inf = 1e4 (3e4 over 3 Pa s)",
+        what: "Cross model with mu_0 / mu_inf = 1e4 (3e4 over 3 Pa s), explicit viscosity at its viscous limit",
         preset: "cross_channel",
         spacing: (0.1, 0.05),
-        overrides: &["snow.fluids[0].mu_0=3e4", "snow.fluids[0].mu_inf=3", "snow.max_viscosity=3e4"],
+        overrides: &["snow.fluids[0].mu_0=3e4", "snow.fluids[0].mu_inf=3", "snow.max_viscosity=3e4", EXPLICIT],
         until: (0.05, 0.5),
         expect: Expect::Finish,
     },
     StabilityCase {
         name: "cross_ratio_1e6",
-        what: "Cross model with mu_0 / mu_inf = 1e6 (3e5 over 0.3 Pa s)",
+        what: "Cross model with mu_0 / mu_inf = 1e6 (3e5 over 0.3 Pa s), explicit viscosity at its viscous limit",
         preset: "cross_channel",
         spacing: (0.1, 0.05),
-        overrides: &["snow.fluids[0].mu_0=3e5", "snow.fluids[0].mu_inf=0.3", "snow.max_viscosity=3e5"],
+        overrides: &["snow.fluids[0].mu_0=3e5", "snow.fluids[0].mu_inf=0.3", "snow.max_viscosity=3e5", EXPLICIT],
         until: (0.005, 0.05),
         expect: Expect::Finish,
     },

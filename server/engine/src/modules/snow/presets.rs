@@ -42,8 +42,12 @@ fn channel(name: &str, rheology: Rheology, max_viscosity: f32) -> Scene {
     s.name = name.into();
     s.modules = vec!["fluid".into(), "snow".into()];
     s.fluids[0].viscosity = Viscosity::None;
-    s.snow =
-        Some(Snow { fluids: vec![rheology], max_viscosity, walls: WallShear::NoSlip, solver: ViscousSolver::Explicit });
+    s.snow = Some(Snow {
+        fluids: vec![rheology],
+        max_viscosity,
+        walls: WallShear::NoSlip,
+        solver: ViscousSolver::default(),
+    });
     s
 }
 
@@ -120,7 +124,7 @@ pub fn avalanche() -> Scene {
             fluids: vec![Rheology::Cross { mu_0: 200.0, mu_inf: 5.0, k: 1.0, n: 1.0 }],
             max_viscosity: 200.0,
             walls: WallShear::Slip,
-            solver: ViscousSolver::Explicit,
+            solver: ViscousSolver::default(),
         }),
     }
 }
