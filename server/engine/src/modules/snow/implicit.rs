@@ -34,7 +34,7 @@
 
 use super::SnowConsts;
 use crate::attrs::{AttrSpec, Attrs, Elem, PARTICLES, Role};
-use crate::cpu::neighbors::CHUNK;
+use crate::cpu::neighbors::{CHUNK, ChunkNeighbors};
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
 use crate::periodic::Separation;
@@ -206,56 +206,93 @@ fn materials(attrs: &Attrs) -> Option<&[u32]> {
     attrs.find::<u32>("material").map(|m| attrs.get(m))
 }
 
+/// What the pair weights `w_ij` of the step need: positions, densities, viscosities.
+struct Pairs<'a, S> {
+    sep: S,
+    model: &'a crate::model::Model,
+    pos: &'a [Vec3],
+    rho: &'a [Real],
+    mu: &'a [Real],
+    material: Option<&'a [u32]>,
+    /// `0.01 h^2` (m^2).
+    eps_h2: Real,
+}
+
+impl<'a, S: Separation> Pairs<'a, S> {
+    fn new(sep: S, model: &'a crate::model::Model, attrs: &'a Attrs) -> Self {
+        let support = model.kernel.support();
+        Self {
+            sep,
+            model,
+            pos: attrs.get(attrs.handle::<Vec3>("x")),
+            rho: attrs.get(attrs.handle::<Real>("rho")),
+            mu: attrs.get(attrs.handle::<Real>("mu")),
+            material: materials(attrs),
+            eps_h2: 0.01 * 0.25 * support * support,
+        }
+    }
+
+    fn mass(&self, i: usize) -> Real {
+        self.model.materials.get(self.material.map_or(0, |m| m[i] as usize)).mass
+    }
+
+    /// `|F|` at distance `r` (`r2 = r^2 > 0`).
+    fn f(&self, r2: Real) -> Real {
+        let r = r2.sqrt();
+        -r * self.model.kernel.dw_dr(r) / (r2 + self.eps_h2)
+    }
+
+    /// Calls `each(j, w_ij)` for every fluid neighbour `j` of particle `i` (slot `n`
+    /// of its neighbour chunk `nb`).
+    fn each(&self, i: usize, n: usize, nb: &ChunkNeighbors, mut each: impl FnMut(usize, Real)) {
+        let (xi, m_i, mu_i, inv_rho) = (self.pos[i], self.mass(i), self.mu[i], 1.0 / self.rho[i]);
+        for &j in nb.fluid(n) {
+            let j = j as usize;
+            let r2 = self.sep.between(xi, self.pos[j]).length_squared();
+            if r2 > 0.0 {
+                each(j, m_i * self.mass(j) * (mu_i + self.mu[j]) * inv_rho / self.rho[j] * self.f(r2));
+            }
+        }
+    }
+
+    /// The no-slip walls' mirror weight `w_iw` of particle `i` (before the walls'
+    /// shear factor).
+    fn wall(&self, i: usize, n: usize, nb: &ChunkNeighbors) -> Real {
+        let walls = &self.model.wall_particles;
+        let psi = &walls.psi[self.material.map_or(0, |m| m[i] as usize)];
+        let mut sum = 0.0;
+        for &b in nb.walls(n) {
+            let b = b as usize;
+            let r2 = self.sep.between(self.pos[i], walls.positions[b]).length_squared();
+            if r2 > 0.0 {
+                sum += psi[b] * self.f(r2);
+            }
+        }
+        let inv_rho = 1.0 / self.rho[i];
+        self.mass(i) * 4.0 * self.mu[i] * inv_rho * inv_rho * sum
+    }
+}
+
 fn diagonal<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let (model, dt) = (cx.model, cx.dt);
-    let k = &model.kernel;
-    let sc: &SnowConsts = model.consts();
-    let walls = &model.wall_particles;
-    let eps_h2 = 0.01 * 0.25 * k.support() * k.support();
+    let shear = model.consts::<SnowConsts>().wall_shear;
     let (d_h, r_h) = (cx.attrs.handle::<Real>("visc_diag"), cx.attrs.handle::<Vec3>("visc_r"));
     let (mut diag, mut res) = (cx.attrs.take(d_h), cx.attrs.take(r_h));
     let attrs = &*cx.attrs;
-    let mat = materials(attrs);
-    let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
-    let (pos, vel, rho, mu) = (
-        attrs.get(attrs.handle::<Vec3>("x")),
-        attrs.get(attrs.handle::<Vec3>("v")),
-        attrs.get(attrs.handle::<Real>("rho")),
-        attrs.get(attrs.handle::<Real>("mu")),
-    );
+    let pairs = Pairs::new(sep, model, attrs);
+    let vel = attrs.get(attrs.handle::<Vec3>("v"));
     let chunks = diag.par_chunks_mut(CHUNK).zip(res.par_chunks_mut(CHUNK));
     chunks.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((d_c, r_c), nb))| {
         for (n, (d_out, r_out)) in d_c.iter_mut().zip(r_c.iter_mut()).enumerate() {
             let i = c * CHUNK + n;
-            let (xi, vi, mu_i, ma) = (pos[i], vel[i], mu[i], material(i));
-            let m_i = model.materials.get(ma).mass;
-            let inv_rho = 1.0 / rho[i];
+            let vi = vel[i];
             let (mut sum_w, mut force) = (0.0, Vec3::ZERO);
-            for &j in nb.fluid(n) {
-                let j = j as usize;
-                let r2 = sep.between(xi, pos[j]).length_squared();
-                if r2 == 0.0 {
-                    continue;
-                }
-                let r = r2.sqrt();
-                let f = -r * k.dw_dr(r) / (r2 + eps_h2);
-                let w = m_i * model.materials.get(material(j)).mass * (mu_i + mu[j]) * inv_rho / rho[j] * f;
+            pairs.each(i, n, nb, |j, w| {
                 sum_w += w;
                 force += (vel[j] - vi) * w;
-            }
-            let psi = &walls.psi[ma];
-            let mut wall = 0.0;
-            for &b in nb.walls(n) {
-                let b = b as usize;
-                let r2 = sep.between(xi, walls.positions[b]).length_squared();
-                if r2 == 0.0 {
-                    continue;
-                }
-                let r = r2.sqrt();
-                wall += psi[b] * (-r * k.dw_dr(r) / (r2 + eps_h2));
-            }
-            let w_wall = m_i * 4.0 * sc.wall_shear * mu_i * inv_rho * inv_rho * wall;
-            *d_out = m_i + dt * (sum_w + w_wall);
+            });
+            let w_wall = shear * pairs.wall(i, n, nb);
+            *d_out = pairs.mass(i) + dt * (sum_w + w_wall);
             *r_out = (force - vi * w_wall) * dt;
         }
     });
@@ -295,39 +332,17 @@ impl CpuPass for Precondition {
 
 fn product<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let (model, dt) = (cx.model, cx.dt);
-    let k = &model.kernel;
-    let eps_h2 = 0.01 * 0.25 * k.support() * k.support();
     let (ap_h, dot_h) = (cx.attrs.handle::<Vec3>("visc_ap"), cx.attrs.handle::<Real>("visc_dot"));
     let (mut ap, mut dot) = (cx.attrs.take(ap_h), cx.attrs.take(dot_h));
     let attrs = &*cx.attrs;
-    let mat = materials(attrs);
-    let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
-    let (pos, rho, mu, p, d) = (
-        attrs.get(attrs.handle::<Vec3>("x")),
-        attrs.get(attrs.handle::<Real>("rho")),
-        attrs.get(attrs.handle::<Real>("mu")),
-        attrs.get(attrs.handle::<Vec3>("visc_p")),
-        attrs.get(attrs.handle::<Real>("visc_diag")),
-    );
+    let pairs = Pairs::new(sep, model, attrs);
+    let (p, d) = (attrs.get(attrs.handle::<Vec3>("visc_p")), attrs.get(attrs.handle::<Real>("visc_diag")));
     let chunks = ap.par_chunks_mut(CHUNK).zip(dot.par_chunks_mut(CHUNK));
     chunks.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((ap_c, dot_c), nb))| {
         for (n, (ap_out, dot_out)) in ap_c.iter_mut().zip(dot_c.iter_mut()).enumerate() {
             let i = c * CHUNK + n;
-            let (xi, mu_i) = (pos[i], mu[i]);
-            let m_i = model.materials.get(material(i)).mass;
-            let inv_rho = 1.0 / rho[i];
             let mut off = Vec3::ZERO;
-            for &j in nb.fluid(n) {
-                let j = j as usize;
-                let r2 = sep.between(xi, pos[j]).length_squared();
-                if r2 == 0.0 {
-                    continue;
-                }
-                let r = r2.sqrt();
-                let f = -r * k.dw_dr(r) / (r2 + eps_h2);
-                let w = m_i * model.materials.get(material(j)).mass * (mu_i + mu[j]) * inv_rho / rho[j] * f;
-                off += p[j] * w;
-            }
+            pairs.each(i, n, nb, |j, w| off += p[j] * w);
             let out = p[i] * d[i] - off * dt;
             *ap_out = out;
             *dot_out = p[i].dot(out);
