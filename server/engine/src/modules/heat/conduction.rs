@@ -8,7 +8,10 @@
 //! Multiplied by `m_i c_i` the pair term is antisymmetric in (i, j), so the total
 //! heat `sum_i m_i c_i T_i` changes only through walls and sources. A wall particle
 //! b held at `T_b` joins the sum with its pseudo-mass `psi_b`, `rho_b = rho0_i`
-//! and the fluid's own conductivity (`K = 2 k_i`); other walls are insulated.
+//! and the fluid's own conductivity (`K = 2 k_i`), as the mirror image of the fluid
+//! particle (temperature `2 T_b - T_i`: the term `2 (T_i - T_b)` puts `T_b` on the
+//! wall's surface, as Morris et al. 1997 do for no-slip velocities); other walls are
+//! insulated.
 //! `q_i` is the power density of the sources around particle i (W/m^3).
 //!
 //! On a lattice with a support of a few spacings the sum misses the Laplacian by a
@@ -121,7 +124,7 @@ fn conduction<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
                     continue;
                 }
                 let f = pair_factor(k, r2.sqrt(), eps_h2);
-                sum += psi[b] / rho0 * k_wall * (ti - tb) * f;
+                sum += psi[b] / rho0 * k_wall * 2.0 * (ti - tb) * f;
             }
             *out = (sum + hc.source(xi)) / (rho_i * hc.capacity[ma]);
         }

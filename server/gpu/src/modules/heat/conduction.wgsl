@@ -1,6 +1,7 @@
 // Conduction (floe-engine `modules::heat::conduction`, term by term in the same
 // order): dT/dt = 1/(rho_i c_i) [sum_j m_j / rho_j K_ij (T_i - T_j) F_ij
-// + walls held at a temperature + sources], F_ij = r dW/dr / (r^2 + 0.01 h^2).
+// + walls held at a temperature T_b, each the mirror image of the particle
+// (2 (T_i - T_b)) + sources], F_ij = r dW/dr / (r^2 + 0.01 h^2).
 
 @group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> rho: array<f32>;
@@ -63,7 +64,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
                     continue;
                 }
                 let f = pair_factor(sqrt(r2));
-                sum += w.w * mat.w / mat.x * k_wall * (ti - heat.wall_min[box].w) * f;
+                sum += w.w * mat.w / mat.x * k_wall * 2.0 * (ti - heat.wall_min[box].w) * f;
             }
         }
     }
