@@ -1,5 +1,6 @@
 //! The heat module on the CPU: conduction against the erf solution (VALIDATION.md
-//! §5), heat conserved in an insulated box, walls held at a temperature, the
+//! §5), heat conserved in an insulated box, walls held at a temperature (on their
+//! surface), the
 //! temperature guard, and the section's validation.
 
 use floe_engine::Simulation;
@@ -83,6 +84,41 @@ fn a_hot_floor_warms_the_fluid() {
     let (mean1, hot) = (measure(&s, "heat.mean_temperature"), measure(&s, "heat.max_temperature"));
     assert!(mean1 > mean0 + 1e-3, "mean temperature {mean0} -> {mean1} K");
     assert!(hot <= 330.0 + 1e-3, "hottest particle {hot} K above the floor's 330 K");
+}
+
+/// Walls held at a temperature put it on their surface: steady conduction across the
+/// heated cavity (no buoyancy, 10 particles between walls at 298 and 288 K, the
+/// conductivity raised so it settles in 1 s) has the gradient 10 K / 5 cm. With the
+/// walls' temperature at the wall particles, half a spacing outside, it was 9 % less.
+#[test]
+fn walls_hold_their_temperature_at_their_surface() {
+    let d = 0.005;
+    let depth = 4.0 * d;
+    let mut s = sim(
+        "heated_cavity",
+        &[
+            &format!("particle_spacing={d}"),
+            &format!("fluids[0].blocks[0].max=[0.05,0.05,{depth}]"),
+            &format!("boundaries[0].max=[0.05,0.05,{depth}]"),
+            &format!("domain={{\"min\":[-0.01,-0.01,0],\"max\":[0.06,0.06,{depth}]}}"),
+            "heat.fluids[0].expansion=0",
+            "heat.fluids[0].conductivity=1408",
+        ],
+    );
+    while s.time() < 1.0 {
+        s.step().unwrap();
+    }
+    let p = s.read(&["temperature"]);
+    let t = p.channel("temperature").and_then(|c| c.as_scalars()).unwrap();
+    // The least-squares slope of T(x) over every particle.
+    let n = t.len() as f64;
+    let (mut sx, mut st, mut sxx, mut sxt) = (0.0, 0.0, 0.0, 0.0);
+    for (x, &ti) in p.positions.iter().zip(t) {
+        let (x, ti) = (f64::from(x[0]), f64::from(ti));
+        (sx, st, sxx, sxt) = (sx + x, st + ti, sxx + x * x, sxt + x * ti);
+    }
+    let slope = (n * sxt - sx * st) / (n * sxx - sx * sx);
+    assert!((slope / -200.0 - 1.0).abs() < 0.02, "gradient {slope} K/m, want -200");
 }
 
 /// A source far too strong drives a particle above the scene's temperature range:
