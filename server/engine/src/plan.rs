@@ -81,6 +81,20 @@ pub struct PassSpec {
     pub tolerance: f32,
 }
 
+impl PassSpec {
+    /// A pass of module `module`'s iterative solve (stage [`Stage::Solve`], run by
+    /// name from a [`crate::schemes::Iterate`]), within 1e-4 of the CPU on a GPU.
+    pub const fn solve(
+        module: &'static str,
+        name: &'static str,
+        reads: &'static [&'static str],
+        writes: &'static [&'static str],
+        accumulates: &'static [&'static str],
+    ) -> PassSpec {
+        PassSpec { name, module, stage: Stage::Solve, reads, writes, accumulates, tolerance: 1e-4 }
+    }
+}
+
 /// The module of the pass called `name` among `passes`.
 fn module_of(passes: &[&'static PassSpec], name: &str) -> &'static str {
     passes.iter().find(|p| p.name == name).map_or("", |p| p.module)

@@ -38,7 +38,7 @@ use crate::cpu::neighbors::{CHUNK, ChunkNeighbors};
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
 use crate::periodic::Separation;
-use crate::plan::{PassSpec, Stage};
+use crate::plan::PassSpec;
 use crate::schemes::{Iterate, Op, ReduceOp, Reduction};
 use rayon::prelude::*;
 
@@ -83,30 +83,28 @@ pub static SCALARS: AttrSpec = AttrSpec {
 /// Every attribute of the solve.
 pub const ATTRS: [&AttrSpec; 7] = [&R, &P, &AP, &DIAGONAL, &DOT, &RESIDUAL, &SCALARS];
 
-const fn solve_pass(
-    name: &'static str,
-    reads: &'static [&'static str],
-    writes: &'static [&'static str],
-    accumulates: &'static [&'static str],
-) -> PassSpec {
-    PassSpec { name, module: "snow", stage: Stage::Solve, reads, writes, accumulates, tolerance: 1e-4 }
-}
-
 /// `d` and the starting residual `r = dt m a`.
 pub static DIAGONAL_PASS: PassSpec =
-    solve_pass("snow.implicit_diagonal", &["x", "v", "rho", "mu"], &["visc_diag", "visc_r"], &[]);
+    PassSpec::solve("snow", "snow.implicit_diagonal", &["x", "v", "rho", "mu"], &["visc_diag", "visc_r"], &[]);
 /// `p = r / d`, the terms of `r.z` and of `b.D^-1.b`.
-pub static PRECONDITION: PassSpec = solve_pass(
+pub static PRECONDITION: PassSpec = PassSpec::solve(
+    "snow",
     "snow.implicit_precondition",
     &["x", "v", "visc_r", "visc_diag"],
     &["visc_p", "visc_dot", "visc_residual"],
     &[],
 );
 /// `Ap` and the terms of `p.Ap`.
-pub static PRODUCT: PassSpec =
-    solve_pass("snow.implicit_product", &["x", "rho", "mu", "visc_p", "visc_diag"], &["visc_ap", "visc_dot"], &[]);
+pub static PRODUCT: PassSpec = PassSpec::solve(
+    "snow",
+    "snow.implicit_product",
+    &["x", "rho", "mu", "visc_p", "visc_diag"],
+    &["visc_ap", "visc_dot"],
+    &[],
+);
 /// The step along `p`: velocities and residual, the terms of the new `r.z`.
-pub static UPDATE: PassSpec = solve_pass(
+pub static UPDATE: PassSpec = PassSpec::solve(
+    "snow",
     "snow.implicit_update",
     &["visc_scalars", "visc_p", "visc_ap", "visc_diag"],
     &["visc_dot", "visc_residual"],
@@ -114,7 +112,7 @@ pub static UPDATE: PassSpec = solve_pass(
 );
 /// The next search direction.
 pub static DIRECTION: PassSpec =
-    solve_pass("snow.implicit_direction", &["visc_scalars", "visc_r", "visc_diag"], &[], &["visc_p"]);
+    PassSpec::solve("snow", "snow.implicit_direction", &["visc_scalars", "visc_r", "visc_diag"], &[], &["visc_p"]);
 
 /// Every pass of the solve.
 pub const PASSES: [&PassSpec; 5] = [&DIAGONAL_PASS, &PRECONDITION, &PRODUCT, &UPDATE, &DIRECTION];

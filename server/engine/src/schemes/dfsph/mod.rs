@@ -119,15 +119,6 @@ pub static DENSITY_ERROR: AttrSpec =
 pub static DIVERGENCE_ERROR: AttrSpec =
     attr("divergence_error", "", Role::Derived, "Relative compression per step (the divergence solve's residual).");
 
-const fn solve_pass(
-    name: &'static str,
-    reads: &'static [&'static str],
-    writes: &'static [&'static str],
-    accumulates: &'static [&'static str],
-) -> PassSpec {
-    PassSpec { name, module: "dfsph", stage: Stage::Solve, reads, writes, accumulates, tolerance: 1e-4 }
-}
-
 /// `alpha` from the step's neighbours.
 pub static FACTOR: PassSpec = PassSpec {
     name: "dfsph.factor",
@@ -139,21 +130,25 @@ pub static FACTOR: PassSpec = PassSpec {
     tolerance: 1e-4,
 };
 /// The divergence solve's warm start: `dkappa_v = w kappa_v`, `kappa_v = dkappa_v`.
-pub static DIVERGENCE_WARM: PassSpec = solve_pass("dfsph.divergence_warm", &["kappa_v"], &["dkappa_v", "kappa_v"], &[]);
+pub static DIVERGENCE_WARM: PassSpec =
+    PassSpec::solve("dfsph", "dfsph.divergence_warm", &["kappa_v"], &["dkappa_v", "kappa_v"], &[]);
 /// The pressure force of the divergence increments, as a kick; the increments are
 /// added to the stiffness.
-pub static DIVERGENCE_KICK: PassSpec = solve_pass("dfsph.divergence_kick", &["x", "dkappa_v"], &[], &["v", "kappa_v"]);
+pub static DIVERGENCE_KICK: PassSpec =
+    PassSpec::solve("dfsph", "dfsph.divergence_kick", &["x", "dkappa_v"], &[], &["v", "kappa_v"]);
 /// The compression rate, its increment and residual.
 pub static DIVERGENCE_ERROR_PASS: PassSpec =
-    solve_pass("dfsph.divergence_error", &["x", "v", "alpha"], &["dkappa_v", "divergence_error"], &[]);
+    PassSpec::solve("dfsph", "dfsph.divergence_error", &["x", "v", "alpha"], &["dkappa_v", "divergence_error"], &[]);
 /// The density solve's warm start.
-pub static DENSITY_WARM: PassSpec = solve_pass("dfsph.density_warm", &["kappa"], &["dkappa", "kappa"], &[]);
+pub static DENSITY_WARM: PassSpec =
+    PassSpec::solve("dfsph", "dfsph.density_warm", &["kappa"], &["dkappa", "kappa"], &[]);
 /// The pressure force of the density increments, as a kick; the increments are
 /// added to the stiffness.
-pub static DENSITY_KICK: PassSpec = solve_pass("dfsph.density_kick", &["x", "dkappa"], &[], &["v", "kappa"]);
+pub static DENSITY_KICK: PassSpec =
+    PassSpec::solve("dfsph", "dfsph.density_kick", &["x", "dkappa"], &[], &["v", "kappa"]);
 /// The predicted compression, its increment and residual.
 pub static DENSITY_ERROR_PASS: PassSpec =
-    solve_pass("dfsph.density_error", &["x", "v", "rho", "alpha"], &["dkappa", "density_error"], &[]);
+    PassSpec::solve("dfsph", "dfsph.density_error", &["x", "v", "rho", "alpha"], &["dkappa", "density_error"], &[]);
 
 /// Pressure `rho^2 (kappa + kappa_v)` (Pa): the pressure of both solves' forces.
 pub const PRESSURE: ChannelSpec = ChannelSpec {
