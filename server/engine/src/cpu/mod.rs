@@ -22,8 +22,7 @@ use crate::model::Model;
 use crate::neighbors::Grid;
 use crate::plan::{PassSpec, Stage};
 use crate::schemes::{ReduceOp, Reduction, Stages};
-use neighbors::{CHUNK, NeighborLists};
-use rayon::prelude::*;
+use neighbors::NeighborLists;
 
 /// What a CPU pass works on.
 #[derive(Debug)]
@@ -182,10 +181,7 @@ impl Stages for CpuBackend {
 
     fn sum_into(&mut self, attr: &'static str, into: &'static str, slot: u32) {
         let t0 = std::time::Instant::now();
-        let values = self.attrs.get(self.attrs.handle::<Real>(attr));
-        // Fixed chunks summed in order: the same sum on every run.
-        let partial: Vec<f64> = values.par_chunks(CHUNK).map(|c| c.iter().map(|&v| f64::from(v)).sum()).collect();
-        let sum: f64 = partial.iter().sum();
+        let sum = self.reduce(&Reduction { attr, op: ReduceOp::Sum }).expect("the CPU sums any attribute");
         let h = self.attrs.handle::<Real>(into);
         let mut scalars = self.attrs.take(h);
         scalars[slot as usize] = sum as Real;
