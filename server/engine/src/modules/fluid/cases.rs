@@ -57,9 +57,10 @@ pub const CASES: &[Case] = &[
         preset: "poiseuille",
         primary_error: "velocity_l2_steady",
         spacings: (&[0.1, 1.0 / 15.0, 0.05], &[0.1, 1.0 / 15.0, 0.05, 1.0 / 30.0]),
-        // Walls mirror the fluid's velocity (no slip on the plates themselves): measured
-        // 2.2 %, 1.5 % and 1.2 % from coarse to fine; the bounds leave room.
-        bounds: &[("velocity_l2_steady", 0.02), ("velocity_l2_t0_1", 0.02)],
+        // Walls mirror the fluid's velocity (no slip on the plates themselves) and the
+        // Laplacian carries its lattice normalisation: measured 1.4 %, 0.62 % and 0.36 %
+        // from coarse to fine at steady state, 0.36 % at t = 0.1 s.
+        bounds: &[("velocity_l2_steady", 0.01), ("velocity_l2_t0_1", 0.01), ("velocity_l2_t0_5", 0.01)],
         variants: SCHEMES,
         measure: poiseuille_case,
     },

@@ -107,12 +107,11 @@ pub struct FluidConsts {
 impl FluidConsts {
     fn new(scene: &Scene, model: &Model) -> Self {
         let c = model.sound_speed.unwrap_or(0.0);
-        let h = 0.5 * model.kernel.support();
         let viscosity: Vec<ViscosityModel> = scene
             .fluids
             .iter()
             .zip(model.materials.iter())
-            .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, c, h))
+            .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, c, &model.kernel, model.spacing))
             .collect();
         Self::assemble(scene, model.materials.iter().map(|m| m.mass).collect(), viscosity)
     }
@@ -186,12 +185,11 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     // Monaghan's artificial viscosity scales with the speed of sound.
     let artificial = scene.fluids.iter().any(|f| matches!(f.viscosity, Viscosity::Artificial { .. }));
     let c = if artificial || scene.solver.method == Method::Wcsph { b.sound_speed()? } else { 0.0 };
-    let h = 0.5 * b.kernel.support();
     let viscosity: Vec<ViscosityModel> = scene
         .fluids
         .iter()
         .zip(b.materials())
-        .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, c, h))
+        .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, c, &b.kernel, scene.particle_spacing))
         .collect();
     let masses = b.materials().iter().map(|m| m.mass).collect();
     let consts = FluidConsts::assemble(scene, masses, viscosity);

@@ -2,7 +2,7 @@
 //! state) and its stability battery (temperature jumps, a very conductive fluid,
 //! a large density ratio).
 
-use super::presets::{CONDUCTION_ALPHA, CONDUCTION_L, CONDUCTION_T};
+use super::presets::{CAVITY_L, CAVITY_NU, CAVITY_T, CONDUCTION_ALPHA, CONDUCTION_L, CONDUCTION_T};
 use crate::Simulation;
 use crate::validation::cases::{Case, Measured, Variant};
 use crate::validation::run_probed;
@@ -37,6 +37,17 @@ pub const CASES: &[Case] = &[
             Variant { name: "ratio_100", overrides: &["fluids[1].rest_density=10"] },
         ],
         measure: layers_case,
+    },
+    Case {
+        name: "heated_cavity",
+        module: "heat",
+        reference: "de Vahl Davis (1983), Ra = 1e4, Pr = 0.71: mean Nusselt number 2.243, u_max = 16.178 alpha/L on the vertical midline, v_max = 19.617 alpha/L on the horizontal one",
+        preset: "heated_cavity",
+        primary_error: "nusselt_error",
+        spacings: (&[0.005, 0.0033333], &[0.005, 0.0033333, 0.0025, 0.002]),
+        bounds: &[("nusselt_error", 0.05)],
+        variants: &[Variant { name: "default", overrides: &[] }],
+        measure: cavity_case,
     },
 ];
 
@@ -120,6 +131,63 @@ fn layers_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let light: Vec<f64> = p.positions.iter().zip(m).filter(|&(_, &m)| m == 1).map(|(x, _)| f64::from(x[1])).collect();
     let mean = light.iter().sum::<f64>() / light.len().max(1) as f64;
     let errors = vec![("spurious_speed", vmax / (9.81f64 * 0.2).sqrt()), ("light_height_drift_m", (mean - 0.15).abs())];
+    (wall, halted, errors)
+}
+
+/// The heated cavity runs to this time (s); from rest its flow and Nusselt number
+/// settle within about 3 s (a sixth of the diffusion time L^2 / alpha).
+const CAVITY_T_END: f64 = 12.0;
+/// The cavity's figures are averaged over samples from this time (s) on, every
+/// [`CAVITY_SAMPLE`] s: a particle field's instantaneous heat flux fluctuates by a
+/// few per cent.
+const CAVITY_AVERAGE_FROM: f64 = 4.0;
+const CAVITY_SAMPLE: f64 = 0.25;
+
+/// The cavity's mean Nusselt number from the volume-averaged horizontal heat flux,
+/// `Nu = 1 + L <u (T - T0)> / (alpha dT)` (in steady state the flux through every
+/// vertical plane is the walls'; the conductive part averages to `alpha dT / L`),
+/// and the largest speeds on the midlines, `u` along `x = L/2` and `v` along
+/// `y = L/2`, in units of `alpha / L`: each midline is the particles within one
+/// spacing of it, averaged in bins one spacing long.
+fn cavity_figures(sim: &Simulation, spacing: f64) -> [f64; 3] {
+    let p = sim.read(&["velocity", "temperature"]);
+    let v = p.channel("velocity").and_then(|v| v.as_vectors()).expect("velocity requested");
+    let t = p.channel("temperature").and_then(|t| t.as_scalars()).expect("temperature requested");
+    let (l, dt) = (f64::from(CAVITY_L), f64::from(CAVITY_T.0 - CAVITY_T.1));
+    let (t0, alpha) = (0.5 * f64::from(CAVITY_T.0 + CAVITY_T.1), f64::from(CAVITY_NU) / 0.71);
+    let flux = v.iter().zip(t).map(|(v, &t)| f64::from(v[0]) * (f64::from(t) - t0)).sum::<f64>();
+    let nusselt = 1.0 + l * flux / (v.len().max(1) as f64 * alpha * dt);
+    let bins = (l / spacing).round() as usize;
+    let midline_max = |across: usize, along: usize, component: usize| {
+        let mut sum = vec![(0.0f64, 0u32); bins];
+        for (x, v) in p.positions.iter().zip(v) {
+            if (f64::from(x[across]) - 0.5 * l).abs() < spacing {
+                let k = ((f64::from(x[along]) / l * bins as f64) as usize).min(bins - 1);
+                sum[k] = (sum[k].0 + f64::from(v[component]), sum[k].1 + 1);
+            }
+        }
+        sum.iter().filter(|b| b.1 > 0).map(|b| (b.0 / f64::from(b.1)).abs()).fold(0.0, f64::max) * l / alpha
+    };
+    [nusselt, midline_max(0, 1, 0), midline_max(1, 0, 1)]
+}
+
+fn cavity_case(sim: &mut Simulation, spacing: f64) -> Measured {
+    let (mut sum, mut n) = ([0.0f64; 3], 0u32);
+    let (wall, halted) = run_probed(sim, CAVITY_T_END, CAVITY_SAMPLE, |s| {
+        if s.time() >= CAVITY_AVERAGE_FROM {
+            for (a, b) in sum.iter_mut().zip(cavity_figures(s, spacing)) {
+                *a += b;
+            }
+            n += 1;
+        }
+    });
+    let [nusselt, u_max, v_max] = sum.map(|s| s / f64::from(n.max(1)));
+    let errors = vec![
+        ("nusselt_error", (nusselt / 2.243 - 1.0).abs()),
+        ("u_max_error", (u_max / 16.178 - 1.0).abs()),
+        ("v_max_error", (v_max / 19.617 - 1.0).abs()),
+        ("nusselt", nusselt),
+    ];
     (wall, halted, errors)
 }
 

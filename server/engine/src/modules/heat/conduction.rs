@@ -56,25 +56,11 @@ fn pair_factor(kernel: &crate::kernel::Kernel, r: Real, eps_h2: Real) -> Real {
     r * kernel.dw_dr(r) / (r * r + eps_h2)
 }
 
-/// The factor that makes the pair sum exact for `T = x^2` on the full lattice of
-/// `spacing` at rest (`V_j = 1 / sum W`, the volume the particle mass implies):
-/// `1 / (-1/3 sum_j V_j r_j^2 F_j)`.
+/// The lattice normalisation of the pair sum ([`crate::kernel::Kernel::lattice_laplacian_scale`]
+/// of its Laplacian weight `-2 F`).
 pub fn lattice_scale(kernel: &crate::kernel::Kernel, spacing: Real) -> Real {
-    let volume = 1.0 / crate::boundary::lattice_sum(kernel, spacing, None);
     let h = 0.5 * kernel.support();
-    let reach = (kernel.support() / spacing).ceil() as i32;
-    let mut sum = 0.0f64;
-    for k in -reach..=reach {
-        for j in -reach..=reach {
-            for i in -reach..=reach {
-                let r = (Vec3::new(i as Real, j as Real, k as Real) * spacing).length();
-                if r > 0.0 && r < kernel.support() {
-                    sum += f64::from(volume * r * r * pair_factor(kernel, r, 0.01 * h * h));
-                }
-            }
-        }
-    }
-    (-3.0 / sum) as Real
+    kernel.lattice_laplacian_scale(spacing, |r| -2.0 * pair_factor(kernel, r, 0.01 * h * h))
 }
 
 fn conduction<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {

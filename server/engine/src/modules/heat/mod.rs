@@ -123,6 +123,8 @@ pub struct HeatConsts {
     pub pair_conductivity: Vec<Real>,
     /// Boussinesq reference temperature T0 (K).
     pub reference: Real,
+    /// The acceleration buoyancy acts along (m/s^2).
+    pub gravity: Vec3,
     /// Walls held at a temperature: box and temperature (K).
     pub walls: Vec<(Aabb, Real)>,
     /// Heat sources: box and power density (W/m^3).
@@ -130,7 +132,9 @@ pub struct HeatConsts {
 }
 
 impl HeatConsts {
-    fn new(heat: &spec::Heat, kernel: &Kernel, spacing: Real) -> Self {
+    fn new(scene: &Scene, kernel: &Kernel) -> Self {
+        let heat = section(scene);
+        let spacing = scene.particle_spacing;
         let conductivity: Vec<Real> = heat.fluids.iter().map(|f| f.conductivity).collect();
         let n = conductivity.len();
         let scale = conduction::lattice_scale(kernel, spacing);
@@ -147,6 +151,7 @@ impl HeatConsts {
             expansion: heat.fluids.iter().map(|f| f.expansion).collect(),
             pair_conductivity,
             reference: heat.reference_temperature,
+            gravity: heat.buoyancy_gravity.unwrap_or(scene.gravity).into(),
             walls: heat.walls.iter().map(|w| (aabb(w.min, w.max), w.temperature)).collect(),
             sources: heat.sources.iter().map(|s| (aabb(s.min, s.max), s.power)).collect(),
         }
@@ -191,6 +196,9 @@ fn validate(scene: &Scene, c: &mut Checker) {
         }
     };
     temperature(c, "heat.reference_temperature", heat.reference_temperature);
+    if let Some(g) = &heat.buoyancy_gravity {
+        c.vector("heat.buoyancy_gravity", g);
+    }
     for (i, f) in heat.fluids.iter().enumerate() {
         let p = format!("heat.fluids[{i}]");
         c.within(&format!("{p}.conductivity"), f.conductivity, 0.0, 1e6);
@@ -238,7 +246,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let t = initial_temperatures(heat, b);
     b.attr(&TEMPERATURE, Column::F32(t));
     b.zeros(&HEAT_RATE);
-    let consts = HeatConsts::new(heat, &b.kernel, scene.particle_spacing);
+    let consts = HeatConsts::new(scene, &b.kernel);
     b.pass(&conduction::CONDUCTION);
     if consts.buoyant() {
         b.pass(&passes::BUOYANCY);
@@ -252,7 +260,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 
 /// Conductivities and expansion may change; buoyancy's pass comes and goes with it.
 fn retune(scene: &Scene, model: &mut Model) {
-    let consts = HeatConsts::new(section(scene), &model.kernel, model.spacing);
+    let consts = HeatConsts::new(scene, &model.kernel);
     let names: Vec<&str> = model.plan.passes().iter().map(|p| p.name).collect();
     if consts.buoyant() != names.contains(&passes::BUOYANCY.name) {
         let mut list: Vec<_> =

@@ -42,7 +42,7 @@ pub struct Buoyancy;
 impl CpuPass for Buoyancy {
     fn run(&self, cx: &mut CpuCx<'_>) {
         let hc: &HeatConsts = cx.model.consts();
-        let (g, t0) = (cx.model.gravity, hc.reference);
+        let (g, t0) = (hc.gravity, hc.reference);
         let a_h = cx.attrs.handle::<Vec3>("a");
         let mut acc = cx.attrs.take(a_h);
         let temp = cx.attrs.get(cx.attrs.handle::<Real>("temperature"));

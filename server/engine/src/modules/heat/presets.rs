@@ -55,7 +55,15 @@ fn water(temperature: f32, expansion: f32) -> ThermalFluid {
 }
 
 fn heat(fluids: Vec<ThermalFluid>, walls: Vec<TemperatureBox>) -> Heat {
-    Heat { fluids, reference_temperature: 293.15, regions: Vec::new(), walls, sources: Vec::new(), range: [1.0, 1e4] }
+    Heat {
+        fluids,
+        reference_temperature: 293.15,
+        buoyancy_gravity: None,
+        regions: Vec::new(),
+        walls,
+        sources: Vec::new(),
+        range: [1.0, 1e4],
+    }
 }
 
 fn wall_box(min: [f32; 3], max: [f32; 3], temperature: f32) -> TemperatureBox {
@@ -138,22 +146,37 @@ pub fn two_fluids() -> Scene {
     s
 }
 
-/// The square cavity of de Vahl Davis (1983), side L = 0.05 m, a slab 4 spacings
-/// thick, periodic in z: the left wall at 298 K, the right at 288 K, top and bottom
-/// insulated; Pr = nu / alpha = 0.71, beta chosen for Ra = g beta dT L^3 / (nu alpha) = 1e4.
+/// Side (m) of the `heated_cavity`.
+pub const CAVITY_L: f32 = 0.05;
+/// Wall temperatures (K) of the `heated_cavity`: hot (left), cold (right).
+pub const CAVITY_T: (f32, f32) = (298.0, 288.0);
+/// Kinematic viscosity (m^2/s) of the `heated_cavity`'s fluid; its diffusivity is
+/// `nu / 0.71` (Pr = 0.71).
+pub const CAVITY_NU: f32 = 1e-4;
+
+/// The square cavity of de Vahl Davis (1983), side L = 0.05 m, a slab 2 cm thick
+/// (two kernel supports at the coarsest useful spacing, 5 mm), periodic in z: the
+/// left wall at 298 K, the right at 288 K, top and bottom insulated;
+/// Pr = nu / alpha = 0.71, beta chosen for Ra = g beta dT L^3 / (nu alpha) = 1e4.
+/// The cavity is closed and full, so the scene has no gravity and the buoyancy its
+/// own g (`heat.buoyancy_gravity`): the pressure is the Boussinesq reduced pressure.
+/// The speed of sound, 2 m/s, is 40 times the flow's and keeps density within
+/// about 1 % under the buoyancy's pressure differences.
 pub fn heated_cavity() -> Scene {
-    let (l, d) = (0.05, 0.002);
-    let (nu, rho, c) = (1e-4, 1000.0, 1000.0);
+    let (l, d) = (CAVITY_L, 0.0025);
+    let (nu, rho, c) = (CAVITY_NU, 1000.0, 1000.0);
     let alpha = nu / 0.71;
-    let dt = 10.0;
+    let dt = CAVITY_T.0 - CAVITY_T.1;
     let beta = 1e4 * nu * alpha / (9.81 * dt * l * l * l);
     let k = alpha * rho * c;
-    let hot = wall_box([-1.0, -1.0, -1.0], [0.0, 1.0, 1.0], 298.0);
-    let cold = wall_box([l, -1.0, -1.0], [1.0, 1.0, 1.0], 288.0);
-    let thermal = ThermalFluid { conductivity: k, heat_capacity: c, expansion: beta, temperature: 293.0 };
+    let hot = wall_box([-1.0, -1.0, -1.0], [0.0, 1.0, 1.0], CAVITY_T.0);
+    let cold = wall_box([l, -1.0, -1.0], [1.0, 1.0, 1.0], CAVITY_T.1);
+    let t0 = 0.5 * (CAVITY_T.0 + CAVITY_T.1);
+    let thermal = ThermalFluid { conductivity: k, heat_capacity: c, expansion: beta, temperature: t0 };
     let mut heat = heat(vec![thermal], vec![hot, cold]);
-    heat.reference_temperature = 293.0;
-    let depth = 4.0 * d;
+    heat.reference_temperature = t0;
+    heat.buoyancy_gravity = Some([0.0, -9.81, 0.0]);
+    let depth = 0.02;
     let mut s = scene(
         "heated_cavity",
         d,
@@ -163,7 +186,8 @@ pub fn heated_cavity() -> Scene {
     );
     s.domain = Some(BoxRegion { min: [-0.01, -0.01, 0.0], max: [l + 0.01, l + 0.01, depth] });
     s.periodic = vec![Axis::Z];
-    s.solver.speed_of_sound = Some(7.0);
+    s.gravity = [0.0; 3];
+    s.solver.speed_of_sound = Some(2.0);
     s
 }
 

@@ -15,6 +15,14 @@ pub struct Heat {
     /// feels plain gravity.
     #[serde(default = "default_reference")]
     pub reference_temperature: f32,
+    /// The acceleration buoyancy acts along (m/s^2); default: the scene's gravity.
+    /// In a closed container full of fluid, give the scene no gravity and this one
+    /// g: the pressure then carries only its departure from hydrostatic balance
+    /// (the Boussinesq reduced pressure), and the SPH error of a hydrostatic
+    /// pressure gradient, several per cent of g, no longer drowns the buoyancy
+    /// (docs/heat.md). With a free surface keep the scene's gravity.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub buoyancy_gravity: Option<[f32; 3]>,
     /// Boxes whose particles start at their own temperature instead of their
     /// fluid's; a particle in several takes the last one's.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

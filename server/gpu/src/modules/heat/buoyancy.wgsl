@@ -11,5 +11,5 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
         return;
     }
     let beta = heat.material[material_of(pos[i])].z;
-    acc[i] = vec4<f32>(acc[i].xyz - params.gravity * (beta * (temperature[i] - heat.reference)), 0.0);
+    acc[i] = vec4<f32>(acc[i].xyz - heat.gravity.xyz * (beta * (temperature[i] - heat.reference)), 0.0);
 }

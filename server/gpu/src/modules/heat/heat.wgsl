@@ -19,6 +19,8 @@ struct Heat {
     // Heat sources: box corners, the power density (W/m^3) in min.w.
     source_min: array<vec4<f32>, 8>,
     source_max: array<vec4<f32>, 8>,
+    // The acceleration buoyancy acts along (m/s^2), in xyz.
+    gravity: vec4<f32>,
 }
 
 @group(0) @binding(1) var<uniform> heat: Heat;

@@ -65,6 +65,7 @@ struct HeatParams {
     wall_max: [[f32; 4]; MAX_BOXES],
     source_min: [[f32; 4]; MAX_BOXES],
     source_max: [[f32; 4]; MAX_BOXES],
+    gravity: [f32; 4],
 }
 
 /// The uniform's bytes, when the scene has the heat module.
@@ -83,6 +84,7 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         }
     }
     (p.reference, p.eps_h2) = (c.reference, 0.01 * h * h);
+    p.gravity = c.gravity.extend(0.0).into();
     (p.n_walls, p.n_sources) = (c.walls.len() as u32, c.sources.len() as u32);
     for (k, (b, t)) in c.walls.iter().enumerate() {
         p.wall_min[k] = [b.min.x, b.min.y, b.min.z, *t];
