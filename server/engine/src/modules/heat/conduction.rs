@@ -46,7 +46,9 @@ pub struct Conduction;
 
 impl CpuPass for Conduction {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        crate::with_separation!(&cx.model.periodic, |s| conduction(cx, s))
+        crate::with_separation!(&cx.model.periodic, |s| {
+            if cx.attrs.has("material") { conduction::<true, _>(cx, s) } else { conduction::<false, _>(cx, s) }
+        })
     }
 }
 
@@ -63,7 +65,9 @@ pub fn lattice_scale(kernel: &crate::kernel::Kernel, spacing: Real) -> Real {
     kernel.lattice_laplacian_scale(spacing, |r| -2.0 * pair_factor(kernel, r, 0.01 * h * h))
 }
 
-fn conduction<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+/// The loop, specialised on whether the scene has several materials (one material
+/// reads no index) and whether it is periodic.
+fn conduction<const MULTI: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let model = cx.model;
     let k = &model.kernel;
     let hc: &HeatConsts = model.consts();
@@ -81,8 +85,8 @@ fn conduction<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
         attrs.get(attrs.handle::<Real>("rho")),
         attrs.get(attrs.handle::<Real>("temperature")),
     );
-    let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
-    let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
+    let mat: &[u32] = if MULTI { attrs.get(attrs.handle::<u32>("material")) } else { &[] };
+    let material = |i: usize| if MULTI { mat[i] as usize } else { 0 };
     rate.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (out, nb))| {
         for (n, out) in out.iter_mut().enumerate() {
             let i = c * CHUNK + n;
