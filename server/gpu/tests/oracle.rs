@@ -120,7 +120,8 @@ const VARIANTS: &[&[&str]] = &[
     // A rippled slope with friction across the tank under the column.
     &["particle_spacing=0.05", TERRAIN],
     // With heat: a hot corner of the column, a source, a floor held at 400 K and
-    // buoyancy; and with a second, denser fluid of other thermal properties.
+    // buoyancy; and with a second, denser fluid of other thermal properties and
+    // buoyancy along its own g.
     &["particle_spacing=0.05", "modules=[\"fluid\",\"heat\"]", HEAT],
     &[
         "particle_spacing=0.05",
@@ -129,6 +130,7 @@ const VARIANTS: &[&[&str]] = &[
         TWO_FLUIDS,
         "heat.fluids=[{\"conductivity\":50,\"heat_capacity\":1000,\"expansion\":0.01,\"temperature\":300},\
           {\"conductivity\":5,\"heat_capacity\":500,\"expansion\":0.002,\"temperature\":280}]",
+        "heat.buoyancy_gravity=[1,-5,0.5]",
     ],
     // With snow: each viscosity law, alone (the explicit force) and as two fluids of
     // different laws (the implicit solve, the default).
