@@ -31,6 +31,21 @@ fn a_resting_column_keeps_its_rest_density() {
     assert!(density.mean_iterations >= 2.0 && density.last_residual <= 1e-3, "{density:?}");
 }
 
+/// The pressure channel of a scene of two fluids (the materials' column comes with
+/// the channel's inputs there): `rho^2 (kappa + kappa_v)`, finite and never negative.
+#[test]
+fn two_fluids_report_their_pressure() {
+    let mut sim = dfsph("layers", &["particle_spacing=0.0125"]);
+    for _ in 0..5 {
+        sim.step().unwrap();
+    }
+    let p = sim.read(&["pressure", "material"]);
+    let pressure = p.channel("pressure").and_then(|c| c.as_scalars()).unwrap();
+    assert_eq!(pressure.len(), sim.particle_count());
+    assert!(pressure.iter().all(|v| v.is_finite() && *v >= 0.0));
+    assert!(pressure.iter().any(|&v| v > 0.0), "the layers weigh on each other");
+}
+
 #[test]
 fn the_dam_break_front_follows_koshizuka_and_oka_and_steps_report_iterations() {
     let (a, d) = (DAM_BREAK_A as f64, DAM_BREAK_A as f64 / 12.0);

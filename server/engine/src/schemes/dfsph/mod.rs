@@ -162,9 +162,11 @@ pub const PRESSURE: ChannelSpec = ChannelSpec {
     source: Source::Derived { from: &["rho", "kappa", "kappa_v"], values: pressures },
 };
 
+/// The pressure needs no material: the materials' column, which follows the three
+/// inputs in scenes of several fluids, is ignored.
 fn pressures(_: &Model, columns: &[Column]) -> Vec<f32> {
     match columns {
-        [Column::F32(rho), Column::F32(k), Column::F32(kv)] => {
+        [Column::F32(rho), Column::F32(k), Column::F32(kv), ..] => {
             rho.iter().zip(k).zip(kv).map(|((&r, &k), &kv)| r * r * (k + kv)).collect()
         }
         _ => panic!("pressures: densities and stiffnesses expected"),
