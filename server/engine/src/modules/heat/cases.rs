@@ -1,6 +1,6 @@
-//! The heat module's validation cases (VALIDATION.md §5 and the two-layer rest
-//! state) and its stability battery (temperature jumps, a very conductive fluid,
-//! a large density ratio).
+//! The heat module's validation cases (conduction against VALIDATION.md §5, the
+//! two-layer rest state, de Vahl Davis' heated cavity) and its stability battery
+//! (temperature jumps, a very conductive fluid, a large density ratio).
 
 use super::presets::{CAVITY_L, CAVITY_NU, CAVITY_T, CONDUCTION_ALPHA, CONDUCTION_L, CONDUCTION_T};
 use crate::Simulation;
