@@ -61,6 +61,37 @@ test('the viewer: views, plots, record and replay, help, errors, phone width', {
       assert.ok(b > r + 40 && g > r, `the water is not blue: mean colour ${s.colour.map(Math.round)}`);
     });
 
+    await t.test('while the picture moves slower than asked it is drawn at a lower resolution, sharp once still', async () => {
+      // Asking for more frames a second than software GL draws makes the view lower its
+      // resolution while the scene plays (web/js/resolution.js); paused, it is drawn sharp.
+      await page.goto(`${url}?fps=500`);
+      await statAtLeast(page, 'frames', 1);
+      await page.selectOption('#view-mode', 'surface');
+      const canvasSize = () => page.evaluate(() => {
+        const c = document.querySelector('#view');
+        return { drawn: [c.width, c.height], full: [Math.round(c.clientWidth * devicePixelRatio), Math.round(c.clientHeight * devicePixelRatio)] };
+      });
+      await page.click('#play');
+      let smallest = Infinity;
+      for (let i = 0; i < 40 && smallest > 0.7; i++) {
+        await page.waitForTimeout(200);
+        const { drawn, full } = await canvasSize();
+        smallest = Math.min(smallest, drawn[0] / full[0]);
+      }
+      assert.ok(smallest <= 0.7, `the canvas stayed at ${smallest} of its resolution while the scene played`);
+      assert.match(await text(page, '#stats'), /render .*\(surface\) at \d+ % resolution while moving/);
+      await page.click('#pause');
+      await settle(page);
+      await settle(page);
+      const { drawn, full } = await canvasSize();
+      assert.deepEqual(drawn, full, 'the still picture is drawn at full resolution');
+      await shot(page, 'surface-after-moving');
+      assert.ok((await canvasSummary(page)).fluid > 0.5 * spheres.fluid, 'the water is drawn');
+      await Promise.all([page.waitForResponse((r) => r.url().endsWith('/reset')), page.click('#reset')]);
+      await page.goto(url);
+      await statAtLeast(page, 'frames', 1);
+    });
+
     await t.test('plots: a live series per statistic with its unit, and the CSV of them', async () => {
       await page.click('#plots-open');
       await page.click('#play');

@@ -123,7 +123,7 @@ export async function canvasPixels(page) {
 }
 
 /**
- * What the canvas shows, measured in the page (CSS pixels, y down): `fluid` pixels (blue or
+ * What the canvas shows, measured in the page (in CSS pixels, y down): `fluid` pixels (blue or
  * teal: blue over red by 20 or more, as water and particles are drawn; background, floor and
  * walls are grey), their bounding `box`, `gaps` (grey pixels between the first and last fluid
  * pixel of a row, where something behind shows through the fluid), `scene`: the bounding box
@@ -158,10 +158,11 @@ export function canvasSummary(page) {
       grow(fluidBox, first, y);
       grow(fluidBox, last, y);
     }
-    // Rows read bottom first: flip y, and scale to CSS pixels.
-    const css = (b) => (b.x1 < 0 ? null : { x0: b.x0 / devicePixelRatio, x1: b.x1 / devicePixelRatio,
-      y0: (h - 1 - b.y1) / devicePixelRatio, y1: (h - 1 - b.y0) / devicePixelRatio });
-    return { width: w / devicePixelRatio, height: h / devicePixelRatio, fluid, gaps, box: css(fluidBox), scene: css(sceneBox),
+    // Rows read bottom first: flip y, and scale to CSS pixels (the canvas may be drawn at a lower
+    // resolution while the picture moves, web/js/resolution.js).
+    const k = c.clientWidth / w;
+    const css = (b) => (b.x1 < 0 ? null : { x0: b.x0 * k, x1: b.x1 * k, y0: (h - 1 - b.y1) * k, y1: (h - 1 - b.y0) * k });
+    return { width: w * k, height: h * k, fluid: fluid * k * k, gaps: gaps * k * k, box: css(fluidBox), scene: css(sceneBox),
       colour: mean.map((m) => m / Math.max(fluid, 1)) };
   });
 }

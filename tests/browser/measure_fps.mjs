@@ -12,7 +12,8 @@
 //
 // Render: the dam break runs while the camera orbits (a drag across the view), so every frame
 // is drawn anew (the viewer otherwise draws only when something changed); "render fps" is frames
-// drawn per second as the overlay counts them. Scrub: the timeline is set to 40 frames spread
+// drawn per second as the overlay counts them, at the resolution the viewer keeps while the
+// picture moves (printed beside it, web/js/resolution.js), with the points it drew. Scrub: the timeline is set to 40 frames spread
 // over the recording, one at a time; "seek" is the worker's time to decode the frame (and the
 // frames before it back to a kept state), "shown" the time from the slider's input event until
 // the frame's label changes (the frame reached the page, which may have been busy drawing),
@@ -51,8 +52,8 @@ async function measureRender(page, scene) {
   if (!paused) await page.click('#play');
   const read = () => page.textContent('#stats');
   const num = (text, label) => Number(new RegExp(`${label}\\s+([\\d.]+)`).exec(text)?.[1]);
-  console.log(`| particles | view | render fps (orbiting; median of 5, range) | frames received/s | bytes/frame | decode ms |   scene ${paused ? 'paused' : 'running'}`);
-  console.log('|---:|---|---:|---:|---:|---:|');
+  console.log(`| particles | view | render fps (orbiting; median of 5, range) | resolution while moving | drawn | frames received/s | bytes/frame | decode ms |   scene ${paused ? 'paused' : 'running'}`);
+  console.log('|---:|---|---:|---:|---:|---:|---:|---:|');
   const views = (await page.$('#view-mode')) ? ['spheres', 'surface'] : ['spheres (the only view)'];
   for (const view of views) {
     if (views.length > 1) await page.selectOption('#view-mode', view);
@@ -78,7 +79,11 @@ async function measureRender(page, scene) {
     await page.mouse.up();
     fps.sort((a, b) => a - b);
     const received = (num(t1, 'frames') - num(t0, 'frames')) / 10;
-    console.log(`| ${scene.particles} | ${view} | ${fps[2]} (${fps[0]}-${fps[4]}) | ${received.toFixed(1)} | ${num(t1, 'bytes/frm')} | ${num(t1, 'decode')} |`);
+    // Where the viewer lowers the resolution while the picture moves (web/js/resolution.js), and
+    // how many points it draws (cull.js), as the overlay says at the end.
+    const resolution = /at (\d+) % resolution/.exec(t1)?.[1] ?? '100';
+    const drawn = /\((\d+) drawn\)/.exec(t1)?.[1] ?? scene.particles;
+    console.log(`| ${scene.particles} | ${view} | ${fps[2]} (${fps[0]}-${fps[4]}) | ${resolution} % | ${drawn} | ${received.toFixed(1)} | ${num(t1, 'bytes/frm')} | ${num(t1, 'decode')} |`);
   }
 }
 

@@ -29,6 +29,10 @@ const post = (path, body) => api(path, { method: 'POST', body: JSON.stringify(bo
 
 const canvas = $('view');
 const renderer = new Renderer(canvas);
+// `?fps=N`: the frames per second the view keeps while it moves, lowering its resolution to do
+// so (0: never lower it); js/resolution.js.
+const motionFps = Number(new URLSearchParams(location.search).get('fps') ?? NaN);
+if (motionFps >= 0) renderer.resolution.target = motionFps;
 const camera = new OrbitCamera(canvas);
 const worker = new Worker(new URL('./codec/worker.js', import.meta.url), { type: 'module' });
 const plots = new PlotPanel($('plots'));
@@ -441,6 +445,12 @@ bindKeys({
   g.fillRect(0, 0, 200, 10);
 }
 
+/** The resolution of the frames drawn, where it is lowered while the picture moves (resolution.js). */
+function resolutionNote() {
+  const moving = renderer.resolution.moving;
+  return moving < 1 ? ` at ${Math.round(100 * moving)} % resolution while moving` : '';
+}
+
 /** The real-time factor: achieved (over the last 3 s) against asked, for the overlay. */
 function realTime(s) {
   if (s?.state !== 'running') return { text: '', slow: false };
@@ -465,7 +475,7 @@ function frame(now) {
   // Panels opened or closed, or the window resized: frame again unless the user moved the camera.
   if (!camera.moved && state.framedFor !== [left, right, h].join()) frameCamera();
   const shift = (left + right) / w - 1;
-  if (renderer.draw(camera.projection(w / h, shift), camera.view(), camera.distance)) fpsFrames += 1;
+  if (renderer.draw(camera.projection(w / h, shift), camera.view(), camera.distance, now)) fpsFrames += 1;
   // The scene's status twice a second, for the plots and the overlay.
   if (now - lastPoll > 500) {
     lastPoll = now;
@@ -480,7 +490,7 @@ function frame(now) {
     $('rtf-achieved').textContent = rt.text ? `achieved ${rt.text}` : '';
     $('rtf-achieved').classList.toggle('slow', rt.slow);
     $('stats').textContent = [
-      state.renderFps > 0 ? `render     ${state.renderFps.toFixed(0)} fps (${renderer.view})` : `render     idle (${renderer.view})`,
+      state.renderFps > 0 ? `render     ${state.renderFps.toFixed(0)} fps (${renderer.view})${resolutionNote()}` : `render     idle (${renderer.view})`,
       `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}${renderer.drawnCount < renderer.count ? ` (${renderer.drawnCount} drawn)` : ''}`,
       ...(replay.active ? replay.describe() : []),
       s ? `sim time   ${s.sim_time.toFixed(3)} s (${s.state})` : '',

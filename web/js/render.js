@@ -5,13 +5,14 @@
 // are lines (outline.js), its floor a checkerboard (floor.js) and its terrains lit meshes
 // (terrain.js).
 
-import { innerCubes, lumpedParticles, outerParticles } from './cull.js';
+import { CELL, cubeLumps, cubesOf, innerCubes, lumpedParticles, outerParticles } from './cull.js';
 import { ATTRIBUTES, programWith } from './gl.js';
 import { Floor } from './floor.js';
 import { Outline } from './outline.js';
+import { Resolution } from './resolution.js';
 import { physicalRadius } from './spacing.js';
 import { SPHERE_POINT, SPRITE_VERT } from './sprite.js';
-import { Surface } from './surface.js';
+import { Surface, pixelsAcross } from './surface.js';
 import { TerrainMeshes } from './terrain.js';
 
 /** Plain particle colours (RGB, 0 to 1). */
@@ -45,6 +46,13 @@ void main() {
 
 /** The background colour (the page's), linear 0-1 RGB. */
 export const BACKGROUND = [0.063, 0.078, 0.094];
+
+/**
+ * Below this many pixels per particle spacing (in the surface passes' resolution) the surface
+ * view draws cubes of particles: on software GL, passing over 200k points costs half a frame,
+ * and a lump of two spacings then spans at most four pixels, which the smoothing irons out.
+ */
+const FAR_PIXELS = 2;
 
 /** The views a renderer can draw. */
 export const VIEWS = Object.freeze(['surface', 'spheres']);
@@ -82,7 +90,7 @@ export class Renderer {
     /** The frame's particles, and what each view draws of them (made when needed, cull.js). */
     this.frame = null;
     this.drawable = null;
-    /** Which the buffers hold: `'spheres'` or `'surface'`. */
+    /** Which the buffers hold: `'spheres'`, `'surface'` or `'surface-far'` (see #buffer). */
     this.buffered = null;
     /** Particle spacing (m) and drawing radius of a particle (m). */
     this.spacing = 0.01;
@@ -98,6 +106,9 @@ export class Renderer {
     /** Counts changes of particles and scene, so a frame is drawn only when something changed. */
     this.version = 0;
     this.drawn = null;
+    /** The resolution of each frame, and that of the last one drawn (a fraction of the canvas's, per axis). */
+    this.resolution = new Resolution();
+    this.scale = 1;
   }
 
   /** A new scene: its walls and floor (see outline.js, floor.js) and the particle spacing (m). */
@@ -143,19 +154,20 @@ export class Renderer {
   }
 
   /**
-   * Fills the buffers with what the view draws: the sphere view the particles outside inner
-   * cubes and their values, the surface view those and one sphere per inner cube, with radius
-   * scales in place of values.
+   * Fills the buffers with what is drawn (`kind`): for `'spheres'` the particles outside inner
+   * cubes and their values; for `'surface'` those and one sphere per inner cube, for
+   * `'surface-far'` one sphere per cube, with radius scales in place of values (cull.js).
    */
-  #buffer() {
-    if (this.buffered === this.view || !this.frame) return;
+  #buffer(kind) {
+    if (this.buffered === kind || !this.frame) return;
     const { positions, values } = this.frame;
-    const d = (this.drawable ??= { cubes: innerCubes(positions, this.spacing, this.box) });
+    const d = (this.drawable ??= { grid: cubesOf(positions, this.spacing, this.box) });
+    const cubes = () => (d.cubes ??= innerCubes(positions, this.spacing, this.box, d.grid));
     let data;
-    if (this.view === 'spheres') data = (d.spheres ??= outerParticles(positions, values, d.cubes));
+    if (kind === 'spheres') data = (d.spheres ??= outerParticles(positions, values, cubes()));
     else {
-      d.surface ??= lumpedParticles(positions, d.cubes);
-      data = { positions: d.surface.positions, values: d.surface.scales };
+      const lumps = kind === 'surface-far' ? (d.far ??= cubeLumps(positions, d.grid)) : (d.surface ??= lumpedParticles(positions, cubes()));
+      data = { positions: lumps.positions, values: lumps.scales };
     }
     const gl = this.gl;
     this.drawnCount = data.positions.length / 3;
@@ -163,31 +175,41 @@ export class Renderer {
     gl.bufferData(gl.ARRAY_BUFFER, data.positions, gl.DYNAMIC_DRAW);
     gl.bindBuffer(gl.ARRAY_BUFFER, this.valBuf);
     gl.bufferData(gl.ARRAY_BUFFER, data.values ?? new Float32Array(this.drawnCount), gl.DYNAMIC_DRAW);
-    this.buffered = this.view;
+    this.buffered = kind;
   }
 
   /**
    * Draws with the camera's matrices, unless nothing has changed since the last frame drawn (the
    * canvas keeps it: with hundreds of thousands of particles on software GL a frame costs a
-   * good part of a second of CPU, which the solver may share). `distance` (m), the camera's to
-   * what it looks at, sets how much the surface view smooths.
+   * good part of a second of CPU, which the solver may share), at the resolution
+   * {@link Resolution} picks (lower while the picture moves on a slow machine, full once it
+   * stands still). `distance` (m), the camera's to what it looks at, sets how much the surface
+   * view smooths; `now` (ms) is the animation frame's time.
    * @returns {boolean} whether it drew
    */
-  draw(proj, view, distance) {
+  draw(proj, view, distance, now = performance.now()) {
     const gl = this.gl, c = this.canvas;
-    const w = Math.round(c.clientWidth * devicePixelRatio), h = Math.round(c.clientHeight * devicePixelRatio);
-    const key = [...proj, ...view, w, h, this.view, this.version, ...this.range].join();
-    if (key === this.drawn) return false;
+    const key = [...proj, ...view, c.clientWidth, c.clientHeight, devicePixelRatio, this.view, this.version, ...this.range].join();
+    const scale = this.resolution.next(now, key !== this.drawn);
     this.drawn = key;
+    if (scale === null) return false;
+    this.scale = scale;
+    const w = Math.max(1, Math.round(c.clientWidth * devicePixelRatio * scale));
+    const h = Math.max(1, Math.round(c.clientHeight * devicePixelRatio * scale));
     if (c.width !== w || c.height !== h) { c.width = w; c.height = h; }
-    this.#buffer();
+    const surface = this.view === 'surface' && this.surfaceUnsupported() === null;
+    // Seen from afar the surface view draws cubes of particles (cull.js): a spacing spans fewer
+    // than FAR_PIXELS pixels of its passes where the particles come nearest the camera.
+    const far = surface && pixelsAcross(this.spacing, this.box, proj, view, h * Surface.SCALE) < FAR_PIXELS;
+    this.#buffer(surface ? (far ? 'surface-far' : 'surface') : 'spheres');
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     gl.viewport(0, 0, w, h);
     this.#background(proj, view);
-    if (this.view === 'surface' && this.surfaceUnsupported() === null) {
+    if (surface) {
       this.surface ??= new Surface(gl);
-      this.surface.draw({ proj, view, vao: this.vao, count: this.drawnCount, radius: this.radius, box: this.box,
-        width: w, height: h, distance, background: (p, v) => this.#background(p, v), opaque: this.plain === SNOW ? SNOW : null });
+      this.surface.draw({ proj, view, vao: this.vao, count: this.drawnCount, radius: this.radius,
+        grain: far ? CELL * this.radius : this.radius, box: this.box, width: w, height: h, distance,
+        background: (p, v) => this.#background(p, v), opaque: this.plain === SNOW ? SNOW : null });
       // Walls in front of the water.
       this.outline.draw(proj, view);
       return true;

@@ -21,8 +21,10 @@
 //    and a specular highlight; snow is opaque and matte instead: its white, lit by the normal.
 //    The surface's depth goes to the depth buffer, so walls drawn after it hide behind it.
 //
-// Passes 1 to 4 run at `scale` times the canvas's resolution, and passes 3 to 5 only over the
-// particles' bounding box on screen: on software GL (no GPU) their cost decides the frame rate.
+// Passes 1 to 4 run at `Surface.SCALE` times the canvas's resolution, and passes 3 to 5 only over
+// the particles' bounding box on screen. On software GL (no GPU) the particle pass costs most
+// (half of a frame at 200k particles, measured): seen from afar the renderer hands it one lump per
+// cube of particles instead (cull.js), and `grain`, the bumps' radius, is then a lump's.
 // The scene behind the water is drawn into the canvas by the caller first, and again at the
 // passes' resolution for refraction.
 
@@ -190,8 +192,26 @@ export function screenRect(min, max, pad, proj, view, w, h) {
   return right > left && top > bottom ? [left, bottom, right - left, top - bottom] : null;
 }
 
+/**
+ * Pixels that a length `l` (m) spans, in a viewport `h` pixels high through `proj * view`
+ * (column-major), at the depth where the box [min, max] comes nearest the eye; Infinity when
+ * part of the box is at or behind the eye.
+ */
+export function pixelsAcross(l, box, proj, view, h) {
+  let nearest = Infinity;
+  for (let i = 0; i < 8; i++) {
+    const p = [0, 1, 2].map((k) => ((i >> k) & 1 ? box.max[k] : box.min[k]));
+    const z = view[2] * p[0] + view[6] * p[1] + view[10] * p[2] + view[14];
+    nearest = Math.min(nearest, -z);
+  }
+  return nearest > 0 ? (l * proj[5] * h) / (2 * nearest) : Infinity;
+}
+
 /** Screen-space fluid surface passes in a WebGL2 context. */
 export class Surface {
+  /** Resolution of the depth, thickness and smoothing passes, as a fraction of the canvas's. */
+  static SCALE = 0.5;
+
   /** Why this context cannot draw the surface (it renders to float textures), or null. */
   static unsupported(gl) {
     return gl.getExtension('EXT_color_buffer_float') ? null : 'this browser cannot render to float textures (EXT_color_buffer_float)';
@@ -199,8 +219,6 @@ export class Surface {
 
   constructor(gl) {
     this.gl = gl;
-    /** Resolution of the depth, thickness and smoothing passes, as a fraction of the canvas's. */
-    this.scale = 0.5;
     /** Per-buffer blending, when depth and thickness take one pass over the particles. */
     this.indexed = gl.getExtension('EXT_float_blend') ? gl.getExtension('OES_draw_buffers_indexed') : null;
     const particle = ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_scaled'];
@@ -216,7 +234,7 @@ export class Surface {
 
   /** (Re)makes the render targets for a canvas of `w` x `h`. */
   #resize(w, h) {
-    const lw = Math.max(1, Math.round(w * this.scale)), lh = Math.max(1, Math.round(h * this.scale));
+    const lw = Math.max(1, Math.round(w * Surface.SCALE)), lh = Math.max(1, Math.round(h * Surface.SCALE));
     const t = this.targets;
     if (t && t.w === w && t.h === h && t.lw === lw && t.lh === lh) return t;
     const gl = this.gl;
@@ -250,7 +268,7 @@ export class Surface {
    * Draws the surface into the canvas (the default framebuffer, the scene behind it drawn
    * already), depth included.
    * @param {{proj: Float32Array, view: Float32Array, vao: WebGLVertexArrayObject, count: number,
-   *   radius: number, box: {min: number[], max: number[]}, width: number, height: number,
+   *   radius: number, grain: number, box: {min: number[], max: number[]}, width: number, height: number,
    *   distance: number, background: (proj: Float32Array, view: Float32Array) => void,
    *   opaque: number[] | null}} o the particles (`vao` with positions and radius scales, `count`, a
    *   particle's drawing `radius` in m, bounding `box`), the canvas's size in pixels, the
@@ -279,7 +297,7 @@ export class Surface {
     gl.useProgram(s.program);
     gl.uniform1i(s.u.u_depth, 0);
     gl.uniform2f(s.u.u_c, -2 / (t.lw * o.proj[0]), -2 / (t.lh * o.proj[5]));
-    gl.uniform1f(s.u.u_jump, JUMP * o.radius);
+    gl.uniform1f(s.u.u_jump, JUMP * o.grain);
     gl.uniform1f(s.u.u_rate, 0.9);
     gl.activeTexture(gl.TEXTURE0);
     // The other texture holds an older frame's distances: clear it, so none is read as fluid.
@@ -304,7 +322,7 @@ export class Surface {
     gl.uniform1i(nrm.u.u_depth, 0);
     gl.uniformMatrix4fv(nrm.u.u_proj, false, o.proj);
     gl.uniform2f(nrm.u.u_low, t.lw, t.lh);
-    gl.uniform1f(nrm.u.u_jump, JUMP * o.radius);
+    gl.uniform1f(nrm.u.u_jump, JUMP * o.grain);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     // 5. Shading into the canvas, over the particles' box in canvas pixels.
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
@@ -337,12 +355,12 @@ export class Surface {
   }
 
   /**
-   * Smoothing steps: enough for the flow to spread over one and a half particle radii in pixels
+   * Smoothing steps: enough for the flow to spread over one and a half grain radii in pixels
    * at the camera's distance (diffusion spreads sqrt(2 k n) pixels in n steps of coefficient k),
    * which irons out the layers of particles, within 4 to 40.
    */
   iterations(o, lowHeight) {
-    const spread = (1.5 * o.radius * o.proj[5] * lowHeight) / (2 * Math.max(o.distance, 1e-6));
+    const spread = (1.5 * o.grain * o.proj[5] * lowHeight) / (2 * Math.max(o.distance, 1e-6));
     return Math.max(4, Math.min(40, Math.round((spread * spread) / (2 * 0.9 * 0.25))));
   }
 

@@ -1,7 +1,7 @@
 // Fewer particles where the fluid hides them (web/js/cull.js). Run: node --test web/test/
 import assert from 'node:assert/strict';
 import test from 'node:test';
-import { innerCubes, lumpedParticles, outerParticles } from '../js/cull.js';
+import { CELL, cubeLumps, cubesOf, innerCubes, lumpedParticles, outerParticles } from '../js/cull.js';
 
 /** A lattice block of side^3 particles `h` apart from `origin`, with a value per particle. */
 function block(side, h, origin = [0, 0, 0]) {
@@ -78,4 +78,24 @@ test('the surface view gets one sphere per inner cube, of its particles\' volume
   // A lump sits at its cube's centre, between lattice points.
   const [x, y, z] = lumped.positions.subarray(3 * outer, 3 * outer + 3);
   for (const v of [x, y, z]) assert.ok(Math.abs(v / h - Math.round(v / h)) < 1e-4, `${v / h} is not on a lattice corner`);
+});
+
+test('seen from afar, every cube is one sphere of its particles\' volume at their centre', () => {
+  const h = 0.01, side = 9, { positions } = block(side, h);
+  const grid = cubesOf(positions, h, boxOf(positions));
+  const far = cubeLumps(positions, grid);
+  // 9 particles a side: four full cubes of 2 and a last layer of 1 along each axis.
+  assert.equal(far.scales.length, 5 ** 3);
+  const volume = far.scales.reduce((a, s) => a + s ** 3, 0);
+  assert.ok(Math.abs(volume - side ** 3) < 1e-3 * side ** 3, `${volume} for ${side ** 3} particles`);
+  assert.equal(Math.max(...far.scales).toFixed(4), CELL.toFixed(4));
+  assert.equal(Math.min(...far.scales), 1);
+  // The first lump holds the first 2 x 2 x 2 particles: its centre is their mean.
+  assert.deepEqual(Array.from(far.positions.subarray(0, 3), (v) => Number((v / h).toFixed(4))), [1, 1, 1]);
+  // Without a spacing there is no grid: the particles themselves.
+  const none = cubeLumps(positions, cubesOf(positions, 0, boxOf(positions)));
+  assert.equal(none.positions, positions);
+  assert.ok(none.scales.every((s) => s === 1));
+  // The grid the inner cubes are found on is the same one.
+  assert.deepEqual(innerCubes(positions, h, boxOf(positions), grid), innerCubes(positions, h, boxOf(positions)));
 });
