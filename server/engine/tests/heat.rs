@@ -1,6 +1,6 @@
 //! The heat module on the CPU: conduction against the erf solution (VALIDATION.md
-//! §5), heat conserved in an insulated box, walls held at a temperature (on their
-//! surface), the
+//! §5), heat conserved in an insulated box, a wall's heat flux, walls held at a
+//! temperature (on their surface), the
 //! temperature guard, and the section's validation.
 
 use floe_engine::Simulation;
@@ -64,6 +64,37 @@ fn an_insulated_box_conserves_heat_over_1000_steps() {
     eprintln!("total heat {q0:.9e} -> {q1:.9e} J (relative {:.2e}); hottest {hot0} -> {hot1} K", (q1 - q0) / q0);
     assert!(hot1 < hot0 - 1.0, "heat did not spread: hottest {hot0} -> {hot1} K");
     assert!(((q1 - q0) / q0).abs() <= 1e-6, "total heat {q0} -> {q1} J");
+}
+
+/// A heat flux through the floor of an insulated tank adds flux x floor area of heat
+/// per second (the layer of fluid it enters through is the first, one spacing thick);
+/// a negative one takes as much away.
+#[test]
+fn a_wall_flux_adds_flux_times_area() {
+    // A small heat capacity, so each step's increment is many rounding units of a
+    // temperature near 310 K in f32.
+    for flux in [1e5, -1e5] {
+        let mut s = sim(
+            "convection",
+            &[
+                "particle_spacing=0.01",
+                "gravity=[0,0,0]",
+                "solver.speed_of_sound=20",
+                "heat.walls=[]",
+                "heat.fluids[0].heat_capacity=100",
+                &format!("heat.fluxes=[{{\"min\":[-1,-1,-1],\"max\":[1,0,1],\"flux\":{flux}}}]"),
+            ],
+        );
+        let q0 = measure(&s, "heat.total_heat");
+        for _ in 0..200 {
+            s.step().unwrap();
+        }
+        // The floor under the fluid: 0.4 m x 0.04 m.
+        let want = flux * 0.4 * 0.04;
+        let rate = (measure(&s, "heat.total_heat") - q0) / s.time();
+        eprintln!("flux {flux} W/m^2: {rate:.3} W against {want} W over {} s", s.time());
+        assert!((rate / want - 1.0).abs() < 1e-3, "{rate} W for {want} W");
+    }
 }
 
 /// A floor held at 330 K warms water at 310 K, never beyond the floor's temperature.
@@ -131,6 +162,16 @@ fn a_heat_section_must_match_the_fluids() {
     let err = from_preset("conduction", &overrides).unwrap_err().to_string();
     assert!(err.contains("heat.fluids: must hold one entry per fluid (1), got 0"), "{err}");
     assert!(err.contains("heat.range[1]: must exceed range[0]"), "{err}");
+    let flux = r#"{"min":[0,0,0],"max":[1,1,1],"flux":10}"#;
+    let overrides = vec![
+        r#"heat.fluxes=[{"min":[1,0,0],"max":[0,1,1],"flux":10}]"#.to_string(),
+        format!("heat.sources=[{}]", [r#"{"min":[0,0,0],"max":[1,1,1],"power":1}"#; 8].join(",")),
+    ];
+    let err = from_preset("conduction", &overrides).unwrap_err().to_string();
+    assert!(err.contains("heat.fluxes[0]"), "{err}");
+    assert!(err.contains("heat.sources: at most 8 sources and fluxes together, got 9"), "{err}");
+    let fine = vec![format!("heat.fluxes=[{flux}]")];
+    assert!(from_preset("conduction", &fine).is_ok());
 }
 
 /// Conductivity and expansion are live settings; switching expansion off removes

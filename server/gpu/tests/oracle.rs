@@ -119,8 +119,8 @@ const VARIANTS: &[&[&str]] = &[
     &["particle_spacing=0.05", "solver.method=\"dfsph\""],
     // A rippled slope with friction across the tank under the column.
     &["particle_spacing=0.05", TERRAIN],
-    // With heat: a hot corner of the column, a source, a floor held at 400 K and
-    // buoyancy; and with a second, denser fluid of other thermal properties and
+    // With heat: a hot corner of the column, a source, a flux through the left
+    // wall, a floor held at 400 K and buoyancy; and with a second, denser fluid of other thermal properties and
     // buoyancy along its own g.
     &["particle_spacing=0.05", "modules=[\"fluid\",\"heat\"]", HEAT],
     &[
@@ -177,7 +177,8 @@ const TERRAIN: &str = "boundaries=[{\"kind\":\"box\",\"min\":[0,0,0],\"max\":[2,
 const HEAT: &str = "heat={\"fluids\":[{\"conductivity\":50,\"heat_capacity\":1000,\"expansion\":0.01,\"temperature\":300}],\
     \"regions\":[{\"min\":[0,0,0],\"max\":[0.3,0.3,0.25],\"temperature\":350}],\
     \"walls\":[{\"min\":[-1,-1,-1],\"max\":[3,0,1],\"temperature\":400}],\
-    \"sources\":[{\"min\":[0,0.5,0],\"max\":[0.5,1,0.25],\"power\":1e7}]}";
+    \"sources\":[{\"min\":[0,0.5,0],\"max\":[0.5,1,0.25],\"power\":1e7}],\
+    \"fluxes\":[{\"min\":[-1,-1,-1],\"max\":[0,2,1],\"flux\":5e5}]}";
 
 #[test]
 fn every_pass_of_the_plan_matches_the_cpu() {

@@ -1,8 +1,9 @@
 //! The heat module's validation cases (conduction against VALIDATION.md §5, the
-//! two-layer rest state, de Vahl Davis' heated cavity) and its stability battery
-//! (temperature jumps, a very conductive fluid, a large density ratio).
+//! two-layer rest state, de Vahl Davis' heated cavity at Ra = 1e4 and, in `--full`,
+//! 1e5) and its stability battery (temperature jumps, a very conductive fluid, a
+//! large density ratio).
 
-use super::presets::{CAVITY_L, CAVITY_NU, CAVITY_T, CONDUCTION_ALPHA, CONDUCTION_L, CONDUCTION_T};
+use super::presets::{CAVITY_L, CAVITY_T, CONDUCTION_ALPHA, CONDUCTION_L, CONDUCTION_T};
 use crate::Simulation;
 use crate::validation::cases::{Case, Measured, Variant};
 use crate::validation::run_probed;
@@ -47,9 +48,27 @@ pub const CASES: &[Case] = &[
         spacings: (&[0.005, 0.0033333], &[0.005, 0.0033333, 0.0025, 0.002]),
         bounds: &[("nusselt_error", 0.05)],
         variants: &[Variant { name: "default", overrides: &[] }],
-        measure: cavity_case,
+        measure: |sim, spacing| cavity_case(sim, spacing, &RA_1E4),
+    },
+    Case {
+        name: "heated_cavity_ra1e5",
+        module: "heat",
+        reference: "de Vahl Davis (1983), Ra = 1e5, Pr = 0.71: mean Nusselt number 4.519, u_max = 34.73 alpha/L on the vertical midline, v_max = 68.59 alpha/L on the horizontal one",
+        preset: "heated_cavity",
+        primary_error: "nusselt_error",
+        // Thinner boundary layers: from 15 particles across, in `--full` only.
+        spacings: (&[], &[0.0033333, 0.0025]),
+        bounds: &[("nusselt_error", 0.05)],
+        variants: &[Variant { name: "default", overrides: CAVITY_RA_1E5 }],
+        measure: |sim, spacing| cavity_case(sim, spacing, &RA_1E5),
     },
 ];
+
+/// Overrides taking the `heated_cavity` (Ra = 1e4) to Ra = 1e5: its viscosity
+/// `CAVITY_NU` and its conductivity `rho c nu / 0.71` divided by sqrt(10), so Pr
+/// stays 0.71 (a unit test checks the figures).
+const CAVITY_RA_1E5: &[&str] =
+    &[r#"fluids[0].viscosity={"model":"laplacian","nu":3.16228e-5}"#, "heat.fluids[0].conductivity=44.5392"];
 
 /// Simulated time (s) of the conduction case: the diffusion length `2 sqrt(alpha t)`
 /// grows to L/8.
@@ -134,13 +153,33 @@ fn layers_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     (wall, halted, errors)
 }
 
-/// The heated cavity runs to this time (s); from rest its flow and Nusselt number
-/// settle within about 3 s (a sixth of the diffusion time L^2 / alpha).
-const CAVITY_T_END: f64 = 12.0;
-/// The cavity's figures are averaged over samples from this time (s) on, every
-/// [`CAVITY_SAMPLE`] s: a particle field's instantaneous heat flux fluctuates by a
-/// few per cent.
-const CAVITY_AVERAGE_FROM: f64 = 4.0;
+/// A heated cavity's reference (de Vahl Davis 1983, table I) and how long to run it.
+#[derive(Debug)]
+pub struct CavityRun {
+    /// Rayleigh number.
+    pub rayleigh: f64,
+    /// Mean Nusselt number.
+    pub nusselt: f64,
+    /// The largest `u` on the vertical midline (alpha / L).
+    pub u_max: f64,
+    /// The largest `v` on the horizontal midline (alpha / L).
+    pub v_max: f64,
+    /// The run's end (s); its figures are averaged over samples every
+    /// [`CAVITY_SAMPLE`] s from `average_from` (s) on: a particle field's
+    /// instantaneous heat flux fluctuates by a few per cent.
+    pub t_end: f64,
+    /// Start of the average (s).
+    pub average_from: f64,
+}
+
+/// Ra = 1e4: from rest the flow and Nusselt number settle within about 3 s (a sixth
+/// of the diffusion time `L^2 / alpha`).
+const RA_1E4: CavityRun =
+    CavityRun { rayleigh: 1e4, nusselt: 2.243, u_max: 16.178, v_max: 19.617, t_end: 12.0, average_from: 4.0 };
+/// Ra = 1e5: the diffusion time is sqrt(10) times longer; the Nusselt number settles
+/// by about 5 s (measured: frames from 5 s to 18 s within 4.56 to 4.68).
+const RA_1E5: CavityRun =
+    CavityRun { rayleigh: 1e5, nusselt: 4.519, u_max: 34.73, v_max: 68.59, t_end: 16.0, average_from: 5.0 };
 const CAVITY_SAMPLE: f64 = 0.25;
 
 /// The cavity's mean Nusselt number from the volume-averaged horizontal heat flux,
@@ -151,10 +190,13 @@ const CAVITY_SAMPLE: f64 = 0.25;
 /// spacing of it, averaged in bins one spacing long.
 fn cavity_figures(sim: &Simulation, spacing: f64) -> [f64; 3] {
     let p = sim.read(&["velocity", "temperature"]);
+    let thermal = &sim.scene().heat.as_ref().expect("the cavity has heat").fluids[0];
     let v = p.channel("velocity").and_then(|v| v.as_vectors()).expect("velocity requested");
     let t = p.channel("temperature").and_then(|t| t.as_scalars()).expect("temperature requested");
     let (l, dt) = (f64::from(CAVITY_L), f64::from(CAVITY_T.0 - CAVITY_T.1));
-    let (t0, alpha) = (0.5 * f64::from(CAVITY_T.0 + CAVITY_T.1), f64::from(CAVITY_NU) / 0.71);
+    let t0 = 0.5 * f64::from(CAVITY_T.0 + CAVITY_T.1);
+    let alpha = f64::from(thermal.conductivity)
+        / (f64::from(sim.model().materials.get(0).rest_density) * f64::from(thermal.heat_capacity));
     let flux = v.iter().zip(t).map(|(v, &t)| f64::from(v[0]) * (f64::from(t) - t0)).sum::<f64>();
     let nusselt = 1.0 + l * flux / (v.len().max(1) as f64 * alpha * dt);
     let bins = (l / spacing).round() as usize;
@@ -171,10 +213,10 @@ fn cavity_figures(sim: &Simulation, spacing: f64) -> [f64; 3] {
     [nusselt, midline_max(0, 1, 0), midline_max(1, 0, 1)]
 }
 
-fn cavity_case(sim: &mut Simulation, spacing: f64) -> Measured {
+fn cavity_case(sim: &mut Simulation, spacing: f64, reference: &CavityRun) -> Measured {
     let (mut sum, mut n) = ([0.0f64; 3], 0u32);
-    let (wall, halted) = run_probed(sim, CAVITY_T_END, CAVITY_SAMPLE, |s| {
-        if s.time() >= CAVITY_AVERAGE_FROM {
+    let (wall, halted) = run_probed(sim, reference.t_end, CAVITY_SAMPLE, |s| {
+        if s.time() >= reference.average_from {
             for (a, b) in sum.iter_mut().zip(cavity_figures(s, spacing)) {
                 *a += b;
             }
@@ -183,9 +225,9 @@ fn cavity_case(sim: &mut Simulation, spacing: f64) -> Measured {
     });
     let [nusselt, u_max, v_max] = sum.map(|s| s / f64::from(n.max(1)));
     let errors = vec![
-        ("nusselt_error", (nusselt / 2.243 - 1.0).abs()),
-        ("u_max_error", (u_max / 16.178 - 1.0).abs()),
-        ("v_max_error", (v_max / 19.617 - 1.0).abs()),
+        ("nusselt_error", (nusselt / reference.nusselt - 1.0).abs()),
+        ("u_max_error", (u_max / reference.u_max - 1.0).abs()),
+        ("v_max_error", (v_max / reference.v_max - 1.0).abs()),
         ("nusselt", nusselt),
     ];
     (wall, halted, errors)
@@ -242,3 +284,32 @@ pub const STABILITY: &[StabilityCase] = &[
         expect: Expect::FinishOrHalt,
     },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::load::from_preset;
+
+    /// `Ra = g beta dT L^3 / (nu alpha)` and `Pr = nu / alpha` of the cavity with `overrides`.
+    fn rayleigh_prandtl(overrides: &[&str]) -> (f64, f64) {
+        let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        let scene = from_preset("heated_cavity", &overrides).expect("the cavity builds");
+        let heat = scene.heat.as_ref().expect("heat");
+        let (f, thermal) = (&scene.fluids[0], &heat.fluids[0]);
+        let crate::scene::Viscosity::Laplacian { nu } = f.viscosity else { panic!("a Laplacian viscosity") };
+        let alpha = f64::from(thermal.conductivity) / (f64::from(f.rest_density) * f64::from(thermal.heat_capacity));
+        let g = f64::from(heat.buoyancy_gravity.expect("its own g")[1]).abs();
+        let dt = f64::from(CAVITY_T.0 - CAVITY_T.1);
+        let ra = g * f64::from(thermal.expansion) * dt * f64::from(CAVITY_L).powi(3) / (f64::from(nu) * alpha);
+        (ra, f64::from(nu) / alpha)
+    }
+
+    #[test]
+    fn the_cavity_cases_run_at_their_rayleigh_number() {
+        for (overrides, run) in [(&[][..], &RA_1E4), (CAVITY_RA_1E5, &RA_1E5)] {
+            let (ra, pr) = rayleigh_prandtl(overrides);
+            assert!((ra / run.rayleigh - 1.0).abs() < 1e-4, "Ra {ra} for {}", run.rayleigh);
+            assert!((pr / 0.71 - 1.0).abs() < 1e-4, "Pr {pr}");
+        }
+    }
+}

@@ -12,7 +12,9 @@
 //! particle (temperature `2 T_b - T_i`: the term `2 (T_i - T_b)` puts `T_b` on the
 //! wall's surface, as Morris et al. 1997 do for no-slip velocities); other walls are
 //! insulated.
-//! `q_i` is the power density of the sources around particle i (W/m^3).
+//! `q_i` is the power density of the sources around particle i (W/m^3), and of the
+//! wall fluxes whose layer it is in: `q_w d^2 rho_i / m_i`, so that the particle
+//! takes `q_w d^2` watts, the flux through the wall area it covers on the lattice.
 //!
 //! On a lattice with a support of a few spacings the sum misses the Laplacian by a
 //! fixed fraction (about 1 % for the cubic spline at two spacings), which no
@@ -116,7 +118,7 @@ fn conduction<const MULTI: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
                 let f = pair_factor(k, r2.sqrt(), eps_h2);
                 sum += psi[b] / rho0 * k_wall * 2.0 * (ti - tb) * f;
             }
-            *out = (sum + hc.source(xi)) / (rho_i * hc.capacity[ma]);
+            *out = (sum + hc.source(xi, rho_i, materials.get(ma).mass)) / (rho_i * hc.capacity[ma]);
         }
     });
     cx.attrs.put(rate_h, rate);

@@ -1,6 +1,6 @@
 //! The heat module: a temperature per particle, conduction between particles of
 //! one fluid or of several, walls held at a temperature or insulated, volumetric
-//! heat sources, and the Boussinesq buoyancy that couples temperature back to the
+//! heat sources and heat fluxes through walls, and the Boussinesq buoyancy that couples temperature back to the
 //! flow. docs/heat.md states the model with its units and references.
 //!
 //! - [`spec`]: the scene section (`heat`).
@@ -106,7 +106,8 @@ pub const TEMPERATURE_CHANNEL: ChannelSpec = ChannelSpec {
     source: Source::Attr("temperature"),
 };
 
-/// Most wall boxes and heat sources a scene may declare (the GPU uniform's arrays).
+/// Most wall boxes, and most heat sources and fluxes together, a scene may declare
+/// (the GPU uniform's arrays).
 pub const MAX_BOXES: usize = 8;
 
 /// The module's constants.
@@ -127,8 +128,31 @@ pub struct HeatConsts {
     pub gravity: Vec3,
     /// Walls held at a temperature: box and temperature (K).
     pub walls: Vec<(Aabb, Real)>,
-    /// Heat sources: box and power density (W/m^3).
-    pub sources: Vec<(Aabb, Real)>,
+    /// Volumetric heat sources and the layers wall fluxes enter through.
+    pub sources: Vec<HeatInput>,
+}
+
+/// Where heat enters the fluid, and at what power density.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HeatInput {
+    /// A source's box, or the box a wall flux crosses the surface of.
+    pub region: Aabb,
+    /// 0 for a volumetric source (the particles inside `region`); for a wall flux
+    /// the thickness (m, one particle spacing) of the layer outside `region` it
+    /// enters through.
+    pub layer: Real,
+    /// A source's power density (W/m^3), or the power (W) a flux gives each particle
+    /// of its layer: the flux times `d^2`.
+    pub power: Real,
+}
+
+impl HeatInput {
+    /// Whether the particle at `x` takes this source's power (the GPU's
+    /// `conduction.wgsl` tests the same).
+    pub fn contains(&self, x: Vec3) -> bool {
+        let inside = self.region.contains(x);
+        if self.layer > 0.0 { !inside && self.region.expanded(self.layer).contains(x) } else { inside }
+    }
 }
 
 impl HeatConsts {
@@ -153,7 +177,16 @@ impl HeatConsts {
             reference: heat.reference_temperature,
             gravity: heat.buoyancy_gravity.unwrap_or(scene.gravity).into(),
             walls: heat.walls.iter().map(|w| (aabb(w.min, w.max), w.temperature)).collect(),
-            sources: heat.sources.iter().map(|s| (aabb(s.min, s.max), s.power)).collect(),
+            sources: heat
+                .sources
+                .iter()
+                .map(|s| HeatInput { region: aabb(s.min, s.max), layer: 0.0, power: s.power })
+                .chain(heat.fluxes.iter().map(|f| HeatInput {
+                    region: aabb(f.min, f.max),
+                    layer: spacing,
+                    power: f.flux * spacing * spacing,
+                }))
+                .collect(),
         }
     }
 
@@ -162,9 +195,14 @@ impl HeatConsts {
         self.walls.iter().find(|(b, _)| b.contains(x)).map(|&(_, t)| t)
     }
 
-    /// The power density of the sources at `x` (W/m^3).
-    pub fn source(&self, x: Vec3) -> Real {
-        self.sources.iter().filter(|(b, _)| b.contains(x)).map(|&(_, q)| q).sum()
+    /// The power density (W/m^3) the sources and wall fluxes give the particle at `x`
+    /// of density `rho` and mass `mass`. A particle in a flux's layer takes the flux
+    /// times `d^2`, the wall area it covers on the particle lattice, whatever its
+    /// volume `mass / rho`: the layer against a face of area A, `A / d^2` particles,
+    /// then takes the flux times A.
+    pub fn source(&self, x: Vec3, rho: Real, mass: Real) -> Real {
+        let power = |s: &HeatInput| if s.layer > 0.0 { s.power * rho / mass } else { s.power };
+        self.sources.iter().filter(|s| s.contains(x)).map(power).sum()
     }
 
     /// Whether any material feels buoyancy.
@@ -217,9 +255,15 @@ fn validate(scene: &Scene, c: &mut Checker) {
         c.ordered_box(&format!("heat.sources[{i}]"), s.min, s.max);
         c.finite(&format!("heat.sources[{i}].power"), s.power);
     }
-    for (name, count) in [("walls", heat.walls.len()), ("sources", heat.sources.len())] {
+    for (i, f) in heat.fluxes.iter().enumerate() {
+        c.ordered_box(&format!("heat.fluxes[{i}]"), f.min, f.max);
+        c.finite(&format!("heat.fluxes[{i}].flux"), f.flux);
+    }
+    let sources = heat.sources.len() + heat.fluxes.len();
+    for (name, count) in [("walls", heat.walls.len()), ("sources", sources)] {
         if count > MAX_BOXES {
-            c.fail(&format!("heat.{name}"), format!("at most {MAX_BOXES} boxes, got {count}"));
+            let what = if name == "sources" { "sources and fluxes together" } else { "boxes" };
+            c.fail(&format!("heat.{name}"), format!("at most {MAX_BOXES} {what}, got {count}"));
         }
     }
 }

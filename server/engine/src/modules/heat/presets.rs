@@ -62,6 +62,7 @@ fn heat(fluids: Vec<ThermalFluid>, walls: Vec<TemperatureBox>) -> Heat {
         regions: Vec::new(),
         walls,
         sources: Vec::new(),
+        fluxes: Vec::new(),
         range: [1.0, 1e4],
     }
 }

@@ -35,6 +35,11 @@ pub struct Heat {
     /// Volumetric heat sources: particles inside a box gain its power density.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sources: Vec<HeatSource>,
+    /// Heat fluxes through the surfaces of boxes (walls'): the heat enters the
+    /// fluid within one particle spacing of the box. Such a wall is otherwise
+    /// insulated unless it is also in `walls`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fluxes: Vec<WallFlux>,
     /// Smallest and largest temperature the scene may reach (K); a particle outside
     /// halts the scene, naming it.
     #[serde(default = "default_range")]
@@ -80,6 +85,20 @@ pub struct HeatSource {
     pub max: [f32; 3],
     /// Power per volume (W/m^3); negative removes heat.
     pub power: f32,
+}
+
+/// A heat flux through the surface of a box, such as a wall's: the fluid within one
+/// particle spacing outside the box gains `flux / spacing` per volume, so a layer of
+/// fluid on a face of area A takes `flux A` watts.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WallFlux {
+    /// Lower corner (m).
+    pub min: [f32; 3],
+    /// Upper corner (m).
+    pub max: [f32; 3],
+    /// Heat flux into the fluid across the box's surface (W/m^2); negative cools.
+    pub flux: f32,
 }
 
 fn default_reference() -> f32 {

@@ -70,8 +70,16 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     }
     var source = 0.0;
     for (var q = 0u; q < heat.n_sources; q++) {
-        if (inside(xi, heat.source_min[q], heat.source_max[q])) {
-            source += heat.source_min[q].w;
+        let lo = heat.source_min[q];
+        let hi = heat.source_max[q];
+        let layer = hi.w;
+        if (layer > 0.0) {
+            // A wall flux's layer: lo.w watts to each particle in it.
+            if (!inside(xi, lo, hi) && all(xi >= lo.xyz - layer) && all(xi <= hi.xyz + layer)) {
+                source += lo.w * rho[i] / params.materials[ma].y;
+            }
+        } else if (inside(xi, lo, hi)) {
+            source += lo.w;
         }
     }
     heat_rate[i] = (sum + source) / (rho[i] * heat.material[ma].y);

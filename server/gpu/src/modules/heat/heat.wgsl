@@ -16,7 +16,10 @@ struct Heat {
     // Walls held at a temperature: box corners, the temperature (K) in min.w.
     wall_min: array<vec4<f32>, 8>,
     wall_max: array<vec4<f32>, 8>,
-    // Heat sources: box corners, the power density (W/m^3) in min.w.
+    // Heat sources and wall fluxes: box corners; in min.w a source's power density
+    // (W/m^3) or a flux's power per particle of its layer (W); in max.w 0 for a
+    // source (inside the box), else the flux's layer thickness (m: the particles
+    // outside the box within it).
     source_min: array<vec4<f32>, 8>,
     source_max: array<vec4<f32>, 8>,
     // The acceleration buoyancy acts along (m/s^2), in xyz.

@@ -90,9 +90,10 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         p.wall_min[k] = [b.min.x, b.min.y, b.min.z, *t];
         p.wall_max[k] = [b.max.x, b.max.y, b.max.z, 0.0];
     }
-    for (k, (b, q)) in c.sources.iter().enumerate() {
-        p.source_min[k] = [b.min.x, b.min.y, b.min.z, *q];
-        p.source_max[k] = [b.max.x, b.max.y, b.max.z, 0.0];
+    for (k, s) in c.sources.iter().enumerate() {
+        let (lo, hi) = (s.region.min, s.region.max);
+        p.source_min[k] = [lo.x, lo.y, lo.z, s.power];
+        p.source_max[k] = [hi.x, hi.y, hi.z, s.layer];
     }
     Some(bytemuck::bytes_of(&p).to_vec())
 }
