@@ -97,6 +97,51 @@ fn a_wall_flux_adds_flux_times_area() {
     }
 }
 
+/// Water heated through its floor by a gentle 1 kW/m^2 gains its few 1e-6 K a step,
+/// under half the f32 spacing of 310 K: the compensated integration keeps them (plain
+/// `T += dt dT/dt` left the water at its temperature: 0 W).
+#[test]
+fn a_gentle_flux_warms_water_at_its_rate() {
+    let mut s = sim(
+        "convection",
+        &[
+            "particle_spacing=0.01",
+            "gravity=[0,0,0]",
+            "solver.speed_of_sound=20",
+            "heat.walls=[]",
+            r#"heat.fluxes=[{"min":[-1,-1,-1],"max":[1,0,1],"flux":1000}]"#,
+        ],
+    );
+    let q0 = measure(&s, "heat.total_heat");
+    for _ in 0..2000 {
+        s.step().unwrap();
+    }
+    let (want, rate) = (1000.0 * 0.4 * 0.04, (measure(&s, "heat.total_heat") - q0) / s.time());
+    eprintln!("{rate:.4} W against {want} W over {} s", s.time());
+    assert!((rate / want - 1.0).abs() < 0.01, "{rate} W for {want} W");
+}
+
+/// A snapshot of a heat scene written before the temperature's rounding carry was
+/// kept (no `temperature_carry` section) restores, with no carry yet.
+#[test]
+fn a_snapshot_without_the_carry_restores() {
+    let mut s = sim("convection", &["particle_spacing=0.02"]);
+    for _ in 0..5 {
+        s.step().unwrap();
+    }
+    let mut parts = floe_engine::snapshot::read(&s.snapshot()).unwrap();
+    let before = parts.sections.len();
+    parts.sections.retain(|x| x.name != "temperature_carry");
+    assert_eq!(parts.sections.len(), before - 1);
+    let restored = Simulation::restore(&floe_engine::snapshot::write(&parts)).unwrap();
+    assert_eq!(restored.steps(), 5);
+    assert_eq!(measure(&restored, "heat.total_heat"), measure(&s, "heat.total_heat"));
+    // Any other missing state is still refused.
+    parts.sections.retain(|x| x.name != "temperature");
+    let err = Simulation::restore(&floe_engine::snapshot::write(&parts)).unwrap_err().to_string();
+    assert!(err.contains("no section for attribute temperature (heat)"), "{err}");
+}
+
 /// A floor held at 330 K warms water at 310 K, never beyond the floor's temperature.
 #[test]
 fn a_hot_floor_warms_the_fluid() {

@@ -173,7 +173,8 @@ impl GpuBackend {
 
     fn record_pass(&mut self, i: usize, dt: Real) {
         if self.passes[i].uses_dt && dt.to_bits() != self.pass_dt.to_bits() {
-            // Work recorded so far reads the old dt: it goes first.
+            // Work recorded so far reads the old dt: it goes first. The other three
+            // components stay 0 (heat's integrate.wgsl XORs with the bits of w).
             self.flush();
             self.gpu.queue.write_buffer(self.buffers.get("dt"), 0, bytemuck::bytes_of(&[dt, 0.0, 0.0, 0.0]));
             self.pass_dt = dt;

@@ -83,6 +83,20 @@ pub static TEMPERATURE: AttrSpec = AttrSpec {
     about: "Absolute temperature.",
 };
 
+/// The part of the temperature increments that f32 rounding dropped, carried into
+/// the next step (compensated summation, Kahan 1965): a particle of water near 300 K
+/// takes increments of a few 1e-6 K per step under a gentle flux, under half the f32
+/// spacing there (3e-5 K), which plain `T += dt dT/dt` would lose entirely.
+pub static TEMPERATURE_CARRY: AttrSpec = AttrSpec {
+    name: "temperature_carry",
+    elem: Elem::F32,
+    unit: "K",
+    role: Role::State,
+    space: PARTICLES,
+    module: "heat",
+    about: "Rounding lost from the temperature's last increments, subtracted from the next.",
+};
+
 /// dT/dt of the last evaluation (K/s): conduction and sources.
 pub static HEAT_RATE: AttrSpec = AttrSpec {
     name: "heat_rate",
@@ -289,6 +303,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let heat = section(scene);
     let t = initial_temperatures(heat, b);
     b.attr(&TEMPERATURE, Column::F32(t));
+    b.zeros(&TEMPERATURE_CARRY);
     b.zeros(&HEAT_RATE);
     let consts = HeatConsts::new(scene, &b.kernel);
     b.pass(&conduction::CONDUCTION);

@@ -41,12 +41,12 @@ pub static BUOYANCY: GpuPass = GpuPass {
     when: always,
 };
 
-/// `T += dt dT/dt`.
+/// `T += dt dT/dt`, compensated.
 pub static INTEGRATE: GpuPass = GpuPass {
     name: "heat.integrate",
     source: particle_kernel!("integrate.wgsl"),
     entry: "main",
-    bindings: &[(U, "params"), (U, "dt"), (W, "temperature"), (R, "heat_rate")],
+    bindings: &[(U, "params"), (U, "dt"), (W, "temperature"), (W, "temperature_carry"), (R, "heat_rate")],
     space: PARTICLES,
     when: always,
 };
