@@ -106,9 +106,8 @@ export class Renderer {
     /** Counts changes of particles and scene, so a frame is drawn only when something changed. */
     this.version = 0;
     this.drawn = null;
-    /** The resolution of each frame, and that of the last one drawn (a fraction of the canvas's, per axis). */
+    /** Picks the resolution of each frame (a fraction of the canvas's, per axis). */
     this.resolution = new Resolution();
-    this.scale = 1;
   }
 
   /** A new scene: its walls and floor (see outline.js, floor.js) and the particle spacing (m). */
@@ -193,7 +192,6 @@ export class Renderer {
     const scale = this.resolution.next(now, key !== this.drawn);
     this.drawn = key;
     if (scale === null) return false;
-    this.scale = scale;
     const w = Math.max(1, Math.round(c.clientWidth * devicePixelRatio * scale));
     const h = Math.max(1, Math.round(c.clientHeight * devicePixelRatio * scale));
     if (c.width !== w || c.height !== h) { c.width = w; c.height = h; }

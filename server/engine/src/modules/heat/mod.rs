@@ -1,7 +1,8 @@
 //! The heat module: a temperature per particle, conduction between particles of
 //! one fluid or of several, walls held at a temperature or insulated, volumetric
-//! heat sources and heat fluxes through walls, and the Boussinesq buoyancy that couples temperature back to the
-//! flow. docs/heat.md states the model with its units and references.
+//! heat sources and heat fluxes through walls, and the Boussinesq buoyancy that
+//! couples temperature back to the flow. docs/heat.md states the model with its
+//! units and references.
 //!
 //! - [`spec`]: the scene section (`heat`).
 //! - [`conduction`]: the conduction pass (Cleary & Monaghan 1999).
@@ -146,7 +147,7 @@ pub struct HeatConsts {
     pub sources: Vec<HeatInput>,
 }
 
-/// Where heat enters the fluid, and at what power density.
+/// Where heat enters the fluid, and how much.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HeatInput {
     /// A source's box, or the box a wall flux crosses the surface of.

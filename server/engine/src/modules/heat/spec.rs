@@ -87,9 +87,10 @@ pub struct HeatSource {
     pub power: f32,
 }
 
-/// A heat flux through the surface of a box, such as a wall's: the fluid within one
-/// particle spacing outside the box gains `flux / spacing` per volume, so a layer of
-/// fluid on a face of area A takes `flux A` watts.
+/// A heat flux through the surface of a box, such as a wall's: each particle within
+/// one particle spacing `d` outside the box gains `flux d^2` watts (the wall area it
+/// covers on the particle lattice), so a layer of fluid on a face of area A takes
+/// `flux A` watts.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WallFlux {
