@@ -15,15 +15,15 @@ pub static PASSES: &[&GpuPass] = &[
     &heat::CONDUCTION,
     &heat::BUOYANCY,
     &heat::INTEGRATE,
+    &fluid::VARYING,
+    &fluid::implicit::DIAGONAL,
+    &fluid::implicit::PRECONDITION,
+    &fluid::implicit::PRODUCT,
+    &fluid::implicit::UPDATE,
+    &fluid::implicit::DIRECTION,
     &snow::SHEAR,
-    &snow::VISCOSITY,
-    &snow::implicit::DIAGONAL,
-    &snow::implicit::PRECONDITION,
-    &snow::implicit::PRODUCT,
-    &snow::implicit::UPDATE,
-    &snow::implicit::DIRECTION,
 ];
 
 /// Every module's uniform.
 pub static UNIFORMS: &[(&str, UniformSource)] =
-    &[("fluid", fluid::uniform), ("heat", heat::uniform), ("snow", snow::uniform)];
+    &[("fluid", fluid::uniform), ("varying", fluid::varying_uniform), ("heat", heat::uniform), ("snow", snow::uniform)];

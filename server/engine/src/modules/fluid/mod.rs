@@ -4,14 +4,19 @@
 //!
 //! - [`spec`]: the scene section (`fluids`).
 //! - [`viscosity`]: the pairwise viscous terms.
+//! - [`varying`]: viscosity that varies from particle to particle (written by
+//!   another module: snow's rheology, heat's temperature law) and its force;
+//!   [`implicit`]: that force by backward Euler (conjugate gradients).
 //! - [`forces`]: the force pass; [`xsph`]: the XSPH passes.
 //! - [`presets`]: `dam_break`, `hydrostatic`.
 //! - [`cases`]: validation cases and the stability battery.
 
 pub mod cases;
 pub mod forces;
+pub mod implicit;
 pub mod presets;
 pub mod spec;
+pub mod varying;
 pub mod viscosity;
 pub mod xsph;
 
@@ -38,7 +43,17 @@ pub static MODULE: ModuleDef = ModuleDef {
     build,
     retune,
     tunables: TUNABLES,
-    cpu: &[("fluid.forces", &forces::Forces), ("fluid.xsph", &xsph::Xsph), ("fluid.xsph_kick", &xsph::XsphKick)],
+    cpu: &[
+        ("fluid.forces", &forces::Forces),
+        ("fluid.xsph", &xsph::Xsph),
+        ("fluid.xsph_kick", &xsph::XsphKick),
+        ("fluid.viscosity", &varying::Force),
+        ("fluid.implicit_diagonal", &implicit::Diagonal),
+        ("fluid.implicit_precondition", &implicit::Precondition),
+        ("fluid.implicit_product", &implicit::Product),
+        ("fluid.implicit_update", &implicit::Update),
+        ("fluid.implicit_direction", &implicit::Direction),
+    ],
     presets: presets::PRESETS,
     dt_limit,
     measures,
@@ -78,9 +93,9 @@ pub static XSPH: AttrSpec = AttrSpec {
 };
 
 /// Dynamic viscosity per particle (Pa s): the one path for viscosity that varies
-/// from particle to particle. A module whose viscosity depends on the flow (the
-/// snow module's rheology) writes it; it is allocated only in scenes that have
-/// such a module.
+/// from particle to particle ([`varying`]). A module whose viscosity depends on
+/// the state (the snow module's rheology, the heat module's temperature law)
+/// writes it; it is allocated only in scenes that have such a module.
 pub static VISCOSITY: AttrSpec = AttrSpec {
     name: "mu",
     elem: Elem::F32,

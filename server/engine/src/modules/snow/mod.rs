@@ -6,33 +6,32 @@
 //!
 //! - [`spec`]: the scene section (`snow`).
 //! - [`rheology`]: the viscosity laws.
-//! - [`viscous`]: the shear-rate pass and the viscous force pass.
-//! - [`implicit`]: the viscous force by backward Euler (conjugate gradients), for
-//!   stiff viscosities.
+//! - [`shear`]: the shear-rate pass, which writes the fluid module's per-particle
+//!   viscosity; the fluid module's [`varying`](crate::modules::fluid::varying)
+//!   path adds its force, explicit or implicit.
 //! - [`presets`]: channel flows and the avalanche.
 //! - [`channel`]: reference profiles of the channel flows; [`cases`]: validation
 //!   cases and the stability battery.
 
 pub mod cases;
 pub mod channel;
-pub mod implicit;
 pub mod presets;
 pub mod rheology;
+pub mod shear;
 pub mod spec;
-pub mod viscous;
 
 use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use crate::channels::{ChannelSpec, Source};
 use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::modules::ModuleDef;
-use crate::modules::fluid::VISCOSITY;
+use crate::modules::fluid::varying;
 use crate::scene::Scene;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
 use crate::simulation::Measure;
 use rheology::Law;
-use spec::{Rheology, ViscousSolver};
+use spec::Rheology;
 
 /// The module's definition.
 pub static MODULE: ModuleDef = ModuleDef {
@@ -46,15 +45,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     build,
     retune,
     tunables: TUNABLES,
-    cpu: &[
-        ("snow.shear", &viscous::Shear),
-        ("snow.viscosity", &viscous::Viscosity),
-        ("snow.implicit_diagonal", &implicit::Diagonal),
-        ("snow.implicit_precondition", &implicit::Precondition),
-        ("snow.implicit_product", &implicit::Product),
-        ("snow.implicit_update", &implicit::Update),
-        ("snow.implicit_direction", &implicit::Direction),
-    ],
+    cpu: &[("snow.shear", &shear::Shear)],
     presets: presets::PRESETS,
     dt_limit,
     measures,
@@ -101,18 +92,6 @@ pub static SHEAR_RATE: AttrSpec = AttrSpec {
     about: "Shear rate sqrt(2 D:D) of the last evaluation.",
 };
 
-/// The viscosity channel.
-pub const VISCOSITY_CHANNEL: ChannelSpec = ChannelSpec {
-    name: "viscosity",
-    unit: "Pa s",
-    components: 1,
-    exact: false,
-    set: PARTICLES,
-    module: "snow",
-    about: "Dynamic viscosity of the particle's rheology at its shear rate.",
-    source: Source::Attr("mu"),
-};
-
 /// The shear-rate channel.
 pub const SHEAR_RATE_CHANNEL: ChannelSpec = ChannelSpec {
     name: "shear_rate",
@@ -130,19 +109,11 @@ pub const SHEAR_RATE_CHANNEL: ChannelSpec = ChannelSpec {
 pub struct SnowConsts {
     /// The law of each material.
     pub laws: Vec<Law>,
-    /// 1 where walls hold the fluid at rest (no slip), 0 where they exert no shear.
-    pub wall_shear: Real,
 }
 
 impl SnowConsts {
     fn new(snow: &spec::Snow) -> Self {
-        Self {
-            laws: snow.fluids.iter().map(|r| Law::new(r, snow.max_viscosity)).collect(),
-            wall_shear: match snow.walls {
-                spec::WallShear::NoSlip => 1.0,
-                spec::WallShear::Slip => 0.0,
-            },
-        }
+        Self { laws: snow.fluids.iter().map(|r| Law::new(r, snow.max_viscosity)).collect() }
     }
 
     /// Whether material `m` has a rheology (is snow, for the measures).
@@ -164,12 +135,7 @@ fn validate(scene: &Scene, c: &mut Checker) {
         );
     }
     c.positive("snow.max_viscosity", snow.max_viscosity);
-    if let ViscousSolver::Implicit { tolerance, max_iterations } = snow.solver {
-        c.within("snow.solver.tolerance", tolerance, 1e-7, 0.5);
-        if !(1..=10_000).contains(&max_iterations) {
-            c.fail("snow.solver.max_iterations", format!("must be 1 to 10000, got {max_iterations}"));
-        }
-    }
+    varying::validate_solver(c, "snow.solver", snow.solver);
     for (i, r) in snow.fluids.iter().enumerate() {
         let p = |f: &str| format!("snow.fluids[{i}].{f}");
         match *r {
@@ -202,25 +168,12 @@ fn validate(scene: &Scene, c: &mut Checker) {
 }
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
-    b.zeros(&VISCOSITY);
+    let snow = section(scene);
     b.zeros(&SHEAR_RATE);
-    b.pass(&viscous::SHEAR);
-    match section(scene).solver {
-        ViscousSolver::Explicit => b.pass(&viscous::VISCOSITY),
-        ViscousSolver::Implicit { tolerance, max_iterations } => {
-            b.space(implicit::SCALARS_SPACE, 4);
-            for spec in implicit::ATTRS {
-                b.zeros(spec);
-            }
-            for pass in implicit::PASSES {
-                b.pass(pass);
-            }
-            b.velocity_solve(implicit::solve(tolerance, max_iterations));
-        }
-    }
-    b.channel(VISCOSITY_CHANNEL);
+    b.pass(&shear::SHEAR);
+    varying::enable(b, snow.solver, snow.walls);
     b.channel(SHEAR_RATE_CHANNEL);
-    let consts = SnowConsts::new(section(scene));
+    let consts = SnowConsts::new(snow);
     b.set_consts(Front::new(b, &consts));
     b.set_consts(consts);
     Ok(())
@@ -229,12 +182,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 fn retune(scene: &Scene, model: &mut Model) {
     let snow = section(scene);
     model.set_consts(SnowConsts::new(snow));
-    if let ViscousSolver::Implicit { tolerance, max_iterations } = snow.solver {
-        let solve = implicit::solve(tolerance, max_iterations);
-        for s in model.velocity_solves.iter_mut().filter(|s| s.name == solve.name) {
-            *s = solve;
-        }
-    }
+    varying::retune(model, snow.solver, snow.walls);
 }
 
 /// The explicit viscous limit `0.125 h^2 rho0 / mu_max` (Morris et al. 1997, eq. 20)
@@ -248,8 +196,7 @@ pub fn explicit_dt_limit(model: &Model) -> Option<Real> {
 
 /// The explicit viscous limit, unless the viscosity is implicit (no limit on dt).
 fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
-    let implicit = model.velocity_solves.iter().any(|s| s.name == implicit::NAME);
-    let limit = explicit_dt_limit(model).filter(|_| !implicit)?;
+    let limit = explicit_dt_limit(model).filter(|_| !varying::is_implicit(model))?;
     Some(("non-Newtonian viscosity", limit))
 }
 

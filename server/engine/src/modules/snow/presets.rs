@@ -5,8 +5,9 @@
 //! the Newtonian preset's), so each settles within a second and is bound by the
 //! viscous step, not by sound.
 
-use super::spec::{Rheology, Snow, ViscousSolver, WallShear};
+use super::spec::{Rheology, Snow};
 use crate::modules::Preset;
+use crate::modules::fluid::spec::{ViscousSolver, WallShear};
 use crate::scene::{Boundary, Face, Fluid, FluidBlock, Scene, Solver, Viscosity};
 use crate::terrain::spec::{Heights, Slope, Terrain};
 

@@ -4,6 +4,8 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use crate::modules::fluid::spec::{ViscousSolver, WallShear};
+
 /// Non-Newtonian viscosity per fluid.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -27,53 +29,6 @@ pub struct Snow {
     /// `explicit` (a force, with the explicit viscous time-step limit).
     #[serde(default)]
     pub solver: ViscousSolver,
-}
-
-/// The integration of the viscous force. Implicit is the default: measured, it
-/// reaches the same channel profiles 7 to 60 times faster and runs the avalanche at
-/// 256k particles 3 times faster (docs/snow.md, docs/benchmarks.md).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(tag = "method", rename_all = "snake_case", deny_unknown_fields)]
-pub enum ViscousSolver {
-    /// The force of the velocities at the start of the step; dt at most
-    /// `0.125 h^2 rho0 / max_viscosity` (Morris et al. 1997, eq. 20).
-    Explicit,
-    /// Backward Euler (Weiler et al. 2018): `(M + dt K) v = M v*`, K the viscous
-    /// operator at the step's viscosities, by Jacobi-preconditioned conjugate
-    /// gradients.
-    Implicit {
-        /// Relative residual `|r| / |b|` (in the preconditioner's norm) to reach.
-        #[serde(default = "default_tolerance")]
-        tolerance: f32,
-        /// Iterations at most; a solve not converged by then halts the scene.
-        #[serde(default = "default_max_iterations")]
-        max_iterations: u32,
-    },
-}
-
-impl Default for ViscousSolver {
-    fn default() -> Self {
-        ViscousSolver::Implicit { tolerance: default_tolerance(), max_iterations: default_max_iterations() }
-    }
-}
-
-fn default_tolerance() -> f32 {
-    1e-3
-}
-
-fn default_max_iterations() -> u32 {
-    200
-}
-
-/// The viscous condition at walls.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum WallShear {
-    /// Zero velocity on the wall surface.
-    #[default]
-    NoSlip,
-    /// No shear stress from walls.
-    Slip,
 }
 
 /// A generalised Newtonian fluid: dynamic viscosity as a function of the shear rate

@@ -1,6 +1,10 @@
 //! The fluid module on the GPU: the force pass (with the WCSPH pressure terms or
 //! without), the XSPH sum and kick, and the module uniform `fluid` (per material:
-//! viscosity and XSPH; per material pair: the mixed viscosity and the mass ratio).
+//! viscosity and XSPH; per material pair: the mixed viscosity and the mass ratio);
+//! the per-particle viscosity's force with its uniform `varying` (the walls' shear
+//! factor), and [`implicit`]: that force's implicit solve.
+
+pub mod implicit;
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
@@ -10,6 +14,7 @@ use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
 use floe_engine::modules::fluid::FluidConsts;
+use floe_engine::modules::fluid::varying::VaryingViscosity;
 use floe_engine::modules::fluid::viscosity::ViscosityModel;
 
 /// Gravity, viscosity and the WCSPH pressure force.
@@ -41,6 +46,26 @@ pub static FORCES: GpuPass = GpuPass {
     bindings: &[(U, "params"), (U, "fluid"), (R, "x"), (R, "v"), (R, "rho"), (R, "starts"), (R, "walls"), (W, "a")],
     space: PARTICLES,
     when: |m| m.layout.spec("pterm").is_none(),
+};
+
+/// The viscous force of the per-particle viscosities (explicit solver).
+pub static VARYING: GpuPass = GpuPass {
+    name: "fluid.viscosity",
+    source: particle_kernel!("varying_walls.wgsl", "varying.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "varying"),
+        (R, "x"),
+        (R, "v"),
+        (R, "rho"),
+        (R, "mu"),
+        (R, "starts"),
+        (R, "walls"),
+        (W, "a"),
+    ],
+    space: PARTICLES,
+    when: always,
 };
 
 const XSPH_BINDINGS: &[(crate::program::Access, &str)] =
@@ -100,4 +125,11 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         }
     }
     Some(bytemuck::bytes_of(&p).to_vec())
+}
+
+/// The `varying` uniform's bytes, when the scene's viscosity varies per particle.
+pub fn varying_uniform(model: &Model) -> Option<Vec<u8>> {
+    model.layout.spec("mu")?;
+    let wall_shear = model.consts::<VaryingViscosity>().wall_shear;
+    Some(bytemuck::bytes_of(&[wall_shear, 0.0, 0.0, 0.0]).to_vec())
 }

@@ -1,7 +1,6 @@
-//! The snow module on the GPU: the shear-rate pass and the viscous force pass, with the module uniform `snow` (per material: the viscosity law and its
-//! clamp); [`implicit`]: the implicit viscosity solve's passes.
-
-pub mod implicit;
+//! The snow module on the GPU: the shear-rate pass, with the module uniform `snow`
+//! (per material: the viscosity law and its clamp). The force of the viscosities it
+//! writes is the fluid module's (`modules::fluid::varying`).
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
@@ -10,6 +9,7 @@ use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
+use floe_engine::modules::fluid::varying::VaryingViscosity;
 use floe_engine::modules::snow::SnowConsts;
 
 /// Shear rate and viscosity per particle.
@@ -32,26 +32,6 @@ pub static SHEAR: GpuPass = GpuPass {
     when: always,
 };
 
-/// The viscous force, added to the accelerations.
-pub static VISCOSITY: GpuPass = GpuPass {
-    name: "snow.viscosity",
-    source: particle_kernel!("snow.wgsl", "viscosity.wgsl"),
-    entry: "main",
-    bindings: &[
-        (U, "params"),
-        (U, "snow"),
-        (R, "x"),
-        (R, "v"),
-        (R, "rho"),
-        (R, "mu"),
-        (R, "starts"),
-        (R, "walls"),
-        (W, "a"),
-    ],
-    space: PARTICLES,
-    when: always,
-};
-
 /// The `snow` uniform (`Snow` in snow.wgsl).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
@@ -66,9 +46,10 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         return None;
     }
     let c: &SnowConsts = model.consts();
+    let wall_shear = model.consts::<VaryingViscosity>().wall_shear;
     let mut u = SnowParams::zeroed();
     for (m, law) in c.laws.iter().enumerate() {
-        u.kind[m] = [f32::from_bits(law.kind as u32), law.max, c.wall_shear, 0.0];
+        u.kind[m] = [f32::from_bits(law.kind as u32), law.max, wall_shear, 0.0];
         u.p[m] = law.p;
     }
     Some(bytemuck::bytes_of(&u).to_vec())

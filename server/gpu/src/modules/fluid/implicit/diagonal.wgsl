@@ -1,6 +1,6 @@
 // The diagonal d_i = m_i + dt (sum_j w_ij + w_iw) and the starting residual
 // r_i = dt (sum_j w_ij (v_j - v_i) - w_iw v_i) (floe-engine
-// `modules::snow::implicit::Diagonal`, term by term in the same order); w_iw is the
+// `modules::fluid::implicit::Diagonal`, term by term in the same order); w_iw is the
 // no-slip walls' mirror term m_i 4 mu_i / rho_i^2 sum_b psi_b |F_ib|, times the
 // walls' shear factor.
 
@@ -63,7 +63,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
             }
         }
     }
-    let w_wall = m_i * 4.0 * snow.kind[ma].z * mu_i * inv_rho * inv_rho * wall;
+    let w_wall = m_i * 4.0 * viscous_walls.x * mu_i * inv_rho * inv_rho * wall;
     let dt = step_dt.x;
     diag[i] = m_i + dt * (sum_w + w_wall);
     res[i] = vec4<f32>((force - vi * w_wall) * dt, 0.0);

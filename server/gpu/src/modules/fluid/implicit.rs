@@ -1,5 +1,5 @@
 //! Implicit viscosity on the GPU: the conjugate-gradient passes of floe-engine
-//! `modules::snow::implicit`, one kernel each; the sums between them stay on the
+//! `modules::fluid::implicit`, one kernel each; the sums between them stay on the
 //! device (`visc_scalars`).
 
 use crate::pass::{GpuPass, always};
@@ -9,12 +9,12 @@ use floe_engine::attrs::PARTICLES;
 
 /// `d` and the starting residual.
 pub static DIAGONAL: GpuPass = GpuPass {
-    name: "snow.implicit_diagonal",
-    source: particle_kernel!("snow.wgsl", "implicit/shared.wgsl", "implicit/diagonal.wgsl"),
+    name: "fluid.implicit_diagonal",
+    source: particle_kernel!("varying_walls.wgsl", "implicit/shared.wgsl", "implicit/diagonal.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
-        (U, "snow"),
+        (U, "varying"),
         (U, "dt"),
         (R, "x"),
         (R, "v"),
@@ -31,7 +31,7 @@ pub static DIAGONAL: GpuPass = GpuPass {
 
 /// The first direction and the terms of `r.z` and `b.D^-1.b`.
 pub static PRECONDITION: GpuPass = GpuPass {
-    name: "snow.implicit_precondition",
+    name: "fluid.implicit_precondition",
     source: particle_kernel!("implicit/precondition.wgsl"),
     entry: "main",
     bindings: &[
@@ -50,7 +50,7 @@ pub static PRECONDITION: GpuPass = GpuPass {
 
 /// `Ap` and the terms of `p.Ap`.
 pub static PRODUCT: GpuPass = GpuPass {
-    name: "snow.implicit_product",
+    name: "fluid.implicit_product",
     source: particle_kernel!("implicit/shared.wgsl", "implicit/product.wgsl"),
     entry: "main",
     bindings: &[
@@ -71,7 +71,7 @@ pub static PRODUCT: GpuPass = GpuPass {
 
 /// The step along the direction.
 pub static UPDATE: GpuPass = GpuPass {
-    name: "snow.implicit_update",
+    name: "fluid.implicit_update",
     source: particle_kernel!("implicit/shared.wgsl", "implicit/update.wgsl"),
     entry: "main",
     bindings: &[
@@ -91,7 +91,7 @@ pub static UPDATE: GpuPass = GpuPass {
 
 /// The next direction.
 pub static DIRECTION: GpuPass = GpuPass {
-    name: "snow.implicit_direction",
+    name: "fluid.implicit_direction",
     source: particle_kernel!("implicit/shared.wgsl", "implicit/direction.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (R, "visc_scalars"), (R, "visc_r"), (R, "visc_diag"), (W, "visc_p")],

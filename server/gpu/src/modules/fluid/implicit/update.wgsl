@@ -1,5 +1,5 @@
 // One step along the search direction (floe-engine
-// `modules::snow::implicit::Update`): alpha = RZ / PAP, v += alpha p,
+// `modules::fluid::implicit::Update`): alpha = RZ / PAP, v += alpha p,
 // r -= alpha Ap, and per particle the new r.z and r.z / BB.
 
 // The solve's scalars: r.z, b.b, p.Ap, the new r.z.

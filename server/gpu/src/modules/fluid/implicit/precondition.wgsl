@@ -1,5 +1,5 @@
 // The first search direction p = z = r / d, and per particle r.z and b.b / d with
-// b = m v* (floe-engine `modules::snow::implicit::Precondition`).
+// b = m v* (floe-engine `modules::fluid::implicit::Precondition`).
 
 @group(0) @binding(1) var<storage, read> pos: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> vel: array<vec4<f32>>;

@@ -1,5 +1,5 @@
-// The viscous force (floe-engine `modules::snow::viscous`, term by term in the
-// same order): a_i += sum_j m_j (mu_i + mu_j) / (rho_i rho_j) F_ij v_ij (Morris,
+// The viscous force of the per-particle viscosities (floe-engine
+// `modules::fluid::varying`, term by term in the same order): a_i += sum_j m_j (mu_i + mu_j) / (rho_i rho_j) F_ij v_ij (Morris,
 // Fox & Zhu 1997), F_ij = r dW/dr / (r^2 + 0.01 h^2); a wall particle mirrors the
 // particle (velocity -v_i, viscosity mu_i, density rho_i), times the walls' shear
 // factor (0 for slip walls).
@@ -42,7 +42,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     }
     if (params.n_walls > 0u) {
         let mat = params.materials[ma];
-        let mirror = vi * (4.0 * snow.kind[ma].z * mu_i * inv_rho * inv_rho);
+        let mirror = vi * (4.0 * viscous_walls.x * mu_i * inv_rho * inv_rho);
         let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
         for (var k = 0u; k < block_runs(bw); k++) {
             let run = run_cells(bw, k, params.wall_dims);

@@ -1,4 +1,4 @@
-// Shared by the implicit viscosity kernels (floe-engine `modules::snow::implicit`).
+// Shared by the implicit viscosity kernels (floe-engine `modules::fluid::implicit`).
 
 // The pair weight w_ij = m_i m_j (mu_i + mu_j) / (rho_i rho_j) |F_ij|, with
 // F_ij = r dW/dr / (r^2 + 0.01 h^2), at distance r (r2 = r^2).

@@ -1,5 +1,6 @@
-//! Implicit viscosity (`snow.solver = { method = "implicit" }`): the viscous force of
-//! [`super::viscous`] integrated by backward Euler after each kick, as Weiler,
+//! Implicit viscosity (the [`super::spec::ViscousSolver::Implicit`] a module enables
+//! per-particle viscosity with, such as `snow.solver`): the viscous force of
+//! [`super::varying`] integrated by backward Euler after each kick, as Weiler,
 //! Koschier, Brand & Bender (2018, "A physically consistent implicit viscosity
 //! solver for SPH fluids", Computer Graphics Forum 37(2)) do for theirs, so stiff
 //! viscosities (mu_0 / mu_inf of 1e4 and more) run at the pressure-limited dt.
@@ -20,19 +21,19 @@
 //!
 //! Passes (stage `Solve`, run by the solve, [`solve`]) and the sums between them,
 //! which stay on the device in `visc_scalars` (`RZ`, `BB`, `PAP`, `RZ_NEW`):
-//! 1. `snow.implicit_diagonal`: `d`, `r`;
-//! 2. `snow.implicit_precondition`: `p = z = r / d`; per particle `r.z` and
+//! 1. `fluid.implicit_diagonal`: `d`, `r`;
+//! 2. `fluid.implicit_precondition`: `p = z = r / d`; per particle `r.z` and
 //!    `b.b / d` (`b = m v*`), summed into `RZ` and `BB`;
-//! 3. per iteration: `snow.implicit_product` (`Ap`, `p.Ap` summed into `PAP`),
-//!    `snow.implicit_update` (`alpha = RZ / PAP`, `v += alpha p`, `r -= alpha Ap`,
-//!    `r.z` summed into `RZ_NEW`), `snow.implicit_direction`
+//! 3. per iteration: `fluid.implicit_product` (`Ap`, `p.Ap` summed into `PAP`),
+//!    `fluid.implicit_update` (`alpha = RZ / PAP`, `v += alpha p`, `r -= alpha Ap`,
+//!    `r.z` summed into `RZ_NEW`), `fluid.implicit_direction`
 //!    (`p = z + (RZ_NEW / RZ) p`, then `RZ = RZ_NEW`).
 //!
 //! The residual is `sqrt(r.z / b.b)` in the preconditioner's norm (`r.z` summed
-//! over `b.D^-1.b`): converged at `snow.solver.tolerance`. A flow at rest has
+//! over `b.D^-1.b`): converged at the solver's `tolerance`. A flow at rest has
 //! `b = 0` and `r = 0`: its residual is 0 after the one iteration every solve runs.
 
-use super::SnowConsts;
+use super::varying::VaryingViscosity;
 use crate::attrs::{AttrSpec, Attrs, Elem, PARTICLES, Role};
 use crate::cpu::neighbors::{CHUNK, ChunkNeighbors};
 use crate::cpu::{CpuCx, CpuPass};
@@ -43,7 +44,7 @@ use crate::schemes::{Iterate, Op, ReduceOp, Reduction};
 use rayon::prelude::*;
 
 /// The space of the solve's scalars.
-pub const SCALARS_SPACE: &str = "snow.solve";
+pub const SCALARS_SPACE: &str = "fluid.viscosity_solve";
 /// Slots of `visc_scalars`: `r.z` (the current one), `b.D^-1.b`, `p.Ap`, `r.z` (the new one).
 pub const RZ: u32 = 0;
 /// See [`RZ`].
@@ -54,7 +55,7 @@ pub const PAP: u32 = 2;
 pub const RZ_NEW: u32 = 3;
 
 const fn attr(name: &'static str, elem: Elem, unit: &'static str, about: &'static str) -> AttrSpec {
-    AttrSpec { name, elem, unit, role: Role::Derived, space: PARTICLES, module: "snow", about }
+    AttrSpec { name, elem, unit, role: Role::Derived, space: PARTICLES, module: "fluid", about }
 }
 
 /// The residual `M v* - (M + dt K) v`.
@@ -76,7 +77,7 @@ pub static SCALARS: AttrSpec = AttrSpec {
     unit: "kg m^2/s^2",
     role: Role::Derived,
     space: SCALARS_SPACE,
-    module: "snow",
+    module: "fluid",
     about: "Implicit viscosity: r.z, b.b, p.Ap and the new r.z, summed on the device.",
 };
 
@@ -85,34 +86,34 @@ pub const ATTRS: [&AttrSpec; 7] = [&R, &P, &AP, &DIAGONAL, &DOT, &RESIDUAL, &SCA
 
 /// `d` and the starting residual `r = dt m a`.
 pub static DIAGONAL_PASS: PassSpec =
-    PassSpec::solve("snow", "snow.implicit_diagonal", &["x", "v", "rho", "mu"], &["visc_diag", "visc_r"], &[]);
+    PassSpec::solve("fluid", "fluid.implicit_diagonal", &["x", "v", "rho", "mu"], &["visc_diag", "visc_r"], &[]);
 /// `p = r / d`, the terms of `r.z` and of `b.D^-1.b`.
 pub static PRECONDITION: PassSpec = PassSpec::solve(
-    "snow",
-    "snow.implicit_precondition",
+    "fluid",
+    "fluid.implicit_precondition",
     &["x", "v", "visc_r", "visc_diag"],
     &["visc_p", "visc_dot", "visc_residual"],
     &[],
 );
 /// `Ap` and the terms of `p.Ap`.
 pub static PRODUCT: PassSpec = PassSpec::solve(
-    "snow",
-    "snow.implicit_product",
+    "fluid",
+    "fluid.implicit_product",
     &["x", "rho", "mu", "visc_p", "visc_diag"],
     &["visc_ap", "visc_dot"],
     &[],
 );
 /// The step along `p`: velocities and residual, the terms of the new `r.z`.
 pub static UPDATE: PassSpec = PassSpec::solve(
-    "snow",
-    "snow.implicit_update",
+    "fluid",
+    "fluid.implicit_update",
     &["visc_scalars", "visc_p", "visc_ap", "visc_diag"],
     &["visc_dot", "visc_residual"],
     &["v", "visc_r"],
 );
 /// The next search direction.
 pub static DIRECTION: PassSpec =
-    PassSpec::solve("snow", "snow.implicit_direction", &["visc_scalars", "visc_r", "visc_diag"], &[], &["visc_p"]);
+    PassSpec::solve("fluid", "fluid.implicit_direction", &["visc_scalars", "visc_r", "visc_diag"], &[], &["visc_p"]);
 
 /// Every pass of the solve.
 pub const PASSES: [&PassSpec; 5] = [&DIAGONAL_PASS, &PRECONDITION, &PRODUCT, &UPDATE, &DIRECTION];
@@ -123,24 +124,24 @@ const fn sum(slot: u32) -> Op {
 
 /// The start: diagonal, residual, preconditioned direction and the first sums.
 const START: &[Op] = &[
-    Op::Pass("snow.implicit_diagonal"),
-    Op::Pass("snow.implicit_precondition"),
+    Op::Pass("fluid.implicit_diagonal"),
+    Op::Pass("fluid.implicit_precondition"),
     sum(RZ),
     Op::Sum { attr: "visc_residual", into: "visc_scalars", slot: BB },
 ];
 
 /// One conjugate-gradient iteration.
 const ITERATION: &[Op] = &[
-    Op::Pass("snow.implicit_product"),
+    Op::Pass("fluid.implicit_product"),
     sum(PAP),
-    Op::Pass("snow.implicit_update"),
+    Op::Pass("fluid.implicit_update"),
     sum(RZ_NEW),
-    Op::Pass("snow.implicit_direction"),
+    Op::Pass("fluid.implicit_direction"),
     sum(RZ),
 ];
 
 /// The solve's name (in step reports and statistics).
-pub const NAME: &str = "snow.viscosity";
+pub const NAME: &str = "fluid.viscosity";
 
 /// The solve at relative residual `tolerance`, with at most `max` iterations.
 pub fn solve(tolerance: f32, max: u32) -> Iterate {
@@ -162,28 +163,19 @@ pub fn ratio(a: Real, b: Real) -> Real {
     if b > 0.0 { a / b } else { 0.0 }
 }
 
-/// The CPU passes by name.
-pub const CPU: [(&str, &dyn CpuPass); 5] = [
-    ("snow.implicit_diagonal", &Diagonal),
-    ("snow.implicit_precondition", &Precondition),
-    ("snow.implicit_product", &Product),
-    ("snow.implicit_update", &Update),
-    ("snow.implicit_direction", &Direction),
-];
-
-/// `snow.implicit_diagonal` on the CPU.
+/// `fluid.implicit_diagonal` on the CPU.
 #[derive(Debug)]
 pub struct Diagonal;
-/// `snow.implicit_precondition` on the CPU.
+/// `fluid.implicit_precondition` on the CPU.
 #[derive(Debug)]
 pub struct Precondition;
-/// `snow.implicit_product` on the CPU.
+/// `fluid.implicit_product` on the CPU.
 #[derive(Debug)]
 pub struct Product;
-/// `snow.implicit_update` on the CPU.
+/// `fluid.implicit_update` on the CPU.
 #[derive(Debug)]
 pub struct Update;
-/// `snow.implicit_direction` on the CPU.
+/// `fluid.implicit_direction` on the CPU.
 #[derive(Debug)]
 pub struct Direction;
 
@@ -273,7 +265,7 @@ impl<'a, S: Separation> Pairs<'a, S> {
 
 fn diagonal<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let (model, dt) = (cx.model, cx.dt);
-    let shear = model.consts::<SnowConsts>().wall_shear;
+    let shear = model.consts::<VaryingViscosity>().wall_shear;
     let (d_h, r_h) = (cx.attrs.handle::<Real>("visc_diag"), cx.attrs.handle::<Vec3>("visc_r"));
     let (mut diag, mut res) = (cx.attrs.take(d_h), cx.attrs.take(r_h));
     let attrs = &*cx.attrs;

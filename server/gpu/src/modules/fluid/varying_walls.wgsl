@@ -1,0 +1,4 @@
+// The `varying` uniform (floe-gpu `modules::fluid::varying_uniform`) of the
+// per-particle viscosity's force: x is the walls' shear factor (1 no slip, 0 slip).
+
+@group(0) @binding(1) var<uniform> viscous_walls: vec4<f32>;
