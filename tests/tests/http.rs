@@ -41,6 +41,7 @@ async fn rest_mirrors_the_control_calls() {
                 "convection",
                 "two_fluids",
                 "heated_cavity",
+                "heated_channel",
                 "layers",
                 "avalanche",
                 "power_law_channel",

@@ -38,7 +38,8 @@ fn unknown_cases_are_named() {
     assert!(
         format!("{err}").starts_with(
             "unknown case 'taylor_green'; cases are: hydrostatic, dam_break, poiseuille, conduction, layers_at_rest, \
-             heated_cavity, heated_cavity_ra1e5, power_law_channel, bingham_channel, cross_channel, stability"
+             heated_cavity, heated_cavity_ra1e5, heated_channel, power_law_channel, bingham_channel, cross_channel, \
+             stability"
         ),
         "{err}"
     );

@@ -149,6 +149,28 @@ const VARIANTS: &[&[&str]] = &[
           {\"conductivity\":5,\"heat_capacity\":500,\"expansion\":0.002,\"temperature\":280}]",
         "heat.buoyancy_gravity=[1,-5,0.5]",
     ],
+    // With heat's viscosity laws: Arrhenius on one fluid (the implicit solve, the
+    // default), and exponential and a table on two (the explicit force).
+    &[
+        "particle_spacing=0.05",
+        "modules=[\"fluid\",\"heat\"]",
+        "fluids[0].viscosity={\"model\":\"none\"}",
+        HEAT,
+        "heat.fluids[0].viscosity={\"law\":\"arrhenius\",\"mu_ref\":5,\"t_ref\":300,\"activation_temperature\":2000}",
+    ],
+    &[
+        "particle_spacing=0.05",
+        "modules=[\"fluid\",\"heat\"]",
+        HEAT,
+        TWO_FLUIDS,
+        "fluids[0].viscosity={\"model\":\"none\"}",
+        "fluids[1].viscosity={\"model\":\"none\"}",
+        "heat.fluids=[{\"conductivity\":50,\"heat_capacity\":1000,\"temperature\":300,\
+          \"viscosity\":{\"law\":\"exponential\",\"mu_ref\":2,\"t_ref\":300,\"b\":0.02}},\
+          {\"conductivity\":5,\"heat_capacity\":500,\"temperature\":280,\
+          \"viscosity\":{\"law\":\"table\",\"points\":[[250,8],[290,3],[330,1],[380,0.5],[420,0.4]]}}]",
+        "heat.viscous_solver={\"method\":\"explicit\"}",
+    ],
     // With snow: each viscosity law, alone (the explicit force) and as two fluids of
     // different laws (the implicit solve, the default).
     &[

@@ -180,6 +180,11 @@ impl<'s> ModelBuilder<'s> {
         set(&mut self.consts, value);
     }
 
+    /// The constants of type `T` a module stored so far, if any.
+    pub fn consts<T: Any + Send + Sync>(&self) -> Option<&T> {
+        self.consts.0.iter().find(|(t, _)| *t == TypeId::of::<T>()).and_then(|(_, v)| v.downcast_ref())
+    }
+
     /// Runs the scheme and the modules, then assembles the model.
     pub(super) fn finish(mut self) -> Result<Model, BuildError> {
         let scene = self.scene;

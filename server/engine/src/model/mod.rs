@@ -51,6 +51,14 @@ pub enum BuildError {
     /// A terrain's heights cannot be read (e.g. an asset never read from the assets directory).
     #[error("{0}")]
     Terrain(String),
+    /// Two modules of a scene would each set the per-particle viscosity.
+    #[error("{second}: sets the particles' viscosity, which {first} sets already; a scene takes it from one module")]
+    ViscosityTwice {
+        /// The setting of the module that set it first.
+        first: &'static str,
+        /// The other's.
+        second: &'static str,
+    },
     /// The backend cannot hold or run the scene (e.g. it exceeds a GPU's limits).
     #[error("backend: {0}")]
     Backend(String),

@@ -15,6 +15,7 @@ pub static PASSES: &[&GpuPass] = &[
     &heat::CONDUCTION,
     &heat::BUOYANCY,
     &heat::INTEGRATE,
+    &heat::VISCOSITY,
     &fluid::VARYING,
     &fluid::implicit::DIAGONAL,
     &fluid::implicit::PRECONDITION,

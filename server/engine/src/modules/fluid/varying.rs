@@ -31,7 +31,7 @@ use crate::channels::{ChannelSpec, Source};
 use crate::cpu::neighbors::CHUNK;
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
-use crate::model::{Model, ModelBuilder};
+use crate::model::{BuildError, Model, ModelBuilder};
 use crate::periodic::Separation;
 use crate::plan::{PassSpec, Stage};
 use rayon::prelude::*;
@@ -62,20 +62,31 @@ pub const CHANNEL: ChannelSpec = ChannelSpec {
 /// How the per-particle viscosities act: set by the module that enables them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VaryingViscosity {
+    /// The setting that enabled them (a module's section, for errors).
+    pub owner: &'static str,
     /// 1 where walls hold the fluid at rest (no slip), 0 where they exert no shear.
     pub wall_shear: Real,
 }
 
 impl VaryingViscosity {
-    fn new(walls: WallShear) -> Self {
-        Self { wall_shear: if walls == WallShear::NoSlip { 1.0 } else { 0.0 } }
+    fn new(owner: &'static str, walls: WallShear) -> Self {
+        Self { owner, wall_shear: if walls == WallShear::NoSlip { 1.0 } else { 0.0 } }
     }
 }
 
-/// Turns per-particle viscosity on: allocates `mu` (which the calling module's own
-/// pass must write before the forces), the viscous force or the implicit solve,
-/// and the viscosity channel.
-pub fn enable(b: &mut ModelBuilder, solver: ViscousSolver, walls: WallShear) {
+/// Turns per-particle viscosity on for the module whose setting `owner` asks for it:
+/// allocates `mu` (which that module's own pass must write before the forces), the
+/// viscous force or the implicit solve, and the viscosity channel. One module per
+/// scene: a second is refused, naming both settings.
+pub fn enable(
+    b: &mut ModelBuilder,
+    owner: &'static str,
+    solver: ViscousSolver,
+    walls: WallShear,
+) -> Result<(), BuildError> {
+    if let Some(first) = b.consts::<VaryingViscosity>() {
+        return Err(BuildError::ViscosityTwice { first: first.owner, second: owner });
+    }
     b.zeros(&super::VISCOSITY);
     match solver {
         ViscousSolver::Explicit => b.pass(&FORCE),
@@ -91,13 +102,15 @@ pub fn enable(b: &mut ModelBuilder, solver: ViscousSolver, walls: WallShear) {
         }
     }
     b.channel(CHANNEL);
-    b.set_consts(VaryingViscosity::new(walls));
+    b.set_consts(VaryingViscosity::new(owner, walls));
+    Ok(())
 }
 
 /// Applies new settings of the module that enabled the path: the walls, and the
 /// implicit solve's tolerance and iteration limit.
 pub fn retune(model: &mut Model, solver: ViscousSolver, walls: WallShear) {
-    model.set_consts(VaryingViscosity::new(walls));
+    let owner = model.consts::<VaryingViscosity>().owner;
+    model.set_consts(VaryingViscosity::new(owner, walls));
     if let ViscousSolver::Implicit { tolerance, max_iterations } = solver {
         let solve = implicit::solve(tolerance, max_iterations);
         for s in model.velocity_solves.iter_mut().filter(|s| s.name == solve.name) {

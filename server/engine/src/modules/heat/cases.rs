@@ -1,11 +1,14 @@
 //! The heat module's validation cases (conduction against VALIDATION.md §5, the
 //! two-layer rest state, de Vahl Davis' heated cavity at Ra = 1e4 and, in `--full`,
-//! 1e5) and its stability battery (temperature jumps, a very conductive fluid, a
-//! large density ratio).
+//! 1e5, and the channel whose viscosity follows its temperature) and its stability
+//! battery (temperature jumps, a very conductive fluid, a large density ratio, a
+//! steep viscosity law).
 
-use super::presets::{CAVITY_L, CAVITY_T, CONDUCTION_ALPHA, CONDUCTION_L, CONDUCTION_T};
+use super::HeatConsts;
+use super::presets::{CAVITY_L, CAVITY_T, CHANNEL_T, CONDUCTION_ALPHA, CONDUCTION_L, CONDUCTION_T};
 use crate::Simulation;
 use crate::validation::cases::{Case, Measured, Variant};
+use crate::validation::poiseuille::profile_l2_error;
 use crate::validation::run_probed;
 use crate::validation::stability::{Expect, StabilityCase};
 
@@ -62,7 +65,75 @@ pub const CASES: &[Case] = &[
         variants: &[Variant { name: "default", overrides: CAVITY_RA_1E5 }],
         measure: |sim, spacing| cavity_case(sim, spacing, &RA_1E5),
     },
+    Case {
+        name: "heated_channel",
+        module: "heat",
+        reference: "steady channel flow between plates at 280 K and 320 K with mu(T) = 1000 exp(-b (T - 300)) Pa s: \
+                    the linear conduction profile, and u(y) = rho F / (int 1/mu) of the stress rho F (y_c - y) over mu, \
+                    by quadrature",
+        preset: "heated_channel",
+        primary_error: "velocity_l2",
+        // The conduction limit sets dt (4000 steps at 0.05 m): 20 layers in `--full` only.
+        spacings: (&[0.1, 1.0 / 15.0], &[0.1, 1.0 / 15.0, 0.05, 1.0 / 30.0]),
+        bounds: &[("velocity_l2", 0.03), ("temperature_l2", 0.01)],
+        variants: &[
+            Variant { name: "implicit", overrides: &[] },
+            Variant { name: "explicit", overrides: &[r#"heat.viscous_solver={"method":"explicit"}"#] },
+        ],
+        measure: channel_case,
+    },
 ];
+
+/// Simulated time (s) of the `heated_channel` case: the slowest thermal and viscous
+/// modes decay as `exp(-pi^2 D t / L^2)` with D about 1 m^2/s, 5e-5 of their start by 1 s.
+const CHANNEL_T_END: f64 = 1.0;
+
+/// The steady velocity across the `heated_channel` (plates at `y = 0` and `l`,
+/// driven by `rho_f` = rho F, Pa/m) whose viscosity at height y is `mu(y)`: the
+/// stress is `rho F (y_c - y)`, zero at the height `y_c` that makes the velocity
+/// vanish on both plates, `y_c = int y / mu / int 1 / mu`; then
+/// `u(y) = int_0^y rho F (y_c - s) / mu(s) ds`. Trapezoidal rule on `cells` cells;
+/// returns `u` at `y = k l / cells`.
+pub fn channel_profile(mu: impl Fn(f64) -> f64, rho_f: f64, l: f64, cells: usize) -> Vec<f64> {
+    let dy = l / cells as f64;
+    let inv: Vec<f64> = (0..=cells).map(|k| 1.0 / mu(k as f64 * dy)).collect();
+    let integral = |f: &dyn Fn(usize) -> f64| (1..=cells).map(|k| 0.5 * dy * (f(k - 1) + f(k))).sum::<f64>();
+    let y_c = integral(&|k| k as f64 * dy * inv[k]) / integral(&|k| inv[k]);
+    let mut u = vec![0.0; cells + 1];
+    for k in 1..=cells {
+        let g = |k: usize| rho_f * (y_c - k as f64 * dy) * inv[k];
+        u[k] = u[k - 1] + 0.5 * dy * (g(k - 1) + g(k));
+    }
+    u
+}
+
+/// Runs to [`CHANNEL_T_END`], then compares the temperatures with the linear profile
+/// between the plates (L2 over the plates' difference) and the velocities with
+/// [`channel_profile`] of the fluid's law along that profile.
+fn channel_case(sim: &mut Simulation, _spacing: f64) -> Measured {
+    let (wall, halted) = run_probed(sim, CHANNEL_T_END, CHANNEL_T_END, |_| {});
+    if halted.is_some() {
+        return (wall, halted, Vec::new());
+    }
+    let scene = sim.scene();
+    let (rho_f, l) = (f64::from(scene.fluids[0].rest_density) * f64::from(scene.gravity[0]), 1.0);
+    let (cold, hot) = (f64::from(CHANNEL_T.0), f64::from(CHANNEL_T.1));
+    let linear = |y: f64| cold + (hot - cold) * (y / l).clamp(0.0, 1.0);
+    let law = sim.model().consts::<HeatConsts>().viscosity[0];
+    let cells = 4000;
+    let u = channel_profile(|y| f64::from(law.viscosity(linear(y) as f32)), rho_f, l, cells);
+    let at = |y: f64| {
+        let f = (y / l).clamp(0.0, 1.0) * cells as f64;
+        let k = (f.floor() as usize).min(cells - 1);
+        u[k] + (u[k + 1] - u[k]) * (f - k as f64)
+    };
+    let p = sim.read(&["velocity", "temperature"]);
+    let t = p.channel("temperature").and_then(|t| t.as_scalars()).expect("temperatures requested");
+    let sq: f64 = p.positions.iter().zip(t).map(|(x, &t)| (f64::from(t) - linear(f64::from(x[1]))).powi(2)).sum();
+    let temperature_l2 = (sq / t.len().max(1) as f64).sqrt() / (hot - cold);
+    let errors = vec![("velocity_l2", profile_l2_error(&p, at)), ("temperature_l2", temperature_l2)];
+    (wall, None, errors)
+}
 
 /// Overrides taking the `heated_cavity` (Ra = 1e4) to Ra = 1e5: its viscosity
 /// `CAVITY_NU` and its conductivity `rho c nu / 0.71` divided by sqrt(10), so Pr
@@ -272,6 +343,19 @@ pub const STABILITY: &[StabilityCase] = &[
         spacing: BATTERY_SPACING,
         overrides: &["heat.fluids[0].conductivity=1e6"],
         until: (0.01, 0.05),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "viscosity_ratio_1e4",
+        what: "the heated channel with a viscosity falling 1e4-fold from the cold plate to the hot one \
+               (2e4 to 2 Pa s), implicit viscosity",
+        preset: "heated_channel",
+        spacing: (0.1, 0.05),
+        overrides: &[
+            r#"heat.fluids[0].viscosity={"law":"exponential","mu_ref":200,"t_ref":300,"b":0.2303}"#,
+            "heat.max_viscosity=1e5",
+        ],
+        until: (0.2, 1.0),
         expect: Expect::Finish,
     },
     StabilityCase {

@@ -1,14 +1,17 @@
 //! The heat module: a temperature per particle, conduction between particles of
 //! one fluid or of several, walls held at a temperature or insulated, volumetric
-//! heat sources and heat fluxes through walls, and the Boussinesq buoyancy that
-//! couples temperature back to the flow. docs/heat.md states the model with its
+//! heat sources and heat fluxes through walls, and the Boussinesq buoyancy and the
+//! temperature-dependent viscosity that couple temperature back to the flow. docs/heat.md states the model with its
 //! units and references.
 //!
 //! - [`spec`]: the scene section (`heat`).
 //! - [`conduction`]: the conduction pass (Cleary & Monaghan 1999).
 //! - [`passes`]: buoyancy (a force pass accumulating into `a`) and the
 //!   integration `T += dt dT/dt` in the kick stage.
-//! - [`presets`]: `conduction`, `convection`, `two_fluids`, `heated_cavity`, `layers`.
+//! - [`viscosity`]: temperature-dependent viscosity laws, written into the fluid
+//!   module's per-particle viscosity.
+//! - [`presets`]: `conduction`, `convection`, `two_fluids`, `heated_cavity`,
+//!   `heated_channel`, `layers`.
 //! - [`cases`]: validation cases and the stability battery.
 
 pub mod cases;
@@ -16,6 +19,7 @@ pub mod conduction;
 pub mod passes;
 pub mod presets;
 pub mod spec;
+pub mod viscosity;
 
 use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use crate::channels::{ChannelSpec, Source};
@@ -24,10 +28,13 @@ use crate::kernel::Kernel;
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::modules::ModuleDef;
+use crate::modules::fluid::spec::WallShear;
+use crate::modules::fluid::varying;
 use crate::scene::Scene;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
 use crate::simulation::Measure;
+use viscosity::TemperatureLaw;
 
 /// The module's definition.
 pub static MODULE: ModuleDef = ModuleDef {
@@ -45,6 +52,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("heat.conduction", &conduction::Conduction),
         ("heat.buoyancy", &passes::Buoyancy),
         ("heat.integrate", &passes::Integrate),
+        ("heat.viscosity", &viscosity::Viscosity),
     ],
     presets: presets::PRESETS,
     dt_limit,
@@ -145,6 +153,10 @@ pub struct HeatConsts {
     pub walls: Vec<(Aabb, Real)>,
     /// Volumetric heat sources and the layers wall fluxes enter through.
     pub sources: Vec<HeatInput>,
+    /// The temperature law of each material's viscosity (kind `None` where it has none).
+    pub viscosity: Vec<TemperatureLaw>,
+    /// The temperatures the scene may reach, `heat.range` (K).
+    pub range: [Real; 2],
 }
 
 /// Where heat enters the fluid, and how much.
@@ -202,6 +214,12 @@ impl HeatConsts {
                     power: f.flux * spacing * spacing,
                 }))
                 .collect(),
+            viscosity: heat
+                .fluids
+                .iter()
+                .map(|f| TemperatureLaw::new(f.viscosity.as_ref(), heat.max_viscosity))
+                .collect(),
+            range: heat.range,
         }
     }
 
@@ -218,6 +236,11 @@ impl HeatConsts {
     pub fn source(&self, x: Vec3, rho: Real, mass: Real) -> Real {
         let power = |s: &HeatInput| if s.layer > 0.0 { s.power * rho / mass } else { s.power };
         self.sources.iter().filter(|s| s.contains(x)).map(power).sum()
+    }
+
+    /// Whether any material's viscosity follows its temperature.
+    pub fn viscous(&self) -> bool {
+        self.viscosity.iter().any(|l| l.kind != viscosity::Kind::None)
     }
 
     /// Whether any material feels buoyancy.
@@ -258,7 +281,20 @@ fn validate(scene: &Scene, c: &mut Checker) {
         c.positive(&format!("{p}.heat_capacity"), f.heat_capacity);
         c.within(&format!("{p}.expansion"), f.expansion, -0.1, 0.1);
         temperature(c, &format!("{p}.temperature"), f.temperature);
+        if let Some(law) = &f.viscosity {
+            validate_law(c, &format!("{p}.viscosity"), law);
+            if scene.fluids.get(i).is_some_and(|fluid| fluid.viscosity != crate::scene::Viscosity::None) {
+                c.fail(
+                    &format!("fluids[{i}].viscosity"),
+                    format!(
+                        "must be {{\"model\": \"none\"}}: {p}.viscosity sets the fluid's viscosity from its temperature"
+                    ),
+                );
+            }
+        }
     }
+    c.positive("heat.max_viscosity", heat.max_viscosity);
+    varying::validate_solver(c, "heat.viscous_solver", heat.viscous_solver);
     for (name, boxes) in [("regions", &heat.regions), ("walls", &heat.walls)] {
         for (i, b) in boxes.iter().enumerate() {
             let p = format!("heat.{name}[{i}]");
@@ -279,6 +315,39 @@ fn validate(scene: &Scene, c: &mut Checker) {
         if count > MAX_BOXES {
             let what = if name == "sources" { "sources and fluxes together" } else { "boxes" };
             c.fail(&format!("heat.{name}"), format!("at most {MAX_BOXES} {what}, got {count}"));
+        }
+    }
+}
+
+/// A temperature law's parameters: positive viscosities and temperatures, a table's
+/// temperatures rising.
+fn validate_law(c: &mut Checker, p: &str, law: &spec::ViscosityLaw) {
+    match law {
+        spec::ViscosityLaw::Exponential { mu_ref, t_ref, b } => {
+            c.positive(&format!("{p}.mu_ref"), *mu_ref);
+            c.positive(&format!("{p}.t_ref"), *t_ref);
+            c.within(&format!("{p}.b"), *b, -1.0, 1.0);
+        }
+        spec::ViscosityLaw::Arrhenius { mu_ref, t_ref, activation_temperature } => {
+            c.positive(&format!("{p}.mu_ref"), *mu_ref);
+            c.positive(&format!("{p}.t_ref"), *t_ref);
+            c.within(&format!("{p}.activation_temperature"), *activation_temperature, -1e5, 1e5);
+        }
+        spec::ViscosityLaw::Table { points } => {
+            if !(2..=viscosity::MAX_POINTS).contains(&points.len()) {
+                let n = viscosity::MAX_POINTS;
+                c.fail(&format!("{p}.points"), format!("must hold 2 to {n} points, got {}", points.len()));
+            }
+            for (k, &[t, mu]) in points.iter().enumerate() {
+                c.positive(&format!("{p}.points[{k}][0]"), t);
+                c.non_negative(&format!("{p}.points[{k}][1]"), mu);
+                if k > 0 && t.is_finite() && t <= points[k - 1][0] {
+                    c.fail(
+                        &format!("{p}.points[{k}][0]"),
+                        format!("must exceed the previous point's {}, got {t}", points[k - 1][0]),
+                    );
+                }
+            }
         }
     }
 }
@@ -312,6 +381,10 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         b.pass(&passes::BUOYANCY);
     }
     b.pass(&passes::INTEGRATE);
+    if consts.viscous() {
+        varying::enable(b, "heat.fluids[*].viscosity", heat.viscous_solver, WallShear::NoSlip)?;
+        b.pass(&viscosity::VISCOSITY);
+    }
     b.bound(Bound { attr: "temperature", what: "temperature", unit: "K", min: heat.range[0], max: heat.range[1] });
     b.channel(TEMPERATURE_CHANNEL);
     b.set_consts(consts);
@@ -335,7 +408,10 @@ fn retune(scene: &Scene, model: &mut Model) {
 }
 
 /// The explicit diffusion limit `dt <= 0.1 rho c h^2 / k` (Cleary & Monaghan 1999,
-/// section 5) for the most diffusive material.
+/// section 5) for the most diffusive material, and, where the temperature laws'
+/// viscosity is explicit, the viscous limit `0.125 h^2 rho0 / mu` (Morris et al.
+/// 1997, eq. 20) at the largest viscosity a law gives within `heat.range`: the
+/// smaller of the two.
 fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
     let c = model.consts::<HeatConsts>();
     let alpha = c
@@ -346,7 +422,17 @@ fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
         .map(|((&k, &cp), m)| k / (m.rest_density * cp))
         .fold(0.0, Real::max);
     let h = 0.5 * model.kernel.support();
-    (alpha > 0.0).then(|| ("heat conduction", 0.1 * h * h / alpha))
+    let diffusion = (alpha > 0.0).then(|| ("heat conduction", 0.1 * h * h / alpha));
+    let [lo, hi] = c.range;
+    let nu = c
+        .viscosity
+        .iter()
+        .zip(model.materials.iter())
+        .map(|(l, m)| l.largest(lo, hi) / m.rest_density)
+        .fold(0.0, Real::max);
+    let explicit = c.viscous() && !varying::is_implicit(model) && nu > 0.0;
+    let viscous = explicit.then(|| ("temperature-dependent viscosity", 0.125 * h * h / nu));
+    [diffusion, viscous].into_iter().flatten().min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
 /// Mean, smallest and largest temperature (K) and the heat content

@@ -171,7 +171,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let snow = section(scene);
     b.zeros(&SHEAR_RATE);
     b.pass(&shear::SHEAR);
-    varying::enable(b, snow.solver, snow.walls);
+    varying::enable(b, "snow", snow.solver, snow.walls)?;
     b.channel(SHEAR_RATE_CHANNEL);
     let consts = SnowConsts::new(snow);
     b.set_consts(Front::new(b, &consts));

@@ -29,21 +29,12 @@ pub static DIAGONAL: GpuPass = GpuPass {
     when: always,
 };
 
-/// The first direction and the terms of `r.z` and `b.D^-1.b`.
+/// The first direction and the terms of `r.z`.
 pub static PRECONDITION: GpuPass = GpuPass {
     name: "fluid.implicit_precondition",
     source: particle_kernel!("implicit/precondition.wgsl"),
     entry: "main",
-    bindings: &[
-        (U, "params"),
-        (R, "x"),
-        (R, "v"),
-        (R, "visc_r"),
-        (R, "visc_diag"),
-        (W, "visc_p"),
-        (W, "visc_dot"),
-        (W, "visc_residual"),
-    ],
+    bindings: &[(U, "params"), (R, "visc_r"), (R, "visc_diag"), (W, "visc_p"), (W, "visc_dot"), (W, "visc_residual")],
     space: PARTICLES,
     when: always,
 };

@@ -24,6 +24,14 @@ struct Heat {
     source_max: array<vec4<f32>, 8>,
     // The acceleration buoyancy acts along (m/s^2), in xyz.
     gravity: vec4<f32>,
+    // Per material: the viscosity law's kind (as u32 bits; 0 none, 1 exponential,
+    // 2 Arrhenius, 3 table) and its three parameters (mu_ref, T_ref, b or mu_ref,
+    // 1/T_ref, E/R).
+    law: array<vec4<f32>, 16>,
+    // Per material: the clamp (Pa s), the table's number of points (u32 bits).
+    law_clamp: array<vec4<f32>, 16>,
+    // Per material, 4 each: the table's points (T K, mu Pa s), two per vec4.
+    table: array<vec4<f32>, 64>,
 }
 
 @group(0) @binding(1) var<uniform> heat: Heat;

@@ -1,7 +1,8 @@
 //! The heat module on the GPU: conduction, Boussinesq buoyancy and the
 //! temperature integration, with the module uniform `heat` (per material:
 //! conductivity, heat capacity, expansion; per pair: the combined conductivity;
-//! the walls held at a temperature and the heat sources).
+//! the walls held at a temperature and the heat sources; per material: the
+//! viscosity's temperature law).
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
@@ -10,6 +11,7 @@ use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
+use floe_engine::modules::heat::viscosity::MAX_POINTS;
 use floe_engine::modules::heat::{HeatConsts, MAX_BOXES};
 
 /// dT/dt from conduction, walls and sources.
@@ -51,6 +53,16 @@ pub static INTEGRATE: GpuPass = GpuPass {
     when: always,
 };
 
+/// The particles' viscosity from their temperature.
+pub static VISCOSITY: GpuPass = GpuPass {
+    name: "heat.viscosity",
+    source: particle_kernel!("heat.wgsl", "viscosity.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "heat"), (R, "x"), (R, "temperature"), (W, "mu")],
+    space: PARTICLES,
+    when: always,
+};
+
 /// The `heat` uniform (`Heat` in heat.wgsl).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
@@ -66,6 +78,9 @@ struct HeatParams {
     source_min: [[f32; 4]; MAX_BOXES],
     source_max: [[f32; 4]; MAX_BOXES],
     gravity: [f32; 4],
+    law: [[f32; 4]; MAX_MATERIALS],
+    law_clamp: [[f32; 4]; MAX_MATERIALS],
+    table: [[f32; 4]; MAX_MATERIALS * MAX_POINTS / 2],
 }
 
 /// The uniform's bytes, when the scene has the heat module.
@@ -79,6 +94,12 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     let mut p = HeatParams::zeroed();
     for a in 0..n {
         p.material[a] = [c.conductivity[a], c.capacity[a], c.expansion[a], 0.0];
+        let law = &c.viscosity[a];
+        p.law[a] = [f32::from_bits(law.kind as u32), law.p[0], law.p[1], law.p[2]];
+        p.law_clamp[a] = [law.max, f32::from_bits(law.points as u32), 0.0, 0.0];
+        for (k, pair) in law.table.chunks(2).enumerate() {
+            p.table[a * MAX_POINTS / 2 + k] = [pair[0][0], pair[0][1], pair[1][0], pair[1][1]];
+        }
         for b in 0..n {
             p.pair[a * MAX_MATERIALS + b][0] = c.pair_conductivity[a * n + b];
         }

@@ -1,7 +1,7 @@
 // The next search direction p = r / d + (RZ_NEW / RZ) p (floe-engine
 // `modules::fluid::implicit::Direction`).
 
-// The solve's scalars: r.z, b.b, p.Ap, the new r.z.
+// The solve's scalars: r.z, r.z at the start, p.Ap, the new r.z.
 @group(0) @binding(1) var<storage, read> scalars: array<f32>;
 @group(0) @binding(2) var<storage, read> res: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> diag: array<f32>;

@@ -1,8 +1,8 @@
 // One step along the search direction (floe-engine
 // `modules::fluid::implicit::Update`): alpha = RZ / PAP, v += alpha p,
-// r -= alpha Ap, and per particle the new r.z and r.z / BB.
+// r -= alpha Ap, and per particle the new r.z and r.z / R0Z.
 
-// The solve's scalars: r.z, b.b, p.Ap, the new r.z.
+// The solve's scalars: r.z, r.z at the start, p.Ap, the new r.z.
 @group(0) @binding(1) var<storage, read> scalars: array<f32>;
 @group(0) @binding(2) var<storage, read> dir: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> ap: array<vec4<f32>>;

@@ -1,0 +1,176 @@
+//! Temperature-dependent viscosity: each fluid's law (`heat.fluids[*].viscosity`),
+//! resolved into one form both backends evaluate with the same arithmetic (the
+//! GPU's viscosity.wgsl), and the pass `heat.viscosity` that writes the fluid
+//! module's per-particle viscosity `mu` from the temperature before the forces.
+//! The force of those viscosities is the fluid module's
+//! ([`crate::modules::fluid::varying`]).
+
+use super::HeatConsts;
+use super::spec::ViscosityLaw;
+use crate::cpu::{CpuCx, CpuPass};
+use crate::math::Real;
+use crate::plan::{PassSpec, Stage};
+use rayon::prelude::*;
+
+/// Most points of a viscosity table (the GPU uniform's room).
+pub const MAX_POINTS: usize = 8;
+
+/// A law's kind, as the GPU uniform stores it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Kind {
+    /// No law: the fluid keeps its own viscosity model (`mu` = 0).
+    None = 0,
+    /// p = [mu_ref, T_ref, b].
+    Exponential = 1,
+    /// p = [mu_ref, 1 / T_ref, E/R].
+    Arrhenius = 2,
+    /// The table's points.
+    Table = 3,
+}
+
+/// A resolved law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TemperatureLaw {
+    /// Which law.
+    pub kind: Kind,
+    /// Its parameters, in the order [`Kind`] lists.
+    pub p: [Real; 3],
+    /// A table's points `[T (K), mu (Pa s)]`, `points` of them.
+    pub table: [[Real; 2]; MAX_POINTS],
+    /// How many of `table` are used.
+    pub points: usize,
+    /// The clamp (Pa s).
+    pub max: Real,
+}
+
+impl TemperatureLaw {
+    /// Resolves a fluid's law (none: `None`) with the scene's clamp `max` (Pa s).
+    pub fn new(law: Option<&ViscosityLaw>, max: Real) -> Self {
+        let mut r = TemperatureLaw { kind: Kind::None, p: [0.0; 3], table: [[0.0; 2]; MAX_POINTS], points: 0, max };
+        match law {
+            None => {}
+            Some(&ViscosityLaw::Exponential { mu_ref, t_ref, b }) => {
+                (r.kind, r.p) = (Kind::Exponential, [mu_ref, t_ref, b])
+            }
+            Some(&ViscosityLaw::Arrhenius { mu_ref, t_ref, activation_temperature }) => {
+                (r.kind, r.p) = (Kind::Arrhenius, [mu_ref, 1.0 / t_ref, activation_temperature])
+            }
+            Some(ViscosityLaw::Table { points }) => {
+                r.kind = Kind::Table;
+                r.points = points.len().min(MAX_POINTS);
+                r.table[..r.points].copy_from_slice(&points[..r.points]);
+            }
+        }
+        r
+    }
+
+    /// Dynamic viscosity (Pa s) at temperature `t` (K), clamped to `[0, max]`.
+    #[inline(always)]
+    pub fn viscosity(&self, t: Real) -> Real {
+        let p = self.p;
+        let mu = match self.kind {
+            Kind::None => return 0.0,
+            Kind::Exponential => p[0] * (-p[2] * (t - p[1])).exp(),
+            Kind::Arrhenius => p[0] * (p[2] * (1.0 / t - p[1])).exp(),
+            Kind::Table => self.interpolate(t),
+        };
+        mu.min(self.max).max(0.0)
+    }
+
+    /// The table at `t`: linear between points, constant beyond the ends.
+    #[inline(always)]
+    fn interpolate(&self, t: Real) -> Real {
+        let pts = &self.table[..self.points];
+        if t <= pts[0][0] {
+            return pts[0][1];
+        }
+        for w in pts.windows(2) {
+            let ([t0, m0], [t1, m1]) = (w[0], w[1]);
+            if t <= t1 {
+                return m0 + (m1 - m0) * ((t - t0) / (t1 - t0));
+            }
+        }
+        pts[self.points - 1][1]
+    }
+
+    /// The largest viscosity (Pa s) between temperatures `lo` and `hi` (K), for the
+    /// explicit viscous limit: each law is monotonic between table points, so its
+    /// ends and its points bound it.
+    pub fn largest(&self, lo: Real, hi: Real) -> Real {
+        let inside = self.table[..self.points].iter().map(|p| p[0]).filter(|t| (lo..=hi).contains(t));
+        inside.chain([lo, hi]).map(|t| self.viscosity(t)).fold(0.0, Real::max)
+    }
+}
+
+/// The viscosity of each particle from its temperature.
+pub static VISCOSITY: PassSpec = PassSpec {
+    name: "heat.viscosity",
+    module: "heat",
+    stage: Stage::PreForce,
+    reads: &["x", "temperature"],
+    writes: &["mu"],
+    accumulates: &[],
+    tolerance: 1e-5,
+};
+
+/// `heat.viscosity` on the CPU.
+#[derive(Debug)]
+pub struct Viscosity;
+
+impl CpuPass for Viscosity {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let hc: &HeatConsts = cx.model.consts();
+        let mu_h = cx.attrs.handle::<Real>("mu");
+        let mut mu = cx.attrs.take(mu_h);
+        let temp = cx.attrs.get(cx.attrs.handle::<Real>("temperature"));
+        let mat = cx.attrs.find::<u32>("material").map(|m| cx.attrs.get(m));
+        mu.par_iter_mut().enumerate().with_min_len(4096).for_each(|(i, mu)| {
+            *mu = hc.viscosity[mat.map_or(0, |m| m[i] as usize)].viscosity(temp[i]);
+        });
+        cx.attrs.put(mu_h, mu);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn law(l: ViscosityLaw) -> TemperatureLaw {
+        TemperatureLaw::new(Some(&l), 1e6)
+    }
+
+    #[test]
+    fn the_exponential_and_arrhenius_laws_meet_their_reference() {
+        let e = law(ViscosityLaw::Exponential { mu_ref: 2.0, t_ref: 300.0, b: 0.05 });
+        assert!((e.viscosity(300.0) - 2.0).abs() < 1e-6);
+        assert!((e.viscosity(320.0) - 2.0 * (-1.0f32).exp()).abs() < 1e-6);
+        // Water: 1.0e-3 Pa s at 20 °C, E/R = 1900 K gives 0.33e-3 at 80 °C
+        // (measured: 0.355e-3; one activation temperature fits water to about 7 %).
+        let a = law(ViscosityLaw::Arrhenius { mu_ref: 1.0e-3, t_ref: 293.15, activation_temperature: 1900.0 });
+        assert!((a.viscosity(293.15) - 1.0e-3).abs() < 1e-8);
+        let hot = a.viscosity(353.15);
+        assert!((hot - 0.332e-3).abs() < 0.01e-3, "{hot}");
+    }
+
+    #[test]
+    fn a_table_is_linear_between_points_and_flat_beyond() {
+        let t = law(ViscosityLaw::Table { points: vec![[280.0, 4.0], [300.0, 2.0], [340.0, 1.0]] });
+        assert_eq!(t.viscosity(200.0), 4.0);
+        assert!((t.viscosity(290.0) - 3.0).abs() < 1e-6);
+        assert!((t.viscosity(320.0) - 1.5).abs() < 1e-6);
+        assert_eq!(t.viscosity(400.0), 1.0);
+        assert_eq!(t.largest(290.0, 400.0), 3.0);
+    }
+
+    #[test]
+    fn the_clamp_bounds_a_law_far_below_its_reference() {
+        let a = TemperatureLaw::new(
+            Some(&ViscosityLaw::Arrhenius { mu_ref: 1.0e-3, t_ref: 293.15, activation_temperature: 1900.0 }),
+            10.0,
+        );
+        assert_eq!(a.viscosity(1.0), 10.0);
+        assert_eq!(a.largest(1.0, 1e4), 10.0);
+        assert_eq!(TemperatureLaw::new(None, 10.0).viscosity(300.0), 0.0);
+    }
+}
