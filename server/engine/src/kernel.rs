@@ -139,6 +139,23 @@ impl Kernel {
         }
     }
 
+    /// `F = x_ij . grad_i W_ij / (r^2 + eps_h2)` at distance `r` (1/m^5 with the
+    /// kernel's 1/m^3; never positive): the pair factor of the SPH Laplacians of
+    /// Cleary & Monaghan (1999, conduction) and Morris, Fox & Zhu (1997, viscosity),
+    /// whose weight is `-2 F`. Their passes take `eps_h2 = 0.01 h^2`, h half the support.
+    #[inline(always)]
+    pub fn pair_factor(&self, r: Real, eps_h2: Real) -> Real {
+        r * self.dw_dr(r) / (r * r + eps_h2)
+    }
+
+    /// [`Self::lattice_laplacian_scale`] of the pair Laplacian `-2 F` (see
+    /// [`Self::pair_factor`]) on the lattice of `spacing`: the normalisation of
+    /// conduction and of the per-particle viscous force.
+    pub fn pair_lattice_scale(&self, spacing: Real) -> Real {
+        let eps_h2 = 0.0025 * self.h2;
+        self.lattice_laplacian_scale(spacing, |r| -2.0 * self.pair_factor(r, eps_h2))
+    }
+
     /// The factor `s` that makes a Laplacian weight exact on the particle lattice:
     /// with `lap A_i = s sum_j V_j (A_j - A_i) L(r_ij)`, `s = 6 / sum_j V_j r_j^2 L(r_j)`
     /// gives `lap x^2 = 2` on the full lattice of `spacing` at rest, `V_j = 1 / sum W`

@@ -11,9 +11,10 @@
 //!
 //! `(M + dt K) v = M v*`, where `(K v)_i = sum_j w_ij (v_i - v_j) + w_iw v_i`,
 //!
-//! `w_ij = m_i m_j (mu_i + mu_j) / (rho_i rho_j) |F_ij|` (the explicit pass's pair
-//! term times `m_i`, symmetric) and `w_iw` the no-slip walls' mirror term
-//! `m_i 4 mu_i / rho_i^2 sum_b psi_b |F_ib|` (0 for slip walls). The matrix is
+//! `w_ij = s m_i m_j (mu_i + mu_j) / (rho_i rho_j) |F_ij|` (the explicit pass's pair
+//! term times `m_i`, symmetric, with its lattice normalisation s) and `w_iw` the
+//! no-slip walls' mirror term `s m_i 4 mu_i / rho_i^2 sum_b psi_b |F_ib|` (0 for slip
+//! walls). The matrix is
 //! symmetric and positive definite (M positive, K a weighted graph Laplacian plus a
 //! non-negative diagonal), so conjugate gradients converge; the preconditioner is
 //! its diagonal `d_i = m_i + dt (sum_j w_ij + w_iw)` (Jacobi). The start is `v*`,
@@ -212,6 +213,8 @@ struct Pairs<'a, S> {
     material: Option<&'a [u32]>,
     /// `0.01 h^2` (m^2).
     eps_h2: Real,
+    /// The lattice normalisation of the pair sum.
+    scale: Real,
 }
 
 impl<'a, S: Separation> Pairs<'a, S> {
@@ -225,6 +228,7 @@ impl<'a, S: Separation> Pairs<'a, S> {
             mu: attrs.get(attrs.handle::<Real>("mu")),
             material: materials(attrs),
             eps_h2: 0.01 * 0.25 * support * support,
+            scale: model.consts::<VaryingViscosity>().scale,
         }
     }
 
@@ -234,8 +238,7 @@ impl<'a, S: Separation> Pairs<'a, S> {
 
     /// `|F|` at distance `r` (`r2 = r^2 > 0`).
     fn f(&self, r2: Real) -> Real {
-        let r = r2.sqrt();
-        -r * self.model.kernel.dw_dr(r) / (r2 + self.eps_h2)
+        -self.model.kernel.pair_factor(r2.sqrt(), self.eps_h2)
     }
 
     /// Calls `each(j, w_ij)` for every fluid neighbour `j` of particle `i` (slot `n`
@@ -246,7 +249,7 @@ impl<'a, S: Separation> Pairs<'a, S> {
             let j = j as usize;
             let r2 = self.sep.between(xi, self.pos[j]).length_squared();
             if r2 > 0.0 {
-                each(j, m_i * self.mass(j) * (mu_i + self.mu[j]) * inv_rho / self.rho[j] * self.f(r2));
+                each(j, m_i * self.mass(j) * (mu_i + self.mu[j]) * inv_rho / self.rho[j] * self.f(r2) * self.scale);
             }
         }
     }
@@ -265,7 +268,7 @@ impl<'a, S: Separation> Pairs<'a, S> {
             }
         }
         let inv_rho = 1.0 / self.rho[i];
-        self.mass(i) * 4.0 * self.mu[i] * inv_rho * inv_rho * sum
+        self.mass(i) * 4.0 * self.mu[i] * inv_rho * inv_rho * sum * self.scale
     }
 }
 

@@ -18,7 +18,7 @@
 //!
 //! On a lattice with a support of a few spacings the sum misses the Laplacian by a
 //! fixed fraction (about 1 % for the cubic spline at two spacings), which no
-//! refinement at a fixed support ratio removes; [`lattice_scale`] divides it out,
+//! refinement at a fixed support ratio removes; [`Kernel::pair_lattice_scale`](crate::kernel::Kernel::pair_lattice_scale) divides it out,
 //! as the particle mass divides out the lattice's kernel sum.
 //!
 //! The sums run in the same order as the GPU's `conduction.wgsl`.
@@ -52,19 +52,6 @@ impl CpuPass for Conduction {
             if cx.attrs.has("material") { conduction::<true, _>(cx, s) } else { conduction::<false, _>(cx, s) }
         })
     }
-}
-
-/// `x_ij . grad_i W_ij / (r^2 + 0.01 h^2)` (1/m^5 with the kernel's 1/m^3), never positive.
-#[inline(always)]
-fn pair_factor(kernel: &crate::kernel::Kernel, r: Real, eps_h2: Real) -> Real {
-    r * kernel.dw_dr(r) / (r * r + eps_h2)
-}
-
-/// The lattice normalisation of the pair sum ([`crate::kernel::Kernel::lattice_laplacian_scale`]
-/// of its Laplacian weight `-2 F`).
-pub fn lattice_scale(kernel: &crate::kernel::Kernel, spacing: Real) -> Real {
-    let h = 0.5 * kernel.support();
-    kernel.lattice_laplacian_scale(spacing, |r| -2.0 * pair_factor(kernel, r, 0.01 * h * h))
 }
 
 /// The loop, specialised on whether the scene has several materials (one material
@@ -102,7 +89,7 @@ fn conduction<const MULTI: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
                 }
                 let mb = material(j);
                 let m = materials.get(mb).mass;
-                let f = pair_factor(k, r2.sqrt(), eps_h2);
+                let f = k.pair_factor(r2.sqrt(), eps_h2);
                 sum += m / rho[j] * hc.pair_conductivity[ma * count + mb] * (ti - temp[j]) * f;
             }
             let psi = &walls.psi[ma];
@@ -115,7 +102,7 @@ fn conduction<const MULTI: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
                 if r2 == 0.0 {
                     continue;
                 }
-                let f = pair_factor(k, r2.sqrt(), eps_h2);
+                let f = k.pair_factor(r2.sqrt(), eps_h2);
                 sum += psi[b] / rho0 * k_wall * 2.0 * (ti - tb) * f;
             }
             *out = (sum + hc.source(xi, rho_i, materials.get(ma).mass)) / (rho_i * hc.capacity[ma]);

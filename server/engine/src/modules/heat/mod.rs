@@ -143,7 +143,7 @@ pub struct HeatConsts {
     /// Thermal expansion beta of each material (1/K).
     pub expansion: Vec<Real>,
     /// `4 k_a k_b / (k_a + k_b)` (twice the harmonic mean) at `a * materials + b`,
-    /// times the lattice normalisation of [`conduction::lattice_scale`].
+    /// times the lattice normalisation [`Kernel::pair_lattice_scale`].
     pub pair_conductivity: Vec<Real>,
     /// Boussinesq reference temperature T0 (K).
     pub reference: Real,
@@ -188,7 +188,7 @@ impl HeatConsts {
         let spacing = scene.particle_spacing;
         let conductivity: Vec<Real> = heat.fluids.iter().map(|f| f.conductivity).collect();
         let n = conductivity.len();
-        let scale = conduction::lattice_scale(kernel, spacing);
+        let scale = kernel.pair_lattice_scale(spacing);
         let mut pair_conductivity = Vec::with_capacity(n * n);
         for &a in &conductivity {
             for &b in &conductivity {

@@ -10,7 +10,7 @@ use floe_engine::attrs::PARTICLES;
 /// `d` and the starting residual.
 pub static DIAGONAL: GpuPass = GpuPass {
     name: "fluid.implicit_diagonal",
-    source: particle_kernel!("varying_walls.wgsl", "implicit/shared.wgsl", "implicit/diagonal.wgsl"),
+    source: particle_kernel!("varying_walls.wgsl", "implicit/pair.wgsl", "implicit/diagonal.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
@@ -42,10 +42,11 @@ pub static PRECONDITION: GpuPass = GpuPass {
 /// `Ap` and the terms of `p.Ap`.
 pub static PRODUCT: GpuPass = GpuPass {
     name: "fluid.implicit_product",
-    source: particle_kernel!("implicit/shared.wgsl", "implicit/product.wgsl"),
+    source: particle_kernel!("varying_walls.wgsl", "implicit/pair.wgsl", "implicit/product.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
+        (U, "varying"),
         (U, "dt"),
         (R, "x"),
         (R, "rho"),

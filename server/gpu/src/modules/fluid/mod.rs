@@ -130,6 +130,6 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
 /// The `varying` uniform's bytes, when the scene's viscosity varies per particle.
 pub fn varying_uniform(model: &Model) -> Option<Vec<u8>> {
     model.layout.spec("mu")?;
-    let wall_shear = model.consts::<VaryingViscosity>().wall_shear;
-    Some(bytemuck::bytes_of(&[wall_shear, 0.0, 0.0, 0.0]).to_vec())
+    let c = model.consts::<VaryingViscosity>();
+    Some(bytemuck::bytes_of(&[c.wall_shear, c.scale, 0.0, 0.0]).to_vec())
 }

@@ -2,7 +2,7 @@
 // `modules::fluid::varying`, term by term in the same order): a_i += sum_j m_j (mu_i + mu_j) / (rho_i rho_j) F_ij v_ij (Morris,
 // Fox & Zhu 1997), F_ij = r dW/dr / (r^2 + 0.01 h^2); a wall particle mirrors the
 // particle (velocity -v_i, viscosity mu_i, density rho_i), times the walls' shear
-// factor (0 for slip walls).
+// factor (0 for slip walls); the sum times the lattice normalisation.
 
 @group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> vel: array<vec4<f32>>;
@@ -58,5 +58,5 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
             }
         }
     }
-    acc[i] = vec4<f32>(acc[i].xyz + a, 0.0);
+    acc[i] = vec4<f32>(acc[i].xyz + a * viscous_walls.y, 0.0);
 }

@@ -63,7 +63,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
             }
         }
     }
-    let w_wall = m_i * 4.0 * viscous_walls.x * mu_i * inv_rho * inv_rho * wall;
+    let w_wall = m_i * 4.0 * viscous_walls.x * mu_i * inv_rho * inv_rho * wall * viscous_walls.y;
     let dt = step_dt.x;
     diag[i] = m_i + dt * (sum_w + w_wall);
     res[i] = vec4<f32>((force - vi * w_wall) * dt, 0.0);

@@ -3,15 +3,15 @@
 // mirror term is in d alone.
 
 // x: the step's dt (s).
-@group(0) @binding(1) var<uniform> step_dt: vec4<f32>;
-@group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
-@group(0) @binding(3) var<storage, read> rho: array<f32>;
-@group(0) @binding(4) var<storage, read> mu: array<f32>;
-@group(0) @binding(5) var<storage, read> starts: array<u32>;
-@group(0) @binding(6) var<storage, read> dir: array<vec4<f32>>;
-@group(0) @binding(7) var<storage, read> diag: array<f32>;
-@group(0) @binding(8) var<storage, read_write> ap: array<vec4<f32>>;
-@group(0) @binding(9) var<storage, read_write> dots: array<f32>;
+@group(0) @binding(2) var<uniform> step_dt: vec4<f32>;
+@group(0) @binding(3) var<storage, read> pos: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read> rho: array<f32>;
+@group(0) @binding(5) var<storage, read> mu: array<f32>;
+@group(0) @binding(6) var<storage, read> starts: array<u32>;
+@group(0) @binding(7) var<storage, read> dir: array<vec4<f32>>;
+@group(0) @binding(8) var<storage, read> diag: array<f32>;
+@group(0) @binding(9) var<storage, read_write> ap: array<vec4<f32>>;
+@group(0) @binding(10) var<storage, read_write> dots: array<f32>;
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
