@@ -107,8 +107,8 @@ impl Default for Viscosity {
 /// The integration of the per-particle viscous force ([`super::varying`]), chosen
 /// by the module whose viscosity varies (`snow.solver`, `heat.viscous_solver`).
 /// Implicit is the default: measured, it reaches the snow module's channel
-/// profiles 7 to 60 times faster and runs the avalanche at 256k particles 3 times
-/// faster (docs/snow.md, docs/benchmarks.md).
+/// profiles 7 to 65 times faster and runs the avalanche at 256k particles 2.4 times
+/// faster on the CPU (docs/snow.md, docs/benchmarks.md).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "method", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ViscousSolver {
