@@ -481,9 +481,10 @@ impl Backend for GpuBackend {
             space: if name == "walls" { WALLS } else { PARTICLES },
             bytes,
         });
+        // A uniform is named after its module or scheme, or `module.what` for a second one.
         let uniforms = self.buffers.uniforms().iter().map(|(name, buffer)| Allocation {
             name,
-            module: name,
+            module: name.split('.').next().unwrap_or(name),
             space: "uniform",
             bytes: buffer.size(),
         });

@@ -26,5 +26,9 @@ pub static PASSES: &[&GpuPass] = &[
 ];
 
 /// Every module's uniform.
-pub static UNIFORMS: &[(&str, UniformSource)] =
-    &[("fluid", fluid::uniform), ("varying", fluid::varying_uniform), ("heat", heat::uniform), ("snow", snow::uniform)];
+pub static UNIFORMS: &[(&str, UniformSource)] = &[
+    ("fluid", fluid::uniform),
+    ("fluid.varying", fluid::varying_uniform),
+    ("heat", heat::uniform),
+    ("snow", snow::uniform),
+];

@@ -14,7 +14,7 @@ pub static DIAGONAL: GpuPass = GpuPass {
     entry: "main",
     bindings: &[
         (U, "params"),
-        (U, "varying"),
+        (U, "fluid.varying"),
         (U, "dt"),
         (R, "x"),
         (R, "v"),
@@ -46,7 +46,7 @@ pub static PRODUCT: GpuPass = GpuPass {
     entry: "main",
     bindings: &[
         (U, "params"),
-        (U, "varying"),
+        (U, "fluid.varying"),
         (U, "dt"),
         (R, "x"),
         (R, "rho"),

@@ -1,7 +1,7 @@
 //! The fluid module on the GPU: the force pass (with the WCSPH pressure terms or
 //! without), the XSPH sum and kick, and the module uniform `fluid` (per material:
 //! viscosity and XSPH; per material pair: the mixed viscosity and the mass ratio);
-//! the per-particle viscosity's force with its uniform `varying` (the walls' shear
+//! the per-particle viscosity's force with its uniform `fluid.varying` (the walls' shear
 //! factor), and [`implicit`]: that force's implicit solve.
 
 pub mod implicit;
@@ -55,7 +55,7 @@ pub static VARYING: GpuPass = GpuPass {
     entry: "main",
     bindings: &[
         (U, "params"),
-        (U, "varying"),
+        (U, "fluid.varying"),
         (R, "x"),
         (R, "v"),
         (R, "rho"),
@@ -127,7 +127,7 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     Some(bytemuck::bytes_of(&p).to_vec())
 }
 
-/// The `varying` uniform's bytes, when the scene's viscosity varies per particle.
+/// The `fluid.varying` uniform's bytes, when the scene's viscosity varies per particle.
 pub fn varying_uniform(model: &Model) -> Option<Vec<u8>> {
     model.layout.spec("mu")?;
     let c = model.consts::<VaryingViscosity>();
