@@ -37,6 +37,7 @@ async fn rest_mirrors_the_control_calls() {
                 "dam_break",
                 "hydrostatic",
                 "poiseuille",
+                "taylor_green",
                 "conduction",
                 "convection",
                 "two_fluids",

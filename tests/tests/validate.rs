@@ -32,14 +32,14 @@ fn quick_validation_meets_every_stated_bound() {
 fn unknown_cases_are_named() {
     let dir = tempfile::tempdir().unwrap();
     let cli =
-        Cli::try_parse_from(["floe", "validate", "--case", "taylor_green", "--out", dir.path().to_str().unwrap()])
+        Cli::try_parse_from(["floe", "validate", "--case", "lid_driven_cavity", "--out", dir.path().to_str().unwrap()])
             .unwrap();
     let err = floe_server::execute(cli).unwrap_err();
     assert!(
         format!("{err}").starts_with(
-            "unknown case 'taylor_green'; cases are: hydrostatic, dam_break, poiseuille, conduction, layers_at_rest, \
-             heated_cavity, heated_cavity_ra1e5, heated_channel, power_law_channel, bingham_channel, cross_channel, \
-             stability"
+            "unknown case 'lid_driven_cavity'; cases are: hydrostatic, dam_break, poiseuille, taylor_green, \
+             conduction, layers_at_rest, heated_cavity, heated_cavity_ra1e5, heated_channel, power_law_channel, \
+             bingham_channel, cross_channel, stability"
         ),
         "{err}"
     );

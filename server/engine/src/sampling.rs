@@ -138,7 +138,7 @@ mod tests {
 
     #[test]
     fn blocks_fill_on_the_lattice() {
-        let b = FluidBlock { min: [0.0; 3], max: [1.0, 2.0, 0.5], velocity: [0.0; 3] };
+        let b = FluidBlock::at_rest([0.0; 3], [1.0, 2.0, 0.5]);
         let p = fill_block(&b, 0.1);
         assert_eq!(p.len(), 10 * 20 * 5);
         assert!((p[0] - Vec3::splat(0.05)).length() < 1e-6);

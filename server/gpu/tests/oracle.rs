@@ -122,7 +122,7 @@ const VARIANTS: &[&[&str]] = &[
         "solver.kernel=\"mueller\"",
         "fluids[0].viscosity={\"model\":\"laplacian\",\"nu\":1e-3}",
         "fluids[0].xsph=0.3",
-        "fluids[0].eos={\"kind\":\"linear\"}",
+        "fluids[0].eos={\"kind\":\"linear\",\"background\":500}",
     ],
     // Periodic along x (the collapsing column flows out through x = 0 and back in
     // at x = 2) and along z (a period of two cells: the block wraps onto itself).

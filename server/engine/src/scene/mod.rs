@@ -14,7 +14,7 @@ pub mod tunable;
 pub mod validate;
 
 use crate::kernel::KernelKind;
-pub use crate::modules::fluid::spec::{EquationOfState, Fluid, FluidBlock, Viscosity};
+pub use crate::modules::fluid::spec::{EquationOfState, Fluid, FluidBlock, TaylorGreen, Viscosity};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -282,6 +282,14 @@ mod tests {
             errors(&["modules=[\"fluid\",\"lava\"]"]),
             "modules[1]: unknown module \"lava\"; modules are fluid, heat, snow"
         );
+        assert_eq!(
+            errors(&["fluids[0].eos={\"kind\":\"tait\",\"background\":-1}"]),
+            "fluids[0].eos.background: must be >= 0, got -1"
+        );
+        assert_eq!(
+            errors(&["fluids[0].blocks[0].taylor_green={\"amplitude\":1,\"wavelength\":0}"]),
+            "fluids[0].blocks[0].taylor_green.wavelength: must be > 0, got 0"
+        );
         // Several problems are reported together.
         let both = errors(&["particle_spacing=-1", "guard.max_compression=0"]);
         assert_eq!(both.lines().count(), 2, "{both}");

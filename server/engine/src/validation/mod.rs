@@ -1,7 +1,7 @@
 //! Validation cases with their references (VALIDATION.md in the shared reference
 //! set): the measurements a test, a benchmark or `floe validate` needs.
 //!
-//! - [`dam_break`], [`hydrostatic`], [`poiseuille`]: reference solutions and error measures.
+//! - [`dam_break`], [`hydrostatic`], [`poiseuille`], [`taylor_green`]: reference solutions and error measures.
 //! - [`cases`]: each case run at one resolution and option, timed, with its errors.
 //! - [`stability`]: the battery of stiff and extreme scenes.
 //! - [`energy`]: mechanical energy, for energy-growth checks.
@@ -12,6 +12,7 @@ pub mod energy;
 pub mod hydrostatic;
 pub mod poiseuille;
 pub mod stability;
+pub mod taylor_green;
 
 use crate::Simulation;
 use crate::guard::Halted;

@@ -154,11 +154,19 @@ fn validate(scene: &Scene, c: &mut Checker) {
     for (i, f) in scene.fluids.iter().enumerate() {
         let p = format!("fluids[{i}]");
         c.positive(&format!("{p}.rest_density"), f.rest_density);
-        match f.eos {
-            spec::EquationOfState::Tait { gamma } => c.within(&format!("{p}.eos.gamma"), gamma, 1.0, 10.0),
-            spec::EquationOfState::Linear { stiffness: Some(k) } => c.positive(&format!("{p}.eos.stiffness"), k),
-            spec::EquationOfState::Linear { stiffness: None } => {}
-        }
+        let background = match f.eos {
+            spec::EquationOfState::Tait { gamma, background } => {
+                c.within(&format!("{p}.eos.gamma"), gamma, 1.0, 10.0);
+                background
+            }
+            spec::EquationOfState::Linear { stiffness, background } => {
+                if let Some(k) = stiffness {
+                    c.positive(&format!("{p}.eos.stiffness"), k);
+                }
+                background
+            }
+        };
+        c.non_negative(&format!("{p}.eos.background"), background);
         match f.viscosity {
             Viscosity::None => {}
             Viscosity::Laplacian { nu } => c.non_negative(&format!("{p}.viscosity.nu"), nu),
@@ -172,6 +180,10 @@ fn validate(scene: &Scene, c: &mut Checker) {
             let bp = format!("{p}.blocks[{j}]");
             c.ordered_box(&bp, b.min, b.max);
             c.vector(&format!("{bp}.velocity"), &b.velocity);
+            if let Some(tg) = b.taylor_green {
+                c.finite(&format!("{bp}.taylor_green.amplitude"), tg.amplitude);
+                c.positive(&format!("{bp}.taylor_green.wavelength"), tg.wavelength);
+            }
         }
     }
     if scene.fluids.len() > 256 {
@@ -189,7 +201,7 @@ fn particles(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
             if pts.is_empty() {
                 return Err(BuildError::EmptyBlock { path: format!("fluids[{i}].blocks[{j}]"), spacing: d });
             }
-            let velocities = vec![Vec3::from(block.velocity); pts.len()];
+            let velocities = pts.iter().map(|x| Vec3::from(block.velocity_at((*x).into()))).collect();
             b.particles(material, pts, velocities, Aabb::new(block.min.into(), block.max.into()));
         }
     }

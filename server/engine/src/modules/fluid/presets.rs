@@ -2,7 +2,7 @@
 //! `--set` overrides and `floe schema` apply to them exactly as to files.
 
 use crate::modules::Preset;
-use crate::scene::{Axis, Boundary, BoxRegion, Face, Fluid, FluidBlock, Scene, Solver, Viscosity};
+use crate::scene::{Axis, Boundary, BoxRegion, Face, Fluid, FluidBlock, Scene, Solver, TaylorGreen, Viscosity};
 
 /// The presets, for the module registry.
 pub const PRESETS: &[Preset] = &[
@@ -21,6 +21,11 @@ pub const PRESETS: &[Preset] = &[
         about: "Start-up flow between plates 1 m apart, periodic along them (Morris, Fox & Zhu 1997).",
         scene: poiseuille,
     },
+    Preset {
+        name: "taylor_green",
+        about: "Taylor-Green vortices decaying in a periodic unit square at Re = 100 (a thin periodic slab).",
+        scene: taylor_green,
+    },
 ];
 
 /// Plate distance L (m), kinematic viscosity (m^2/s) and driving force (m/s^2) of
@@ -28,15 +33,15 @@ pub const PRESETS: &[Preset] = &[
 /// 1 s as theirs), steady peak velocity F L^2 / (8 nu) = 0.0125 m/s, Re = 0.0125.
 pub const POISEUILLE: (f32, f32, f32) = (1.0, 1.0, 0.1);
 
+/// Wavelength L (m), peak speed U (m/s) and kinematic viscosity (m^2/s) of the
+/// Taylor-Green preset: Re = U L / nu = 100 (VALIDATION.md §4).
+pub const TAYLOR_GREEN: (f32, f32, f32) = (1.0, 1.0, 0.01);
+
 /// Column width a (m) of the dam break.
 pub const DAM_BREAK_A: f32 = 0.5;
 
 fn water(blocks: Vec<FluidBlock>, viscosity: Viscosity) -> Fluid {
     Fluid { name: "water".into(), rest_density: 1000.0, eos: Default::default(), viscosity, xsph: 0.0, blocks }
-}
-
-fn block(min: [f32; 3], max: [f32; 3]) -> FluidBlock {
-    FluidBlock { min, max, velocity: [0.0; 3] }
 }
 
 fn closed_box(min: [f32; 3], max: [f32; 3]) -> Boundary {
@@ -53,7 +58,10 @@ pub fn dam_break() -> Scene {
         modules: vec!["fluid".into()],
         particle_spacing: a / 28.0,
         gravity: [0.0, -9.81, 0.0],
-        fluids: vec![water(vec![block([0.0; 3], [a, 2.0 * a, 0.5 * a])], Viscosity::Artificial { alpha: 0.02 })],
+        fluids: vec![water(
+            vec![FluidBlock::at_rest([0.0; 3], [a, 2.0 * a, 0.5 * a])],
+            Viscosity::Artificial { alpha: 0.02 },
+        )],
         boundaries: vec![closed_box([0.0; 3], [4.0 * a, 2.4 * a, 0.5 * a])],
         domain: None,
         periodic: Vec::new(),
@@ -73,7 +81,10 @@ pub fn hydrostatic() -> Scene {
         modules: vec!["fluid".into()],
         particle_spacing: 0.025,
         gravity: [0.0, -9.81, 0.0],
-        fluids: vec![water(vec![block([0.0; 3], [0.3, 0.9, 0.15])], Viscosity::Artificial { alpha: 0.02 })],
+        fluids: vec![water(
+            vec![FluidBlock::at_rest([0.0; 3], [0.3, 0.9, 0.15])],
+            Viscosity::Artificial { alpha: 0.02 },
+        )],
         boundaries: vec![closed_box([0.0; 3], [0.3, 1.0, 0.15])],
         domain: Some(BoxRegion { min: [-0.1, -0.1, -0.1], max: [0.4, 1.1, 0.25] }),
         periodic: Vec::new(),
@@ -97,7 +108,7 @@ pub fn poiseuille() -> Scene {
         modules: vec!["fluid".into()],
         particle_spacing: l / 20.0,
         gravity: [force, 0.0, 0.0],
-        fluids: vec![water(vec![block([0.0; 3], [w, l, w])], Viscosity::Laplacian { nu })],
+        fluids: vec![water(vec![FluidBlock::at_rest([0.0; 3], [w, l, w])], Viscosity::Laplacian { nu })],
         boundaries: vec![Boundary::Box {
             min: [0.0; 3],
             max: [w, l, w],
@@ -107,6 +118,35 @@ pub fn poiseuille() -> Scene {
         domain: Some(BoxRegion { min: [0.0, -0.25 * l, 0.0], max: [w, 1.25 * l, w] }),
         periodic: vec![Axis::X, Axis::Z],
         solver: Solver { speed_of_sound: Some(1.0), ..Solver::default() },
+        guard: Default::default(),
+        heat: None,
+        snow: None,
+    }
+}
+
+/// Taylor & Green (1937) vortices in a box periodic along every axis: the unit
+/// square in x-y, 0.15 m deep in z, no walls, no gravity, Laplacian viscosity for
+/// Re = 100. The kernel's support is 3 spacings (h = 1.5 spacings), which keeps the
+/// density sum of the sheared lattice quieter than the default 2; the depth is two
+/// supports at L/40 and a whole number of spacings at L/40, L/60 and L/80. The speed
+/// of sound follows the default rule, 10 times the peak speed.
+pub fn taylor_green() -> Scene {
+    let (l, u, nu) = TAYLOR_GREEN;
+    let size = [l, l, 0.15 * l];
+    let block = FluidBlock {
+        taylor_green: Some(TaylorGreen { amplitude: u, wavelength: l }),
+        ..FluidBlock::at_rest([0.0; 3], size)
+    };
+    Scene {
+        name: "taylor_green".into(),
+        modules: vec!["fluid".into()],
+        particle_spacing: l / 40.0,
+        gravity: [0.0; 3],
+        fluids: vec![water(vec![block], Viscosity::Laplacian { nu })],
+        boundaries: Vec::new(),
+        domain: Some(BoxRegion { min: [0.0; 3], max: size }),
+        periodic: vec![Axis::X, Axis::Y, Axis::Z],
+        solver: Solver { support_factor: 3.0, ..Solver::default() },
         guard: Default::default(),
         heat: None,
         snow: None,

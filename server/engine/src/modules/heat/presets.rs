@@ -51,10 +51,6 @@ fn fluid(name: &str, rest_density: f32, viscosity: Viscosity, blocks: Vec<FluidB
     Fluid { name: name.into(), rest_density, eos: Default::default(), viscosity, xsph: 0.0, blocks }
 }
 
-fn block(min: [f32; 3], max: [f32; 3]) -> FluidBlock {
-    FluidBlock { min, max, velocity: [0.0; 3] }
-}
-
 fn water(temperature: f32, expansion: f32) -> ThermalFluid {
     ThermalFluid { conductivity: 0.6, heat_capacity: 4186.0, expansion, temperature, viscosity: None }
 }
@@ -114,7 +110,7 @@ pub fn conduction() -> Scene {
     let mut s = scene(
         "conduction",
         0.001,
-        vec![fluid("conductor", 1000.0, Viscosity::None, vec![block([0.0; 3], [l, w, w])])],
+        vec![fluid("conductor", 1000.0, Viscosity::None, vec![FluidBlock::at_rest([0.0; 3], [l, w, w])])],
         Vec::new(),
         heat,
     );
@@ -134,7 +130,12 @@ pub fn convection() -> Scene {
     scene(
         "convection",
         0.005,
-        vec![fluid("water", 1000.0, Viscosity::Laplacian { nu: 1e-4 }, vec![block([0.0; 3], [lx, ly, lz])])],
+        vec![fluid(
+            "water",
+            1000.0,
+            Viscosity::Laplacian { nu: 1e-4 },
+            vec![FluidBlock::at_rest([0.0; 3], [lx, ly, lz])],
+        )],
         vec![Boundary::Box { min: [0.0; 3], max: [lx, ly, lz], open: Vec::new(), layers: 1 }],
         heat(vec![water(310.0, 2e-3)], vec![floor, lid]),
     )
@@ -146,8 +147,8 @@ pub fn two_fluids() -> Scene {
     let (lx, ly, lz) = (0.2, 0.4, 0.04);
     let visc = Viscosity::Laplacian { nu: 1e-4 };
     let fluids = vec![
-        fluid("light", 1000.0, visc, vec![block([0.0; 3], [lx, 0.5 * ly, lz])]),
-        fluid("heavy", 3000.0, visc, vec![block([0.0, 0.5 * ly, 0.0], [lx, ly, lz])]),
+        fluid("light", 1000.0, visc, vec![FluidBlock::at_rest([0.0; 3], [lx, 0.5 * ly, lz])]),
+        fluid("heavy", 3000.0, visc, vec![FluidBlock::at_rest([0.0, 0.5 * ly, 0.0], [lx, ly, lz])]),
     ];
     let mut s = scene(
         "two_fluids",
@@ -194,7 +195,7 @@ pub fn heated_cavity() -> Scene {
     let mut s = scene(
         "heated_cavity",
         d,
-        vec![fluid("air-like", rho, Viscosity::Laplacian { nu }, vec![block([0.0; 3], [l, l, depth])])],
+        vec![fluid("air-like", rho, Viscosity::Laplacian { nu }, vec![FluidBlock::at_rest([0.0; 3], [l, l, depth])])],
         vec![Boundary::Box { min: [0.0; 3], max: [l, l, depth], open: vec![Face::MinusZ, Face::PlusZ], layers: 2 }],
         heat,
     );
@@ -211,8 +212,8 @@ pub fn layers() -> Scene {
     let (lx, ly, lz) = (0.2, 0.2, 0.04);
     let visc = Viscosity::Artificial { alpha: 0.02 };
     let fluids = vec![
-        fluid("heavy", 1000.0, visc, vec![block([0.0; 3], [lx, 0.5 * ly, lz])]),
-        fluid("light", 100.0, visc, vec![block([0.0, 0.5 * ly, 0.0], [lx, ly, lz])]),
+        fluid("heavy", 1000.0, visc, vec![FluidBlock::at_rest([0.0; 3], [lx, 0.5 * ly, lz])]),
+        fluid("light", 100.0, visc, vec![FluidBlock::at_rest([0.0, 0.5 * ly, 0.0], [lx, ly, lz])]),
     ];
     let mut s = scene(
         "layers",

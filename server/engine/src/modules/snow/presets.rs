@@ -105,7 +105,7 @@ pub fn avalanche() -> Scene {
             eos: Default::default(),
             viscosity: Viscosity::None,
             xsph: 0.0,
-            blocks: vec![FluidBlock { min: [0.1, 0.0, 0.0], max: [1.0, top - 0.05, width], velocity: [0.0; 3] }],
+            blocks: vec![FluidBlock::at_rest([0.1, 0.0, 0.0], [1.0, top - 0.05, width])],
         }],
         boundaries: vec![
             Boundary::Box {

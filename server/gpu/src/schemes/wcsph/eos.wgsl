@@ -1,10 +1,13 @@
 // Pressure from density through each material's equation of state, stored as
 // `p / rho^2` (floe-engine `schemes::wcsph::cpu::EosPass` and `Eos::pressure`):
-// Tait `p = b ((rho/rho0)^gamma - 1)` or linear `p = k (rho - rho0)`, clamped at 0.
+// Tait `p = b ((rho/rho0)^gamma - 1)` or linear `p = k (rho - rho0)`, plus the
+// background pressure, clamped at 0.
 
 struct Wcsph {
     // Per material: kind (0 Tait, 1 linear), b or k, gamma, rho0.
     eos: array<vec4<f32>, 16>,
+    // Per material: the background pressure (Pa), four to a vector.
+    background: array<vec4<f32>, 4>,
 }
 
 @group(0) @binding(1) var<uniform> wcsph: Wcsph;
@@ -12,7 +15,7 @@ struct Wcsph {
 @group(0) @binding(3) var<storage, read> rho: array<f32>;
 @group(0) @binding(4) var<storage, read_write> pterm: array<f32>;
 
-fn pressure(e: vec4<f32>, r: f32) -> f32 {
+fn law(e: vec4<f32>, r: f32) -> f32 {
     if (e.x == 0.0) {
         let ratio = r / e.w;
         var p: f32;
@@ -22,9 +25,9 @@ fn pressure(e: vec4<f32>, r: f32) -> f32 {
         } else {
             p = pow(ratio, e.z);
         }
-        return max(e.y * (p - 1.0), 0.0);
+        return e.y * (p - 1.0);
     }
-    return max(e.y * (r - e.w), 0.0);
+    return e.y * (r - e.w);
 }
 
 @compute @workgroup_size(WG)
@@ -34,5 +37,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
         return;
     }
     let r = rho[i];
-    pterm[i] = pressure(wcsph.eos[material_of(pos[i])], r) / (r * r);
+    let m = material_of(pos[i]);
+    let p = max(law(wcsph.eos[m], r) + wcsph.background[m / 4u][m % 4u], 0.0);
+    pterm[i] = p / (r * r);
 }

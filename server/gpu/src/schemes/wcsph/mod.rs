@@ -9,7 +9,7 @@ use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::{PARTICLES, WALLS};
 use floe_engine::model::Model;
 use floe_engine::schemes::wcsph::WcsphConsts;
-use floe_engine::schemes::wcsph::eos::Eos;
+use floe_engine::schemes::wcsph::eos::Law;
 
 /// `p / rho^2` from density.
 pub static EOS: GpuPass = GpuPass {
@@ -36,6 +36,8 @@ pub static WALL_PRESSURE: GpuPass = GpuPass {
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 struct WcsphParams {
     eos: [[f32; 4]; MAX_MATERIALS],
+    /// Background pressure per material, four to a vector.
+    background: [[f32; 4]; MAX_MATERIALS / 4],
 }
 
 /// The uniform's bytes, when the scene is stepped by WCSPH.
@@ -45,11 +47,12 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     }
     let c: &WcsphConsts = model.consts();
     let mut p = WcsphParams::zeroed();
-    for (slot, e) in p.eos.iter_mut().zip(&c.eos) {
-        *slot = match *e {
-            Eos::Tait { rho0, b, gamma } => [0.0, b, gamma, rho0],
-            Eos::Linear { rho0, k } => [1.0, k, 1.0, rho0],
+    for (m, e) in c.eos.iter().enumerate() {
+        p.eos[m] = match e.law {
+            Law::Tait { rho0, b, gamma } => [0.0, b, gamma, rho0],
+            Law::Linear { rho0, k } => [1.0, k, 1.0, rho0],
         };
+        p.background[m / 4][m % 4] = e.background;
     }
     Some(bytemuck::bytes_of(&p).to_vec())
 }
