@@ -71,7 +71,6 @@ pub const CASES: &[Case] = &[
         reference: "VALIDATION.md §4: Taylor-Green vortices at Re = 100, decaying as exp(-8 pi^2 t / Re)",
         preset: "taylor_green",
         primary_error: "decay_rate_error",
-        // `--full` only: no scheme meets the goal yet (docs/validation/taylor-green).
         // `--full` only: no variant meets the goal yet (docs/validation/taylor-green).
         spacings: (&[], &[1.0 / 40.0, 1.0 / 60.0, 1.0 / 80.0]),
         bounds: &[("decay_rate_error", 0.02)],
@@ -108,9 +107,9 @@ fn poiseuille_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     (wall, None, errors)
 }
 
-/// Runs to t = 2 s (two e-folding times at Re = 100 fall short of one: the speed
-/// falls to 21 %), fits the decay rate to the root-mean-square speed sampled every
-/// 0.02 s, and compares the velocity field at the end with the exact one.
+/// Runs to t = 2 s (1.6 e-folding times at Re = 100: the speed falls to 21 %),
+/// fits the decay rate to the root-mean-square speed sampled every 0.02 s, and
+/// compares the velocity field at the end with the exact one.
 fn taylor_green_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let (l, u, nu) = TAYLOR_GREEN;
     let tg = TaylorGreen { amplitude: u, wavelength: l };

@@ -94,8 +94,9 @@ impl TaylorGreen {
 /// carry pressures below the mean: Morris, Fox & Zhu (1997, J. Comput. Phys. 136,
 /// section 2.3) and Adami, Hu & Adams (2013, J. Comput. Phys. 241) use `p_b` of the
 /// order of `rho0 c^2` against tensile instability. It does not move the pressure
-/// gradient of an exact SPH sum; on a disordered lattice it adds a force that
-/// spreads particles evenly. Default 0.
+/// gradient of an exact SPH sum, but it scales the force of any disorder: measured
+/// with the default support of 2 spacings, a lattice at rest (c = 10 m/s, rho0 c^2 =
+/// 1e5 Pa) stays still under 1e3 Pa and goes unstable under 1e4 Pa. Default 0.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum EquationOfState {
