@@ -262,7 +262,10 @@ fn core_binds(gpu: &GpuContext, b: &Buffers, grid: &Grid) -> CoreBinds {
             .iter()
             .map(|s| {
                 let (x, v, a) = (b.get("x"), b.get("v"), b.get("a"));
-                p.kick.bind(d, &[b.get("params"), s, x, v, a, b.get("constraints"), b.get("heights")])
+                // Scenes without a transport term bind `a` there; the drift reads it
+                // only when its step says so.
+                let transport = b.find("a_transport").unwrap_or(a);
+                p.kick.bind(d, &[b.get("params"), s, x, v, a, b.get("constraints"), b.get("heights"), transport])
             })
             .collect(),
         quantize: p
@@ -351,14 +354,15 @@ impl Stages for GpuBackend {
     }
 
     fn kick(&mut self, dt: Real, keep: Real) {
-        let slot = self.write_step(Step { kick_dt: dt, keep, drift_dt: 0.0, _pad: 0.0 });
+        let slot = self.write_step(Step { kick_dt: dt, keep, drift_dt: 0.0, transport: 0 });
         let mut e = self.take_recorder();
         self.gpu.programs.kick.dispatch(&mut e, &self.core.integrate[slot], self.n);
         self.pending = Some(e);
     }
 
     fn drift(&mut self, dt: Real) {
-        let slot = self.write_step(Step { kick_dt: 0.0, keep: 1.0, drift_dt: dt, _pad: 0.0 });
+        let transport = u32::from(self.buffers.find("a_transport").is_some());
+        let slot = self.write_step(Step { kick_dt: 0.0, keep: 1.0, drift_dt: dt, transport });
         let mut e = self.take_recorder();
         self.gpu.programs.drift.dispatch(&mut e, &self.core.integrate[slot], self.n);
         self.pending = Some(e);

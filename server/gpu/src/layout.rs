@@ -117,7 +117,8 @@ pub struct Step {
     pub keep: f32,
     /// dt of the drift (s).
     pub drift_dt: f32,
-    pub _pad: f32,
+    /// 1 when the drift adds `dt/2 a_transport` to the velocity it moves with.
+    pub transport: u32,
 }
 const _: () = assert!(std::mem::size_of::<Step>() == 16);
 

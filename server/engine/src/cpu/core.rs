@@ -153,17 +153,22 @@ pub fn kick(attrs: &mut crate::attrs::Attrs, dt: Real, keep: Real) {
     attrs.put(v, vel);
 }
 
-/// `x += dt v`, then the walls' non-penetration constraints (and a terrain's
-/// friction, which takes gravity times dt as part of the normal load); positions that left
-/// through a periodic face come back through the opposite one.
+/// `x += dt v` (with `v + dt/2 a_transport` in scenes that have that attribute),
+/// then the walls' non-penetration constraints (and a terrain's friction, which takes
+/// gravity times dt as part of the normal load); positions that left through a
+/// periodic face come back through the opposite one.
 pub fn drift(model: &Model, attrs: &mut crate::attrs::Attrs, dt: Real) {
     let (x, v) = (attrs.handle::<Vec3>("x"), attrs.handle::<Vec3>("v"));
     let (mut pos, mut vel) = (attrs.take(x), attrs.take(v));
+    let transport = attrs.find::<Vec3>("a_transport").map(|t| attrs.get(t));
     let walls = &model.wall_constraints;
     let periodic = &model.periodic;
-    let g_dt = model.gravity * dt;
-    pos.par_iter_mut().zip(vel.par_iter_mut()).with_min_len(4096).for_each(|(x, v)| {
-        *x += *v * dt;
+    let (g_dt, half) = (model.gravity * dt, 0.5 * dt);
+    pos.par_iter_mut().zip(vel.par_iter_mut()).enumerate().with_min_len(4096).for_each(|(i, (x, v))| {
+        match transport {
+            Some(t) => *x += (*v + t[i] * half) * dt,
+            None => *x += *v * dt,
+        }
         for w in walls {
             w.apply(x, v, g_dt);
         }

@@ -81,6 +81,16 @@ pub mod core_attrs {
     pub const V: AttrSpec = AttrSpec { name: "v", unit: "m/s", about: "Particle velocity.", ..X };
     /// Acceleration of the last evaluation (state: leap-frog's first half-kick uses it).
     pub const A: AttrSpec = AttrSpec { name: "a", unit: "m/s^2", about: "Acceleration of the last evaluation.", ..X };
+    /// The transport part of the acceleration, from the last evaluation: it moves
+    /// particles in the drift, `x += dt (v + dt/2 a_transport)`, and never enters
+    /// their velocity. Only in scenes whose scheme declares it (WCSPH's
+    /// `solver.transport_velocity`); state, as `a` is, for leap-frog's next drift.
+    pub const A_TRANSPORT: AttrSpec = AttrSpec {
+        name: "a_transport",
+        unit: "m/s^2",
+        about: "Acceleration that moves particles without entering their velocity.",
+        ..X
+    };
     /// Stable particle id.
     pub const ID: AttrSpec =
         AttrSpec { name: "id", elem: Elem::U32, unit: "", about: "Stable id of the particle in each slot.", ..X };

@@ -1,7 +1,7 @@
 //! Validation of a deserialised [`Scene`]: every bound a field must respect,
 //! reported as `path: must be ..., got ...`, all errors at once.
 
-use super::{Boundary, Scene, TimeStep};
+use super::{Boundary, Method, Scene, TimeStep};
 
 /// The most particles one scene may create (a guard against requests that would
 /// exhaust memory: under 300 bytes each on the CPU backend, `floe bench --memory`).
@@ -233,6 +233,12 @@ fn check_solver(c: &mut Checker, scene: &Scene) {
     c.within("solver.dfsph.density_tolerance", s.dfsph.density_tolerance, 1e-6, 0.1);
     c.within("solver.dfsph.divergence_tolerance", s.dfsph.divergence_tolerance, 1e-6, 0.1);
     c.within("solver.dfsph.max_iterations", s.dfsph.max_iterations as f32, 1.0, 10_000.0);
+    if let Some(t) = s.transport_velocity {
+        c.positive("solver.transport_velocity.background", t.background);
+        if s.method != Method::Wcsph {
+            c.fail("solver.transport_velocity", "works with solver.method = \"wcsph\" only".into());
+        }
+    }
     match s.time_step {
         TimeStep::Adaptive { cfl, min, max } => {
             c.within("solver.time_step.cfl", cfl, 1e-3, 2.0);
@@ -289,6 +295,11 @@ mod tests {
         assert_eq!(
             errors(&["fluids[0].blocks[0].taylor_green={\"amplitude\":1,\"wavelength\":0}"]),
             "fluids[0].blocks[0].taylor_green.wavelength: must be > 0, got 0"
+        );
+        assert_eq!(
+            errors(&["solver.transport_velocity={\"background\":-5}", "solver.method=\"dfsph\""]),
+            "solver.transport_velocity.background: must be > 0, got -5\n\
+             solver.transport_velocity: works with solver.method = \"wcsph\" only"
         );
         // Several problems are reported together.
         let both = errors(&["particle_spacing=-1", "guard.max_compression=0"]);

@@ -1,5 +1,6 @@
 // The integrators' two halves (floe-engine `cpu::core::kick` and `drift`):
-// `kick` updates velocities, `drift` positions followed by the walls'
+// `kick` updates velocities, `drift` positions (moving with `v + dt/2 a_transport`
+// in scenes with a transport velocity) followed by the walls'
 // non-penetration constraints (floe-engine `boundary::WallConstraint::apply`), a
 // terrain's with Coulomb friction (floe-engine `terrain::TerrainConstraint::apply`).
 
@@ -10,7 +11,8 @@ struct Step {
     keep: f32,
     // dt of the drift (s).
     drift_dt: f32,
-    _pad: f32,
+    // 1 when the drift adds `dt/2 a_transport` to the velocity it moves with.
+    transport: u32,
 }
 
 // A wall's constraint. kind 0, a box: `a` its lower and `b` its upper interior
@@ -38,6 +40,8 @@ struct Constraint {
 @group(0) @binding(4) var<storage, read> acc: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read> constraints: array<Constraint>;
 @group(0) @binding(6) var<storage, read> heights: array<f32>;
+// The drift's transport accelerations (`acc` again in scenes without them).
+@group(0) @binding(7) var<storage, read> transport: array<vec4<f32>>;
 
 @compute @workgroup_size(WG)
 fn kick(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -81,7 +85,11 @@ fn drift(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups)
         return;
     }
     var v = vel[i].xyz;
-    var x = pos[i].xyz + v * step.drift_dt;
+    var moves = v;
+    if (step.transport != 0u) {
+        moves = v + transport[i].xyz * (0.5 * step.drift_dt);
+    }
+    var x = pos[i].xyz + moves * step.drift_dt;
     let g_dt = params.gravity * step.drift_dt;
     for (var k = 0u; k < params.n_constraints; k++) {
         let c = constraints[k];

@@ -76,7 +76,8 @@ pub struct Programs {
     pub measure_partials: Kernel,
     /// Same bindings.
     pub measure_total: Kernel,
-    /// params, step, positions, velocities, accelerations, constraints, terrain heights.
+    /// params, step, positions, velocities, accelerations, constraints, terrain
+    /// heights, transport accelerations.
     pub kick: Kernel,
     /// Same bindings.
     pub drift: Kernel,
@@ -98,7 +99,7 @@ impl Programs {
         let measure = module(device, "measure.wgsl", MEASURE);
         let measure_layout = Layout::new(device, "measure", &[U, R, R, R, R, W]);
         let integrate = module(device, "integrate.wgsl", INTEGRATE);
-        let integrate_layout = Layout::new(device, "integrate", &[U, U, W, W, R, R, R]);
+        let integrate_layout = Layout::new(device, "integrate", &[U, U, W, W, R, R, R, R]);
         let reduce = module(device, "reduce.wgsl", REDUCE);
         let reduce_layout = Layout::new(device, "reduce", &[U, R, W]);
         let k = |m: &wgpu::ShaderModule, label, entry, layout: &Layout, wg| {

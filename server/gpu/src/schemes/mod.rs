@@ -9,6 +9,7 @@ use crate::pass::{GpuPass, UniformSource};
 pub static PASSES: &[&GpuPass] = &[
     &wcsph::EOS,
     &wcsph::WALL_PRESSURE,
+    &wcsph::TRANSPORT,
     &dfsph::FACTOR,
     &dfsph::DIVERGENCE_WARM,
     &dfsph::DIVERGENCE_KICK,

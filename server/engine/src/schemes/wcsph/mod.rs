@@ -14,9 +14,14 @@
 //! The modules' velocity solves (implicit viscosity, over the whole dt) and then the
 //! kick-stage passes (XSPH) follow the kick after an evaluation; damping
 //! multiplies velocities by `exp(-rate dt)` until its end time.
+//!
+//! With `solver.transport_velocity`, the force stage also computes the background
+//! pressure's push ([`transport`]), which the drift adds to the velocity it moves
+//! particles with.
 
 pub mod cpu;
 pub mod eos;
+pub mod transport;
 
 use crate::attrs::{AttrSpec, Elem, PARTICLES, Role, WALLS};
 use crate::clock::Clock;
@@ -34,7 +39,11 @@ pub static SCHEME: SchemeDef = SchemeDef {
     about: "Weakly compressible SPH: equation of state, explicit steps at the speed of sound.",
     build,
     retune: |_, _| {},
-    cpu: &[("wcsph.eos", &cpu::EosPass), ("wcsph.wall_pressure", &cpu::WallPressure)],
+    cpu: &[
+        ("wcsph.eos", &cpu::EosPass),
+        ("wcsph.wall_pressure", &cpu::WallPressure),
+        ("wcsph.transport", &transport::Transport),
+    ],
     step,
     signal_speed: |model| model.sound_speed.unwrap_or(0.0),
 };
@@ -83,21 +92,29 @@ pub static WALL_PRESSURE: PassSpec = PassSpec {
     tolerance: 1e-4,
 };
 
-/// The scheme's constants: each material's equation of state.
+/// The scheme's constants: each material's equation of state, and the
+/// transport velocity's background pressure.
 #[derive(Debug, Clone)]
 pub struct WcsphConsts {
     /// Equation of state of each material.
     pub eos: Vec<Eos>,
+    /// Background pressure (Pa) of the transport velocity, when the scene has one.
+    pub transport: Option<Real>,
 }
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let c = b.sound_speed()?;
     let eos = scene.fluids.iter().zip(b.materials()).map(|(f, m)| Eos::new(f.eos, m.rest_density, c)).collect();
-    b.set_consts(WcsphConsts { eos });
+    let transport = scene.solver.transport_velocity.map(|t| t.background);
+    b.set_consts(WcsphConsts { eos, transport });
     b.zeros(&PTERM);
     b.zeros(&WALL_P);
     b.pass(&EOS);
     b.pass(&WALL_PRESSURE);
+    if transport.is_some() {
+        b.zeros(&crate::model::core_attrs::A_TRANSPORT);
+        b.pass(&transport::TRANSPORT);
+    }
     b.channel(crate::channels::PRESSURE);
     Ok(())
 }

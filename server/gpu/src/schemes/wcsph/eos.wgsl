@@ -3,14 +3,6 @@
 // Tait `p = b ((rho/rho0)^gamma - 1)` or linear `p = k (rho - rho0)`, plus the
 // background pressure, clamped at 0.
 
-struct Wcsph {
-    // Per material: kind (0 Tait, 1 linear), b or k, gamma, rho0.
-    eos: array<vec4<f32>, 16>,
-    // Per material: the background pressure (Pa), four to a vector.
-    background: array<vec4<f32>, 4>,
-}
-
-@group(0) @binding(1) var<uniform> wcsph: Wcsph;
 @group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> rho: array<f32>;
 @group(0) @binding(4) var<storage, read_write> pterm: array<f32>;

@@ -1,5 +1,6 @@
-//! The WCSPH scheme on the GPU: the equation of state and the walls' pressure, and
-//! the uniform `wcsph` (per material: the equation of state).
+//! The WCSPH scheme on the GPU: the equation of state, the walls' pressure and the
+//! transport velocity's push, and the uniform `wcsph` (wcsph.wgsl: per material the
+//! equation of state, and the transport's background pressure).
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
@@ -14,7 +15,7 @@ use floe_engine::schemes::wcsph::eos::Law;
 /// `p / rho^2` from density.
 pub static EOS: GpuPass = GpuPass {
     name: "wcsph.eos",
-    source: particle_kernel!("eos.wgsl"),
+    source: particle_kernel!("wcsph.wgsl", "eos.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (U, "wcsph"), (R, "x"), (R, "rho"), (W, "pterm")],
     space: PARTICLES,
@@ -31,13 +32,25 @@ pub static WALL_PRESSURE: GpuPass = GpuPass {
     when: always,
 };
 
-/// The `wcsph` uniform (`Wcsph` in eos.wgsl).
+/// The transport velocity's push (scenes with `solver.transport_velocity`).
+pub static TRANSPORT: GpuPass = GpuPass {
+    name: "wcsph.transport",
+    source: particle_kernel!("wcsph.wgsl", "transport.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "wcsph"), (R, "x"), (R, "starts"), (R, "walls"), (R, "rho"), (W, "a_transport")],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The `wcsph` uniform (`Wcsph` in wcsph.wgsl).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 struct WcsphParams {
     eos: [[f32; 4]; MAX_MATERIALS],
     /// Background pressure per material, four to a vector.
     background: [[f32; 4]; MAX_MATERIALS / 4],
+    /// The transport velocity's background pressure (Pa) in x, 0 without one.
+    transport: [f32; 4],
 }
 
 /// The uniform's bytes, when the scene is stepped by WCSPH.
@@ -54,5 +67,6 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         };
         p.background[m / 4][m % 4] = e.background;
     }
+    p.transport[0] = c.transport.unwrap_or(0.0);
     Some(bytemuck::bytes_of(&p).to_vec())
 }

@@ -1,0 +1,13 @@
+// The WCSPH scheme's uniform (floe-engine `schemes::wcsph::WcsphConsts`), shared
+// by its kernels.
+
+struct Wcsph {
+    // Per material: kind (0 Tait, 1 linear), b or k, gamma, rho0.
+    eos: array<vec4<f32>, 16>,
+    // Per material: the equation of state's background pressure (Pa), four to a vector.
+    background: array<vec4<f32>, 4>,
+    // x: the transport velocity's background pressure p_b (Pa), 0 without one.
+    transport: vec4<f32>,
+}
+
+@group(0) @binding(1) var<uniform> wcsph: Wcsph;
