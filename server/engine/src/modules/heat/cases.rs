@@ -62,7 +62,10 @@ pub const CASES: &[Case] = &[
         // Thinner boundary layers: from 15 particles across, in `--full` only.
         spacings: (&[], &[0.0033333, 0.0025]),
         bounds: &[("nusselt_error", 0.05)],
-        variants: &[Variant { name: "default", overrides: CAVITY_RA_1E5 }],
+        variants: &[
+            Variant { name: "default", overrides: CAVITY_RA_1E5 },
+            Variant { name: "transport_velocity", overrides: CAVITY_RA_1E5_TRANSPORT },
+        ],
         measure: |sim, spacing| cavity_case(sim, spacing, &RA_1E5),
     },
     Case {
@@ -152,12 +155,15 @@ fn channel_case(sim: &mut Simulation, _spacing: f64) -> Measured {
 /// Overrides taking the `heated_cavity` (Ra = 1e4) to Ra = 1e5: its viscosity
 /// `CAVITY_NU` and its conductivity `rho c nu / 0.71` divided by sqrt(10), so Pr
 /// stays 0.71 (a unit test checks the figures).
-const CAVITY_RA_1E5: &[&str] =
-    &[r#"fluids[0].viscosity={"model":"laplacian","nu":3.16228e-5}"#, "heat.fluids[0].conductivity=44.5392"];
+const CAVITY_RA_1E5: &[&str] = &[RA_1E5_VISCOSITY, RA_1E5_CONDUCTIVITY];
+const RA_1E5_VISCOSITY: &str = r#"fluids[0].viscosity={"model":"laplacian","nu":3.16228e-5}"#;
+const RA_1E5_CONDUCTIVITY: &str = "heat.fluids[0].conductivity=44.5392";
 
 /// The transport velocity with the background pressure `2 rho0 c^2` (c = 2 m/s, the
-/// cavity's speed of sound).
-const CAVITY_TRANSPORT: &[&str] = &[r#"solver.transport_velocity={"background":8000}"#];
+/// cavity's speed of sound), at Ra = 1e4 and at 1e5.
+const CAVITY_TRANSPORT: &[&str] = &[TRANSPORT];
+const CAVITY_RA_1E5_TRANSPORT: &[&str] = &[RA_1E5_VISCOSITY, RA_1E5_CONDUCTIVITY, TRANSPORT];
+const TRANSPORT: &str = r#"solver.transport_velocity={"background":8000}"#;
 
 /// Simulated time (s) of the conduction case: the diffusion length `2 sqrt(alpha t)`
 /// grows to L/8.
