@@ -76,6 +76,8 @@ pub struct GpuBackend {
     ran: Vec<&'static str>,
     /// The dt in the `dt` uniform (NaN before the first write).
     pass_dt: Real,
+    /// Whether drifts add `dt/2 a_transport` (1) or not (0): the scene has the attribute.
+    transport: u32,
 }
 
 impl GpuBackend {
@@ -102,6 +104,7 @@ impl GpuBackend {
         if let Some(e) = refused {
             return Err(BuildError::Backend(format!("the GPU cannot hold this scene: {e}")));
         }
+        let transport = u32::from(buffers.find("a_transport").is_some());
         let timer = gpu.profiling().then(|| Timer::new(&gpu.device, gpu.queue.get_timestamp_period()));
         Ok(Self {
             gpu: gpu.clone(),
@@ -117,6 +120,7 @@ impl GpuBackend {
             slot: 0,
             ran: Vec::new(),
             pass_dt: Real::NAN,
+            transport,
         })
     }
 
@@ -361,8 +365,7 @@ impl Stages for GpuBackend {
     }
 
     fn drift(&mut self, dt: Real) {
-        let transport = u32::from(self.buffers.find("a_transport").is_some());
-        let slot = self.write_step(Step { kick_dt: 0.0, keep: 1.0, drift_dt: dt, transport });
+        let slot = self.write_step(Step { kick_dt: 0.0, keep: 1.0, drift_dt: dt, transport: self.transport });
         let mut e = self.take_recorder();
         self.gpu.programs.drift.dispatch(&mut e, &self.core.integrate[slot], self.n);
         self.pending = Some(e);
