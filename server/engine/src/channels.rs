@@ -83,7 +83,7 @@ pub const VELOCITY: ChannelSpec = ChannelSpec {
     source: Source::Attr("v"),
 };
 
-/// Density by summation.
+/// SPH density: summed, or integrated where the scheme does (δ-SPH).
 pub const DENSITY: ChannelSpec = ChannelSpec {
     name: "density",
     unit: "kg/m^3",

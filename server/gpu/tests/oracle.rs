@@ -8,7 +8,7 @@
 //! Both backends start from one CPU state 40 steps into a dam break (a moving,
 //! splashing fluid against walls), so every term is non-trivial; one variant is
 //! periodic, so pairs across the periodic faces and the wrap are compared too, one
-//! has a transport velocity, one is stepped by DFSPH, and one flows onto a terrain (its wall particles, and the
+//! has a transport velocity, one integrates its density (δ-SPH), one is stepped by DFSPH, and one flows onto a terrain (its wall particles, and the
 //! drift's heightfield constraint with friction). A solve's passes read scalars its
 //! sums leave on the device: the oracle gives both backends the same test values.
 
@@ -141,6 +141,9 @@ const VARIANTS: &[&[&str]] = &[
         "domain={\"min\":[0,-0.2,0],\"max\":[2,1.4,0.25]}",
         "solver.transport_velocity={\"background\":20000}",
     ],
+    // δ-SPH on two fluids (the diffusion between particles of one material only):
+    // the density's rate, walls included, and its integration.
+    &["particle_spacing=0.05", TWO_FLUIDS, "solver.delta_sph={\"delta\":0.1}"],
     // DFSPH: the factor and each solve's warm start, kick and error.
     &["particle_spacing=0.05", "solver.method=\"dfsph\""],
     // A rippled slope with friction across the tank under the column.

@@ -38,8 +38,22 @@ pub static DENSITY: PassSpec = PassSpec {
     tolerance: 1e-5,
 };
 
+/// The neighbour search alone, in place of [`DENSITY`] in scenes whose scheme
+/// integrates the density (δ-SPH): the CPU fills the step's neighbour lists; the
+/// GPU, which searches the sorted grid in every pass, has nothing to do.
+pub static NEIGHBOURS: PassSpec = PassSpec {
+    name: "core.neighbours",
+    module: "core",
+    stage: Stage::Density,
+    reads: &["x"],
+    writes: &[],
+    accumulates: &[],
+    tolerance: 0.0,
+};
+
 /// The core's CPU passes, by name.
-pub static PASSES: &[(&str, &dyn CpuPass)] = &[("core.sort", &Sort), ("core.density", &Density)];
+pub static PASSES: &[(&str, &dyn CpuPass)] =
+    &[("core.sort", &Sort), ("core.density", &Density::<true>), ("core.neighbours", &Density::<false>)];
 
 /// Counting sort by cell (stable: sorting sorted particles changes nothing); every
 /// state attribute of the particle space follows, and `slot_of` is rebuilt.
@@ -60,17 +74,18 @@ impl CpuPass for Sort {
     }
 }
 
-/// Finds every particle's neighbours into the step's lists and fills `rho` (kg/m^3).
+/// Finds every particle's neighbours into the step's lists and, when `SUM`, fills
+/// `rho` (kg/m^3).
 #[derive(Debug)]
-struct Density;
+struct Density<const SUM: bool>;
 
-impl CpuPass for Density {
+impl<const SUM: bool> CpuPass for Density<SUM> {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        crate::with_separation!(&cx.model.periodic, |s| density(cx, s))
+        crate::with_separation!(&cx.model.periodic, |s| density::<SUM, _>(cx, s))
     }
 }
 
-fn density<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+fn density<const SUM: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let model = cx.model;
     let k = &model.kernel;
     let h2 = k.support() * k.support();
@@ -88,6 +103,9 @@ fn density<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
             let i = c * CHUNK + n;
             let xi = pos[i];
             nb.push(sep, grid, pos, &walls.grid, &walls.positions, xi, h2);
+            if !SUM {
+                continue;
+            }
             let a = materials.map_or(0, |m| m[i] as usize);
             let (m, psi) = (model.materials.get(a).mass, &walls.psi[a]);
             let sum: Real =

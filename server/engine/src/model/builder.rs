@@ -13,6 +13,8 @@ struct NewParticles {
     bounds: Option<Aabb>,
     /// Their largest initial speed (m/s).
     fastest: Real,
+    /// Depth of each below the top of its block along gravity (m; 0 without gravity).
+    depths: Vec<Real>,
 }
 
 /// Assembles a [`Model`]: the core, then the scene's scheme and modules add their
@@ -30,6 +32,7 @@ pub struct ModelBuilder<'s> {
     /// Each boundary's rasterised heights (terrains only).
     grids: Vec<Option<Arc<HeightGrid>>>,
     sound_speed: Option<Real>,
+    depths: Vec<Real>,
     layout: Layout,
     passes: Vec<&'static PassSpec>,
     velocity_solves: Vec<crate::schemes::Iterate>,
@@ -55,6 +58,7 @@ impl<'s> ModelBuilder<'s> {
             walls: scene.boundaries.iter().zip(&grids).flat_map(sample).collect(),
             grids,
             sound_speed: None,
+            depths: Vec::new(),
             layout: Layout::default(),
             passes: Vec::new(),
             velocity_solves: Vec::new(),
@@ -77,7 +81,10 @@ impl<'s> ModelBuilder<'s> {
     /// Those a terrain buries are dropped.
     pub fn particles(&mut self, material: u32, mut positions: Vec<Vec3>, mut velocities: Vec<Vec3>, bounds: Aabb) {
         crate::terrain::drop_buried(&self.grids, self.spacing, &mut positions, &mut velocities);
+        let down = Vec3::from(self.scene.gravity).normalize_or_zero();
+        let top = corners(bounds).map(|c| c.dot(down)).fold(Real::INFINITY, Real::min);
         let p = &mut self.particles;
+        p.depths.extend(positions.iter().map(|x| (x.dot(down) - top).max(0.0)));
         p.materials.extend(std::iter::repeat_n(material, positions.len()));
         p.fastest = velocities.iter().map(|v| v.length()).fold(p.fastest, Real::max);
         p.positions.extend(positions);
@@ -114,6 +121,13 @@ impl<'s> ModelBuilder<'s> {
         Ok(c)
     }
 
+    /// Each particle's depth below the top of the block it was sampled from, along
+    /// gravity (m; 0 without gravity): where a scheme that integrates the density
+    /// starts it in hydrostatic balance.
+    pub fn depths(&self) -> &[Real] {
+        &self.depths
+    }
+
     /// The materials added so far.
     pub fn materials(&self) -> &[Material] {
         &self.materials
@@ -138,6 +152,13 @@ impl<'s> ModelBuilder<'s> {
         self.layout.attrs.push((spec, initial));
     }
 
+    /// Declares attribute `spec` anew in place of the one of the same name (a
+    /// scheme that integrates what the core would derive: the density under δ-SPH).
+    pub fn redeclare(&mut self, spec: &'static AttrSpec, initial: Column) {
+        self.layout.attrs.retain(|(s, _)| s.name != spec.name);
+        self.attr(spec, initial);
+    }
+
     /// The initial values of attribute `name`, if allocated (a module deriving its own
     /// initial state from the particles' positions or materials).
     pub fn column(&self, name: &str) -> Option<&Column> {
@@ -153,6 +174,13 @@ impl<'s> ModelBuilder<'s> {
     /// Adds a pass to the plan.
     pub fn pass(&mut self, spec: &'static PassSpec) {
         self.passes.push(spec);
+    }
+
+    /// Puts `spec` in the place of the pass called `name` (a scheme that does the
+    /// core's work its own way: δ-SPH integrates the density the core would sum).
+    pub fn replace_pass(&mut self, name: &str, spec: &'static PassSpec) {
+        let at = self.passes.iter().position(|p| p.name == name).unwrap_or_else(|| panic!("no pass {name} to replace"));
+        self.passes[at] = spec;
     }
 
     /// Adds a velocity solve run after every kick (its passes added with [`Self::pass`]).
@@ -284,7 +312,7 @@ impl<'s> ModelBuilder<'s> {
         if self.materials.len() > 1 {
             self.channel(crate::channels::MATERIAL);
         }
-        (self.particles.bounds, self.particles.fastest) = (p.bounds, p.fastest);
+        (self.particles.bounds, self.particles.fastest, self.depths) = (p.bounds, p.fastest, p.depths);
     }
 }
 
@@ -296,16 +324,18 @@ fn fall_speed(gravity: Vec3, fluid: Aabb, walls: Aabb, initial: Real) -> Real {
         return initial;
     }
     let down = gravity / g;
-    let corners = |b: Aabb| {
-        (0..8).map(move |i| {
-            Vec3::new(
-                if i & 1 == 0 { b.min.x } else { b.max.x },
-                if i & 2 == 0 { b.min.y } else { b.max.y },
-                if i & 4 == 0 { b.min.z } else { b.max.z },
-            )
-        })
-    };
     let top = corners(fluid).map(|p| p.dot(down)).fold(Real::INFINITY, Real::min);
     let bottom = corners(fluid).chain(corners(walls)).map(|p| p.dot(down)).fold(Real::NEG_INFINITY, Real::max);
     (2.0 * g * (bottom - top).max(0.0)).sqrt().max(initial)
+}
+
+/// The eight corners of `b`.
+fn corners(b: Aabb) -> impl Iterator<Item = Vec3> {
+    (0..8).map(move |i| {
+        Vec3::new(
+            if i & 1 == 0 { b.min.x } else { b.max.x },
+            if i & 2 == 0 { b.min.y } else { b.max.y },
+            if i & 4 == 0 { b.min.z } else { b.max.z },
+        )
+    })
 }

@@ -115,6 +115,16 @@ pub mod core_attrs {
         about: "Density by summation.",
         ..X
     };
+    /// SPH density integrated in time (a scheme's continuity equation, e.g. WCSPH's
+    /// δ-SPH) in place of [`RHO`]: state, so it is sorted with its particles and
+    /// saved in snapshots, and the density pass then only finds neighbours.
+    pub const RHO_INTEGRATED: AttrSpec = AttrSpec {
+        name: "rho",
+        elem: Elem::F32,
+        unit: "kg/m^3",
+        about: "Density integrated by the continuity equation.",
+        ..X
+    };
 }
 
 /// The index spaces of a scene and the attributes they hold, with initial values.

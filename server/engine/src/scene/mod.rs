@@ -230,6 +230,32 @@ pub struct Solver {
     /// keeps them evenly spread where shear would line them up or clump them.
     #[serde(default)]
     pub transport_velocity: Option<TransportVelocity>,
+    /// δ-SPH (WCSPH only; none by default): density integrated by the continuity
+    /// equation with a density-diffusion term instead of summed from positions, so
+    /// the pressure of a disordered or resting fluid is smooth rather than noisy.
+    #[serde(default)]
+    pub delta_sph: Option<DeltaSph>,
+}
+
+/// δ-SPH (Molteni & Colagrossi 2009, Comput. Phys. Commun. 180; Antuono et al.
+/// 2010, Comput. Phys. Commun. 181): density from the continuity equation,
+/// `drho_i/dt = m_i sum_j v_ij . grad W_ij + sum_b psi_b v_i . grad W_ib`, the time
+/// derivative of the summation density, plus the diffusion
+/// `delta h c sum_j V_j 2 (rho_i - rho_j - rho^H_ij) (x_ij . grad W_ij) / (r^2 + 0.01 h^2)`
+/// (a Laplacian of the density) between particles of one material, with the
+/// hydrostatic difference `rho^H_ij = rho0 g . x_ij / c^2` taken out (Fourtakas et al. 2019, Comput. Fluids
+/// 190, eq. 12, linearised: exact for the linear equation of state, to order
+/// `(v/c)^2` for Tait), so a resting column feels no diffusion.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DeltaSph {
+    /// Diffusion coefficient delta (dimensionless, 0 to 1; 0.1 is the usual choice).
+    #[serde(default = "default_delta")]
+    pub delta: f32,
+}
+
+fn default_delta() -> f32 {
+    0.1
 }
 
 /// The transport-velocity formulation of Adami, Hu & Adams (2013, J. Comput. Phys.
@@ -271,6 +297,7 @@ impl Default for Solver {
             damping_until: 0.0,
             dfsph: DfsphSettings::default(),
             transport_velocity: None,
+            delta_sph: None,
         }
     }
 }

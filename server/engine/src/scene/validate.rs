@@ -239,6 +239,12 @@ fn check_solver(c: &mut Checker, scene: &Scene) {
             c.fail("solver.transport_velocity", "works with solver.method = \"wcsph\" only".into());
         }
     }
+    if let Some(d) = s.delta_sph {
+        c.within("solver.delta_sph.delta", d.delta, 0.0, 1.0);
+        if s.method != Method::Wcsph {
+            c.fail("solver.delta_sph", "works with solver.method = \"wcsph\" only".into());
+        }
+    }
     match s.time_step {
         TimeStep::Adaptive { cfl, min, max } => {
             c.within("solver.time_step.cfl", cfl, 1e-3, 2.0);
@@ -300,6 +306,11 @@ mod tests {
             errors(&["solver.transport_velocity={\"background\":-5}", "solver.method=\"dfsph\""]),
             "solver.transport_velocity.background: must be > 0, got -5\n\
              solver.transport_velocity: works with solver.method = \"wcsph\" only"
+        );
+        assert_eq!(
+            errors(&["solver.delta_sph={\"delta\":1.5}", "solver.method=\"dfsph\""]),
+            "solver.delta_sph.delta: must be between 0 and 1, got 1.5\n\
+             solver.delta_sph: works with solver.method = \"wcsph\" only"
         );
         // Several problems are reported together.
         let both = errors(&["particle_spacing=-1", "guard.max_compression=0"]);

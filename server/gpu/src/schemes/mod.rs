@@ -10,6 +10,8 @@ pub static PASSES: &[&GpuPass] = &[
     &wcsph::EOS,
     &wcsph::WALL_PRESSURE,
     &wcsph::TRANSPORT,
+    &wcsph::CONTINUITY,
+    &wcsph::INTEGRATE_DENSITY,
     &dfsph::FACTOR,
     &dfsph::DIVERGENCE_WARM,
     &dfsph::DIVERGENCE_KICK,

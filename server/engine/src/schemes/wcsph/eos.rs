@@ -70,6 +70,15 @@ impl Eos {
         (p + self.background).max(0.0)
     }
 
+    /// The density (kg/m^3) at which the law (without the background) gives
+    /// pressure `p` (Pa, >= 0): its inverse.
+    pub fn density(&self, p: Real) -> Real {
+        match self.law {
+            Law::Tait { rho0, b, gamma } => rho0 * (1.0 + p / b).powf(1.0 / gamma),
+            Law::Linear { rho0, k } => rho0 + p / k,
+        }
+    }
+
     /// The speed of sound (m/s) at rest density: `sqrt(dp/drho)`.
     pub fn sound_speed(&self) -> Real {
         match self.law {

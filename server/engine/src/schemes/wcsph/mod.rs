@@ -15,10 +15,14 @@
 //! kick-stage passes (XSPH) follow the kick after an evaluation; damping
 //! multiplies velocities by `exp(-rate dt)` until its end time.
 //!
+//! With `solver.delta_sph`, the drift stage integrates the density
+//! ([`continuity`]); the density stage then only finds neighbours.
+//!
 //! With `solver.transport_velocity`, the force stage also computes the background
 //! pressure's push ([`transport`]), which the drift adds to the velocity it moves
 //! particles with.
 
+pub mod continuity;
 pub mod cpu;
 pub mod eos;
 pub mod transport;
@@ -43,6 +47,8 @@ pub static SCHEME: SchemeDef = SchemeDef {
         ("wcsph.eos", &cpu::EosPass),
         ("wcsph.wall_pressure", &cpu::WallPressure),
         ("wcsph.transport", &transport::Transport),
+        ("wcsph.continuity", &continuity::Continuity),
+        ("wcsph.integrate_density", &continuity::Integrate),
     ],
     step,
     signal_speed: |model| model.sound_speed.unwrap_or(0.0),
@@ -100,13 +106,17 @@ pub struct WcsphConsts {
     pub eos: Vec<Eos>,
     /// Background pressure (Pa) of the transport velocity, when the scene has one.
     pub transport: Option<Real>,
+    /// δ-SPH's constants, when the scene integrates its density.
+    pub delta: Option<continuity::DeltaConsts>,
 }
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let c = b.sound_speed()?;
-    let eos = scene.fluids.iter().zip(b.materials()).map(|(f, m)| Eos::new(f.eos, m.rest_density, c)).collect();
+    let eos: Vec<Eos> =
+        scene.fluids.iter().zip(b.materials()).map(|(f, m)| Eos::new(f.eos, m.rest_density, c)).collect();
     let transport = scene.solver.transport_velocity.map(|t| t.background);
-    b.set_consts(WcsphConsts { eos, transport });
+    let delta = scene.solver.delta_sph.map(|d| continuity::build(b, d.delta, c, &eos));
+    b.set_consts(WcsphConsts { eos, transport, delta });
     b.zeros(&PTERM);
     b.zeros(&WALL_P);
     b.pass(&EOS);

@@ -1,6 +1,7 @@
-//! The WCSPH scheme on the GPU: the equation of state, the walls' pressure and the
-//! transport velocity's push, and the uniform `wcsph` (wcsph.wgsl: per material the
-//! equation of state, and the transport's background pressure).
+//! The WCSPH scheme on the GPU: the equation of state, the walls' pressure, the
+//! transport velocity's push, δ-SPH's density rate and its integration, and the
+//! uniform `wcsph` (wcsph.wgsl: per material the equation of state, the
+//! transport's background pressure, δ-SPH's constants).
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
@@ -42,6 +43,26 @@ pub static TRANSPORT: GpuPass = GpuPass {
     when: always,
 };
 
+/// δ-SPH's density rate (scenes with `solver.delta_sph`).
+pub static CONTINUITY: GpuPass = GpuPass {
+    name: "wcsph.continuity",
+    source: particle_kernel!("wcsph.wgsl", "continuity.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "wcsph"), (R, "x"), (R, "v"), (R, "rho"), (R, "starts"), (R, "walls"), (W, "drho")],
+    space: PARTICLES,
+    when: always,
+};
+
+/// δ-SPH's `rho += dt drho`.
+pub static INTEGRATE_DENSITY: GpuPass = GpuPass {
+    name: "wcsph.integrate_density",
+    source: particle_kernel!("integrate_density.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "dt"), (R, "drho"), (W, "rho")],
+    space: PARTICLES,
+    when: always,
+};
+
 /// The `wcsph` uniform (`Wcsph` in wcsph.wgsl).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
@@ -51,6 +72,10 @@ struct WcsphParams {
     background: [[f32; 4]; MAX_MATERIALS / 4],
     /// The transport velocity's background pressure (Pa) in x, 0 without one.
     transport: [f32; 4],
+    /// δ-SPH's diffusion coefficient (m^2/s) and eta^2 (m^2), 0 without it.
+    delta: [f32; 4],
+    /// δ-SPH's `rho0 g / c^2` (kg/m^4) per material.
+    hydrostatic: [[f32; 4]; MAX_MATERIALS],
 }
 
 /// The uniform's bytes, when the scene is stepped by WCSPH.
@@ -68,5 +93,11 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         p.background[m / 4][m % 4] = e.background;
     }
     p.transport[0] = c.transport.unwrap_or(0.0);
+    if let Some(d) = &c.delta {
+        p.delta = [d.coefficient, d.eta2, 0.0, 0.0];
+        for (m, h) in d.hydrostatic.iter().enumerate() {
+            p.hydrostatic[m] = [h.x, h.y, h.z, 0.0];
+        }
+    }
     Some(bytemuck::bytes_of(&p).to_vec())
 }
