@@ -45,7 +45,17 @@ fn checksum(preset: &str, overrides: &[&str], steps: usize) -> u64 {
 /// (preset, overrides, steps, checksum at 679cab9, or since the Laplacian's changes).
 const CASES: &[(&str, &[&str], usize, u64)] = &[
     ("dam_break", &["particle_spacing=0.03125"], 150, 0xcf06_4427_4e8a_f26b),
-    ("hydrostatic", &["particle_spacing=0.05"], 150, 0xaa2b_34c1_6956_f8da),
+    // The preset as it was: summed density, artificial viscosity 0.02.
+    (
+        "hydrostatic",
+        &[
+            "particle_spacing=0.05",
+            "solver.delta_sph=null",
+            "fluids[0].viscosity={\"model\":\"artificial\",\"alpha\":0.02}",
+        ],
+        150,
+        0xaa2b_34c1_6956_f8da,
+    ),
     (
         "dam_break",
         &[

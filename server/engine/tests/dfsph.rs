@@ -8,7 +8,7 @@ use floe_engine::scene::presets::DAM_BREAK_A;
 use floe_engine::validation::{dam_break, hydrostatic};
 
 fn dfsph(name: &str, overrides: &[&str]) -> Simulation {
-    let mut o = vec!["solver.method=dfsph".to_string()];
+    let mut o = vec!["solver.method=dfsph".to_string(), "solver.delta_sph=null".to_string()];
     o.extend(overrides.iter().map(|s| s.to_string()));
     Simulation::new_cpu(from_preset(name, &o).unwrap()).unwrap()
 }

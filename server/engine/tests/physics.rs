@@ -18,7 +18,8 @@ fn hydrostatic_column_settles_to_rho_g_h() {
     let p = sim.read(&["density", "pressure"]);
     let e = hydrostatic::measure(&p, 1000.0, 9.81, 0.9, sim.scene().particle_spacing as f64);
     eprintln!("{} particles, {} steps: {e:?}", sim.particle_count(), sim.steps());
-    assert!(e.pressure_l2 < 0.05, "pressure L2 error {:.4}", e.pressure_l2);
+    // δ-SPH (the preset's): 1.3 % at this spacing; a summed density is 5 % off.
+    assert!(e.pressure_l2 < 0.02, "pressure L2 error {:.4}", e.pressure_l2);
     assert!(e.mean_density_deviation < 0.01, "mean density deviation {:.4}", e.mean_density_deviation);
     assert!((e.surface - 0.9).abs() < 0.03, "free surface at {:.4} m", e.surface);
 }
