@@ -1,8 +1,9 @@
 //! δ-SPH (`solver.delta_sph`): the density integrated by the continuity equation
 //! with a diffusion term. Without diffusion its rate is the time derivative of the
 //! summed density, walls included; the diffusion smooths a bump and keeps the
-//! volume-weighted total; a column starts in hydrostatic
-//! balance, where the diffusion does nothing; a resting column's pressure is smooth
+//! volume-weighted total; each particle starts under the weight of the fluid above
+//! it (none where gravity runs along a periodic axis), so a column starts in
+//! hydrostatic balance, where the diffusion does nothing; a resting column's pressure is smooth
 //! where the summed one is noisy; scenes with it restore bit for bit under both
 //! integrators, and scenes without it sum their density and allocate nothing of it.
 
@@ -157,6 +158,26 @@ fn a_resting_column_starts_in_balance_and_its_pressure_is_smooth() {
         smooth.pressure_linf,
         summed.pressure_linf
     );
+}
+
+#[test]
+fn each_particle_starts_under_the_weight_of_the_fluid_above_it() {
+    use floe_engine::schemes::wcsph::continuity::overburden;
+    // Two columns 0.1 m apart, four particles each: 100 kg/m^3 over 1000 kg/m^3.
+    let d = 0.1;
+    let x: Vec<Vec3> = (0..8).map(|k| Vec3::new(0.05 + d * (k / 4) as f32, 0.05 + d * (k % 4) as f32, 0.05)).collect();
+    let rho0: Vec<f32> = x.iter().map(|x| if x.y > 0.2 { 100.0 } else { 1000.0 }).collect();
+    let p = overburden(&x, &rho0, Vec3::new(0.0, -10.0, 0.0), d);
+    // Per column, bottom to top: half its own layer plus every layer above.
+    let want = [10.0 * (500.0 + 1000.0 + 200.0), 10.0 * (500.0 + 200.0), 10.0 * (50.0 + 100.0), 10.0 * 50.0];
+    for (k, &p) in p.iter().enumerate() {
+        assert!((p - want[k % 4] * d).abs() < 1e-3, "particle {k}: {p} Pa, want {}", want[k % 4] * d);
+    }
+    assert!(overburden(&x, &rho0, Vec3::ZERO, d).iter().all(|&p| p == 0.0));
+    // Gravity along a periodic axis (Poiseuille's driving force): no weight above, rest density.
+    let channel = from_preset("poiseuille", &["solver.delta_sph={\"delta\":0.1}".into()]).unwrap();
+    let rho = floats(Simulation::new_cpu(channel).unwrap().backend().download(&["rho"]).remove(0));
+    assert!(rho.iter().all(|&r| r == 1000.0));
 }
 
 #[test]

@@ -13,8 +13,6 @@ struct NewParticles {
     bounds: Option<Aabb>,
     /// Their largest initial speed (m/s).
     fastest: Real,
-    /// Depth of each below the top of its block along gravity (m; 0 without gravity).
-    depths: Vec<Real>,
 }
 
 /// Assembles a [`Model`]: the core, then the scene's scheme and modules add their
@@ -32,7 +30,6 @@ pub struct ModelBuilder<'s> {
     /// Each boundary's rasterised heights (terrains only).
     grids: Vec<Option<Arc<HeightGrid>>>,
     sound_speed: Option<Real>,
-    depths: Vec<Real>,
     layout: Layout,
     passes: Vec<&'static PassSpec>,
     velocity_solves: Vec<crate::schemes::Iterate>,
@@ -58,7 +55,6 @@ impl<'s> ModelBuilder<'s> {
             walls: scene.boundaries.iter().zip(&grids).flat_map(sample).collect(),
             grids,
             sound_speed: None,
-            depths: Vec::new(),
             layout: Layout::default(),
             passes: Vec::new(),
             velocity_solves: Vec::new(),
@@ -81,10 +77,7 @@ impl<'s> ModelBuilder<'s> {
     /// Those a terrain buries are dropped.
     pub fn particles(&mut self, material: u32, mut positions: Vec<Vec3>, mut velocities: Vec<Vec3>, bounds: Aabb) {
         crate::terrain::drop_buried(&self.grids, self.spacing, &mut positions, &mut velocities);
-        let down = Vec3::from(self.scene.gravity).normalize_or_zero();
-        let top = corners(bounds).map(|c| c.dot(down)).fold(Real::INFINITY, Real::min);
         let p = &mut self.particles;
-        p.depths.extend(positions.iter().map(|x| (x.dot(down) - top).max(0.0)));
         p.materials.extend(std::iter::repeat_n(material, positions.len()));
         p.fastest = velocities.iter().map(|v| v.length()).fold(p.fastest, Real::max);
         p.positions.extend(positions);
@@ -119,13 +112,6 @@ impl<'s> ModelBuilder<'s> {
         };
         self.sound_speed = Some(c);
         Ok(c)
-    }
-
-    /// Each particle's depth below the top of the block it was sampled from, along
-    /// gravity (m; 0 without gravity): where a scheme that integrates the density
-    /// starts it in hydrostatic balance.
-    pub fn depths(&self) -> &[Real] {
-        &self.depths
     }
 
     /// The materials added so far.
@@ -312,7 +298,7 @@ impl<'s> ModelBuilder<'s> {
         if self.materials.len() > 1 {
             self.channel(crate::channels::MATERIAL);
         }
-        (self.particles.bounds, self.particles.fastest, self.depths) = (p.bounds, p.fastest, p.depths);
+        (self.particles.bounds, self.particles.fastest) = (p.bounds, p.fastest);
     }
 }
 
@@ -324,18 +310,16 @@ fn fall_speed(gravity: Vec3, fluid: Aabb, walls: Aabb, initial: Real) -> Real {
         return initial;
     }
     let down = gravity / g;
+    let corners = |b: Aabb| {
+        (0..8).map(move |i| {
+            Vec3::new(
+                if i & 1 == 0 { b.min.x } else { b.max.x },
+                if i & 2 == 0 { b.min.y } else { b.max.y },
+                if i & 4 == 0 { b.min.z } else { b.max.z },
+            )
+        })
+    };
     let top = corners(fluid).map(|p| p.dot(down)).fold(Real::INFINITY, Real::min);
     let bottom = corners(fluid).chain(corners(walls)).map(|p| p.dot(down)).fold(Real::NEG_INFINITY, Real::max);
     (2.0 * g * (bottom - top).max(0.0)).sqrt().max(initial)
-}
-
-/// The eight corners of `b`.
-fn corners(b: Aabb) -> impl Iterator<Item = Vec3> {
-    (0..8).map(move |i| {
-        Vec3::new(
-            if i & 1 == 0 { b.min.x } else { b.max.x },
-            if i & 2 == 0 { b.min.y } else { b.max.y },
-            if i & 4 == 0 { b.min.z } else { b.max.z },
-        )
-    })
 }

@@ -242,10 +242,13 @@ pub struct Solver {
 /// `drho_i/dt = m_i sum_j v_ij . grad W_ij + sum_b psi_b v_i . grad W_ib`, the time
 /// derivative of the summation density, plus the diffusion
 /// `delta h c sum_j V_j 2 (rho_i - rho_j - rho^H_ij) (x_ij . grad W_ij) / (r^2 + 0.01 h^2)`
-/// (a Laplacian of the density) between particles of one material, with the
-/// hydrostatic difference `rho^H_ij = rho0 g . x_ij / c^2` taken out (Fourtakas et al. 2019, Comput. Fluids
+/// (a Laplacian of the density; `V_j = m_j / rho_j`, h half the kernel's support)
+/// between particles of one material, with the hydrostatic difference
+/// `rho^H_ij = rho0 g . x_ij / c^2` taken out (Fourtakas et al. 2019, Comput. Fluids
 /// 190, eq. 12, linearised: exact for the linear equation of state, to order
-/// `(v/c)^2` for Tait), so a resting column feels no diffusion.
+/// `(v/c)^2` for Tait), so a resting column feels no diffusion. Each particle starts
+/// at the density of the weight of the fluid above it (rest density where gravity
+/// runs along a periodic axis).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DeltaSph {
