@@ -27,13 +27,9 @@ use floe_engine::schemes::{ReduceOp, Reduction, Stages};
 use std::sync::Arc;
 use wgpu::{BindGroup, Buffer};
 
-/// Plan passes with no kernel of their own: the sort (several kernels, recorded by
-/// [`GpuBackend::record_sort`]) and the neighbour search, which the GPU does in
-/// every pass from the sorted grid.
-const HOST_PASSES: &[&str] = &["core.sort", "core.neighbours"];
-
 /// A plan pass ready to record: its kernel and bind group, or none for
-/// [`HOST_PASSES`].
+/// [`crate::pass::HOST_PASSES`] (the sort: several kernels, recorded by
+/// [`GpuBackend::record_sort`]).
 #[derive(Debug)]
 struct PlanPass {
     spec: &'static PassSpec,
@@ -91,7 +87,7 @@ impl GpuBackend {
         let grid = Grid::new(model.domain, model.kernel.support(), model.periodic.axes);
         // Every pass of the plan needs a GPU kernel, or the scene is refused by name.
         for p in model.plan.passes() {
-            if !HOST_PASSES.contains(&p.name) && crate::pass::find(p.name, &model).is_none() {
+            if !crate::pass::HOST_PASSES.contains(&p.name) && crate::pass::find(p.name, &model).is_none() {
                 return Err(BuildError::Backend(format!(
                     "pass {} (module {}) has no GPU implementation; run this scene on the CPU backend",
                     p.name, p.module
@@ -291,7 +287,7 @@ fn plan_passes(gpu: &GpuContext, model: &Model, b: &Buffers) -> Vec<PlanPass> {
         .passes()
         .iter()
         .map(|&spec| {
-            if HOST_PASSES.contains(&spec.name) {
+            if crate::pass::HOST_PASSES.contains(&spec.name) {
                 return PlanPass { spec, kernel: None, threads: model.particle_count() as u32, uses_dt: false };
             }
             let pass = crate::pass::find(spec.name, model).expect("checked at creation");

@@ -27,6 +27,11 @@ pub struct GpuPass {
     pub when: fn(&Model) -> bool,
 }
 
+/// Plan passes with no kernel of their own: the core's sort (a sequence of the
+/// core's kernels) and the neighbour search, which the GPU does in every pass from
+/// the sorted grid.
+pub const HOST_PASSES: &[&str] = &["core.sort", "core.neighbours"];
+
 /// Every plan pass the GPU implements: the core's, the schemes' and the modules'.
 pub fn all() -> Vec<&'static GpuPass> {
     let core: &[&'static GpuPass] = &[&crate::passes::DENSITY_PASS];
