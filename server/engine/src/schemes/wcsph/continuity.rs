@@ -13,9 +13,9 @@
 //! Why: a summed density is a function of where the particles are, so a fluid at
 //! rest whose particles are not on a perfect lattice carries a density noise of
 //! about 0.05 % that does not shrink with resolution, and the stiff equation of
-//! state turns it into pressure noise of 10 % of the hydrostatic pressure at the
-//! usual Mach number (docs/validation). An integrated density starts smooth and the
-//! diffusion keeps it so.
+//! state turns it into pressure noise of 5 % (L2) of the hydrostatic pressure at the
+//! usual Mach number (docs/validation/hydrostatic). An integrated density starts
+//! smooth and the diffusion keeps it so.
 
 use super::WcsphConsts;
 use super::eos::Eos;
