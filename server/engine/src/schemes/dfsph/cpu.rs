@@ -1,6 +1,13 @@
 //! DFSPH's passes on the CPU, over the step's neighbour lists (the formulas are in
 //! the scheme's documentation; the GPU's kernels add the same terms in the same
 //! order).
+//!
+//! The factor pass keeps every pair's kernel gradient beside the neighbour rows
+//! ([`crate::cpu::neighbors::ChunkNeighbors::keep_gradients`]) and the solves' passes
+//! read them back: the positions do not move between the factor and the drift, and
+//! a step iterates each solve several times (about 9 iterations of two passes per
+//! step on the dam break), so the gradients are evaluated once instead of once per
+//! pass.
 
 use super::{FULL_NEIGHBOURHOOD, WARM_START};
 use crate::cpu::neighbors::CHUNK;
@@ -41,23 +48,23 @@ fn factor<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let pos = attrs.get(attrs.handle::<Vec3>("x"));
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
-    alpha.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (out, nb))| {
+    alpha.par_chunks_mut(CHUNK).zip(cx.nb.chunks.par_iter_mut()).enumerate().for_each(|(c, (out, nb))| {
+        nb.keep_gradients(
+            |n, j| gradient(k, sep.between(pos[c * CHUNK + n], pos[j])),
+            |n, b| gradient(k, sep.between(pos[c * CHUNK + n], walls.positions[b])),
+        );
         for (n, a) in out.iter_mut().enumerate() {
-            let i = c * CHUNK + n;
-            let (xi, mi) = (pos[i], material(i));
+            let mi = material(c * CHUNK + n);
             let m_i = materials.get(mi).mass;
             let (mut fluid, mut sq) = (Vec3::ZERO, 0.0);
-            for &j in nb.fluid(n) {
-                let j = j as usize;
-                let g = gradient(k, sep.between(xi, pos[j]));
+            for (&j, &g) in nb.fluid(n).iter().zip(nb.fluid_gradients(n)) {
                 fluid += g * m_i;
-                sq += g.length_squared() * (m_i / materials.get(material(j)).mass);
+                sq += g.length_squared() * (m_i / materials.get(material(j as usize)).mass);
             }
             let psi = &walls.psi[mi];
             let mut wall = Vec3::ZERO;
-            for &b in nb.walls(n) {
-                let b = b as usize;
-                wall += gradient(k, sep.between(xi, walls.positions[b])) * psi[b];
+            for (&b, &g) in nb.walls(n).iter().zip(nb.wall_gradients(n)) {
+                wall += g * psi[b as usize];
             }
             let d = (fluid + wall).length_squared() + m_i * m_i * sq;
             *a = if d > 0.0 { 1.0 / d } else { 0.0 };
@@ -102,18 +109,17 @@ pub struct Kick {
 
 impl CpuPass for Kick {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        crate::with_separation!(&cx.model.periodic, |s| kick(cx, s, self))
+        kick(cx, self)
     }
 }
 
-fn kick<S: Separation>(cx: &mut CpuCx<'_>, sep: S, pass: &Kick) {
+fn kick(cx: &mut CpuCx<'_>, pass: &Kick) {
     let model = cx.model;
-    let (k, walls, materials) = (&model.kernel, &model.wall_particles, &model.materials);
+    let (walls, materials) = (&model.wall_particles, &model.materials);
     let dt = cx.dt;
     let (vh, kh) = (cx.attrs.handle::<Vec3>("v"), cx.attrs.handle::<Real>(pass.kappa));
     let (mut vel, mut kappa) = (cx.attrs.take(vh), cx.attrs.take(kh));
     let attrs = &*cx.attrs;
-    let pos = attrs.get(attrs.handle::<Vec3>("x"));
     let dp = attrs.get(attrs.handle::<Real>(pass.increment));
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
@@ -122,20 +128,19 @@ fn kick<S: Separation>(cx: &mut CpuCx<'_>, sep: S, pass: &Kick) {
         for (n, v) in out.iter_mut().enumerate() {
             let i = c * CHUNK + n;
             kappa[n] += dp[i];
-            let (xi, mi) = (pos[i], material(i));
+            let mi = material(i);
             let m_i = materials.get(mi).mass;
             let own = m_i * dp[i];
             let mut a = Vec3::ZERO;
-            for &j in nb.fluid(n) {
+            for (&j, &g) in nb.fluid(n).iter().zip(nb.fluid_gradients(n)) {
                 let j = j as usize;
                 let m_j = materials.get(material(j)).mass;
-                a += gradient(k, sep.between(xi, pos[j])) * (own + m_j * m_j / m_i * dp[j]);
+                a += g * (own + m_j * m_j / m_i * dp[j]);
             }
             let psi = &walls.psi[mi];
             let mut wall = Vec3::ZERO;
-            for &b in nb.walls(n) {
-                let b = b as usize;
-                wall += gradient(k, sep.between(xi, walls.positions[b])) * psi[b];
+            for (&b, &g) in nb.walls(n).iter().zip(nb.wall_gradients(n)) {
+                wall += g * psi[b as usize];
             }
             *v -= (a + wall * dp[i]) * dt;
         }
@@ -156,22 +161,22 @@ pub struct Error {
 impl CpuPass for Error {
     fn run(&self, cx: &mut CpuCx<'_>) {
         match self.density {
-            true => crate::with_separation!(&cx.model.periodic, |s| error::<true, _>(cx, s)),
-            false => crate::with_separation!(&cx.model.periodic, |s| error::<false, _>(cx, s)),
+            true => error::<true>(cx),
+            false => error::<false>(cx),
         }
     }
 }
 
-fn error<const DENSITY: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+fn error<const DENSITY: bool>(cx: &mut CpuCx<'_>) {
     let model = cx.model;
-    let (k, walls, materials) = (&model.kernel, &model.wall_particles, &model.materials);
+    let (walls, materials) = (&model.wall_particles, &model.materials);
     let dt = cx.dt;
     let (names, scale) =
         if DENSITY { (["dkappa", "density_error"], dt * dt) } else { (["dkappa_v", "divergence_error"], dt) };
     let handles = names.map(|n| cx.attrs.handle::<Real>(n));
     let [mut inc, mut err] = handles.map(|h| cx.attrs.take(h));
     let attrs = &*cx.attrs;
-    let (pos, vel) = (attrs.get(attrs.handle::<Vec3>("x")), attrs.get(attrs.handle::<Vec3>("v")));
+    let vel = attrs.get(attrs.handle::<Vec3>("v"));
     let (rho, alpha) = (attrs.get(attrs.handle::<Real>("rho")), attrs.get(attrs.handle::<Real>("alpha")));
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
@@ -179,18 +184,16 @@ fn error<const DENSITY: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     outputs.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((inc, err), nb))| {
         for n in 0..inc.len() {
             let i = c * CHUNK + n;
-            let (xi, vi, mi) = (pos[i], vel[i], material(i));
+            let (vi, mi) = (vel[i], material(i));
             let m = materials.get(mi);
             let mut fluid = 0.0;
-            for &j in nb.fluid(n) {
-                let j = j as usize;
-                fluid += (vi - vel[j]).dot(gradient(k, sep.between(xi, pos[j])));
+            for (&j, &g) in nb.fluid(n).iter().zip(nb.fluid_gradients(n)) {
+                fluid += (vi - vel[j as usize]).dot(g);
             }
             let psi = &walls.psi[mi];
             let mut wall = 0.0;
-            for &b in nb.walls(n) {
-                let b = b as usize;
-                wall += psi[b] * vi.dot(gradient(k, sep.between(xi, walls.positions[b])));
+            for (&b, &g) in nb.walls(n).iter().zip(nb.wall_gradients(n)) {
+                wall += psi[b as usize] * vi.dot(g);
             }
             let rate = m.mass * fluid + wall;
             // Only compression is corrected: the error is clamped at zero, so each
