@@ -53,11 +53,11 @@ print(f"{sys.argv[1]}|{peer['n_fluid']}|{peer['steps']}|{peer['run_wall_s']:.2f}
 PY
 }
 {
-  row "Floe WCSPH, c = 10 v_max (default)"
+  row "Floe DFSPH, tolerance 0.1 % (the preset's)"
+  row "Floe DFSPH, tolerance 0.01 % (the peer's)" --set solver.dfsph.density_tolerance=1e-4
+  row "Floe WCSPH, c = 10 v_max" --set 'solver.method="wcsph"'
   # SPlisHSPlasH's WCSPH stiffness 50000 Pa with gamma 7 is c = sqrt(50000*7/1000) = 18.7 m/s.
-  row "Floe WCSPH, c = 18.7 m/s (peer's stiffness)" --set solver.speed_of_sound=18.7
-  row "Floe DFSPH (tolerance 0.1 %)" --set 'solver.method="dfsph"'
-  row "Floe DFSPH (tolerance 0.01 %, the peer's)" --set 'solver.method="dfsph"' --set solver.dfsph.density_tolerance=1e-4
+  row "Floe WCSPH, c = 18.7 m/s (peer's stiffness)" --set 'solver.method="wcsph"' --set solver.speed_of_sound=18.7
   peer "SPlisHSPlasH 2.19 WCSPH (dt 0.5 ms)" 0
   peer "SPlisHSPlasH 2.19 DFSPH (tolerance 0.01 %)" 4
 } > "$tmp/rows"

@@ -11,8 +11,11 @@ use floe_engine::Simulation;
 use floe_engine::attrs::{Column, Role};
 use floe_engine::math::Vec3;
 use floe_engine::plan::Stage;
+use floe_engine::scene::Method;
 use floe_engine::scene::load::{Format, from_preset, from_str};
 use floe_engine::validation::hydrostatic;
+
+const WCSPH: &str = Method::Wcsph.setting();
 
 const SPACING: f32 = 0.05;
 
@@ -75,8 +78,12 @@ fn its_rate_is_the_time_derivative_of_the_summed_density_walls_included() {
     // tank: the continuity equation's rate (no diffusion) against the central
     // difference of the summed density along it, particle by particle.
     let o = |delta: bool| {
-        let mut o =
-            vec!["particle_spacing=0.1".to_string(), "gravity=[0,0,0]".into(), "solver.speed_of_sound=20".into()];
+        let mut o = vec![
+            "particle_spacing=0.1".to_string(),
+            WCSPH.into(),
+            "gravity=[0,0,0]".into(),
+            "solver.speed_of_sound=20".into(),
+        ];
         if delta {
             o.push("solver.delta_sph={\"delta\":0}".into());
         }
@@ -185,6 +192,7 @@ fn scenes_with_it_restore_bit_for_bit_with_either_integrator() {
     for integrator in ["symplectic_euler", "leapfrog"] {
         let o = [
             "particle_spacing=0.1".to_string(),
+            WCSPH.into(),
             format!("solver.integrator=\"{integrator}\""),
             "solver.delta_sph={\"delta\":0.1}".into(),
         ];
@@ -207,7 +215,8 @@ fn scenes_with_it_restore_bit_for_bit_with_either_integrator() {
 
 #[test]
 fn scenes_without_it_sum_their_density_and_allocate_nothing_of_it() {
-    let plain = Simulation::new_cpu(from_preset("dam_break", &["particle_spacing=0.1".into()]).unwrap()).unwrap();
+    let plain =
+        Simulation::new_cpu(from_preset("dam_break", &["particle_spacing=0.1".into(), WCSPH.into()]).unwrap()).unwrap();
     let names: Vec<&str> = plain.model().plan.passes().iter().map(|p| p.name).collect();
     assert!(names.contains(&"core.density"));
     assert!(!names.iter().any(|n| *n == "core.neighbours" || n.starts_with("wcsph.continuity")));

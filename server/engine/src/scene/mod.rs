@@ -358,6 +358,16 @@ pub enum Method {
     Dfsph,
 }
 
+impl Method {
+    /// The override (`--set`, a scene's `overrides`) that picks this scheme.
+    pub const fn setting(self) -> &'static str {
+        match self {
+            Method::Wcsph => "solver.method=\"wcsph\"",
+            Method::Dfsph => "solver.method=\"dfsph\"",
+        }
+    }
+}
+
 /// Time integrator.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
