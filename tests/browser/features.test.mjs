@@ -107,9 +107,12 @@ test('the viewer: views, plots, record and replay, help, errors, phone width', {
       const [download] = await Promise.all([page.waitForEvent('download'), page.click('#plots .plots-csv')]);
       assert.match(download.suggestedFilename(), /^floe-scene-1-stats\.csv$/);
       const lines = (await readFile(await download.path(), 'utf8')).trim().split('\r\n');
-      // The fixed statistics, then the scene's measures with their units.
+      // The fixed statistics, the scene's measures with their units, then its pressure
+      // solves' residuals and iterations (the dam break's preset runs DFSPH).
       assert.equal(lines[0], 'wall_time (s),sim_time (s),steps_per_second (1/s),dt (s),real_time_factor,'
-        + 'fluid.kinetic_energy (J),max_density_deviation,max_speed (m/s)');
+        + 'fluid.kinetic_energy (J),max_density_deviation,max_speed (m/s),'
+        + 'dfsph.density.last_residual,dfsph.density.max_iterations,dfsph.density.mean_iterations,'
+        + 'dfsph.divergence.last_residual,dfsph.divergence.max_iterations,dfsph.divergence.mean_iterations');
       const now = await page.locator('#plots figcaption').allTextContents();
       assert.ok(now.some((c) => /^fluid\.kinetic energy \(J\): [\d.e+-]+$/.test(c)), now.join(' | '));
       assert.ok(lines.length >= 3, `only ${lines.length - 1} samples`);
