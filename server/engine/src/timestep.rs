@@ -115,7 +115,14 @@ impl StepControl {
                         limits.v_max, limits.a_max
                     ));
                 }
-                let step = self.remaining.min(stable);
+                // Equal sub-steps for what is left of the interval, none above the limit
+                // (the limit read as 1e-5 larger, so that rounding in `remaining` does
+                // not ask for one more): a short remainder after full steps would make
+                // dt jump by a large factor and back, which the schemes' assumption of
+                // a slowly varying dt does not survive (DFSPH's warm start gained 44 %
+                // mechanical energy on the dam break under a fixed 10 ms interval).
+                let parts = (self.remaining / (stable * (1.0 + 1e-5))).ceil().max(1.0);
+                let step = self.remaining / parts;
                 self.remaining -= step;
                 // Do not leave a sliver of an interval for a separate tiny step.
                 if self.remaining < 1e-6 * dt {
@@ -170,5 +177,18 @@ mod tests {
         assert!((total - 1e-3).abs() < 1e-9);
         assert_eq!(n, 8);
         assert_eq!(c.substeps, 7);
+    }
+
+    #[test]
+    fn an_interval_is_cut_into_equal_substeps() {
+        // 1e-3 s at a limit of 3e-4 s: four steps of 2.5e-4 s, not three of 3e-4 s and
+        // a remainder of 1e-4 s.
+        let mut c = StepControl::new(TimeStep::Fixed { dt: 1e-3, cfl: 0.25 });
+        let l = Limits { c: 0.25 * 0.02 / 3e-4, ..limits(0.0) };
+        let steps: Vec<Real> = (0..4).map(|_| c.next_dt(&l).unwrap()).collect();
+        assert_eq!(c.remaining, 0.0);
+        for s in steps {
+            assert!((s - 2.5e-4).abs() < 1e-9, "{s}");
+        }
     }
 }

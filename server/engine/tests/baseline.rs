@@ -7,11 +7,12 @@
 //! The checksum covers every particle's position, velocity and density in
 //! identity order (FNV-1a over the f32 bits), plus time and step count.
 //!
-//! Two deliberate physics changes since, both moving only the Laplacian-viscosity
-//! case's checksum (the others are still 679cab9's): walls under Laplacian viscosity
-//! act as the mirror image of the fluid particle (`ViscosityModel::wall`), and the
-//! Laplacian viscosity carries the kernel's lattice normalisation
-//! (`Kernel::lattice_laplacian_scale`).
+//! Deliberate physics changes since: two moving only the Laplacian-viscosity case's
+//! checksum (walls under Laplacian viscosity act as the mirror image of the fluid
+//! particle, `ViscosityModel::wall`, and the Laplacian viscosity carries the kernel's
+//! lattice normalisation, `Kernel::lattice_laplacian_scale`), and one moving only the
+//! fixed-step case's (a fixed interval is cut into equal sub-steps instead of full
+//! ones and a remainder, `StepControl::next_dt`). The others are still 679cab9's.
 
 use floe_engine::Simulation;
 use floe_engine::scene::Method;
@@ -45,7 +46,7 @@ fn checksum(preset: &str, overrides: &[&str], steps: usize) -> u64 {
     h
 }
 
-/// (preset, overrides, steps, checksum at 679cab9, or since the Laplacian's changes).
+/// (preset, overrides, steps, checksum at 679cab9, or since the changes above).
 /// The dam break's cases pin WCSPH, its scheme then (its preset uses DFSPH since).
 const CASES: &[(&str, &[&str], usize, u64)] = &[
     ("dam_break", &["particle_spacing=0.03125", WCSPH], 150, 0xcf06_4427_4e8a_f26b),
@@ -78,7 +79,7 @@ const CASES: &[(&str, &[&str], usize, u64)] = &[
         "dam_break",
         &["particle_spacing=0.05", WCSPH, "solver.time_step={\"mode\":\"fixed\",\"dt\":0.002}", "solver.damping=2"],
         100,
-        0x3c71_5ca0_4f9f_af9d,
+        0x7625_9b27_5196_d0f8,
     ),
 ];
 

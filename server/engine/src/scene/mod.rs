@@ -400,7 +400,8 @@ pub enum TimeStep {
         max: f32,
     },
     /// Advance in intervals of `dt` (s). When `dt` exceeds the stable limit the
-    /// interval is sub-stepped at the limit (counted in the run's statistics).
+    /// interval is cut into equal sub-steps no longer than the limit (counted in the
+    /// run's statistics).
     Fixed {
         /// Interval (s).
         dt: f32,
