@@ -24,11 +24,6 @@ fn dam_break(particles: usize, overrides: &[String], backend: &Selected) -> anyh
     Ok(Simulation::new(load::from_preset("dam_break", &all)?, &*backend.factory)?)
 }
 
-/// The scene's pressure solver, as `solver.method` names it.
-fn scheme(scene: &floe_engine::scene::Scene) -> String {
-    format!("{:?}", scene.solver.method).to_lowercase()
-}
-
 /// The heat module on the dam break (`--heat`): water's properties with a tenfold
 /// expansion, a floor held at 350 K under water at 300 K.
 const HEAT: &[&str] = &[
@@ -59,7 +54,7 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     if let Some(seconds) = args.avalanche {
         return avalanche(args.particles[0], &args.overrides, seconds, &backend, args.profile);
     }
-    let scheme = scheme(&load::from_preset("dam_break", &args.overrides)?);
+    let scheme = floe_engine::schemes::of(&load::from_preset("dam_break", &args.overrides)?).id;
     println!("dam break ({scheme}) on {}, {} timed steps per size", backend.description, args.steps);
     println!(
         "| modules | fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle | solver iterations/step |"
@@ -197,7 +192,7 @@ fn per_step(
 /// Time to solution: simulate `seconds` of the dam break and compare the front.
 fn solve(particles: usize, overrides: &[String], seconds: f64, backend: &Selected) -> anyhow::Result<()> {
     let mut sim = dam_break(particles, overrides, backend)?;
-    println!("dam break ({}) on {}, to t = {seconds} s", scheme(sim.scene()), backend.description);
+    println!("dam break ({}) on {}, to t = {seconds} s", sim.model().scheme.id, backend.description);
     let a = DAM_BREAK_A as f64;
     let d = sim.scene().particle_spacing as f64;
     let g = 9.81;

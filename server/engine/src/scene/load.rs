@@ -231,6 +231,19 @@ mod tests {
     use super::*;
 
     #[test]
+    fn each_methods_setting_picks_it() {
+        for m in [crate::scene::Method::Wcsph, crate::scene::Method::Dfsph] {
+            assert_eq!(
+                from_preset("hydrostatic", &[m.setting().into(), "solver.delta_sph=null".into()])
+                    .unwrap()
+                    .solver
+                    .method,
+                m
+            );
+        }
+    }
+
+    #[test]
     fn paths_parse() {
         assert_eq!(
             parse_path("fluids[0].viscosity.nu").unwrap(),

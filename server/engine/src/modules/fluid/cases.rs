@@ -20,7 +20,7 @@ const HYDROSTATIC_VARIANTS: [Variant; 6] = [
     Variant { name: "leapfrog", overrides: &["solver.integrator=leapfrog"] },
     Variant { name: "laplacian_viscosity", overrides: LAPLACIAN },
     Variant { name: "summation", overrides: &["solver.delta_sph=null"] },
-    Variant { name: "dfsph", overrides: &["solver.method=\"dfsph\"", "solver.delta_sph=null"] },
+    Variant { name: "dfsph", overrides: &[DFSPH, "solver.delta_sph=null"] },
 ];
 
 /// The variants the dam break runs: the preset (DFSPH), the other scheme, and WCSPH
@@ -36,6 +36,7 @@ const DAM_BREAK_VARIANTS: [Variant; 6] = [
 ];
 
 const WCSPH: &str = Method::Wcsph.setting();
+const DFSPH: &str = Method::Dfsph.setting();
 
 /// Laplacian viscosity of water with a little XSPH smoothing, in place of the
 /// presets' artificial viscosity.
@@ -43,7 +44,7 @@ const LAPLACIAN: &[&str] = &["fluids[0].viscosity={\"model\":\"laplacian\",\"nu\
 
 /// The schemes, for cases that compare them only.
 const SCHEMES: &[Variant] =
-    &[Variant { name: "default", overrides: &[] }, Variant { name: "dfsph", overrides: &["solver.method=\"dfsph\""] }];
+    &[Variant { name: "default", overrides: &[] }, Variant { name: "dfsph", overrides: &[DFSPH] }];
 
 /// The module's accuracy cases.
 pub const CASES: &[Case] = &[
@@ -93,7 +94,7 @@ pub const CASES: &[Case] = &[
         bounds: &[("decay_rate_error", 0.02)],
         variants: &[
             Variant { name: "default", overrides: &[] },
-            Variant { name: "dfsph", overrides: &["solver.method=\"dfsph\"", "solver.transport_velocity=null"] },
+            Variant { name: "dfsph", overrides: &[DFSPH, "solver.transport_velocity=null"] },
         ],
         measure: taylor_green_case,
     },

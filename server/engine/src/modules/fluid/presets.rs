@@ -58,7 +58,7 @@ fn closed_box(min: [f32; 3], max: [f32; 3]) -> Boundary {
 /// DFSPH is its pressure solver, chosen by measurement: it reaches 0.5 s of this
 /// flow in about a fifth of WCSPH's wall time, with a smaller surge-front error at
 /// every resolution up to this one (docs/benchmarks.md, "Time to solution against
-/// SPlisHSPlasH"; docs/validation/report.md). The other presets keep WCSPH: at rest
+/// SPlisHSPlasH"; docs/validation/dam-break). The other presets keep WCSPH: at rest
 /// DFSPH's pressure beside the walls is 1.6-2.7 times the hydrostatic one
 /// (docs/validation/hydrostatic/NOTES.md), and it diverges on the periodic
 /// Taylor-Green vortex.
