@@ -38,6 +38,9 @@ struct PlanPass {
     threads: u32,
     /// Whether it reads the step's dt from the `dt` uniform.
     uses_dt: bool,
+    /// The fused kernel that does this pass and later ones of its stage when the
+    /// stage runs as a whole ([`crate::pass::fusions`]), with their plan indices.
+    fused: Option<(Arc<Kernel>, BindGroup, Vec<usize>)>,
 }
 
 /// The bind groups of the core's own kernels.
@@ -176,7 +179,9 @@ impl GpuBackend {
         p.slots.dispatch(e, &c.slots, n);
     }
 
-    fn record_pass(&mut self, i: usize, dt: Real) {
+    /// Records plan pass `i` with its own kernel, or with `fused` its fused kernel
+    /// (which does the passes it covers too).
+    fn record_pass(&mut self, i: usize, dt: Real, fused: bool) {
         if self.passes[i].uses_dt && dt.to_bits() != self.pass_dt.to_bits() {
             // Work recorded so far reads the old dt: it goes first. The other three
             // components stay 0 (heat's integrate.wgsl XORs with the bits of w).
@@ -186,13 +191,21 @@ impl GpuBackend {
         }
         let mut e = self.take_recorder();
         let pass = &self.passes[i];
-        if !self.ran.contains(&pass.spec.name) {
-            self.ran.push(pass.spec.name);
+        let done: Vec<usize> = match (&pass.fused, fused) {
+            (Some((_, _, covers)), true) => covers.clone(),
+            _ => vec![i],
+        };
+        for k in done {
+            if !self.ran.contains(&self.passes[k].spec.name) {
+                self.ran.push(self.passes[k].spec.name);
+            }
         }
-        match &pass.kernel {
-            Some((kernel, bind)) => kernel.dispatch(&mut e, bind, pass.threads),
-            None if pass.spec.name == "core.sort" => self.record_sort(&mut e),
-            None => {}
+        let pass = &self.passes[i];
+        match (&pass.fused, &pass.kernel) {
+            (Some((kernel, bind, _)), _) if fused => kernel.dispatch(&mut e, bind, pass.threads),
+            (_, Some((kernel, bind))) => kernel.dispatch(&mut e, bind, pass.threads),
+            (_, None) if pass.spec.name == "core.sort" => self.record_sort(&mut e),
+            (_, None) => {}
         }
         self.pending = Some(e);
     }
@@ -280,24 +293,37 @@ fn core_binds(gpu: &GpuContext, b: &Buffers, grid: &Grid) -> CoreBinds {
     }
 }
 
-/// Binds every plan pass (but the core's sort, recorded by hand) to its buffers.
+/// Binds every plan pass (but the core's sort, recorded by hand) to its buffers,
+/// and the fused kernels the device allows to the first pass each does.
 fn plan_passes(gpu: &GpuContext, model: &Model, b: &Buffers) -> Vec<PlanPass> {
-    model
+    let bind = |pass: &'static crate::pass::GpuPass| {
+        let kernel = gpu.kernel(pass);
+        let buffers: Vec<&Buffer> = pass.bindings.iter().map(|(_, name)| b.get(name)).collect();
+        let group = kernel.bind(&gpu.device, &buffers);
+        (kernel, group)
+    };
+    let uses_dt = |pass: &crate::pass::GpuPass| pass.bindings.iter().any(|(_, name)| *name == "dt");
+    let mut passes: Vec<PlanPass> = model
         .plan
         .passes()
         .iter()
         .map(|&spec| {
             if crate::pass::HOST_PASSES.contains(&spec.name) {
-                return PlanPass { spec, kernel: None, threads: model.particle_count() as u32, uses_dt: false };
+                let threads = model.particle_count() as u32;
+                return PlanPass { spec, kernel: None, threads, uses_dt: false, fused: None };
             }
             let pass = crate::pass::find(spec.name, model).expect("checked at creation");
-            let kernel = gpu.kernel(pass);
-            let buffers: Vec<&Buffer> = pass.bindings.iter().map(|(_, name)| b.get(name)).collect();
-            let bind = kernel.bind(&gpu.device, &buffers);
-            let uses_dt = pass.bindings.iter().any(|(_, name)| *name == "dt");
-            PlanPass { spec, kernel: Some((kernel, bind)), threads: model.layout.count(pass.space) as u32, uses_dt }
+            let threads = model.layout.count(pass.space) as u32;
+            PlanPass { spec, kernel: Some(bind(pass)), threads, uses_dt: uses_dt(pass), fused: None }
         })
-        .collect()
+        .collect();
+    for (fused, covers) in crate::pass::fusions(model, gpu.max_storage_buffers()) {
+        let first = &mut passes[covers[0]];
+        let (kernel, group) = bind(&fused.kernel);
+        first.uses_dt |= uses_dt(&fused.kernel);
+        first.fused = Some((kernel, group, covers));
+    }
+    passes
 }
 
 impl Stages for GpuBackend {
@@ -305,17 +331,23 @@ impl Stages for GpuBackend {
         &self.model
     }
 
+    /// The stage's passes in plan order, those a fused kernel does with it.
     fn run(&mut self, stage: Stage, dt: Real) {
+        let mut done: Vec<usize> = Vec::new();
         for i in 0..self.passes.len() {
-            if self.passes[i].spec.stage == stage {
-                self.record_pass(i, dt);
+            if self.passes[i].spec.stage == stage && !done.contains(&i) {
+                if let Some((_, _, covers)) = &self.passes[i].fused {
+                    done.extend(covers);
+                }
+                self.record_pass(i, dt, true);
             }
         }
     }
 
+    /// One pass with its own kernel, never fused (the oracle compares passes so).
     fn run_pass(&mut self, name: &str, dt: Real) {
         let i = self.passes.iter().position(|p| p.spec.name == name).unwrap_or_else(|| panic!("no pass {name}"));
-        self.record_pass(i, dt);
+        self.record_pass(i, dt, false);
     }
 
     fn measure(&mut self) -> Result<floe_engine::guard::Measures, String> {

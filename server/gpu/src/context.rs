@@ -120,6 +120,11 @@ impl GpuContext {
         kernel
     }
 
+    /// Storage buffers a kernel may bind on this device.
+    pub fn max_storage_buffers(&self) -> u32 {
+        self.device.limits().max_storage_buffers_per_shader_stage
+    }
+
     /// Largest storage buffer binding (bytes).
     pub(crate) fn max_binding(&self) -> u64 {
         self.device.limits().max_storage_buffer_binding_size

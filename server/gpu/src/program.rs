@@ -25,6 +25,21 @@ pub enum Access {
     ReadWrite,
 }
 
+/// The bindings `a` then `b` (a kernel binding another's and more of its own).
+pub const fn join<const A: usize, const B: usize, const C: usize>(
+    a: [(Access, &'static str); A],
+    b: [(Access, &'static str); B],
+) -> [(Access, &'static str); C] {
+    assert!(A + B == C && A > 0, "join: C must be A + B");
+    let mut out = [a[0]; C];
+    let mut k = 0;
+    while k < C {
+        out[k] = if k < A { a[k] } else { b[k - A] };
+        k += 1;
+    }
+    out
+}
+
 /// Largest workgroup count per dispatch dimension (WebGPU's guaranteed limit).
 const MAX_GROUPS: u32 = 65_535;
 

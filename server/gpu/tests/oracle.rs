@@ -249,6 +249,61 @@ fn every_pass_of_the_plan_matches_the_cpu() {
     }
 }
 
+/// A fused kernel (several passes of a stage in one neighbour walk) against the
+/// CPU's passes: both backends reach the stage on their own, the GPU gets the CPU's
+/// values of everything the stage reads, both run the whole stage (the GPU with
+/// its fused kernels, as in a step) and must agree on everything it writes, each
+/// output within the tolerance of the pass writing it.
+fn check_fused_stage(cpu: &mut Simulation, gpu: &mut Simulation, stage: Stage, label: &str) {
+    for sim in [&mut *cpu, &mut *gpu] {
+        let b = sim.backend_mut();
+        for earlier in Stage::ALL.iter().copied().filter(|s| *s < stage) {
+            b.run(earlier, 1e-3);
+        }
+        b.end_step();
+    }
+    let passes: Vec<&'static PassSpec> = cpu.model().plan.stage(stage).collect();
+    let mut inputs: Vec<&str> = passes.iter().flat_map(|p| p.reads.iter().chain(p.accumulates)).copied().collect();
+    inputs.sort_unstable();
+    inputs.dedup();
+    for (name, column) in inputs.iter().zip(cpu.backend().download(&inputs)) {
+        gpu.backend_mut().upload(name, column);
+    }
+    for sim in [&mut *cpu, &mut *gpu] {
+        sim.backend_mut().run(stage, 1e-3);
+        sim.backend_mut().end_step();
+    }
+    for pass in passes {
+        let outputs: Vec<&str> = pass.writes.iter().chain(pass.accumulates).copied().collect();
+        let (c, g) = (cpu.backend().download(&outputs), gpu.backend().download(&outputs));
+        for ((name, a), b) in outputs.iter().zip(&c).zip(&g) {
+            let (d, scale) = diff(a, b);
+            let bound = f64::from(pass.tolerance) * scale.max(1e-12);
+            assert!(d <= bound, "{label}: {name} ({}) is {d:e} away from the CPU (bound {bound:e})", pass.name);
+        }
+    }
+}
+
+#[test]
+fn fused_kernels_match_the_cpu() {
+    let Some(gpu) = common::gpu("fused_kernels_match_the_cpu") else { return };
+    let mut fused = 0;
+    for overrides in VARIANTS {
+        let (cpu, _) = pair(gpu, "dam_break", overrides, 40);
+        for (kernel, covers) in floe_gpu::pass::fusions(cpu.model(), gpu.max_storage_buffers()) {
+            let stage = cpu.model().plan.passes()[covers[0]].stage;
+            let (mut cpu, mut g) = pair(gpu, "dam_break", overrides, 40);
+            check_fused_stage(&mut cpu, &mut g, stage, &format!("{} {overrides:?}", kernel.kernel.name));
+            fused += 1;
+        }
+    }
+    // The heat variants under WCSPH fuse the force pass with conduction wherever a
+    // device binds their ten storage buffers (lavapipe, and desktop GPUs, bind far more).
+    if gpu.max_storage_buffers() >= floe_gpu::modules::heat::FORCES_AND_CONDUCTION.storage_buffers() {
+        assert!(fused >= 2, "{fused} fused stages checked");
+    }
+}
+
 #[test]
 fn the_sort_gives_the_same_order_and_one_step_runs_the_plan_in_order() {
     let Some(gpu) = common::gpu("the_sort_gives_the_same_order_and_one_step_runs_the_plan_in_order") else { return };

@@ -2,6 +2,8 @@
 //! naga, without any GPU, and no entry point binds more than 8 storage buffers: the
 //! portability floor this project keeps (WebGPU's default limit). A module that
 //! needs more splits its pass; module constants go in uniforms, which do not count.
+//! A fused kernel (several passes in one walk) may bind more, as the backend uses it
+//! only on devices that allow it; each pass it does has a kernel within the floor.
 
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
@@ -52,6 +54,25 @@ fn every_shader_validates_and_binds_at_most_8_storage_buffers() {
         checked += 1;
     }
     assert!(checked >= 14, "{checked} shaders");
+}
+
+#[test]
+fn fused_kernels_validate_and_bind_what_they_declare() {
+    for fused in floe_gpu::pass::fused() {
+        let k = &fused.kernel;
+        let (module, info) = validate(k.name, k.source);
+        for (entry, count) in storage_bindings(&module, &info) {
+            assert_eq!(count as u32, fused.storage_buffers(), "{}::{entry}", k.name);
+        }
+        assert_eq!(k.name, fused.passes.join("+"));
+        for pass in fused.passes {
+            assert!(
+                floe_gpu::pass::all().iter().any(|p| p.name == *pass),
+                "{pass}, fused in {}, has no kernel",
+                k.name
+            );
+        }
+    }
 }
 
 #[test]

@@ -4,7 +4,7 @@ pub mod fluid;
 pub mod heat;
 pub mod snow;
 
-use crate::pass::{GpuPass, UniformSource};
+use crate::pass::{Fused, GpuPass, UniformSource};
 
 /// Every module's GPU passes.
 pub static PASSES: &[&GpuPass] = &[
@@ -24,6 +24,9 @@ pub static PASSES: &[&GpuPass] = &[
     &fluid::implicit::DIRECTION,
     &snow::SHEAR,
 ];
+
+/// Kernels doing several modules' passes in one neighbour walk.
+pub static FUSED: &[&Fused] = &[&heat::FORCES_AND_CONDUCTION];
 
 /// Every module's uniform.
 pub static UNIFORMS: &[(&str, UniformSource)] = &[

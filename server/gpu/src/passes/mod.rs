@@ -17,6 +17,20 @@ macro_rules! particle_kernel {
 }
 pub(crate) use particle_kernel;
 
+/// Joins `common.wgsl` and the neighbour walk `walk.wgsl` with a pair pass's terms
+/// and the file naming its hooks.
+macro_rules! walk_kernel {
+    ($($file:literal),+) => {
+        concat!(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/common.wgsl")),
+            "\n",
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/walk.wgsl")),
+            $("\n", include_str!($file)),+
+        )
+    };
+}
+pub(crate) use walk_kernel;
+
 /// Source of the counting sort (grid.wgsl).
 pub const GRID: &str = particle_kernel!("grid.wgsl");
 /// Source of the strided permutation (reorder.wgsl, stand-alone).

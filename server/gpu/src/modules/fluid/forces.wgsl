@@ -1,9 +1,11 @@
 // Gravity and viscosity, and under WCSPH the pressure force, in one neighbour
-// loop (floe-engine `modules::fluid::forces`, term by term in the same order):
+// walk (floe-engine `modules::fluid::forces`, term by term in the same order):
 // symmetric pressure (Monaghan 1992, eq. 3.3; several materials after Solenthaler
 // & Pajarola 2008, eq. 6) with wall particles weighted by Akinci's pseudo-mass and
 // given Adami's extrapolated pressure; viscosity per the material pair's model.
-// The pressure terms come from forces_pressure.wgsl (WCSPH) or forces_plain.wgsl.
+// The pressure terms come from forces_pressure.wgsl (WCSPH) or forces_plain.wgsl;
+// the walk (walk.wgsl) calls the terms below through forces_walk.wgsl, or through
+// another module's file that walks these neighbours for its own pass as well.
 
 struct Fluid {
     // Per material: viscosity kind (0 none, 1 Laplacian, 2 artificial), its
@@ -38,60 +40,46 @@ fn viscosity(model: vec4<f32>, x_ij: vec3<f32>, r: f32, v_ij: vec3<f32>, m_j: f3
     return vec3<f32>(0.0);
 }
 
-@compute @workgroup_size(WG)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n) {
-        return;
-    }
-    let xi = pos[i].xyz;
-    let vi = vel[i].xyz;
-    let rho_i = rho[i];
-    let ma = material_of(pos[i]);
-    let pt_i = pressure_term(i);
-    var a = params.gravity;
-    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
-    for (var k = 0u; k < block_runs(b); k++) {
-        let run = run_cells(b, k, params.grid_dims);
-        for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = separation(xi, pos[j].xyz);
-            let r2 = dot(x_ij, x_ij);
-            if (r2 >= params.h2 || r2 == 0.0) {
-                continue;
-            }
-            let r = sqrt(r2);
-            let grad = x_ij * (kernel_dw_dr(r) / r);
-            let mb = material_of(pos[j]);
-            let m = params.materials[mb].y;
-            let pair = fluid.pair[ma * 16u + mb];
-            a -= grad * pressure_pair(pt_i, j, m, pair.w, fluid.pair[mb * 16u + ma].w);
-            let v_ij = vi - vel[j].xyz;
-            a += viscosity(pair, x_ij, r, v_ij, m, rho_i, rho[j], grad);
-        }
-    }
-    if (params.n_walls > 0u) {
-        let mat = params.materials[ma];
-        let own = fluid.material[ma];
-        let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
-        for (var k = 0u; k < block_runs(bw); k++) {
-            let run = run_cells(bw, k, params.wall_dims);
-            for (var j = starts[params.wall_start + run.x]; j < starts[params.wall_start + run.y]; j++) {
-                let w = walls[j];
-                let x_ib = separation(xi, w.xyz);
-                let r2 = dot(x_ib, x_ib);
-                if (r2 >= params.h2 || r2 == 0.0) {
-                    continue;
-                }
-                let r = sqrt(r2);
-                let grad = x_ib * (kernel_dw_dr(r) / r);
-                let psi = w.w * mat.w;
-                a -= grad * pressure_wall(pt_i, j, psi, mat.z);
-                // Laplacian viscosity sees the wall as the mirror image of i
-                // (`ViscosityModel::wall`).
-                let v_ib = select(vi, vi * 2.0, own.x == VISC_LAPLACIAN);
-                a += viscosity(own, x_ib, r, v_ib, psi, rho_i, mat.x, grad);
-            }
-        }
-    }
-    acc[i] = vec4<f32>(a, 0.0);
+// The sum over i's neighbours, and what it needs of i.
+var<private> forces_a: vec3<f32>;
+var<private> forces_vi: vec3<f32>;
+var<private> forces_rho_i: f32;
+var<private> forces_ma: u32;
+var<private> forces_pt_i: f32;
+
+fn forces_begin(i: u32) {
+    forces_vi = vel[i].xyz;
+    forces_rho_i = rho[i];
+    forces_ma = material_of(pos[i]);
+    forces_pt_i = pressure_term(i);
+    forces_a = params.gravity;
+}
+
+fn forces_pair(j: u32, x_ij: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    let grad = x_ij * (kernel_dw_dr(r) / r);
+    let ma = forces_ma;
+    let mb = material_of(pos[j]);
+    let m = params.materials[mb].y;
+    let pair = fluid.pair[ma * 16u + mb];
+    forces_a -= grad * pressure_pair(forces_pt_i, j, m, pair.w, fluid.pair[mb * 16u + ma].w);
+    let v_ij = forces_vi - vel[j].xyz;
+    forces_a += viscosity(pair, x_ij, r, v_ij, m, forces_rho_i, rho[j], grad);
+}
+
+fn forces_wall(b: u32, x_ib: vec3<f32>, r2: f32) {
+    let mat = params.materials[forces_ma];
+    let own = fluid.material[forces_ma];
+    let r = sqrt(r2);
+    let grad = x_ib * (kernel_dw_dr(r) / r);
+    let psi = walls[b].w * mat.w;
+    forces_a -= grad * pressure_wall(forces_pt_i, b, psi, mat.z);
+    // Laplacian viscosity sees the wall as the mirror image of i
+    // (`ViscosityModel::wall`).
+    let v_ib = select(forces_vi, forces_vi * 2.0, own.x == VISC_LAPLACIAN);
+    forces_a += viscosity(own, x_ib, r, v_ib, psi, forces_rho_i, mat.x, grad);
+}
+
+fn forces_end(i: u32) {
+    acc[i] = vec4<f32>(forces_a, 0.0);
 }

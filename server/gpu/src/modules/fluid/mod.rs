@@ -8,8 +8,8 @@ pub mod implicit;
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
-use crate::passes::particle_kernel;
-use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
+use crate::passes::{particle_kernel, walk_kernel};
+use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
@@ -17,35 +17,44 @@ use floe_engine::modules::fluid::FluidConsts;
 use floe_engine::modules::fluid::varying::VaryingViscosity;
 use floe_engine::modules::fluid::viscosity::ViscosityModel;
 
+/// The bindings of the force pass with the WCSPH pressure terms (a kernel walking
+/// the same neighbours for another pass as well binds these first).
+pub const FORCES_WITH_PRESSURE_BINDINGS: [(Access, &str); 10] = [
+    (U, "params"),
+    (U, "fluid"),
+    (R, "x"),
+    (R, "v"),
+    (R, "rho"),
+    (R, "starts"),
+    (R, "walls"),
+    (W, "a"),
+    (R, "pterm"),
+    (R, "wall_p"),
+];
+
 /// Gravity, viscosity and the WCSPH pressure force.
 pub static FORCES_WITH_PRESSURE: GpuPass = GpuPass {
     name: "fluid.forces",
-    source: particle_kernel!("forces.wgsl", "forces_pressure.wgsl"),
+    source: walk_kernel!("forces.wgsl", "forces_pressure.wgsl", "forces_walk.wgsl"),
     entry: "main",
-    bindings: &[
-        (U, "params"),
-        (U, "fluid"),
-        (R, "x"),
-        (R, "v"),
-        (R, "rho"),
-        (R, "starts"),
-        (R, "walls"),
-        (W, "a"),
-        (R, "pterm"),
-        (R, "wall_p"),
-    ],
+    bindings: &FORCES_WITH_PRESSURE_BINDINGS,
     space: PARTICLES,
-    when: |m| m.layout.spec("pterm").is_some(),
+    when: has_pressure_terms,
 };
+
+/// Whether the scheme gives the force pass pressure terms (WCSPH's `p / rho^2`).
+pub fn has_pressure_terms(model: &Model) -> bool {
+    model.layout.spec("pterm").is_some()
+}
 
 /// Gravity and viscosity (schemes that solve pressure on their own).
 pub static FORCES: GpuPass = GpuPass {
     name: "fluid.forces",
-    source: particle_kernel!("forces.wgsl", "forces_plain.wgsl"),
+    source: walk_kernel!("forces.wgsl", "forces_plain.wgsl", "forces_walk.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (U, "fluid"), (R, "x"), (R, "v"), (R, "rho"), (R, "starts"), (R, "walls"), (W, "a")],
     space: PARTICLES,
-    when: |m| m.layout.spec("pterm").is_none(),
+    when: |m| !has_pressure_terms(m),
 };
 
 /// The viscous force of the per-particle viscosities (explicit solver).
@@ -68,7 +77,7 @@ pub static VARYING: GpuPass = GpuPass {
     when: always,
 };
 
-const XSPH_BINDINGS: &[(crate::program::Access, &str)] =
+const XSPH_BINDINGS: &[(Access, &str)] =
     &[(U, "params"), (U, "fluid"), (R, "x"), (W, "v"), (R, "rho"), (R, "starts"), (W, "xsph")];
 
 /// The XSPH sum.

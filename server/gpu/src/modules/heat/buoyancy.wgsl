@@ -1,5 +1,6 @@
 // Boussinesq buoyancy (floe-engine `modules::heat::passes`): a += -beta (T - T0) g.
 
+@group(0) @binding(1) var<uniform> heat: Heat;
 @group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> temperature: array<f32>;
 @group(0) @binding(4) var<storage, read_write> acc: array<vec4<f32>>;

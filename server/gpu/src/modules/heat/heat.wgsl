@@ -1,4 +1,5 @@
-// The heat module's uniform (floe-gpu `modules::heat::uniform`), shared by its kernels.
+// The heat module's uniform (floe-gpu `modules::heat::uniform`), shared by its kernels;
+// each binds it where its layout has it (`heat`).
 
 struct Heat {
     // Per material: conductivity k (W/(m K)), heat capacity c (J/(kg K)),
@@ -33,8 +34,6 @@ struct Heat {
     // Per material, 4 each: the table's points (T K, mu Pa s), two per vec4.
     table: array<vec4<f32>, 64>,
 }
-
-@group(0) @binding(1) var<uniform> heat: Heat;
 
 fn inside(p: vec3<f32>, lo: vec4<f32>, hi: vec4<f32>) -> bool {
     return all(p >= lo.xyz) && all(p <= hi.xyz);

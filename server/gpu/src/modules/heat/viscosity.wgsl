@@ -2,6 +2,7 @@
 // `TemperatureLaw::viscosity`, term by term): mu = law(T) of the particle's
 // material, clamped to [0, max], into the fluid module's per-particle viscosity.
 
+@group(0) @binding(1) var<uniform> heat: Heat;
 @group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> temperature: array<f32>;
 @group(0) @binding(4) var<storage, read_write> mu: array<f32>;
