@@ -46,12 +46,16 @@ var<private> forces_vi: vec3<f32>;
 var<private> forces_rho_i: f32;
 var<private> forces_ma: u32;
 var<private> forces_pt_i: f32;
+var<private> forces_mat: vec4<f32>;
+var<private> forces_own: vec4<f32>;
 
 fn forces_begin(i: u32) {
     forces_vi = vel[i].xyz;
     forces_rho_i = rho[i];
     forces_ma = material_of(pos[i]);
     forces_pt_i = pressure_term(i);
+    forces_mat = params.materials[forces_ma];
+    forces_own = fluid.material[forces_ma];
     forces_a = params.gravity;
 }
 
@@ -68,8 +72,8 @@ fn forces_pair(j: u32, x_ij: vec3<f32>, r2: f32) {
 }
 
 fn forces_wall(b: u32, x_ib: vec3<f32>, r2: f32) {
-    let mat = params.materials[forces_ma];
-    let own = fluid.material[forces_ma];
+    let mat = forces_mat;
+    let own = forces_own;
     let r = sqrt(r2);
     let grad = x_ib * (kernel_dw_dr(r) / r);
     let psi = walls[b].w * mat.w;
