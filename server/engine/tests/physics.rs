@@ -121,6 +121,23 @@ fn an_unstable_scene_halts_with_a_reason() {
     assert_eq!(sim.step().unwrap_err(), halted);
 }
 
+/// A linear law stiffer than the solver's speed of sound (here ten times: `k = (10
+/// c)^2`) sets the CFL limit with its own speed `sqrt(k)`: the dam break steps at
+/// that limit and finishes, where a step sized for c would be ten times too long.
+#[test]
+fn a_stiff_linear_law_sets_the_time_step() {
+    let stiff = [
+        "particle_spacing=0.05",
+        "solver.speed_of_sound=20",
+        "fluids[0].eos={\"kind\":\"linear\",\"stiffness\":40000}",
+    ];
+    let mut sim = preset("dam_break", &stiff);
+    sim.run_until(0.1, |_, _| {}).unwrap();
+    let h = 0.5 * sim.model().kernel.support();
+    let floe_engine::scene::TimeStep::Adaptive { cfl, .. } = sim.scene().solver.time_step else { panic!("adaptive") };
+    assert!(sim.stats().dt_max <= f64::from(cfl * h / 200.0) * 1.0001, "dt {} for c = 200 m/s", sim.stats().dt_max);
+}
+
 #[test]
 fn fixed_steps_above_the_limit_are_substepped() {
     let mut sim = preset("dam_break", &["particle_spacing=0.05", "solver.time_step={\"mode\":\"fixed\",\"dt\":0.005}"]);

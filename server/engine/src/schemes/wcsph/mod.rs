@@ -51,7 +51,7 @@ pub static SCHEME: SchemeDef = SchemeDef {
         ("wcsph.integrate_density", &continuity::Integrate),
     ],
     step,
-    signal_speed: |model| model.sound_speed.unwrap_or(0.0),
+    signal_speed: |model| model.consts::<WcsphConsts>().signal_speed,
 };
 
 /// `p / rho^2` of each particle (m^5/(kg s^2)), the pressure force's term.
@@ -108,6 +108,9 @@ pub struct WcsphConsts {
     pub transport: Option<Real>,
     /// δ-SPH's constants, when the scene integrates its density.
     pub delta: Option<continuity::DeltaConsts>,
+    /// The CFL condition's signal speed (m/s): the solver's speed of sound, or a
+    /// fluid's where its law is stiffer (a linear law's `sqrt(stiffness)`).
+    pub signal_speed: Real,
 }
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
@@ -116,7 +119,8 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         scene.fluids.iter().zip(b.materials()).map(|(f, m)| Eos::new(f.eos, m.rest_density, c)).collect();
     let transport = scene.solver.transport_velocity.map(|t| t.background);
     let delta = scene.solver.delta_sph.map(|d| continuity::build(b, d.delta, c, &eos));
-    b.set_consts(WcsphConsts { eos, transport, delta });
+    let signal_speed = eos.iter().map(Eos::sound_speed).fold(c, Real::max);
+    b.set_consts(WcsphConsts { eos, transport, delta, signal_speed });
     b.zeros(&PTERM);
     b.zeros(&WALL_P);
     b.pass(&EOS);
