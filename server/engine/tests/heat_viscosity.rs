@@ -1,12 +1,12 @@
 //! Temperature-dependent viscosity on the CPU: each particle takes its law's
 //! viscosity at its temperature, the heated channel's steady profile, the explicit
-//! viscous limit, one module setting the viscosity per scene, and the laws'
-//! validation.
+//! viscous limit, a law scaling a snow rheology, and the laws' validation.
 
 use floe_engine::Simulation;
 use floe_engine::modules::heat::HeatConsts;
 use floe_engine::modules::heat::cases::channel_profile;
 use floe_engine::modules::heat::presets::CHANNEL_T;
+use floe_engine::modules::snow::SnowConsts;
 use floe_engine::scene::load::from_preset;
 use floe_engine::validation::poiseuille::profile_l2_error;
 
@@ -111,19 +111,51 @@ fn a_scene_without_a_law_has_no_per_particle_viscosity() {
     assert!(with.channels().iter().any(|c| c.name == "viscosity" && c.unit == "Pa s"));
 }
 
-/// Snow's rheology and a temperature law cannot both set the viscosity.
+/// With the snow module as well, a fluid's temperature law scales its rheology: each
+/// particle's viscosity is `mu(T) / mu(T0)` times the rheology's at its shear rate
+/// (the channel's lower half at 285 K, its upper at 315 K, a shear-thickening power
+/// law, T0 = 300 K, the law's fourfold fall across 40 K).
 #[test]
-fn one_module_sets_the_viscosity() {
-    let err = error(
+fn a_temperature_law_scales_a_snow_rheology() {
+    let mut s = sim(
         "heated_channel",
         &[
             "particle_spacing=0.1",
             r#"modules=["fluid","heat","snow"]"#,
-            r#"snow={"fluids":[{"model":"newtonian","mu":1}]}"#,
+            r#"snow={"fluids":[{"model":"power_law","k":2000,"n":1.5}],"max_viscosity":3000}"#,
+            "heat.reference_temperature=300",
+            "heat.fluids[0].conductivity=0",
+            "heat.fluids[0].temperature=315",
+            r#"heat.regions=[{"min":[0,0,0],"max":[1,0.5,1],"temperature":285}]"#,
         ],
     );
-    assert!(err.contains("heat.fluids[*].viscosity") && err.contains("snow"), "{err}");
-    assert!(err.contains("a scene takes it from one module"), "{err}");
+    while s.time() < 0.2 {
+        s.step().unwrap();
+    }
+    let law = s.model().consts::<HeatConsts>().viscosity[0];
+    let rheology = s.model().consts::<SnowConsts>().laws[0];
+    assert!((law.shift(285.0) - 4f32.powf(15.0 / 40.0)).abs() < 1e-5, "{}", law.shift(285.0));
+    assert!((law.shift(315.0) - 4f32.powf(-15.0 / 40.0)).abs() < 1e-5, "{}", law.shift(315.0));
+    let p = s.read(&["viscosity", "temperature", "shear_rate"]);
+    let column = |name: &str| p.channel(name).and_then(|c| c.as_scalars()).unwrap();
+    let (mu, t, g) = (column("viscosity"), column("temperature"), column("shear_rate"));
+    let sheared = g.iter().filter(|&&g| g > 1e-4).count();
+    assert!(sheared > g.len() / 2, "{sheared} of {} particles sheared: {:?}", g.len(), &g[..8]);
+    for ((&mu, &t), &g) in mu.iter().zip(t).zip(g) {
+        let want = (law.shift(t) * rheology.viscosity(g)).min(rheology.max);
+        assert!((mu - want).abs() <= 1e-5 * want, "mu {mu} at {t} K and {g} 1/s, want {want}");
+    }
+}
+
+/// A law scales a rheology: a snow fluid without one has nothing to scale.
+#[test]
+fn a_temperature_law_needs_a_rheology_with_snow() {
+    let err = error(
+        "heated_channel",
+        &["particle_spacing=0.1", r#"modules=["fluid","heat","snow"]"#, r#"snow={"fluids":[{"model":"none"}]}"#],
+    );
+    assert!(err.contains("snow.fluids[0].model: must not be \"none\""), "{err}");
+    assert!(err.contains("heat.fluids[0].viscosity scales the fluid's rheology"), "{err}");
 }
 
 #[test]

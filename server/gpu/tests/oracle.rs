@@ -188,6 +188,16 @@ const VARIANTS: &[&[&str]] = &[
           \"viscosity\":{\"law\":\"table\",\"points\":[[250,8],[290,3],[330,1],[380,0.5],[420,0.4]]}}]",
         "heat.viscous_solver={\"method\":\"explicit\"}",
     ],
+    // A temperature law scaling a snow rheology (the implicit solve): heat's shift
+    // factor and the shear pass that applies it.
+    &[
+        "particle_spacing=0.05",
+        "modules=[\"fluid\",\"heat\",\"snow\"]",
+        "fluids[0].viscosity={\"model\":\"none\"}",
+        HEAT,
+        "heat.fluids[0].viscosity={\"law\":\"arrhenius\",\"mu_ref\":5,\"t_ref\":300,\"activation_temperature\":2000}",
+        "snow={\"fluids\":[{\"model\":\"cross\",\"mu_0\":20,\"mu_inf\":0.2,\"k\":2,\"n\":0.8}],\"max_viscosity\":50}",
+    ],
     // With snow: each viscosity law, alone (the explicit force) and as two fluids of
     // different laws (the implicit solve, the default).
     &[

@@ -323,3 +323,25 @@ fn fall_speed(gravity: Vec3, fluid: Aabb, walls: Aabb, initial: Real) -> Real {
     let bottom = corners(fluid).chain(corners(walls)).map(|p| p.dot(down)).fold(Real::NEG_INFINITY, Real::max);
     (2.0 * g * (bottom - top).max(0.0)).sqrt().max(initial)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::modules::fluid::spec::{ViscousSolver, WallShear};
+    use crate::modules::fluid::varying;
+
+    /// One module per scene writes the per-particle viscosity (the heat module's laws
+    /// scale the snow module's rheology rather than write it): a second module turning
+    /// the path on is refused, naming both settings.
+    #[test]
+    fn a_second_module_turning_per_particle_viscosity_on_is_refused() {
+        let scene = crate::scene::load::from_preset("cross_channel", &[]).expect("the preset loads");
+        let mut b = ModelBuilder::new(&scene).expect("a builder");
+        varying::enable(&mut b, "snow", ViscousSolver::Explicit, WallShear::NoSlip).expect("the first");
+        let err = varying::enable(&mut b, "ice", ViscousSolver::Explicit, WallShear::NoSlip).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "ice: sets the particles' viscosity, which snow sets already; a scene takes it from one module"
+        );
+    }
+}

@@ -16,6 +16,7 @@ pub static PASSES: &[&GpuPass] = &[
     &heat::BUOYANCY,
     &heat::INTEGRATE,
     &heat::VISCOSITY,
+    &heat::VISCOSITY_SHIFT,
     &fluid::VARYING,
     &fluid::implicit::DIAGONAL,
     &fluid::implicit::PRECONDITION,
@@ -23,6 +24,7 @@ pub static PASSES: &[&GpuPass] = &[
     &fluid::implicit::UPDATE,
     &fluid::implicit::DIRECTION,
     &snow::SHEAR,
+    &snow::SHEAR_SHIFTED,
 ];
 
 /// Kernels doing several modules' passes in one neighbour walk.

@@ -53,6 +53,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("heat.buoyancy", &passes::Buoyancy),
         ("heat.integrate", &passes::Integrate),
         ("heat.viscosity", &viscosity::Viscosity),
+        ("heat.viscosity_shift", &viscosity::Shift),
     ],
     presets: presets::PRESETS,
     dt_limit,
@@ -117,6 +118,18 @@ pub static HEAT_RATE: AttrSpec = AttrSpec {
     about: "Rate of change of temperature from conduction and sources.",
 };
 
+/// The factor `mu(T) / mu(T0)` of each particle's temperature law, which scales the
+/// snow module's rheology in scenes with both (1 for fluids without a law).
+pub static VISCOSITY_SHIFT: AttrSpec = AttrSpec {
+    name: "viscosity_shift",
+    elem: Elem::F32,
+    unit: "",
+    role: Role::Derived,
+    space: PARTICLES,
+    module: "heat",
+    about: "Temperature shift factor of the rheology's viscosity (1 at the reference temperature).",
+};
+
 /// The temperature channel (a row of proto/channels.json).
 pub const TEMPERATURE_CHANNEL: ChannelSpec = ChannelSpec {
     name: "temperature",
@@ -155,6 +168,9 @@ pub struct HeatConsts {
     pub sources: Vec<HeatInput>,
     /// The temperature law of each material's viscosity (kind `None` where it has none).
     pub viscosity: Vec<TemperatureLaw>,
+    /// Whether the laws scale the snow module's rheology (`viscosity_shift`) rather
+    /// than set the viscosity (`mu`): the scene has both modules.
+    pub shifts_rheology: bool,
     /// The temperatures the scene may reach, `heat.range` (K).
     pub range: [Real; 2],
 }
@@ -217,8 +233,9 @@ impl HeatConsts {
             viscosity: heat
                 .fluids
                 .iter()
-                .map(|f| TemperatureLaw::new(f.viscosity.as_ref(), heat.max_viscosity))
+                .map(|f| TemperatureLaw::new(f.viscosity.as_ref(), heat.max_viscosity, heat.reference_temperature))
                 .collect(),
+            shifts_rheology: scene.snow.is_some(),
             range: heat.range,
         }
     }
@@ -283,6 +300,17 @@ fn validate(scene: &Scene, c: &mut Checker) {
         temperature(c, &format!("{p}.temperature"), f.temperature);
         if let Some(law) = &f.viscosity {
             validate_law(c, &format!("{p}.viscosity"), law);
+            let rheology = scene.snow.as_ref().and_then(|s| s.fluids.get(i));
+            if rheology == Some(&crate::modules::snow::spec::Rheology::None) {
+                c.fail(
+                    &format!("snow.fluids[{i}].model"),
+                    format!(
+                        "must not be \"none\": with the snow module {p}.viscosity scales the fluid's rheology \
+                         (a Newtonian fluid: {{\"model\": \"newtonian\", \"mu\": its viscosity at \
+                         heat.reference_temperature}})"
+                    ),
+                );
+            }
             if scene.fluids.get(i).is_some_and(|fluid| fluid.viscosity != crate::scene::Viscosity::None) {
                 c.fail(
                     &format!("fluids[{i}].viscosity"),
@@ -381,7 +409,10 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         b.pass(&passes::BUOYANCY);
     }
     b.pass(&passes::INTEGRATE);
-    if consts.viscous() {
+    if consts.viscous() && consts.shifts_rheology {
+        b.zeros(&VISCOSITY_SHIFT);
+        b.pass(&viscosity::SHIFT);
+    } else if consts.viscous() {
         varying::enable(b, "heat.fluids[*].viscosity", heat.viscous_solver, WallShear::NoSlip)?;
         b.pass(&viscosity::VISCOSITY);
     }
@@ -430,7 +461,8 @@ fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
         .zip(model.materials.iter())
         .map(|(l, m)| l.largest(lo, hi) / m.rest_density)
         .fold(0.0, Real::max);
-    let explicit = c.viscous() && !varying::is_implicit(model) && nu > 0.0;
+    // Scaling a rheology, the snow module's clamp bounds the viscosity and its limit.
+    let explicit = c.viscous() && !c.shifts_rheology && !varying::is_implicit(model) && nu > 0.0;
     let viscous = explicit.then(|| ("temperature-dependent viscosity", 0.125 * h * h / nu));
     [diffusion, viscous].into_iter().flatten().min_by(|a, b| a.1.total_cmp(&b.1))
 }

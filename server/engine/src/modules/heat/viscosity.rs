@@ -4,6 +4,12 @@
 //! module's per-particle viscosity `mu` from the temperature before the forces.
 //! The force of those viscosities is the fluid module's
 //! ([`crate::modules::fluid::varying`]).
+//!
+//! In a scene with the snow module as well, a law scales the fluid's rheology
+//! instead (a shift factor, as in time-temperature superposition's vertical shift):
+//! `heat.viscosity_shift` writes `a_T = mu(T) / mu(T0)`, T0 the module's reference
+//! temperature, and the snow module's viscosity is `a_T mu(shear rate)`, so the
+//! rheology holds at T0 and stiffens or thins with the law around it.
 
 use super::HeatConsts;
 use super::spec::ViscosityLaw;
@@ -42,12 +48,23 @@ pub struct TemperatureLaw {
     pub points: usize,
     /// The clamp (Pa s).
     pub max: Real,
+    /// `1 / mu(T0)` (1/(Pa s)) at the module's reference temperature T0, for the
+    /// shift factor; 0 without a law.
+    pub inv_reference: Real,
 }
 
 impl TemperatureLaw {
-    /// Resolves a fluid's law (none: `None`) with the scene's clamp `max` (Pa s).
-    pub fn new(law: Option<&ViscosityLaw>, max: Real) -> Self {
-        let mut r = TemperatureLaw { kind: Kind::None, p: [0.0; 3], table: [[0.0; 2]; MAX_POINTS], points: 0, max };
+    /// Resolves a fluid's law (none: `None`) with the scene's clamp `max` (Pa s) and
+    /// the reference temperature `t0` (K) of its shift factor.
+    pub fn new(law: Option<&ViscosityLaw>, max: Real, t0: Real) -> Self {
+        let mut r = TemperatureLaw {
+            kind: Kind::None,
+            p: [0.0; 3],
+            table: [[0.0; 2]; MAX_POINTS],
+            points: 0,
+            max,
+            inv_reference: 0.0,
+        };
         match law {
             None => {}
             Some(&ViscosityLaw::Exponential { mu_ref, t_ref, b }) => {
@@ -62,7 +79,16 @@ impl TemperatureLaw {
                 r.table[..r.points].copy_from_slice(&points[..r.points]);
             }
         }
+        let at_t0 = r.viscosity(t0);
+        r.inv_reference = if at_t0 > 0.0 { 1.0 / at_t0 } else { 0.0 };
         r
+    }
+
+    /// The shift factor `mu(t) / mu(T0)` (dimensionless) a law gives a rheology at
+    /// temperature `t` (K): 1 without a law (the rheology as it is).
+    #[inline(always)]
+    pub fn shift(&self, t: Real) -> Real {
+        if self.kind == Kind::None { 1.0 } else { self.viscosity(t) * self.inv_reference }
     }
 
     /// Dynamic viscosity (Pa s) at temperature `t` (K), clamped to `[0, max]`.
@@ -114,22 +140,49 @@ pub static VISCOSITY: PassSpec = PassSpec {
     tolerance: 1e-5,
 };
 
+/// Each particle's shift factor of its fluid's rheology from its temperature (scenes
+/// with the snow module).
+pub static SHIFT: PassSpec = PassSpec {
+    name: "heat.viscosity_shift",
+    module: "heat",
+    stage: Stage::PreForce,
+    reads: &["x", "temperature"],
+    writes: &["viscosity_shift"],
+    accumulates: &[],
+    tolerance: 1e-5,
+};
+
 /// `heat.viscosity` on the CPU.
 #[derive(Debug)]
 pub struct Viscosity;
 
 impl CpuPass for Viscosity {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        let hc: &HeatConsts = cx.model.consts();
-        let mu_h = cx.attrs.handle::<Real>("mu");
-        let mut mu = cx.attrs.take(mu_h);
-        let temp = cx.attrs.get(cx.attrs.handle::<Real>("temperature"));
-        let mat = cx.attrs.find::<u32>("material").map(|m| cx.attrs.get(m));
-        mu.par_iter_mut().enumerate().with_min_len(4096).for_each(|(i, mu)| {
-            *mu = hc.viscosity[mat.map_or(0, |m| m[i] as usize)].viscosity(temp[i]);
-        });
-        cx.attrs.put(mu_h, mu);
+        per_particle(cx, "mu", TemperatureLaw::viscosity);
     }
+}
+
+/// `heat.viscosity_shift` on the CPU.
+#[derive(Debug)]
+pub struct Shift;
+
+impl CpuPass for Shift {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        per_particle(cx, "viscosity_shift", TemperatureLaw::shift);
+    }
+}
+
+/// Writes `out` of each particle from its material's law at its temperature.
+fn per_particle(cx: &mut CpuCx<'_>, out: &str, f: fn(&TemperatureLaw, Real) -> Real) {
+    let hc: &HeatConsts = cx.model.consts();
+    let out_h = cx.attrs.handle::<Real>(out);
+    let mut values = cx.attrs.take(out_h);
+    let temp = cx.attrs.get(cx.attrs.handle::<Real>("temperature"));
+    let mat = cx.attrs.find::<u32>("material").map(|m| cx.attrs.get(m));
+    values.par_iter_mut().enumerate().with_min_len(4096).for_each(|(i, v)| {
+        *v = f(&hc.viscosity[mat.map_or(0, |m| m[i] as usize)], temp[i]);
+    });
+    cx.attrs.put(out_h, values);
 }
 
 #[cfg(test)]
@@ -137,7 +190,7 @@ mod tests {
     use super::*;
 
     fn law(l: ViscosityLaw) -> TemperatureLaw {
-        TemperatureLaw::new(Some(&l), 1e6)
+        TemperatureLaw::new(Some(&l), 1e6, 300.0)
     }
 
     #[test]
@@ -168,9 +221,20 @@ mod tests {
         let a = TemperatureLaw::new(
             Some(&ViscosityLaw::Arrhenius { mu_ref: 1.0e-3, t_ref: 293.15, activation_temperature: 1900.0 }),
             10.0,
+            293.15,
         );
         assert_eq!(a.viscosity(1.0), 10.0);
         assert_eq!(a.largest(1.0, 1e4), 10.0);
-        assert_eq!(TemperatureLaw::new(None, 10.0).viscosity(300.0), 0.0);
+        assert_eq!(TemperatureLaw::new(None, 10.0, 300.0).viscosity(300.0), 0.0);
+    }
+
+    #[test]
+    fn a_shift_is_the_law_over_its_value_at_the_reference_temperature() {
+        let e = law(ViscosityLaw::Exponential { mu_ref: 2.0, t_ref: 280.0, b: 0.05 });
+        assert!((e.shift(300.0) - 1.0).abs() < 1e-6);
+        assert!((e.shift(320.0) - (-1.0f32).exp()).abs() < 1e-6);
+        let t = law(ViscosityLaw::Table { points: vec![[280.0, 4.0], [300.0, 2.0], [340.0, 1.0]] });
+        assert!((t.shift(290.0) - 1.5).abs() < 1e-6);
+        assert_eq!(TemperatureLaw::new(None, 10.0, 300.0).shift(250.0), 1.0);
     }
 }

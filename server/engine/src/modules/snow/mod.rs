@@ -170,7 +170,8 @@ fn validate(scene: &Scene, c: &mut Checker) {
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let snow = section(scene);
     b.zeros(&SHEAR_RATE);
-    b.pass(&shear::SHEAR);
+    // The heat module (built first) leaves its temperature shift where a law asks.
+    b.pass(if b.column("viscosity_shift").is_some() { &shear::SHEAR_SHIFTED } else { &shear::SHEAR });
     varying::enable(b, "snow", snow.solver, snow.walls)?;
     b.channel(SHEAR_RATE_CHANNEL);
     let consts = SnowConsts::new(snow);

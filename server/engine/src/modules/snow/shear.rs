@@ -31,6 +31,19 @@ pub static SHEAR: PassSpec = PassSpec {
     tolerance: 1e-4,
 };
 
+/// The same, each viscosity scaled by the heat module's temperature shift factor
+/// `viscosity_shift` (scenes with both modules; clamped to `snow.max_viscosity`
+/// after scaling).
+pub static SHEAR_SHIFTED: PassSpec = PassSpec {
+    name: "snow.shear",
+    module: "snow",
+    stage: Stage::PreForce,
+    reads: &["x", "v", "rho", "viscosity_shift"],
+    writes: &["mu", "shear_rate"],
+    accumulates: &[],
+    tolerance: 1e-4,
+};
+
 /// `snow.shear` on the CPU.
 #[derive(Debug)]
 pub struct Shear;
@@ -72,6 +85,7 @@ fn shear<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     );
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
+    let shift = attrs.find::<Real>("viscosity_shift").map(|s| attrs.get(s));
     let chunks = mu.par_chunks_mut(CHUNK).zip(rate.par_chunks_mut(CHUNK));
     chunks.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((mu_c, rate_c), nb))| {
         for (n, (mu_out, rate_out)) in mu_c.iter_mut().zip(rate_c.iter_mut()).enumerate() {
@@ -110,7 +124,11 @@ fn shear<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
             }
             let g = shear_rate(&strain_rate(l));
             *rate_out = g;
-            *mu_out = sc.laws[ma].viscosity(g);
+            let law = &sc.laws[ma];
+            *mu_out = match shift {
+                Some(s) => (s[i] * law.viscosity(g)).min(law.max),
+                None => law.viscosity(g),
+            };
         }
     });
     cx.attrs.put(mu_h, mu);

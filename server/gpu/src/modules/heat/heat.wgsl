@@ -29,7 +29,8 @@ struct Heat {
     // 2 Arrhenius, 3 table) and its three parameters (mu_ref, T_ref, b or mu_ref,
     // 1/T_ref, E/R).
     law: array<vec4<f32>, 16>,
-    // Per material: the clamp (Pa s), the table's number of points (u32 bits).
+    // Per material: the clamp (Pa s), the table's number of points (u32 bits), and
+    // 1 / law(T0) (1/(Pa s)) for the shift factor.
     law_clamp: array<vec4<f32>, 16>,
     // Per material, 4 each: the table's points (T K, mu Pa s), two per vec4.
     table: array<vec4<f32>, 64>,

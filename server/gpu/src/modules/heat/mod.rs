@@ -89,6 +89,16 @@ pub static VISCOSITY: GpuPass = GpuPass {
     when: always,
 };
 
+/// The shift factor of the snow module's rheology from the temperature.
+pub static VISCOSITY_SHIFT: GpuPass = GpuPass {
+    name: "heat.viscosity_shift",
+    source: particle_kernel!("heat.wgsl", "viscosity.wgsl"),
+    entry: "shift",
+    bindings: &[(U, "params"), (U, "heat"), (R, "x"), (R, "temperature"), (W, "viscosity_shift")],
+    space: PARTICLES,
+    when: always,
+};
+
 /// The `heat` uniform (`Heat` in heat.wgsl).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
@@ -122,7 +132,7 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         p.material[a] = [c.conductivity[a], c.capacity[a], c.expansion[a], 0.0];
         let law = &c.viscosity[a];
         p.law[a] = [f32::from_bits(law.kind as u32), law.p[0], law.p[1], law.p[2]];
-        p.law_clamp[a] = [law.max, f32::from_bits(law.points as u32), 0.0, 0.0];
+        p.law_clamp[a] = [law.max, f32::from_bits(law.points as u32), law.inv_reference, 0.0];
         for (k, pair) in law.table.chunks(2).enumerate() {
             p.table[a * MAX_POINTS / 2 + k] = [pair[0][0], pair[0][1], pair[1][0], pair[1][1]];
         }

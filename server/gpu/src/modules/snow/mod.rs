@@ -3,9 +3,9 @@
 //! writes is the fluid module's (`modules::fluid::varying`).
 
 use crate::layout::MAX_MATERIALS;
-use crate::pass::{GpuPass, always};
+use crate::pass::GpuPass;
 use crate::passes::particle_kernel;
-use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
+use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
@@ -15,22 +15,34 @@ use floe_engine::modules::snow::SnowConsts;
 /// Shear rate and viscosity per particle.
 pub static SHEAR: GpuPass = GpuPass {
     name: "snow.shear",
-    source: particle_kernel!("snow.wgsl", "shear.wgsl"),
+    source: particle_kernel!("snow.wgsl", "shear.wgsl", "shear_plain.wgsl"),
     entry: "main",
-    bindings: &[
-        (U, "params"),
-        (U, "snow"),
-        (R, "x"),
-        (R, "v"),
-        (R, "rho"),
-        (R, "starts"),
-        (R, "walls"),
-        (W, "mu"),
-        (W, "shear_rate"),
-    ],
+    bindings: &SHEAR_BINDINGS,
     space: PARTICLES,
-    when: always,
+    when: |m| m.layout.spec("viscosity_shift").is_none(),
 };
+
+/// The same, each viscosity scaled by the heat module's temperature shift factor.
+pub static SHEAR_SHIFTED: GpuPass = GpuPass {
+    name: "snow.shear",
+    source: particle_kernel!("snow.wgsl", "shear.wgsl", "shear_shifted.wgsl"),
+    entry: "main",
+    bindings: &crate::program::join::<9, 1, 10>(SHEAR_BINDINGS, [(R, "viscosity_shift")]),
+    space: PARTICLES,
+    when: |m| m.layout.spec("viscosity_shift").is_some(),
+};
+
+const SHEAR_BINDINGS: [(Access, &str); 9] = [
+    (U, "params"),
+    (U, "snow"),
+    (R, "x"),
+    (R, "v"),
+    (R, "rho"),
+    (R, "starts"),
+    (R, "walls"),
+    (W, "mu"),
+    (W, "shear_rate"),
+];
 
 /// The `snow` uniform (`Snow` in snow.wgsl).
 #[repr(C)]

@@ -1,6 +1,8 @@
 // Shear rate and viscosity (floe-engine `modules::snow::viscous`, term by term in
 // the same order): L_i = 1/rho_i sum_j m_j (v_j - v_i) (x) grad W_ij, walls
-// mirroring the particle's velocity; D = (L + L^T)/2; g = sqrt(2 D:D); mu(g).
+// mirroring the particle's velocity; D = (L + L^T)/2; g = sqrt(2 D:D); mu(g),
+// scaled by the heat module's temperature shift where a scene has it
+// (shear_shifted.wgsl; shear_plain.wgsl otherwise).
 
 @group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> vel: array<vec4<f32>>;
@@ -67,5 +69,5 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     let off = d[3] * d[3] + d[4] * d[4] + d[5] * d[5];
     let g = sqrt(2.0 * (diag + 2.0 * off));
     shear_rate[i] = g;
-    mu[i] = viscosity_of(ma, g);
+    mu[i] = scaled(i, ma, viscosity_of(ma, g));
 }
