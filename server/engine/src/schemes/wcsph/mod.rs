@@ -119,7 +119,13 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         scene.fluids.iter().zip(b.materials()).map(|(f, m)| Eos::new(f.eos, m.rest_density, c)).collect();
     let transport = scene.solver.transport_velocity.map(|t| t.background);
     let delta = scene.solver.delta_sph.map(|d| continuity::build(b, d.delta, c, &eos));
-    let signal_speed = eos.iter().map(Eos::sound_speed).fold(c, Real::max);
+    // A linear law's own stiffness can exceed c^2; every other law is c's (taken as
+    // c itself, not recomputed from B, whose rounding would move dt by an ulp).
+    let own = |f: &crate::scene::Fluid| match f.eos {
+        crate::scene::EquationOfState::Linear { stiffness: Some(k), .. } => k.sqrt(),
+        _ => c,
+    };
+    let signal_speed = scene.fluids.iter().map(own).fold(c, Real::max);
     b.set_consts(WcsphConsts { eos, transport, delta, signal_speed });
     b.zeros(&PTERM);
     b.zeros(&WALL_P);
