@@ -6,14 +6,16 @@
 //! submitted without waiting. Each plan pass is bound by name ([`crate::pass`]), so
 //! this file knows no module. [`readback`] copies results back to the CPU.
 
+mod binds;
 mod readback;
+
+use binds::{CoreBinds, PlanPass, core_binds, plan_passes};
 
 use crate::buffers::{Buffers, PACKED, STEP_SLOTS, from_gpu_words, gpu_words};
 use crate::context::GpuContext;
 use crate::layout::{Measures, Params, QuantGrid, Step, Words};
 use crate::passes::PER_PARTIAL;
-use crate::passes::scan::ScanPlan;
-use crate::program::{Kernel, Recorder};
+use crate::program::Recorder;
 use crate::timer::Timer;
 use floe_engine::attrs::{Allocation, Column, PARTICLES, WALLS};
 use floe_engine::backend::{Backend, Particles};
@@ -21,42 +23,10 @@ use floe_engine::channels::SetSpec;
 use floe_engine::math::Real;
 use floe_engine::model::{BuildError, Model};
 use floe_engine::neighbors::Grid;
-use floe_engine::plan::{PassSpec, Stage};
+use floe_engine::plan::Stage;
 use floe_engine::quantize::PositionGrid;
 use floe_engine::schemes::{ReduceOp, Reduction, Stages};
-use std::sync::Arc;
 use wgpu::{BindGroup, Buffer};
-
-/// A plan pass ready to record: its kernel and bind group, or none for
-/// [`crate::pass::HOST_PASSES`] (the sort: several kernels, recorded by
-/// [`GpuBackend::record_sort`]).
-#[derive(Debug)]
-struct PlanPass {
-    spec: &'static PassSpec,
-    kernel: Option<(Arc<Kernel>, BindGroup)>,
-    /// Elements of the pass's space (threads).
-    threads: u32,
-    /// Whether it reads the step's dt from the `dt` uniform.
-    uses_dt: bool,
-    /// The fused kernel that does this pass and later ones of its stage when the
-    /// stage runs as a whole ([`crate::pass::fusions`]), with their plan indices.
-    fused: Option<(Arc<Kernel>, BindGroup, Vec<usize>)>,
-}
-
-/// The bind groups of the core's own kernels.
-#[derive(Debug)]
-struct CoreBinds {
-    grid: BindGroup,
-    scan: ScanPlan,
-    /// Per state attribute of the particle space: its name, words per element and
-    /// the permutation's bind group (into the scratch buffer).
-    permutes: Vec<(&'static str, u32, BindGroup)>,
-    slots: BindGroup,
-    measure: BindGroup,
-    /// One per step slot (kick and drift share a layout).
-    integrate: Vec<BindGroup>,
-    quantize: BindGroup,
-}
 
 /// One scene on the GPU.
 #[derive(Debug)]
@@ -252,78 +222,6 @@ impl GpuBackend {
         }
         &self.reductions.iter().find(|(a, _)| *a == attr).expect("made above").1
     }
-}
-
-/// Binds the core's kernels to a scene's buffers.
-fn core_binds(gpu: &GpuContext, b: &Buffers, grid: &Grid) -> CoreBinds {
-    let (d, p) = (&gpu.device, &gpu.programs);
-    let stride = |s: u32| &b.strides.iter().find(|(t, _)| *t == s).expect("a uniform per stride").1;
-    let permutes = b
-        .attrs()
-        .iter()
-        .filter(|(s, _)| s.space == PARTICLES && s.role == floe_engine::attrs::Role::State)
-        .map(|(s, buffer)| {
-            let words = s.elem.gpu_words() as u32;
-            let bind = p.permute.bind(d, &[stride(words), b.get("order"), buffer, b.get("sort_scratch")]);
-            (s.name, words, bind)
-        })
-        .collect();
-    CoreBinds {
-        grid: p.grid_count.bind(d, &[b.get("params"), b.get("x"), b.get("cell_rank"), b.get("starts"), b.get("order")]),
-        scan: p.scan.plan(d, b.get("starts"), grid.cell_count() as u32 + 1),
-        permutes,
-        slots: p.slots.bind(d, &[stride(1), b.get("order"), b.get("id"), b.get("slot_of")]),
-        measure: p
-            .measure_partials
-            .bind(d, &[b.get("params"), b.get("x"), b.get("v"), b.get("a"), b.get("rho"), b.get("partials")]),
-        integrate: b
-            .steps
-            .iter()
-            .map(|s| {
-                let (x, v, a) = (b.get("x"), b.get("v"), b.get("a"));
-                // Scenes without a transport term bind `a` there; the drift reads it
-                // only when its step says so.
-                let transport = b.find("a_transport").unwrap_or(a);
-                p.kick.bind(d, &[b.get("params"), s, x, v, a, b.get("constraints"), b.get("heights"), transport])
-            })
-            .collect(),
-        quantize: p
-            .quantize
-            .bind(d, &[b.get("params"), b.get("quant_grid"), b.get("x"), b.get("slot_of"), b.get("codes")]),
-    }
-}
-
-/// Binds every plan pass (but the core's sort, recorded by hand) to its buffers,
-/// and the fused kernels the device allows to the first pass each does.
-fn plan_passes(gpu: &GpuContext, model: &Model, b: &Buffers) -> Vec<PlanPass> {
-    let bind = |pass: &'static crate::pass::GpuPass| {
-        let kernel = gpu.kernel(pass);
-        let buffers: Vec<&Buffer> = pass.bindings.iter().map(|(_, name)| b.get(name)).collect();
-        let group = kernel.bind(&gpu.device, &buffers);
-        (kernel, group)
-    };
-    let uses_dt = |pass: &crate::pass::GpuPass| pass.bindings.iter().any(|(_, name)| *name == "dt");
-    let mut passes: Vec<PlanPass> = model
-        .plan
-        .passes()
-        .iter()
-        .map(|&spec| {
-            if crate::pass::HOST_PASSES.contains(&spec.name) {
-                let threads = model.particle_count() as u32;
-                return PlanPass { spec, kernel: None, threads, uses_dt: false, fused: None };
-            }
-            let pass = crate::pass::find(spec.name, model).expect("checked at creation");
-            let threads = model.layout.count(pass.space) as u32;
-            PlanPass { spec, kernel: Some(bind(pass)), threads, uses_dt: uses_dt(pass), fused: None }
-        })
-        .collect();
-    for (fused, covers) in crate::pass::fusions(model, gpu.max_storage_buffers()) {
-        let first = &mut passes[covers[0]];
-        let (kernel, group) = bind(&fused.kernel);
-        first.uses_dt |= uses_dt(&fused.kernel);
-        first.fused = Some((kernel, group, covers));
-    }
-    passes
 }
 
 impl Stages for GpuBackend {

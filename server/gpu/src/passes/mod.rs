@@ -17,16 +17,25 @@ macro_rules! particle_kernel {
 }
 pub(crate) use particle_kernel;
 
-/// Joins `common.wgsl` and the neighbour walk `walk.wgsl` with a pair pass's terms
-/// and the file naming its hooks.
+/// Joins `common.wgsl` and the neighbour walk `walk.wgsl` (with its wall neighbours,
+/// `walk_walls.wgsl`, or without, `walk_fluid.wgsl` after `fluid_only;`) with a pair
+/// pass's terms and hooks.
 macro_rules! walk_kernel {
-    ($($file:literal),+) => {
+    (fluid_only; $($file:literal),+) => {
+        walk_kernel!(@join "walk_fluid.wgsl"; $($file),+)
+    };
+    (@join $walls:literal; $($file:literal),+) => {
         concat!(
             include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/common.wgsl")),
             "\n",
             include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/walk.wgsl")),
+            "\n",
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/", $walls)),
             $("\n", include_str!($file)),+
         )
+    };
+    ($($file:literal),+) => {
+        walk_kernel!(@join "walk_walls.wgsl"; $($file),+)
     };
 }
 pub(crate) use walk_kernel;

@@ -3,14 +3,14 @@
 //! device (`visc_scalars`).
 
 use crate::pass::{GpuPass, always};
-use crate::passes::particle_kernel;
+use crate::passes::{particle_kernel, walk_kernel};
 use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use floe_engine::attrs::PARTICLES;
 
 /// `d` and the starting residual.
 pub static DIAGONAL: GpuPass = GpuPass {
     name: "fluid.implicit_diagonal",
-    source: particle_kernel!("varying_walls.wgsl", "implicit/pair.wgsl", "implicit/diagonal.wgsl"),
+    source: walk_kernel!("varying_walls.wgsl", "implicit/pair.wgsl", "implicit/diagonal.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
@@ -42,7 +42,7 @@ pub static PRECONDITION: GpuPass = GpuPass {
 /// `Ap` and the terms of `p.Ap`.
 pub static PRODUCT: GpuPass = GpuPass {
     name: "fluid.implicit_product",
-    source: particle_kernel!("varying_walls.wgsl", "implicit/pair.wgsl", "implicit/product.wgsl"),
+    source: walk_kernel!(fluid_only; "varying_walls.wgsl", "implicit/pair.wgsl", "implicit/product.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),

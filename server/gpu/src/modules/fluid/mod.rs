@@ -8,7 +8,7 @@ pub mod implicit;
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
-use crate::passes::{particle_kernel, walk_kernel};
+use crate::passes::walk_kernel;
 use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
@@ -60,7 +60,7 @@ pub static FORCES: GpuPass = GpuPass {
 /// The viscous force of the per-particle viscosities (explicit solver).
 pub static VARYING: GpuPass = GpuPass {
     name: "fluid.viscosity",
-    source: particle_kernel!("varying_walls.wgsl", "varying.wgsl"),
+    source: walk_kernel!("varying_walls.wgsl", "varying.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
@@ -83,7 +83,7 @@ const XSPH_BINDINGS: &[(Access, &str)] =
 /// The XSPH sum.
 pub static XSPH: GpuPass = GpuPass {
     name: "fluid.xsph",
-    source: particle_kernel!("xsph.wgsl"),
+    source: walk_kernel!(fluid_only; "xsph.wgsl"),
     entry: "main",
     bindings: XSPH_BINDINGS,
     space: PARTICLES,
@@ -93,7 +93,7 @@ pub static XSPH: GpuPass = GpuPass {
 /// The XSPH kick.
 pub static XSPH_KICK: GpuPass = GpuPass {
     name: "fluid.xsph_kick",
-    source: particle_kernel!("xsph.wgsl"),
+    source: walk_kernel!(fluid_only; "xsph.wgsl"),
     entry: "kick",
     bindings: XSPH_BINDINGS,
     space: PARTICLES,

@@ -12,51 +12,41 @@
 @group(0) @binding(7) var<storage, read> walls: array<vec4<f32>>;
 @group(0) @binding(8) var<storage, read_write> acc: array<vec4<f32>>;
 
-@compute @workgroup_size(WG)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n) {
-        return;
-    }
-    let xi = pos[i].xyz;
-    let vi = vel[i].xyz;
-    let mu_i = mu[i];
-    let ma = material_of(pos[i]);
-    let inv_rho = 1.0 / rho[i];
-    let eps_h2 = 0.01 * 0.25 * params.support * params.support;
-    var a = vec3<f32>(0.0);
-    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
-    for (var k = 0u; k < block_runs(b); k++) {
-        let run = run_cells(b, k, params.grid_dims);
-        for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = separation(xi, pos[j].xyz);
-            let r2 = dot(x_ij, x_ij);
-            if (r2 >= params.h2 || r2 == 0.0) {
-                continue;
-            }
-            let r = sqrt(r2);
-            let f = r * kernel_dw_dr(r) / (r2 + eps_h2);
-            let m = params.materials[material_of(pos[j])].y;
-            a += (vi - vel[j].xyz) * (m * (mu_i + mu[j]) * inv_rho / rho[j] * f);
-        }
-    }
-    if (params.n_walls > 0u) {
-        let mat = params.materials[ma];
-        let mirror = vi * (4.0 * viscous_walls.x * mu_i * inv_rho * inv_rho);
-        let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
-        for (var k = 0u; k < block_runs(bw); k++) {
-            let run = run_cells(bw, k, params.wall_dims);
-            for (var j = starts[params.wall_start + run.x]; j < starts[params.wall_start + run.y]; j++) {
-                let w = walls[j];
-                let x_ib = separation(xi, w.xyz);
-                let r2 = dot(x_ib, x_ib);
-                if (r2 >= params.h2 || r2 == 0.0) {
-                    continue;
-                }
-                let r = sqrt(r2);
-                a += mirror * ((w.w * mat.w) * (r * kernel_dw_dr(r) / (r2 + eps_h2)));
-            }
-        }
-    }
-    acc[i] = vec4<f32>(acc[i].xyz + a * viscous_walls.y, 0.0);
+// The walk's hooks (walk.wgsl): the sum over i's neighbours and what it needs of i.
+var<private> varying_a: vec3<f32>;
+var<private> varying_vi: vec3<f32>;
+var<private> varying_mu_i: f32;
+var<private> varying_inv_rho: f32;
+var<private> varying_eps_h2: f32;
+var<private> varying_psi: f32;
+var<private> varying_mirror: vec3<f32>;
+
+fn walk_begin(i: u32) {
+    varying_vi = vel[i].xyz;
+    varying_mu_i = mu[i];
+    varying_inv_rho = 1.0 / rho[i];
+    varying_eps_h2 = 0.01 * 0.25 * params.support * params.support;
+    varying_psi = params.materials[material_of(pos[i])].w;
+    varying_mirror = varying_vi * (4.0 * viscous_walls.x * varying_mu_i * varying_inv_rho * varying_inv_rho);
+    varying_a = vec3<f32>(0.0);
+}
+
+fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    let f = r * kernel_dw_dr(r) / (r2 + varying_eps_h2);
+    let m = params.materials[material_of(pos[j])].y;
+    varying_a += (varying_vi - vel[j].xyz) * (m * (varying_mu_i + mu[j]) * varying_inv_rho / rho[j] * f);
+}
+
+fn walk_walls() -> bool {
+    return true;
+}
+
+fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    varying_a += varying_mirror * ((walls[b].w * varying_psi) * (r * kernel_dw_dr(r) / (r2 + varying_eps_h2)));
+}
+
+fn walk_end(i: u32) {
+    acc[i] = vec4<f32>(acc[i].xyz + varying_a * viscous_walls.y, 0.0);
 }

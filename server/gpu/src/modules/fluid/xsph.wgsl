@@ -14,30 +14,25 @@ struct Fluid {
 @group(0) @binding(5) var<storage, read> starts: array<u32>;
 @group(0) @binding(6) var<storage, read_write> xsph: array<vec4<f32>>;
 
-@compute @workgroup_size(WG)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n) {
-        return;
-    }
-    let xi = pos[i].xyz;
-    let vi = vel[i].xyz;
-    let rho_i = rho[i];
-    var dv = vec3<f32>(0.0);
-    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
-    for (var k = 0u; k < block_runs(b); k++) {
-        let run = run_cells(b, k, params.grid_dims);
-        for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = separation(xi, pos[j].xyz);
-            let r2 = dot(x_ij, x_ij);
-            if (r2 >= params.h2 || r2 == 0.0) {
-                continue;
-            }
-            let m = params.materials[material_of(pos[j])].y;
-            dv -= (vi - vel[j].xyz) * (2.0 * m / (rho_i + rho[j]) * kernel_w(r2));
-        }
-    }
-    xsph[i] = vec4<f32>(dv * fluid.material[material_of(pos[i])].w, 0.0);
+// The walk's hooks (walk.wgsl, fluid neighbours only) of `main`: the sum over i's
+// neighbours and what it needs of i.
+var<private> xsph_vi: vec3<f32>;
+var<private> xsph_rho_i: f32;
+var<private> xsph_dv: vec3<f32>;
+
+fn walk_begin(i: u32) {
+    xsph_vi = vel[i].xyz;
+    xsph_rho_i = rho[i];
+    xsph_dv = vec3<f32>(0.0);
+}
+
+fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
+    let m = params.materials[material_of(pos[j])].y;
+    xsph_dv -= (xsph_vi - vel[j].xyz) * (2.0 * m / (xsph_rho_i + rho[j]) * kernel_w(r2));
+}
+
+fn walk_end(i: u32) {
+    xsph[i] = vec4<f32>(xsph_dv * fluid.material[material_of(pos[i])].w, 0.0);
 }
 
 @compute @workgroup_size(WG)

@@ -4,7 +4,7 @@
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::GpuPass;
-use crate::passes::particle_kernel;
+use crate::passes::walk_kernel;
 use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
@@ -15,7 +15,7 @@ use floe_engine::modules::snow::SnowConsts;
 /// Shear rate and viscosity per particle.
 pub static SHEAR: GpuPass = GpuPass {
     name: "snow.shear",
-    source: particle_kernel!("snow.wgsl", "shear.wgsl", "shear_plain.wgsl"),
+    source: walk_kernel!("snow.wgsl", "shear.wgsl", "shear_plain.wgsl"),
     entry: "main",
     bindings: &SHEAR_BINDINGS,
     space: PARTICLES,
@@ -25,7 +25,7 @@ pub static SHEAR: GpuPass = GpuPass {
 /// The same, each viscosity scaled by the heat module's temperature shift factor.
 pub static SHEAR_SHIFTED: GpuPass = GpuPass {
     name: "snow.shear",
-    source: particle_kernel!("snow.wgsl", "shear.wgsl", "shear_shifted.wgsl"),
+    source: walk_kernel!("snow.wgsl", "shear.wgsl", "shear_shifted.wgsl"),
     entry: "main",
     bindings: &crate::program::join::<9, 1, 10>(SHEAR_BINDINGS, [(R, "viscosity_shift")]),
     space: PARTICLES,

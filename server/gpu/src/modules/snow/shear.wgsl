@@ -12,62 +12,54 @@
 @group(0) @binding(7) var<storage, read_write> mu: array<f32>;
 @group(0) @binding(8) var<storage, read_write> shear_rate: array<f32>;
 
-@compute @workgroup_size(WG)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n) {
-        return;
-    }
-    let xi = pos[i].xyz;
-    let vi = vel[i].xyz;
-    let ma = material_of(pos[i]);
-    let inv_rho = 1.0 / rho[i];
-    // Rows of L.
-    var lx = vec3<f32>(0.0);
-    var ly = vec3<f32>(0.0);
-    var lz = vec3<f32>(0.0);
-    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
-    for (var k = 0u; k < block_runs(b); k++) {
-        let run = run_cells(b, k, params.grid_dims);
-        for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = separation(xi, pos[j].xyz);
-            let r2 = dot(x_ij, x_ij);
-            if (r2 >= params.h2 || r2 == 0.0) {
-                continue;
-            }
-            let r = sqrt(r2);
-            let grad = x_ij * (kernel_dw_dr(r) / r);
-            let dv = (vel[j].xyz - vi) * (params.materials[material_of(pos[j])].y * inv_rho);
-            lx += grad * dv.x;
-            ly += grad * dv.y;
-            lz += grad * dv.z;
-        }
-    }
-    if (params.n_walls > 0u) {
-        let mat = params.materials[ma];
-        let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
-        for (var k = 0u; k < block_runs(bw); k++) {
-            let run = run_cells(bw, k, params.wall_dims);
-            for (var j = starts[params.wall_start + run.x]; j < starts[params.wall_start + run.y]; j++) {
-                let w = walls[j];
-                let x_ib = separation(xi, w.xyz);
-                let r2 = dot(x_ib, x_ib);
-                if (r2 >= params.h2 || r2 == 0.0) {
-                    continue;
-                }
-                let r = sqrt(r2);
-                let grad = x_ib * (kernel_dw_dr(r) / r);
-                let dv = vi * (-2.0 * snow.kind[ma].z * (w.w * mat.w) * inv_rho);
-                lx += grad * dv.x;
-                ly += grad * dv.y;
-                lz += grad * dv.z;
-            }
-        }
-    }
+// The walk's hooks (walk.wgsl): the rows of L and what they need of i.
+var<private> shear_lx: vec3<f32>;
+var<private> shear_ly: vec3<f32>;
+var<private> shear_lz: vec3<f32>;
+var<private> shear_vi: vec3<f32>;
+var<private> shear_ma: u32;
+var<private> shear_inv_rho: f32;
+
+fn walk_begin(i: u32) {
+    shear_vi = vel[i].xyz;
+    shear_ma = material_of(pos[i]);
+    shear_inv_rho = 1.0 / rho[i];
+    shear_lx = vec3<f32>(0.0);
+    shear_ly = vec3<f32>(0.0);
+    shear_lz = vec3<f32>(0.0);
+}
+
+fn shear_add(grad: vec3<f32>, dv: vec3<f32>) {
+    shear_lx += grad * dv.x;
+    shear_ly += grad * dv.y;
+    shear_lz += grad * dv.z;
+}
+
+fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    let grad = x_ij * (kernel_dw_dr(r) / r);
+    shear_add(grad, (vel[j].xyz - shear_vi) * (params.materials[material_of(pos[j])].y * shear_inv_rho));
+}
+
+fn walk_walls() -> bool {
+    return true;
+}
+
+fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    let grad = x_ib * (kernel_dw_dr(r) / r);
+    let psi = walls[b].w * params.materials[shear_ma].w;
+    shear_add(grad, shear_vi * (-2.0 * snow.kind[shear_ma].z * psi * shear_inv_rho));
+}
+
+fn walk_end(i: u32) {
+    let lx = shear_lx;
+    let ly = shear_ly;
+    let lz = shear_lz;
     let d = array<f32, 6>(lx.x, ly.y, lz.z, 0.5 * (lx.y + ly.x), 0.5 * (lx.z + lz.x), 0.5 * (ly.z + lz.y));
     let diag = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     let off = d[3] * d[3] + d[4] * d[4] + d[5] * d[5];
     let g = sqrt(2.0 * (diag + 2.0 * off));
     shear_rate[i] = g;
-    mu[i] = scaled(i, ma, viscosity_of(ma, g));
+    mu[i] = scaled(i, shear_ma, viscosity_of(shear_ma, g));
 }

@@ -5,7 +5,7 @@
 //! that binds it runs with a new dt.
 
 use crate::pass::{GpuPass, always};
-use crate::passes::particle_kernel;
+use crate::passes::{particle_kernel, walk_kernel};
 use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
@@ -14,7 +14,7 @@ use floe_engine::schemes::dfsph::{FULL_NEIGHBOURHOOD, WARM_START};
 /// `alpha` from the step's neighbours.
 pub static FACTOR: GpuPass = GpuPass {
     name: "dfsph.factor",
-    source: particle_kernel!("factor.wgsl"),
+    source: walk_kernel!("factor.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (R, "x"), (R, "starts"), (R, "walls"), (W, "alpha")],
     space: PARTICLES,
@@ -26,7 +26,7 @@ const fn warm(name: &'static str, bindings: &'static [(Access, &'static str)]) -
 }
 
 const fn kick(name: &'static str, bindings: &'static [(Access, &'static str)]) -> GpuPass {
-    GpuPass { name, source: particle_kernel!("kick.wgsl"), entry: "main", bindings, space: PARTICLES, when: always }
+    GpuPass { name, source: walk_kernel!("kick.wgsl"), entry: "main", bindings, space: PARTICLES, when: always }
 }
 
 const fn error(name: &'static str, entry: &'static str, bindings: &'static [(Access, &'static str)]) -> GpuPass {

@@ -11,55 +11,48 @@
 @group(0) @binding(6) var<storage, read> walls: array<vec4<f32>>;
 @group(0) @binding(7) var<storage, read_write> drho: array<f32>;
 
-@compute @workgroup_size(WG)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n) {
-        return;
+// The walk's hooks (walk.wgsl): the sums over i's neighbours and what they need of i.
+var<private> continuity_vi: vec3<f32>;
+var<private> continuity_rho_i: f32;
+var<private> continuity_ma: u32;
+var<private> continuity_hydro: vec3<f32>;
+var<private> continuity_div: f32;
+var<private> continuity_diffusion: f32;
+var<private> continuity_wall: f32;
+
+fn walk_begin(i: u32) {
+    continuity_vi = vel[i].xyz;
+    continuity_rho_i = rho[i];
+    continuity_ma = material_of(pos[i]);
+    continuity_hydro = wcsph.hydrostatic[continuity_ma].xyz;
+    continuity_div = 0.0;
+    continuity_diffusion = 0.0;
+    continuity_wall = 0.0;
+}
+
+fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    let dw = kernel_dw_dr(r);
+    continuity_div += dot(continuity_vi - vel[j].xyz, x_ij) * (dw / r);
+    let mb = material_of(pos[j]);
+    if (mb == continuity_ma) {
+        let v_j = params.materials[mb].y / rho[j];
+        let jump = continuity_rho_i - rho[j] - dot(continuity_hydro, x_ij);
+        continuity_diffusion += v_j * jump * (r * dw) / (r2 + wcsph.delta.y);
     }
-    let xi = pos[i].xyz;
-    let vi = vel[i].xyz;
-    let rho_i = rho[i];
-    let ma = material_of(pos[i]);
-    let mat = params.materials[ma];
-    let hydro = wcsph.hydrostatic[ma].xyz;
-    var div = 0.0;
-    var diffusion = 0.0;
-    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
-    for (var k = 0u; k < block_runs(b); k++) {
-        let run = run_cells(b, k, params.grid_dims);
-        for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = separation(xi, pos[j].xyz);
-            let r2 = dot(x_ij, x_ij);
-            if (r2 >= params.h2 || r2 == 0.0) {
-                continue;
-            }
-            let r = sqrt(r2);
-            let dw = kernel_dw_dr(r);
-            div += dot(vi - vel[j].xyz, x_ij) * (dw / r);
-            let mb = material_of(pos[j]);
-            if (mb == ma) {
-                let v_j = params.materials[mb].y / rho[j];
-                diffusion += v_j * (rho_i - rho[j] - dot(hydro, x_ij)) * (r * dw) / (r2 + wcsph.delta.y);
-            }
-        }
-    }
-    var wall = 0.0;
-    if (params.n_walls > 0u) {
-        let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
-        for (var k = 0u; k < block_runs(bw); k++) {
-            let run = run_cells(bw, k, params.wall_dims);
-            for (var j = starts[params.wall_start + run.x]; j < starts[params.wall_start + run.y]; j++) {
-                let w = walls[j];
-                let x_ib = separation(xi, w.xyz);
-                let r2 = dot(x_ib, x_ib);
-                if (r2 >= params.h2 || r2 == 0.0) {
-                    continue;
-                }
-                let r = sqrt(r2);
-                wall += w.w * mat.w * dot(vi, x_ib) * (kernel_dw_dr(r) / r);
-            }
-        }
-    }
-    drho[i] = mat.y * div + wall + wcsph.delta.x * diffusion;
+}
+
+fn walk_walls() -> bool {
+    return true;
+}
+
+fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    let psi = walls[b].w * params.materials[continuity_ma].w;
+    continuity_wall += psi * dot(continuity_vi, x_ib) * (kernel_dw_dr(r) / r);
+}
+
+fn walk_end(i: u32) {
+    let m_i = params.materials[continuity_ma].y;
+    drho[i] = m_i * continuity_div + continuity_wall + wcsph.delta.x * continuity_diffusion;
 }

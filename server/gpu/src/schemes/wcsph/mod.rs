@@ -5,7 +5,7 @@
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
-use crate::passes::particle_kernel;
+use crate::passes::{particle_kernel, walk_kernel};
 use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::{PARTICLES, WALLS};
@@ -36,7 +36,7 @@ pub static WALL_PRESSURE: GpuPass = GpuPass {
 /// The transport velocity's push (scenes with `solver.transport_velocity`).
 pub static TRANSPORT: GpuPass = GpuPass {
     name: "wcsph.transport",
-    source: particle_kernel!("wcsph.wgsl", "transport.wgsl"),
+    source: walk_kernel!("wcsph.wgsl", "transport.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (U, "wcsph"), (R, "x"), (R, "starts"), (R, "walls"), (R, "rho"), (W, "a_transport")],
     space: PARTICLES,
@@ -46,7 +46,7 @@ pub static TRANSPORT: GpuPass = GpuPass {
 /// δ-SPH's density rate (scenes with `solver.delta_sph`).
 pub static CONTINUITY: GpuPass = GpuPass {
     name: "wcsph.continuity",
-    source: particle_kernel!("wcsph.wgsl", "continuity.wgsl"),
+    source: walk_kernel!("wcsph.wgsl", "continuity.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (U, "wcsph"), (R, "x"), (R, "v"), (R, "rho"), (R, "starts"), (R, "walls"), (W, "drho")],
     space: PARTICLES,

@@ -13,48 +13,35 @@ fn inv2(r: f32) -> f32 {
     return 1.0 / (r * r);
 }
 
-@compute @workgroup_size(WG)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n) {
-        return;
-    }
-    let xi = pos[i].xyz;
-    let ma = material_of(pos[i]);
-    let mat = params.materials[ma];
-    let m_i = mat.y;
-    let own = m_i * inv2(rho[i]);
-    var sum = vec3<f32>(0.0);
-    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
-    for (var k = 0u; k < block_runs(b); k++) {
-        let run = run_cells(b, k, params.grid_dims);
-        for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = separation(xi, pos[j].xyz);
-            let r2 = dot(x_ij, x_ij);
-            if (r2 >= params.h2 || r2 == 0.0) {
-                continue;
-            }
-            let r = sqrt(r2);
-            let m_j = params.materials[material_of(pos[j])].y;
-            sum += x_ij * (kernel_dw_dr(r) / r * (own + m_j * (m_j / m_i) * inv2(rho[j])));
-        }
-    }
-    if (params.n_walls > 0u) {
-        let wall = inv2(rho[i]) + mat.z;
-        let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
-        for (var k = 0u; k < block_runs(bw); k++) {
-            let run = run_cells(bw, k, params.wall_dims);
-            for (var j = starts[params.wall_start + run.x]; j < starts[params.wall_start + run.y]; j++) {
-                let w = walls[j];
-                let x_ib = separation(xi, w.xyz);
-                let r2 = dot(x_ib, x_ib);
-                if (r2 >= params.h2 || r2 == 0.0) {
-                    continue;
-                }
-                let r = sqrt(r2);
-                sum += x_ib * (kernel_dw_dr(r) / r * (w.w * mat.w * wall));
-            }
-        }
-    }
-    a_transport[i] = vec4<f32>(sum * -wcsph.transport.x, 0.0);
+// The walk's hooks (walk.wgsl): the sum over i's neighbours and what it needs of i.
+var<private> transport_mat: vec4<f32>;
+var<private> transport_own: f32;
+var<private> transport_wall: f32;
+var<private> transport_sum: vec3<f32>;
+
+fn walk_begin(i: u32) {
+    transport_mat = params.materials[material_of(pos[i])];
+    transport_own = transport_mat.y * inv2(rho[i]);
+    transport_wall = inv2(rho[i]) + transport_mat.z;
+    transport_sum = vec3<f32>(0.0);
+}
+
+fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    let m_i = transport_mat.y;
+    let m_j = params.materials[material_of(pos[j])].y;
+    transport_sum += x_ij * (kernel_dw_dr(r) / r * (transport_own + m_j * (m_j / m_i) * inv2(rho[j])));
+}
+
+fn walk_walls() -> bool {
+    return true;
+}
+
+fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    transport_sum += x_ib * (kernel_dw_dr(r) / r * (walls[b].w * transport_mat.w * transport_wall));
+}
+
+fn walk_end(i: u32) {
+    a_transport[i] = vec4<f32>(transport_sum * -wcsph.transport.x, 0.0);
 }

@@ -15,56 +15,48 @@
 @group(0) @binding(9) var<storage, read_write> diag: array<f32>;
 @group(0) @binding(10) var<storage, read_write> res: array<vec4<f32>>;
 
-@compute @workgroup_size(WG)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n) {
-        return;
-    }
-    let xi = pos[i].xyz;
-    let vi = vel[i].xyz;
-    let mu_i = mu[i];
-    let ma = material_of(pos[i]);
-    let mat = params.materials[ma];
-    let m_i = mat.y;
-    let inv_rho = 1.0 / rho[i];
-    let eps_h2 = 0.01 * 0.25 * params.support * params.support;
-    var sum_w = 0.0;
-    var force = vec3<f32>(0.0);
-    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
-    for (var k = 0u; k < block_runs(b); k++) {
-        let run = run_cells(b, k, params.grid_dims);
-        for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = separation(xi, pos[j].xyz);
-            let r2 = dot(x_ij, x_ij);
-            if (r2 >= params.h2 || r2 == 0.0) {
-                continue;
-            }
-            let m_j = params.materials[material_of(pos[j])].y;
-            let w = pair_weight(m_i, m_j, mu_i + mu[j], inv_rho, rho[j], r2);
-            sum_w += w;
-            force += (vel[j].xyz - vi) * w;
-        }
-    }
-    var wall = 0.0;
-    if (params.n_walls > 0u) {
-        let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
-        for (var k = 0u; k < block_runs(bw); k++) {
-            let run = run_cells(bw, k, params.wall_dims);
-            for (var j = starts[params.wall_start + run.x]; j < starts[params.wall_start + run.y]; j++) {
-                let w = walls[j];
-                let x_ib = separation(xi, w.xyz);
-                let r2 = dot(x_ib, x_ib);
-                if (r2 >= params.h2 || r2 == 0.0) {
-                    continue;
-                }
-                let r = sqrt(r2);
-                wall += (w.w * mat.w) * (-r * kernel_dw_dr(r) / (r2 + eps_h2));
-            }
-        }
-    }
-    let w_wall = m_i * 4.0 * viscous_walls.x * mu_i * inv_rho * inv_rho * wall * viscous_walls.y;
+// The walk's hooks (walk.wgsl): the sums over i's neighbours and what they need of i.
+var<private> diagonal_vi: vec3<f32>;
+var<private> diagonal_mu_i: f32;
+var<private> diagonal_mat: vec4<f32>;
+var<private> diagonal_inv_rho: f32;
+var<private> diagonal_eps_h2: f32;
+var<private> diagonal_sum_w: f32;
+var<private> diagonal_force: vec3<f32>;
+var<private> diagonal_wall: f32;
+
+fn walk_begin(i: u32) {
+    diagonal_vi = vel[i].xyz;
+    diagonal_mu_i = mu[i];
+    diagonal_mat = params.materials[material_of(pos[i])];
+    diagonal_inv_rho = 1.0 / rho[i];
+    diagonal_eps_h2 = 0.01 * 0.25 * params.support * params.support;
+    diagonal_sum_w = 0.0;
+    diagonal_force = vec3<f32>(0.0);
+    diagonal_wall = 0.0;
+}
+
+fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
+    let m_j = params.materials[material_of(pos[j])].y;
+    let w = pair_weight(diagonal_mat.y, m_j, diagonal_mu_i + mu[j], diagonal_inv_rho, rho[j], r2);
+    diagonal_sum_w += w;
+    diagonal_force += (vel[j].xyz - diagonal_vi) * w;
+}
+
+fn walk_walls() -> bool {
+    return true;
+}
+
+fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
+    let r = sqrt(r2);
+    diagonal_wall += (walls[b].w * diagonal_mat.w) * (-r * kernel_dw_dr(r) / (r2 + diagonal_eps_h2));
+}
+
+fn walk_end(i: u32) {
+    let m_i = diagonal_mat.y;
+    let inv_rho = diagonal_inv_rho;
+    let w_wall = m_i * 4.0 * viscous_walls.x * diagonal_mu_i * inv_rho * inv_rho * diagonal_wall * viscous_walls.y;
     let dt = step_dt.x;
-    diag[i] = m_i + dt * (sum_w + w_wall);
-    res[i] = vec4<f32>((force - vi * w_wall) * dt, 0.0);
+    diag[i] = m_i + dt * (diagonal_sum_w + w_wall);
+    res[i] = vec4<f32>((diagonal_force - diagonal_vi * w_wall) * dt, 0.0);
 }

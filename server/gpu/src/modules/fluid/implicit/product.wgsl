@@ -13,32 +13,28 @@
 @group(0) @binding(9) var<storage, read_write> ap: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read_write> dots: array<f32>;
 
-@compute @workgroup_size(WG)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n) {
-        return;
-    }
-    let xi = pos[i].xyz;
-    let mu_i = mu[i];
-    let m_i = params.materials[material_of(pos[i])].y;
-    let inv_rho = 1.0 / rho[i];
-    var off = vec3<f32>(0.0);
-    let b = block_of(xi, params.grid_origin, params.grid_inv_cell, params.grid_dims);
-    for (var k = 0u; k < block_runs(b); k++) {
-        let run = run_cells(b, k, params.grid_dims);
-        for (var j = starts[run.x]; j < starts[run.y]; j++) {
-            let x_ij = separation(xi, pos[j].xyz);
-            let r2 = dot(x_ij, x_ij);
-            if (r2 >= params.h2 || r2 == 0.0) {
-                continue;
-            }
-            let m_j = params.materials[material_of(pos[j])].y;
-            off += dir[j].xyz * pair_weight(m_i, m_j, mu_i + mu[j], inv_rho, rho[j], r2);
-        }
-    }
+// The walk's hooks (walk.wgsl, fluid neighbours only): the sum over i's
+// neighbours and what it needs of i.
+var<private> product_mu_i: f32;
+var<private> product_m_i: f32;
+var<private> product_inv_rho: f32;
+var<private> product_off: vec3<f32>;
+
+fn walk_begin(i: u32) {
+    product_mu_i = mu[i];
+    product_m_i = params.materials[material_of(pos[i])].y;
+    product_inv_rho = 1.0 / rho[i];
+    product_off = vec3<f32>(0.0);
+}
+
+fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
+    let m_j = params.materials[material_of(pos[j])].y;
+    product_off += dir[j].xyz * pair_weight(product_m_i, m_j, product_mu_i + mu[j], product_inv_rho, rho[j], r2);
+}
+
+fn walk_end(i: u32) {
     let p = dir[i].xyz;
-    let out = p * diag[i] - off * step_dt.x;
+    let out = p * diag[i] - product_off * step_dt.x;
     ap[i] = vec4<f32>(out, 0.0);
     dots[i] = dot(p, out);
 }
