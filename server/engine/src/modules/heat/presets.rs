@@ -215,7 +215,9 @@ pub fn heated_cavity() -> Scene {
 const CAVITY_C: f32 = 2.0;
 
 /// A tank 0.2 x 0.2 x 0.04 m: a light fluid (100 kg/m^3) on a heavy one
-/// (1000 kg/m^3), each 0.1 m deep, at one temperature, settling under damping.
+/// (1000 kg/m^3), each 0.1 m deep, at one temperature, settling under damping for
+/// 3 s (the lattice the blocks start on rearranges under its own weight for about
+/// that long).
 pub fn layers() -> Scene {
     let (lx, ly, lz) = (0.2, 0.2, 0.04);
     let visc = Viscosity::Artificial { alpha: 0.02 };
@@ -231,10 +233,13 @@ pub fn layers() -> Scene {
         heat(vec![water(293.15, 0.0), ThermalFluid { heat_capacity: 1000.0, ..water(293.15, 0.0) }], Vec::new()),
     );
     s.solver.damping = 5.0;
-    s.solver.damping_until = 0.5;
+    s.solver.damping_until = LAYERS_SETTLE as f32;
     s.solver.time_step = TimeStep::Adaptive { cfl: 0.5, min: 1e-7, max: 5e-3 };
     s
 }
+
+/// When the `layers` preset's damping stops (s).
+pub const LAYERS_SETTLE: f64 = 3.0;
 
 /// Wall temperatures (K) of the `heated_channel`: the plate at y = 0, the plate at y = L.
 pub const CHANNEL_T: (f32, f32) = (280.0, 320.0);
