@@ -158,6 +158,13 @@ fn kernel_dw_dr(r: f32) -> f32 {
     return params.g_norm * select(-t * t, q * (3.0 * q - 2.0), q <= 0.5);
 }
 
+/// The kernel's gradient at separation `x` (`r2 = |x|^2 > 0`): `x (dW/dr) / r`,
+/// the same expression the CPU's passes evaluate.
+fn kernel_grad(x: vec3<f32>, r2: f32) -> vec3<f32> {
+    let r = sqrt(r2);
+    return x * (kernel_dw_dr(r) / r);
+}
+
 fn kernel_laplacian(r: f32) -> f32 {
     if (r >= params.support) {
         return 0.0;

@@ -36,8 +36,7 @@ fn shear_add(grad: vec3<f32>, dv: vec3<f32>) {
 }
 
 fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
-    let r = sqrt(r2);
-    let grad = x_ij * (kernel_dw_dr(r) / r);
+    let grad = kernel_grad(x_ij, r2);
     shear_add(grad, (vel[j].xyz - shear_vi) * (params.materials[material_of(pos[j])].y * shear_inv_rho));
 }
 
@@ -46,8 +45,7 @@ fn walk_walls() -> bool {
 }
 
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
-    let r = sqrt(r2);
-    let grad = x_ib * (kernel_dw_dr(r) / r);
+    let grad = kernel_grad(x_ib, r2);
     let psi = walls[b].w * params.materials[shear_ma].w;
     shear_add(grad, shear_vi * (-2.0 * snow.kind[shear_ma].z * psi * shear_inv_rho));
 }

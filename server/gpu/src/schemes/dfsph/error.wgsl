@@ -40,8 +40,7 @@ fn rate(i: u32) -> vec2<f32> {
             if (r2 == 0.0) {
                 continue;
             }
-            let r = sqrt(r2);
-            fluid += dot(vi - vel[j].xyz, x_ij * (kernel_dw_dr(r) / r));
+            fluid += dot(vi - vel[j].xyz, kernel_grad(x_ij, r2));
         }
     }
     var wall = 0.0;
@@ -60,8 +59,7 @@ fn rate(i: u32) -> vec2<f32> {
                 if (r2 == 0.0) {
                     continue;
                 }
-                let r = sqrt(r2);
-                wall += (w.w * mat.w) * dot(vi, x_ib * (kernel_dw_dr(r) / r));
+                wall += (w.w * mat.w) * dot(vi, kernel_grad(x_ib, r2));
             }
         }
     }

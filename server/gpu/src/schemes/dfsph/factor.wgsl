@@ -22,8 +22,7 @@ fn walk_begin(i: u32) {
 
 fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
     let m_i = factor_mat.y;
-    let r = sqrt(r2);
-    let g = x_ij * (kernel_dw_dr(r) / r);
+    let g = kernel_grad(x_ij, r2);
     factor_fluid += g * m_i;
     factor_sq += dot(g, g) * (m_i / params.materials[material_of(pos[j])].y);
 }
@@ -33,8 +32,7 @@ fn walk_walls() -> bool {
 }
 
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
-    let r = sqrt(r2);
-    factor_wall += x_ib * (kernel_dw_dr(r) / r) * (walls[b].w * factor_mat.w);
+    factor_wall += kernel_grad(x_ib, r2) * (walls[b].w * factor_mat.w);
 }
 
 fn walk_end(i: u32) {

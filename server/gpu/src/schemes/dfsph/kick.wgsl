@@ -28,9 +28,8 @@ fn walk_begin(i: u32) {
 }
 
 fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
-    let r = sqrt(r2);
     let m_j = params.materials[material_of(pos[j])].y;
-    kick_a += x_ij * (kernel_dw_dr(r) / r) * (kick_own + m_j * m_j / kick_mat.y * increment[j]);
+    kick_a += kernel_grad(x_ij, r2) * (kick_own + m_j * m_j / kick_mat.y * increment[j]);
 }
 
 fn walk_walls() -> bool {
@@ -38,8 +37,7 @@ fn walk_walls() -> bool {
 }
 
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
-    let r = sqrt(r2);
-    kick_wall += x_ib * (kernel_dw_dr(r) / r) * (walls[b].w * kick_mat.w);
+    kick_wall += kernel_grad(x_ib, r2) * (walls[b].w * kick_mat.w);
 }
 
 fn walk_end(i: u32) {
