@@ -6,7 +6,8 @@
 //
 //   walk_begin(i)                 before the first pair
 //   walk_pair(i, j, x_ij, r2)     each fluid neighbour (x_ij = x_i - x_j, r2 > 0)
-//   walk_walls() -> bool          whether to visit the walls at all (walk_walls.wgsl)
+//   walk_walls() -> bool          whether to visit the walls (a kernel built with
+//                                 `walls_if;` names it; every other kernel visits them)
 //   walk_wall(i, b, x_ib, r2)     each wall neighbour (walk_walls.wgsl)
 //   walk_end(i)                   after the last pair: write the results
 //

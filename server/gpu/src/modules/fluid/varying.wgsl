@@ -38,10 +38,6 @@ fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
     varying_a += (varying_vi - vel[j].xyz) * (m * (varying_mu_i + mu[j]) * varying_inv_rho / rho[j] * f);
 }
 
-fn walk_walls() -> bool {
-    return true;
-}
-
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
     let r = sqrt(r2);
     varying_a += varying_mirror * ((walls[b].w * varying_psi) * (r * kernel_dw_dr(r) / (r2 + varying_eps_h2)));

@@ -16,10 +16,6 @@ fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
     conduction_pair(j, r2);
 }
 
-fn walk_walls() -> bool {
-    return true;
-}
-
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
     forces_wall(b, x_ib, r2);
     conduction_wall(b, r2);

@@ -18,7 +18,7 @@ use floe_engine::modules::heat::{HeatConsts, MAX_BOXES};
 /// dT/dt from conduction, walls and sources.
 pub static CONDUCTION: GpuPass = GpuPass {
     name: "heat.conduction",
-    source: walk_kernel!("heat.wgsl", "conduction.wgsl", "conduction_walk.wgsl"),
+    source: walk_kernel!(walls_if; "heat.wgsl", "conduction.wgsl", "conduction_walk.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),

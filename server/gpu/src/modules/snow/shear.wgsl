@@ -40,10 +40,6 @@ fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
     shear_add(grad, (vel[j].xyz - shear_vi) * (params.materials[material_of(pos[j])].y * shear_inv_rho));
 }
 
-fn walk_walls() -> bool {
-    return true;
-}
-
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
     let grad = kernel_grad(x_ib, r2);
     let psi = walls[b].w * params.materials[shear_ma].w;

@@ -27,10 +27,6 @@ fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
     factor_sq += dot(g, g) * (m_i / params.materials[material_of(pos[j])].y);
 }
 
-fn walk_walls() -> bool {
-    return true;
-}
-
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
     factor_wall += kernel_grad(x_ib, r2) * (walls[b].w * factor_mat.w);
 }

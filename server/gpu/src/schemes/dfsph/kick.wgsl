@@ -32,10 +32,6 @@ fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
     kick_a += kernel_grad(x_ij, r2) * (kick_own + m_j * m_j / kick_mat.y * increment[j]);
 }
 
-fn walk_walls() -> bool {
-    return true;
-}
-
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
     kick_wall += kernel_grad(x_ib, r2) * (walls[b].w * kick_mat.w);
 }

@@ -42,10 +42,6 @@ fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
     }
 }
 
-fn walk_walls() -> bool {
-    return true;
-}
-
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
     let r = sqrt(r2);
     let psi = walls[b].w * params.materials[continuity_ma].w;

@@ -33,10 +33,6 @@ fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
     transport_sum += x_ij * (kernel_dw_dr(r) / r * (transport_own + m_j * (m_j / m_i) * inv2(rho[j])));
 }
 
-fn walk_walls() -> bool {
-    return true;
-}
-
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
     let r = sqrt(r2);
     transport_sum += x_ib * (kernel_dw_dr(r) / r * (walls[b].w * transport_mat.w * transport_wall));

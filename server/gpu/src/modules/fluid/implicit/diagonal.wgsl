@@ -43,10 +43,6 @@ fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
     diagonal_force += (vel[j].xyz - diagonal_vi) * w;
 }
 
-fn walk_walls() -> bool {
-    return true;
-}
-
 fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
     let r = sqrt(r2);
     diagonal_wall += (walls[b].w * diagonal_mat.w) * (-r * kernel_dw_dr(r) / (r2 + diagonal_eps_h2));
