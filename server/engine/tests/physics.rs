@@ -138,6 +138,20 @@ fn a_stiff_linear_law_sets_the_time_step() {
     assert!(sim.stats().dt_max <= f64::from(cfl * h / 200.0) * 1.0001, "dt {} for c = 200 m/s", sim.stats().dt_max);
 }
 
+/// A light fluid on a heavy one steps at the interface's signal speed
+/// `c sqrt(rho_heavy / rho_light)`, not at the speed of sound: at a density ratio of
+/// 10 a step sized for c is `sqrt(10)` times too long and lets the interface ring up.
+#[test]
+fn an_interface_between_fluids_sets_the_time_step() {
+    let mut sim = preset("layers", &["particle_spacing=0.02", "solver.speed_of_sound=20"]);
+    sim.run_until(0.02, |_, _| {}).unwrap();
+    let h = 0.5 * sim.model().kernel.support();
+    let floe_engine::scene::TimeStep::Adaptive { cfl, .. } = sim.scene().solver.time_step else { panic!("adaptive") };
+    let c = 20.0 * 10f32.sqrt();
+    assert!(sim.stats().dt_max <= f64::from(cfl * h / c) * 1.0001, "dt {} for c = {c} m/s", sim.stats().dt_max);
+    assert!(sim.stats().dt_max >= f64::from(cfl * h / c) * 0.9, "dt {} for c = {c} m/s", sim.stats().dt_max);
+}
+
 #[test]
 fn fixed_steps_above_the_limit_are_substepped() {
     let mut sim = preset("dam_break", &["particle_spacing=0.05", "solver.time_step={\"mode\":\"fixed\",\"dt\":0.005}"]);

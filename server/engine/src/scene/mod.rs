@@ -389,7 +389,9 @@ pub enum TimeStep {
     Adaptive {
         /// CFL number lambda in `dt <= lambda h / (c + v_max)`, h the smoothing
         /// length (half the support). 0.5 with the default support of two spacings
-        /// moves sound half a particle spacing per step.
+        /// moves sound half a particle spacing per step. With several fluids c is
+        /// the fastest `c_a sqrt(rho0_a / rho0_b)`: a light fluid's particles move
+        /// against a heavy one's stiffness at its interface.
         #[serde(default = "default_cfl")]
         cfl: f32,
         /// Smallest step allowed (s).

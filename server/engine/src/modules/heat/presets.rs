@@ -4,7 +4,8 @@
 use super::spec::{Heat, TemperatureBox, ThermalFluid, ViscosityLaw};
 use crate::modules::Preset;
 use crate::scene::{
-    Axis, Boundary, BoxRegion, Face, Fluid, FluidBlock, Scene, Solver, TimeStep, TransportVelocity, Viscosity,
+    Axis, Boundary, BoxRegion, DeltaSph, EquationOfState, Face, Fluid, FluidBlock, Scene, Solver, TimeStep,
+    TransportVelocity, Viscosity,
 };
 
 /// The presets, for the module registry.
@@ -217,13 +218,21 @@ const CAVITY_C: f32 = 2.0;
 /// A tank 0.2 x 0.2 x 0.04 m: a light fluid (100 kg/m^3) on a heavy one
 /// (1000 kg/m^3), each 0.1 m deep, at one temperature, settling under damping for
 /// 3 s (the lattice the blocks start on rearranges under its own weight for about
-/// that long).
+/// that long). Its density is integrated (δ-SPH), which starts both layers in
+/// hydrostatic balance and keeps each particle's density its own fluid's; both
+/// fluids share a background pressure of [`LAYERS_BACKGROUND`], which keeps the
+/// lattice from rearranging once settled (docs/heat.md).
 pub fn layers() -> Scene {
     let (lx, ly, lz) = (0.2, 0.2, 0.04);
     let visc = Viscosity::Artificial { alpha: 0.02 };
+    let eos = EquationOfState::Tait { gamma: 7.0, background: LAYERS_BACKGROUND };
+    let fluid = |name, rest_density, min: [f32; 3], max: [f32; 3]| Fluid {
+        eos,
+        ..fluid(name, rest_density, visc, vec![FluidBlock::at_rest(min, max)])
+    };
     let fluids = vec![
-        fluid("heavy", 1000.0, visc, vec![FluidBlock::at_rest([0.0; 3], [lx, 0.5 * ly, lz])]),
-        fluid("light", 100.0, visc, vec![FluidBlock::at_rest([0.0, 0.5 * ly, 0.0], [lx, ly, lz])]),
+        fluid("heavy", 1000.0, [0.0; 3], [lx, 0.5 * ly, lz]),
+        fluid("light", 100.0, [0.0, 0.5 * ly, 0.0], [lx, ly, lz]),
     ];
     let mut s = scene(
         "layers",
@@ -234,12 +243,17 @@ pub fn layers() -> Scene {
     );
     s.solver.damping = 5.0;
     s.solver.damping_until = LAYERS_SETTLE as f32;
+    s.solver.delta_sph = Some(DeltaSph { delta: 0.1 });
     s.solver.time_step = TimeStep::Adaptive { cfl: 0.5, min: 1e-7, max: 5e-3 };
     s
 }
 
 /// When the `layers` preset's damping stops (s).
 pub const LAYERS_SETTLE: f64 = 3.0;
+
+/// The `layers` preset's background pressure (Pa): 2.5 % of the heavy fluid's
+/// `rho0 c^2`, a quarter of the light one's.
+pub const LAYERS_BACKGROUND: f32 = 1e4;
 
 /// Wall temperatures (K) of the `heated_channel`: the plate at y = 0, the plate at y = L.
 pub const CHANNEL_T: (f32, f32) = (280.0, 320.0);

@@ -108,8 +108,9 @@ pub struct WcsphConsts {
     pub transport: Option<Real>,
     /// δ-SPH's constants, when the scene integrates its density.
     pub delta: Option<continuity::DeltaConsts>,
-    /// The CFL condition's signal speed (m/s): the solver's speed of sound, or a
-    /// fluid's where its law is stiffer (a linear law's `sqrt(stiffness)`).
+    /// The CFL condition's signal speed (m/s): the fastest `sqrt(K_a / rho0_b)` of
+    /// a fluid's bulk modulus `K_a = rho0_a c_a^2` and any fluid's rest density
+    /// ([`signal_speed`]); the solver's speed of sound for one fluid.
     pub signal_speed: Real,
 }
 
@@ -119,13 +120,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         scene.fluids.iter().zip(b.materials()).map(|(f, m)| Eos::new(f.eos, m.rest_density, c)).collect();
     let transport = scene.solver.transport_velocity.map(|t| t.background);
     let delta = scene.solver.delta_sph.map(|d| continuity::build(b, d.delta, c, &eos));
-    // A linear law's own stiffness can exceed c^2; every other law is c's (taken as
-    // c itself, not recomputed from B, whose rounding would move dt by an ulp).
-    let own = |f: &crate::scene::Fluid| match f.eos {
-        crate::scene::EquationOfState::Linear { stiffness: Some(k), .. } => k.sqrt(),
-        _ => c,
-    };
-    let signal_speed = scene.fluids.iter().map(own).fold(c, Real::max);
+    let signal_speed = signal_speed(scene, b.materials(), c);
     b.set_consts(WcsphConsts { eos, transport, delta, signal_speed });
     b.zeros(&PTERM);
     b.zeros(&WALL_P);
@@ -137,6 +132,29 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     }
     b.channel(crate::channels::PRESSURE);
     Ok(())
+}
+
+/// The CFL condition's signal speed (m/s) of a scene whose speed of sound is `c`.
+///
+/// A particle of rest density `rho0_b` beside particles of a fluid with bulk
+/// modulus `K_a = rho0_a c_a^2` feels their pressure respond to its motion with
+/// `K_a`'s stiffness while its own inertia is `rho0_b`'s: the pair's mode
+/// travels at `sqrt(K_a / rho0_b) = c_a sqrt(rho0_a / rho0_b)`, faster than
+/// either fluid's sound where a light fluid touches a heavy one (`sqrt(10) c` at
+/// a density ratio of 10). A step sized by `c` alone lets that mode grow at the
+/// interface: the `layers` preset's speeds grew tenfold a second once its
+/// damping stopped (docs/heat.md). A linear law's own stiffness can exceed `c^2`;
+/// every other law is `c`'s (taken as `c` itself, not recomputed from B, whose
+/// rounding would move dt by an ulp: one fluid gets exactly `c`).
+fn signal_speed(scene: &Scene, materials: &[crate::materials::Material], c: Real) -> Real {
+    let lightest = materials.iter().map(|m| m.rest_density).fold(Real::INFINITY, Real::min);
+    let own = |f: &crate::scene::Fluid| match f.eos {
+        crate::scene::EquationOfState::Linear { stiffness: Some(k), .. } => k.sqrt(),
+        _ => c,
+    };
+    let felt =
+        |(f, m): (&crate::scene::Fluid, &crate::materials::Material)| own(f) * (m.rest_density / lightest).sqrt();
+    scene.fluids.iter().zip(materials).map(felt).fold(c, Real::max)
 }
 
 /// The stages of an evaluation.
