@@ -87,7 +87,8 @@ test('the viewer: views, plots, record and replay, help, errors, phone width', {
       assert.deepEqual(drawn, full, 'the still picture is drawn at full resolution');
       await shot(page, 'surface-after-moving');
       assert.ok((await canvasSummary(page)).fluid > 0.5 * spheres.fluid, 'the water is drawn');
-      await Promise.all([page.waitForResponse((r) => r.url().endsWith('/reset')), page.click('#reset')]);
+      // Until the reset's request has finished: leaving the page while its body is in flight aborts it.
+      await Promise.all([page.waitForEvent('requestfinished', (r) => r.url().endsWith('/reset')), page.click('#reset')]);
       await page.goto(url);
       await statAtLeast(page, 'frames', 1);
     });
