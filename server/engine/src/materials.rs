@@ -79,6 +79,11 @@ impl Materials {
         self.list.iter()
     }
 
+    /// Every material, in index order, as a slice.
+    pub fn as_slice(&self) -> &[Material] {
+        &self.list
+    }
+
     /// The largest ratio of rest densities, for reports and stability checks.
     pub fn density_ratio(&self) -> Real {
         let (lo, hi) = self

@@ -20,8 +20,8 @@ const WCSPH: &str = Method::Wcsph.setting();
 const SPACING: f32 = 0.05;
 
 /// A box of water 12 spacings a side, periodic along every axis, no gravity,
-/// with δ-SPH (diffusion `delta`).
-fn periodic_block(delta: f32) -> Simulation {
+/// with δ-SPH (diffusion `delta`) and the scene's `overrides`.
+fn periodic_block(delta: f32, overrides: &[String]) -> Simulation {
     let side = 12.0 * SPACING;
     let text = format!(
         r#"
@@ -37,7 +37,7 @@ fn periodic_block(delta: f32) -> Simulation {
         delta_sph = {{ delta = {delta} }}
         "#
     );
-    Simulation::new_cpu(from_str(&text, Format::Toml, &[]).unwrap()).unwrap()
+    Simulation::new_cpu(from_str(&text, Format::Toml, overrides).unwrap()).unwrap()
 }
 
 fn floats(column: Column) -> Vec<f32> {
@@ -117,7 +117,7 @@ fn its_rate_is_the_time_derivative_of_the_summed_density_walls_included() {
 
 #[test]
 fn the_diffusion_smooths_a_density_bump_and_conserves_its_total() {
-    let mut sim = periodic_block(0.1);
+    let mut sim = periodic_block(0.1, &[]);
     let mut rho = floats(sim.backend().download(&["rho"]).remove(0));
     rho[300] += 10.0;
     sim.backend_mut().upload("rho", Column::F32(rho.clone()));
@@ -131,6 +131,35 @@ fn the_diffusion_smooths_a_density_bump_and_conserves_its_total() {
     let total: f64 = drho.iter().zip(&rho_sorted).map(|(&d, &r)| f64::from(d / r)).sum();
     let scale: f64 = drho.iter().zip(&rho_sorted).map(|(&d, &r)| f64::from(d.abs() / r)).sum();
     assert!(total.abs() < 1e-4 * scale, "the diffusion adds {total} of {scale}");
+}
+
+#[test]
+fn a_fluid_diffuses_and_dissipates_at_its_own_speed_of_sound() {
+    // The block's water at the scene's c = 20 m/s, then as a linear law of stiffness
+    // 4 c^2 (sounding at 2 c): at rest density neither has a pressure, so a density
+    // bump's rate is the diffusion's alone and a converging flow's acceleration the
+    // artificial viscosity's, and both must double.
+    let run = |eos: &str| {
+        let o = ["fluids[0].viscosity={\"model\":\"artificial\",\"alpha\":0.1}".to_string(), eos.to_string()];
+        let mut sim = periodic_block(0.1, &o);
+        let mut rho = floats(sim.backend().download(&["rho"]).remove(0));
+        rho[300] += 10.0;
+        sim.backend_mut().upload("rho", Column::F32(rho));
+        let drho = rate(&mut sim);
+        let bump = drho.iter().fold(0.0f32, |m, d| m.min(*d));
+        let mut sim = periodic_block(0.1, &o);
+        let x = vectors(sim.backend().download(&["x"]).remove(0));
+        let centre = Vec3::splat(6.0 * SPACING);
+        sim.backend_mut().upload("v", Column::Vec3(x.iter().map(|&x| centre - x).collect()));
+        rate(&mut sim);
+        let a = vectors(sim.backend().download(&["a"]).remove(0));
+        (bump, a.iter().map(|a| a.length()).fold(0.0f32, f32::max))
+    };
+    let (bump, a) = run("fluids[0].eos={\"kind\":\"tait\"}");
+    let (stiff_bump, stiff_a) = run("fluids[0].eos={\"kind\":\"linear\",\"stiffness\":1600}");
+    assert!(bump < -1.0 && a > 0.1, "the bump falls at {bump} kg/(m^3 s), the flow slows at {a} m/s^2");
+    assert!((stiff_bump / bump - 2.0).abs() < 1e-4, "diffusion {stiff_bump} against {bump} at c");
+    assert!((stiff_a / a - 2.0).abs() < 1e-4, "artificial viscosity {stiff_a} against {a} at c");
 }
 
 #[test]
@@ -223,7 +252,7 @@ fn scenes_without_it_sum_their_density_and_allocate_nothing_of_it() {
     assert!(plain.model().layout.spec("drho").is_none());
     assert_eq!(plain.model().layout.spec("rho").unwrap().role, Role::Derived);
 
-    let delta = periodic_block(0.1);
+    let delta = periodic_block(0.1, &[]);
     let names: Vec<&str> = delta.model().plan.passes().iter().map(|p| p.name).collect();
     assert!(!names.contains(&"core.density"));
     for pass in ["core.neighbours", "wcsph.continuity", "wcsph.integrate_density"] {

@@ -146,9 +146,15 @@ const VARIANTS: &[&[&str]] = &[
         "domain={\"min\":[0,-0.2,0],\"max\":[2,1.4,0.25]}",
         "solver.transport_velocity={\"background\":20000}",
     ],
-    // δ-SPH on two fluids (the diffusion between particles of one material only):
-    // the density's rate, walls included, and its integration.
-    &["particle_spacing=0.05", TWO_FLUIDS, "solver.delta_sph={\"delta\":0.1}"],
+    // δ-SPH on two fluids (the diffusion between particles of one material only,
+    // the heavy one's at its own speed of sound): the density's rate, walls
+    // included, and its integration.
+    &[
+        "particle_spacing=0.05",
+        TWO_FLUIDS,
+        "fluids[1].eos={\"kind\":\"linear\",\"stiffness\":4900}",
+        "solver.delta_sph={\"delta\":0.1}",
+    ],
     // DFSPH: the factor and each solve's warm start, kick and error.
     &["particle_spacing=0.05", "solver.method=\"dfsph\""],
     // A rippled slope with friction across the tank under the column.

@@ -243,7 +243,8 @@ pub struct Solver {
 /// derivative of the summation density, plus the diffusion
 /// `delta h c sum_j V_j 2 (rho_i - rho_j - rho^H_ij) (x_ij . grad W_ij) / (r^2 + 0.01 h^2)`
 /// (a Laplacian of the density; `V_j = m_j / rho_j`, h half the kernel's support)
-/// between particles of one material, with the hydrostatic difference
+/// between particles of one material (c that material's own speed of sound,
+/// [`EquationOfState::sound_speed`]), with the hydrostatic difference
 /// `rho^H_ij = rho0 g . x_ij / c^2` taken out (Fourtakas et al. 2019, Comput. Fluids
 /// 190, eq. 12, linearised: exact for the linear equation of state, to order
 /// `(v/c)^2` for Tait), so a resting column feels no diffusion. Each particle starts

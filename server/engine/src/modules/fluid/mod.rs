@@ -21,7 +21,8 @@ pub mod viscosity;
 pub mod xsph;
 
 use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
-use crate::materials::MaterialKind;
+use crate::kernel::Kernel;
+use crate::materials::{Material, MaterialKind};
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::modules::ModuleDef;
@@ -120,25 +121,23 @@ pub struct FluidConsts {
 }
 
 impl FluidConsts {
-    fn new(scene: &Scene, model: &Model) -> Self {
-        let c = model.sound_speed.unwrap_or(0.0);
+    /// The constants of `scene`'s fluids made of `materials`, in a scene whose speed
+    /// of sound is `c`: each fluid's artificial viscosity scales with its own speed
+    /// ([`crate::scene::EquationOfState::sound_speed`]).
+    fn new(scene: &Scene, materials: &[Material], c: Real, kernel: &Kernel, spacing: Real) -> Self {
+        let n = materials.len();
         let viscosity: Vec<ViscosityModel> = scene
             .fluids
             .iter()
-            .zip(model.materials.iter())
-            .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, c, &model.kernel, model.spacing))
+            .zip(materials)
+            .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, f.eos.sound_speed(c), kernel, spacing))
             .collect();
-        Self::assemble(scene, model.materials.iter().map(|m| m.mass).collect(), viscosity)
-    }
-
-    fn assemble(scene: &Scene, masses: Vec<Real>, viscosity: Vec<ViscosityModel>) -> Self {
-        let n = masses.len();
         let mut pair_viscosity = Vec::with_capacity(n * n);
         let mut mass_ratio = Vec::with_capacity(n * n);
         for a in 0..n {
             for b in 0..n {
                 pair_viscosity.push(if a == b { viscosity[a] } else { viscosity[a].mix(&viscosity[b]) });
-                mass_ratio.push(masses[a] / masses[b]);
+                mass_ratio.push(materials[a].mass / materials[b].mass);
             }
         }
         Self { viscosity, pair_viscosity, xsph: scene.fluids.iter().map(|f| f.xsph).collect(), mass_ratio }
@@ -212,14 +211,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     // Monaghan's artificial viscosity scales with the speed of sound.
     let artificial = scene.fluids.iter().any(|f| matches!(f.viscosity, Viscosity::Artificial { .. }));
     let c = if artificial || scene.solver.method == Method::Wcsph { b.sound_speed()? } else { 0.0 };
-    let viscosity: Vec<ViscosityModel> = scene
-        .fluids
-        .iter()
-        .zip(b.materials())
-        .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, c, &b.kernel, scene.particle_spacing))
-        .collect();
-    let masses = b.materials().iter().map(|m| m.mass).collect();
-    let consts = FluidConsts::assemble(scene, masses, viscosity);
+    let consts = FluidConsts::new(scene, b.materials(), c, &b.kernel, scene.particle_spacing);
     b.pass(if scene.solver.method == Method::Wcsph { &forces::WITH_PRESSURE } else { &forces::FORCES });
     if consts.uses_xsph() {
         b.zeros(&XSPH);
@@ -232,7 +224,8 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 
 /// Viscosity and XSPH may change; XSPH's buffer and passes come and go with it.
 fn retune(scene: &Scene, model: &mut Model) {
-    let consts = FluidConsts::new(scene, model);
+    let c = model.sound_speed.unwrap_or(0.0);
+    let consts = FluidConsts::new(scene, model.materials.as_slice(), c, &model.kernel, model.spacing);
     model.toggle(consts.uses_xsph(), &XSPH, &[&xsph::SUM, &xsph::KICK]);
     model.set_consts(consts);
 }

@@ -136,6 +136,21 @@ impl Default for EquationOfState {
     }
 }
 
+impl EquationOfState {
+    /// The fluid's own speed of sound (m/s) in a scene whose speed of sound is `c`:
+    /// a linear law's stiffness `k` gives `sqrt(k)`, every other law takes `c`
+    /// itself (not recomputed from B, whose rounding would move it by an ulp). What
+    /// scales with a fluid's sound, its artificial viscosity and its density
+    /// diffusion, takes this one: a light fluid made as stiff as a heavy one keeps
+    /// the dissipation its own sound calls for (docs/heat.md, two layers at rest).
+    pub fn sound_speed(&self, c: f32) -> f32 {
+        match *self {
+            Self::Linear { stiffness: Some(k), .. } => k.sqrt(),
+            _ => c,
+        }
+    }
+}
+
 /// Viscosity model.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
@@ -149,7 +164,8 @@ pub enum Viscosity {
         nu: f32,
     },
     /// Monaghan's artificial viscosity (Monaghan 1992, eq. 4.1), acting only on
-    /// approaching pairs; `nu_eff ~ alpha c h / 10`.
+    /// approaching pairs; `nu_eff ~ alpha c h / 10`, c the fluid's own speed of sound
+    /// ([`EquationOfState::sound_speed`]).
     Artificial {
         /// Dimensionless alpha, typically 0.01 to 0.1.
         alpha: f32,

@@ -65,8 +65,10 @@ pub static INTEGRATE: PassSpec = PassSpec {
 /// The constants of the pass.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DeltaConsts {
-    /// `2 delta h c` (m^2/s), the diffusion's coefficient with the Laplacian's 2.
-    pub coefficient: Real,
+    /// `2 delta h c_a` (m^2/s) of each material, the diffusion's coefficient with the
+    /// Laplacian's 2 and the fluid's own speed of sound
+    /// ([`crate::scene::EquationOfState::sound_speed`]).
+    pub coefficient: Vec<Real>,
     /// `0.01 h^2` (m^2), which keeps the Laplacian finite at small separations.
     pub eta2: Real,
     /// `rho0 g / c^2` of each material (kg/m^4): the hydrostatic density
@@ -97,7 +99,7 @@ pub fn build(b: &mut ModelBuilder, delta: Real, sound_speed: Real, eos: &[Eos]) 
     b.pass(&INTEGRATE);
     let h = 0.5 * b.kernel.support();
     DeltaConsts {
-        coefficient: 2.0 * delta * h * sound_speed,
+        coefficient: b.scene.fluids.iter().map(|f| 2.0 * delta * h * f.eos.sound_speed(sound_speed)).collect(),
         eta2: 0.01 * h * h,
         hydrostatic: rest.iter().zip(eos).map(|(&r0, e)| g * (r0 / (e.sound_speed() * e.sound_speed()))).collect(),
     }
@@ -147,7 +149,7 @@ fn continuity<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
         for (n, out) in out_c.iter_mut().enumerate() {
             let i = c * CHUNK + n;
             let (xi, vi, rho_i, ma) = (pos[i], vel[i], rho[i], material(i));
-            let (m_i, hydro) = (materials.get(ma).mass, dc.hydrostatic[ma]);
+            let (m_i, hydro, coefficient) = (materials.get(ma).mass, dc.hydrostatic[ma], dc.coefficient[ma]);
             let (mut div, mut diffusion) = (0.0, 0.0);
             for &j in nb.fluid(n) {
                 let j = j as usize;
@@ -177,7 +179,7 @@ fn continuity<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
                 let r = r2.sqrt();
                 wall += psi[b] * vi.dot(x_ib) * (k.dw_dr(r) / r);
             }
-            *out = m_i * div + wall + dc.coefficient * diffusion;
+            *out = m_i * div + wall + coefficient * diffusion;
         }
     });
     cx.attrs.put(d_h, out);

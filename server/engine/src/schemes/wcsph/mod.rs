@@ -143,17 +143,13 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 /// either fluid's sound where a light fluid touches a heavy one (`sqrt(10) c` at
 /// a density ratio of 10). A step sized by `c` alone lets that mode grow at the
 /// interface: the `layers` preset's speeds grew tenfold a second once its
-/// damping stopped (docs/heat.md). A linear law's own stiffness can exceed `c^2`;
-/// every other law is `c`'s (taken as `c` itself, not recomputed from B, whose
-/// rounding would move dt by an ulp: one fluid gets exactly `c`).
+/// damping stopped (docs/heat.md). `c_a` is the fluid's own speed
+/// ([`crate::scene::EquationOfState::sound_speed`]): one fluid gets exactly `c`.
 fn signal_speed(scene: &Scene, materials: &[crate::materials::Material], c: Real) -> Real {
     let lightest = materials.iter().map(|m| m.rest_density).fold(Real::INFINITY, Real::min);
-    let own = |f: &crate::scene::Fluid| match f.eos {
-        crate::scene::EquationOfState::Linear { stiffness: Some(k), .. } => k.sqrt(),
-        _ => c,
+    let felt = |(f, m): (&crate::scene::Fluid, &crate::materials::Material)| {
+        f.eos.sound_speed(c) * (m.rest_density / lightest).sqrt()
     };
-    let felt =
-        |(f, m): (&crate::scene::Fluid, &crate::materials::Material)| own(f) * (m.rest_density / lightest).sqrt();
     scene.fluids.iter().zip(materials).map(felt).fold(c, Real::max)
 }
 

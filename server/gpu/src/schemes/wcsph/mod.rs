@@ -72,10 +72,10 @@ struct WcsphParams {
     background: [[f32; 4]; MAX_MATERIALS / 4],
     /// The transport velocity's background pressure (Pa) in x, 0 without one.
     transport: [f32; 4],
-    /// δ-SPH's diffusion coefficient (m^2/s) and eta^2 (m^2), 0 without it.
+    /// δ-SPH's eta^2 (m^2), 0 without it.
     delta: [f32; 4],
-    /// δ-SPH's `rho0 g / c^2` (kg/m^4) per material.
-    hydrostatic: [[f32; 4]; MAX_MATERIALS],
+    /// δ-SPH's `rho0 g / c^2` (kg/m^4) and diffusion coefficient (m^2/s) per material.
+    delta_material: [[f32; 4]; MAX_MATERIALS],
 }
 
 /// The uniform's bytes, when the scene is stepped by WCSPH.
@@ -94,9 +94,9 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     }
     p.transport[0] = c.transport.unwrap_or(0.0);
     if let Some(d) = &c.delta {
-        p.delta = [d.coefficient, d.eta2, 0.0, 0.0];
-        for (m, h) in d.hydrostatic.iter().enumerate() {
-            p.hydrostatic[m] = [h.x, h.y, h.z, 0.0];
+        p.delta = [d.eta2, 0.0, 0.0, 0.0];
+        for (m, (h, k)) in d.hydrostatic.iter().zip(&d.coefficient).enumerate() {
+            p.delta_material[m] = [h.x, h.y, h.z, *k];
         }
     }
     Some(bytemuck::bytes_of(&p).to_vec())
