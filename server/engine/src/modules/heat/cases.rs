@@ -1,8 +1,8 @@
 //! The heat module's validation cases (conduction against VALIDATION.md §5, the
-//! two-layer rest state at density ratios of 10 and 100, de Vahl Davis' heated cavity at Ra = 1e4 and, in `--full`,
-//! 1e5, and the channel whose viscosity follows its temperature) and its stability
-//! battery (temperature jumps, a very conductive fluid, a large density ratio, a
-//! steep viscosity law).
+//! two-layer rest state at density ratios of 10 and 100, de Vahl Davis' heated
+//! cavity at Ra = 1e4 and, in `--full`, 1e5, and the channel whose viscosity follows
+//! its temperature) and its stability battery (temperature jumps, a very conductive
+//! fluid, a large density ratio, a steep viscosity law).
 
 use super::HeatConsts;
 use super::presets::{CAVITY_L, CAVITY_T, CHANNEL_T, CONDUCTION_ALPHA, CONDUCTION_L, CONDUCTION_T};
