@@ -239,12 +239,13 @@ pub struct ValidateArgs {
 #[derive(Debug, Clone, Args)]
 pub struct StoreArgs {
     /// Data directory: the SQLite database and the checkpoints (default
-    /// `$XDG_DATA_HOME/floe`, else `~/.local/share/floe`).
-    #[arg(long, env = "FLOE_DATA_DIR", value_name = "DIR")]
+    /// `$XDG_DATA_HOME/floe`, else `~/.local/share/floe`). Global: `floe admin` takes
+    /// it before or after its subcommand.
+    #[arg(long, env = "FLOE_DATA_DIR", value_name = "DIR", global = true)]
     pub data_dir: Option<PathBuf>,
     /// A PostgreSQL database instead of SQLite, e.g. `postgres://floe@db/floe`
     /// (checkpoints stay in the data directory).
-    #[arg(long, env = "FLOE_DATABASE_URL", value_name = "URL")]
+    #[arg(long, env = "FLOE_DATABASE_URL", value_name = "URL", global = true)]
     pub database: Option<String>,
 }
 

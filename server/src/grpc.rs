@@ -97,9 +97,8 @@ impl SceneService for Grpc {
             }
             None
         };
-        let handle = self.registry.get(&who, r.scene_id, Need::Steer).map_err(status)?;
-        handle.step(r.steps, until).await.map_err(|e| status(e.into()))?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+        self.registry.step(&who, r.scene_id, r.steps, until).await.map_err(status)?;
+        self.info(&who, r.scene_id)
     }
 
     async fn run(&self, request: Request<pb::RunRequest>) -> Reply<pb::SceneInfo> {

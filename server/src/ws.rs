@@ -182,7 +182,7 @@ async fn control(
             }
             Control::Step(b) => {
                 let (n, until) = b.checked().map_err(ServiceError::InvalidArgument)?;
-                registry.get(who, id, Need::Steer)?.step(n, until).await?;
+                registry.step(who, id, n, until).await?;
             }
             Control::Set(b) => {
                 registry.set_parameters(who, id, b.overrides).await?;
@@ -214,65 +214,139 @@ fn too_big(e: axum::Error) -> bool {
     )
 }
 
-async fn session(
-    mut socket: WebSocket,
+/// What a session does after a message from its client.
+enum Next {
+    /// Goes on.
+    Go,
+    /// Closes, with this close frame if not the normal one.
+    Close(Option<CloseFrame>),
+}
+
+/// One client's socket and what it streams.
+struct Session {
+    socket: WebSocket,
     registry: Arc<Registry>,
     who: Caller,
     handle: Arc<SceneHandle>,
-    mut frames: mpsc::Receiver<Result<EncodedFrame, floe_proto::EncodeError>>,
+    frames: mpsc::Receiver<Result<EncodedFrame, floe_proto::EncodeError>>,
+    /// Messages that arrived while a control call ran, in order.
+    waiting: std::collections::VecDeque<Message>,
+    heard: Instant,
+}
+
+impl Session {
+    /// Sends a frame (or the reason it could not be encoded); false once the client is gone.
+    async fn forward(&mut self, frame: Option<Result<EncodedFrame, floe_proto::EncodeError>>) -> bool {
+        match frame {
+            Some(Ok(f)) => self.socket.send(Message::Binary(f.data.as_ref().clone().into())).await.is_ok(),
+            Some(Err(e)) => {
+                let _ = self.socket.send(error(&e.to_string())).await;
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Carries out a control message. While it runs (a step of many steps) frames
+    /// still flow, and a client that leaves cancels it at the next step boundary
+    /// (the call is dropped, as a cancelled gRPC call is); messages arriving
+    /// meanwhile wait their turn.
+    async fn call(&mut self, text: &str) -> Next {
+        let t0 = Instant::now();
+        let (registry, who, handle) = (self.registry.clone(), self.who.clone(), self.handle.clone());
+        let call = control(&registry, &who, &handle, text);
+        tokio::pin!(call);
+        let (reply, op, code) = loop {
+            tokio::select! {
+                done = &mut call => break done,
+                frame = self.frames.recv() => {
+                    if !self.forward(frame).await {
+                        return Next::Close(None);
+                    }
+                }
+                msg = self.socket.recv() => {
+                    self.heard = Instant::now();
+                    match msg {
+                        Some(Ok(Message::Close(_))) | Some(Err(_)) | None => return Next::Close(None),
+                        Some(Ok(m)) => self.waiting.push_back(m),
+                    }
+                }
+            }
+        };
+        self.registry.metrics().observe("ws", op, &code, t0.elapsed().as_secs_f64());
+        if self.socket.send(reply).await.is_err() { Next::Close(None) } else { Next::Go }
+    }
+
+    /// Handles one message from the client.
+    async fn receive(&mut self, msg: Option<Result<Message, axum::Error>>) -> Next {
+        match msg {
+            Some(Ok(Message::Text(t))) => self.call(t.as_str()).await,
+            Some(Ok(Message::Binary(_))) => {
+                if self.socket.send(error("binary messages are not accepted; send JSON text")).await.is_err() {
+                    return Next::Close(None);
+                }
+                Next::Go
+            }
+            Some(Err(e)) => Next::Close(too_big(e).then(|| {
+                let reason = format!("message too big: at most {MAX_MESSAGE_BYTES} bytes");
+                CloseFrame { code: close_code::SIZE, reason: reason.into() }
+            })),
+            Some(Ok(Message::Close(_))) | None => Next::Close(None),
+            Some(Ok(_)) => Next::Go,
+        }
+    }
+}
+
+async fn session(
+    socket: WebSocket,
+    registry: Arc<Registry>,
+    who: Caller,
+    handle: Arc<SceneHandle>,
+    frames: mpsc::Receiver<Result<EncodedFrame, floe_proto::EncodeError>>,
 ) {
     let mut events = handle.shared.events.subscribe();
-    let hello = json(serde_json::json!({ "type": "status", "scene": SceneView::of(&handle.shared) }));
-    if socket.send(hello).await.is_err() {
+    let mut s = Session {
+        socket,
+        registry,
+        who,
+        handle,
+        frames,
+        waiting: std::collections::VecDeque::new(),
+        heard: Instant::now(),
+    };
+    let hello = json(serde_json::json!({ "type": "status", "scene": SceneView::of(&s.handle.shared) }));
+    if s.socket.send(hello).await.is_err() {
         return;
     }
     let mut ping = tokio::time::interval(PING_EVERY);
-    let mut heard = Instant::now();
     let mut close: Option<CloseFrame> = None;
     loop {
+        if let Some(m) = s.waiting.pop_front() {
+            match s.receive(Some(Ok(m))).await {
+                Next::Go => continue,
+                Next::Close(c) => {
+                    close = c;
+                    break;
+                }
+            }
+        }
         tokio::select! {
-            frame = frames.recv() => match frame {
-                Some(Ok(f)) => {
-                    if socket.send(Message::Binary(f.data.as_ref().clone().into())).await.is_err() {
-                        break;
-                    }
+            frame = s.frames.recv() => {
+                if !s.forward(frame).await {
+                    break;
                 }
-                Some(Err(e)) => {
-                    let _ = socket.send(error(&e.to_string())).await;
-                }
-                None => break,
-            },
-            msg = socket.recv() => {
-                heard = Instant::now();
-                match msg {
-                    Some(Ok(Message::Text(t))) => {
-                        let t0 = Instant::now();
-                        let (reply, op, code) = control(&registry, &who, &handle, t.as_str()).await;
-                        registry.metrics().observe("ws", op, &code, t0.elapsed().as_secs_f64());
-                        if socket.send(reply).await.is_err() {
-                            break;
-                        }
-                    }
-                    Some(Ok(Message::Binary(_))) => {
-                        if socket.send(error("binary messages are not accepted; send JSON text")).await.is_err() {
-                            break;
-                        }
-                    }
-                    Some(Err(e)) => {
-                        if too_big(e) {
-                            let reason = format!("message too big: at most {MAX_MESSAGE_BYTES} bytes");
-                            close = Some(CloseFrame { code: close_code::SIZE, reason: reason.into() });
-                        }
-                        break;
-                    }
-                    Some(Ok(Message::Close(_))) | None => break,
-                    Some(Ok(_)) => {}
+            }
+            msg = s.socket.recv() => {
+                s.heard = Instant::now();
+                if let Next::Close(c) = s.receive(msg).await {
+                    close = c;
+                    break;
                 }
             },
             event = events.recv() => match event {
                 Ok(e) => {
                     let last = e == Event::Deleted;
-                    if socket.send(event_message(&e)).await.is_err() || last {
+                    if s.socket.send(event_message(&e)).await.is_err() || last {
                         break;
                     }
                 }
@@ -281,12 +355,13 @@ async fn session(
             },
             _ = ping.tick() => {
                 // A peer that vanished without closing (no FIN, no reset) is dropped.
-                if heard.elapsed() > SILENCE_LIMIT || socket.send(Message::Ping(Default::default())).await.is_err() {
+                if s.heard.elapsed() > SILENCE_LIMIT || s.socket.send(Message::Ping(Default::default())).await.is_err() {
                     break;
                 }
             }
         }
     }
+    let mut socket = s.socket;
     // Frames end when the scene is deleted: its Deleted event is already waiting.
     while let Ok(e) = events.try_recv() {
         if socket.send(event_message(&e)).await.is_err() {

@@ -1,6 +1,8 @@
 //! kill -9 the real `floe serve` while scenes run, restart it: every scene is back,
 //! paused, at its last checkpoint, and stepping on from it gives the same numbers, bit
-//! for bit, as stepping on from that checkpoint in the original process. Then again
+//! for bit, as stepping on from that checkpoint in the original process; a scene
+//! stepped by hand comes back where the last step call left it, even one killed right
+//! after the answer. Then again
 //! with the newest checkpoints damaged (a flipped byte, a truncated file): each scene
 //! falls back to its previous checkpoint, and says so in the log. On SQLite, and on
 //! PostgreSQL when `FLOE_TEST_DATABASE_URL` names a server (tests/run-all.sh starts
@@ -40,13 +42,13 @@ async fn crash_and_recover(database: Option<&str>) {
     let server = start(&data, dir.path().join("first.log"));
     let mut c = Client::connect_with_token(&server.grpc, Some(&token)).await.unwrap();
 
-    // A: stepped by hand, checkpointed at steps 20 and 50, stepped on to 80.
+    // A: stepped by hand to 20 (checkpointed before the answer), 50 and 80 (within a
+    // second of the last checkpoint: written by the maintenance loop within a second).
     let a = c.create_preset("dam_break", &["particle_spacing=0.05"]).await.unwrap().scene_id;
     c.step(a, 20).await.unwrap();
-    assert_eq!(c.checkpoint(a).await.unwrap().step, 20);
+    let newest = |dir: &Path| Checkpoints::read(&checkpoints(dir, a)[0]).unwrap();
+    assert_eq!(newest(&data.dir).0.step, 20, "the first step call is checkpointed before its answer");
     c.step(a, 30).await.unwrap();
-    assert_eq!(c.checkpoint(a).await.unwrap().step, 50);
-    let at_50 = c.snapshot(a).await.unwrap();
     c.step(a, 30).await.unwrap();
     let at_80 = c.snapshot(a).await.unwrap();
     // B: live settings changed, then running, checkpointed every second of running.
@@ -55,27 +57,32 @@ async fn crash_and_recover(database: Option<&str>) {
     c.run(b, 0.0).await.unwrap();
     // C: never stepped, never checkpointed.
     let fresh = c.create_preset("dam_break", &["particle_spacing=0.1"]).await.unwrap().scene_id;
+    // D: stepped by hand at the last moment.
+    let d = c.create_preset("hydrostatic", &["particle_spacing=0.1"]).await.unwrap().scene_id;
     let t0 = Instant::now();
-    while checkpoints(&data.dir, b).len() < 2 {
+    while checkpoints(&data.dir, b).len() < 2 || newest(&data.dir).0.step < 80 {
         assert!(t0.elapsed() < Duration::from_secs(30), "no periodic checkpoints of a running scene");
         tokio::time::sleep(Duration::from_millis(100)).await;
     }
     tokio::time::sleep(Duration::from_millis(500)).await;
+    c.step(d, 20).await.unwrap();
+    let d_at_20 = c.snapshot(d).await.unwrap();
     server.kill().unwrap();
 
     // Restart: everything is back, paused, at its newest checkpoint.
-    let (b_newest, b_previous) = {
-        let files = checkpoints(&data.dir, b);
-        (Checkpoints::read(&files[0]).unwrap(), Checkpoints::read(&files[1]).unwrap())
-    };
+    let b_newest = Checkpoints::read(&checkpoints(&data.dir, b)[0]).unwrap();
     let server = start(&data, dir.path().join("second.log"));
     let mut c = Client::connect_with_token(&server.grpc, Some(&token)).await.unwrap();
     let scenes = c.list().await.unwrap();
-    assert_eq!(scenes.iter().map(|s| s.scene_id).collect::<Vec<_>>(), [a, b, fresh]);
+    assert_eq!(scenes.iter().map(|s| s.scene_id).collect::<Vec<_>>(), [a, b, fresh, d]);
     assert!(scenes.iter().all(|s| s.state == floe_proto::pb::SceneState::Paused as i32), "{scenes:?}");
-    assert_eq!(c.get(a).await.unwrap().steps, 50);
+    assert_eq!(c.get(a).await.unwrap().steps, 80, "A comes back where its last step call left it");
     c.step(a, 30).await.unwrap();
-    assert!(c.snapshot(a).await.unwrap() == at_80, "scene A did not step on as in the original process");
+    let at_110 = c.snapshot(a).await.unwrap();
+    assert!(at_110 == stepped_on(&at_80, 30), "scene A did not step on as in the original process");
+    assert_eq!(c.get(d).await.unwrap().steps, 20, "D comes back at the step its caller was told of");
+    c.step(d, 5).await.unwrap();
+    assert!(c.snapshot(d).await.unwrap() == stepped_on(&d_at_20, 5), "scene D did not step on bit for bit");
     let info = c.get(b).await.unwrap();
     assert_eq!(info.steps, b_newest.0.step);
     assert!(info.scene_json.contains("-5.0"), "live settings kept: {}", info.scene_json);
@@ -85,7 +92,7 @@ async fn crash_and_recover(database: Option<&str>) {
     let next = c.create_preset("dam_break", &["particle_spacing=0.1"]).await.unwrap().scene_id;
     assert!(next > fresh, "scene ids are never reused");
     let log = server.kill().unwrap();
-    assert!(log.contains("scene restored paused at step 50"), "{log}");
+    assert!(log.contains("scene restored paused at step 80"), "{log}");
 
     // Damage: A's newest checkpoint gets a flipped byte, B's newest is cut short.
     let a_files = checkpoints(&data.dir, a);
@@ -99,19 +106,21 @@ async fn crash_and_recover(database: Option<&str>) {
 
     let server = start(&data, dir.path().join("third.log"));
     let mut c = Client::connect_with_token(&server.grpc, Some(&token)).await.unwrap();
-    assert_eq!(c.get(a).await.unwrap().steps, 20, "A falls back to its checkpoint at step 20");
+    // A's newest checkpoint is the one its step to 110 wrote: it falls back to 80.
+    assert_eq!(c.get(a).await.unwrap().steps, 80, "A falls back to its checkpoint at step 80");
     c.step(a, 30).await.unwrap();
-    assert!(c.snapshot(a).await.unwrap() == at_50, "scene A did not step on from its previous checkpoint");
-    assert_eq!(c.get(b).await.unwrap().steps, b_previous.0.step, "B falls back to its previous checkpoint");
+    assert!(c.snapshot(a).await.unwrap() == at_110, "scene A did not step on from its previous checkpoint");
+    // B's newest is the one its step of 10 wrote: it falls back to the periodic one.
+    assert_eq!(c.get(b).await.unwrap().steps, b_newest.0.step, "B falls back to its previous checkpoint");
     c.step(b, 3).await.unwrap();
-    assert!(c.snapshot(b).await.unwrap() == stepped_on(&b_previous.1, 3));
+    assert!(c.snapshot(b).await.unwrap() == stepped_on(&b_newest.1, 3));
     // A graceful stop checkpoints every scene.
     assert!(server.terminate().unwrap(), "floe serve exited with an error");
     let log = std::fs::read_to_string(dir.path().join("third.log")).unwrap();
     assert!(log.contains("checksum mismatch: the file is damaged"), "{log}");
     assert!(log.contains("cut short"), "{log}");
     let newest = Checkpoints::read(&checkpoints(&data.dir, a)[0]).unwrap().0;
-    assert_eq!(newest.step, 50, "the shutdown checkpointed A where it was");
+    assert_eq!(newest.step, 110, "the shutdown checkpointed A where it was");
 }
 
 #[tokio::test(flavor = "multi_thread")]

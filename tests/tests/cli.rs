@@ -142,3 +142,29 @@ fn the_example_scenes_run() {
     }
     assert!(ran > 0, "no example scenes in {}", dir.display());
 }
+
+/// `floe admin` takes `--data-dir` and `--database` before or after its subcommand,
+/// the order people type them in.
+#[test]
+fn admin_store_options_go_before_or_after_the_subcommand() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().to_str().unwrap();
+    floe(&["admin", "user", "add", "ada", "--data-dir", data]).unwrap();
+    floe(&["admin", "--data-dir", data, "user", "add", "bob", "--admin"]).unwrap();
+    floe(&["admin", "quota", "set", "ada", "running_scenes=2", "--data-dir", data]).unwrap();
+    let err = floe(&["admin", "user", "add", "ada", "--data-dir", data]).unwrap_err();
+    assert!(format!("{err:#}").contains("ada"), "the second ada is refused in the same directory: {err:#}");
+    let users = tokio::runtime::Runtime::new().unwrap().block_on(async {
+        let location = floe_server::store::Location { data_dir: dir.path().into(), database: None };
+        let db = location.open_database().await.unwrap();
+        let users = db.users().await.unwrap();
+        db.close().await;
+        users
+    });
+    let names: Vec<(&str, bool)> = users.iter().map(|u| (u.name.as_str(), u.admin)).collect();
+    assert_eq!(names, [("ada", false), ("bob", true)]);
+    // --database after the subcommand is taken as well (here a server that is not
+    // there: the error names it, which only a parsed option can).
+    let err = floe(&["admin", "user", "list", "--database", "postgres://floe@127.0.0.1:1/none"]).unwrap_err();
+    assert!(format!("{err:#}").contains("127.0.0.1:1"), "{err:#}");
+}

@@ -58,3 +58,39 @@ async fn a_restart_brings_back_what_users_made() {
     );
     lab.server.shutdown().await;
 }
+
+/// A step call that advanced a paused scene is checkpointed before its answer (over
+/// gRPC, REST and the WebSocket alike; `server/tests/crash_recovery.rs` kills the
+/// server right after one): the checkpoint on disk is at the stepped step when the
+/// answer arrives. A second call within a second of it is written by the
+/// maintenance loop (once a second) a second after the first at the latest.
+#[tokio::test]
+async fn a_step_call_is_checkpointed_before_its_answer() {
+    let lab = Lab::start(&[("alice", false)], Options::default()).await;
+    let mut alice = lab.client("alice").await;
+    let newest = |id: u64| {
+        let checkpoints = floe_server::store::Checkpoints::open(lab.dir.path().join("checkpoints")).unwrap();
+        checkpoints.files(id).first().map(|(_, path)| floe_server::store::Checkpoints::read(path).unwrap().0.step)
+    };
+    let id = alice.create_preset("dam_break", &["particle_spacing=0.1"]).await.unwrap().scene_id;
+    assert_eq!(newest(id), None, "a new scene has no checkpoint");
+    let auth = format!("Bearer {}", lab.token("alice"));
+    let answer = common::http(
+        lab.server.http,
+        "POST",
+        &format!("/api/v1/scenes/{id}/step"),
+        &[("authorization", &auth)],
+        r#"{"steps": 7}"#,
+    )
+    .await;
+    assert_eq!(answer.status, 200, "{}", answer.error());
+    assert_eq!(newest(id), Some(7), "REST: checkpointed before the answer");
+    alice.step(id, 3).await.unwrap();
+    let t0 = std::time::Instant::now();
+    while newest(id) != Some(10) {
+        assert!(t0.elapsed() < std::time::Duration::from_secs(5), "the second step call was never checkpointed");
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    assert!(t0.elapsed() < std::time::Duration::from_millis(2500), "written by the next maintenance tick");
+    lab.server.shutdown().await;
+}

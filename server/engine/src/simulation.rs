@@ -155,6 +155,16 @@ impl Simulation {
         self.clock.time()
     }
 
+    /// The longest step the scene may take (s): the adaptive control's `max`, or the
+    /// fixed interval (sub-steps are shorter). Reaching a time `T` ahead takes at
+    /// least `T / largest_step()` steps.
+    pub fn largest_step(&self) -> f64 {
+        match self.model().time_step {
+            crate::scene::TimeStep::Adaptive { max, .. } => f64::from(max),
+            crate::scene::TimeStep::Fixed { dt, .. } => f64::from(dt),
+        }
+    }
+
     /// Steps taken.
     pub fn steps(&self) -> u64 {
         self.clock.steps()

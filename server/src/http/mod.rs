@@ -369,9 +369,8 @@ async fn step(
     Body(b): Body<StepBody>,
 ) -> ApiResult<SceneView> {
     let (steps, until) = b.checked().map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))?;
-    let h = r.get(&who, id, Need::Steer)?;
-    h.step(steps, until).await?;
-    Ok(Json(SceneView::of(&h.shared)))
+    r.step(&who, id, steps, until).await?;
+    Ok(Json(SceneView::of(&r.get(&who, id, Need::Watch)?.shared)))
 }
 
 /// `POST /scenes/{id}/run` body.

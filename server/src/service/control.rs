@@ -107,6 +107,31 @@ impl Registry {
         Ok(status)
     }
 
+    /// Steps a paused scene by hand ([`super::SceneHandle::step`]). A step that
+    /// advanced it is checkpointed before the answer, so a crash right after loses
+    /// nothing the caller was told; within [`super::STEP_CHECKPOINT_GAP`] of the last
+    /// checkpoint the maintenance loop writes it instead, at its first tick after that.
+    pub async fn step(&self, caller: &Caller, id: u64, steps: u64, until: Option<f64>) -> Result<Status, ServiceError> {
+        let (handle, since) = self.entry(caller, id, Need::Steer, |e| (e.handle.clone(), e.checkpoint.clone()))?;
+        let before = handle.shared.status().steps;
+        let kept = self.store.is_some();
+        // Marked before stepping: a caller who leaves mid-way drops this call, and the
+        // maintenance loop still checkpoints what was stepped.
+        let was = if kept { Some(std::mem::replace(&mut since.lock().await.stepped, true)) } else { None };
+        let result = handle.step(steps, until).await;
+        let advanced = handle.shared.status().steps != before;
+        let Some(was) = was else { return Ok(result?) };
+        let due = {
+            let mut s = since.lock().await;
+            s.stepped = was || advanced;
+            advanced && s.written.is_none_or(|w| w.elapsed() >= super::STEP_CHECKPOINT_GAP)
+        };
+        if due {
+            self.write_checkpoint(id).await?;
+        }
+        Ok(result?)
+    }
+
     /// Changes a scene's tunable settings and records them in the database.
     pub async fn set_parameters(
         &self,
@@ -156,7 +181,7 @@ impl Registry {
             tracing::error!(scene = id, "checkpoint failed: {e}");
             ServiceError::Unavailable(format!("the checkpoint could not be written: {e}"))
         })?;
-        *since = std::time::Duration::ZERO;
+        *since = super::Since { written: Some(Instant::now()), ..Default::default() };
         tracing::debug!(scene = id, step = meta.step, sequence = meta.sequence, "checkpoint written");
         Ok(meta)
     }

@@ -30,6 +30,9 @@ pub enum CommandError {
     /// A parameter change was refused; the message names the field.
     #[error("{0}")]
     BadParameter(String),
+    /// A step request asks for more steps than one request may take.
+    #[error("{0}")]
+    TooFar(String),
 }
 
 /// A request to a scene's worker.
@@ -97,7 +100,9 @@ pub struct SceneHandle {
     worker: Mutex<Option<std::thread::JoinHandle<()>>>,
 }
 
-/// Most steps one `step` request may ask for.
+/// Most steps one `step` request may ask for (`steps`), or that reaching its
+/// `until_time` may take: a time farther ahead than this many of the scene's
+/// largest steps is refused, naming the latest time one request may reach.
 pub const MAX_STEPS_PER_REQUEST: u64 = 1_000_000;
 
 impl SceneHandle {
@@ -125,8 +130,10 @@ impl SceneHandle {
     }
 
     /// Steps a paused scene `steps` times, or until simulated time `until` (s) but
-    /// at most [`MAX_STEPS_PER_REQUEST`] steps. Dropping the future (the caller went
-    /// away) stops the stepping at the next step.
+    /// at most [`MAX_STEPS_PER_REQUEST`] steps (an `until` farther ahead than that
+    /// many of the scene's largest steps is refused). Dropping the future (the caller
+    /// went away: a cancelled call, a closed connection) stops the stepping at the
+    /// next step boundary, leaving the scene paused there.
     pub async fn step(&self, steps: u64, until: Option<f64>) -> Result<Status, CommandError> {
         let abandon = Abandon(Arc::new(AtomicBool::new(false)));
         let abandoned = abandon.0.clone();

@@ -35,7 +35,7 @@ pub use shared::{Event, Published, Shared, State, Status};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, RwLock};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Why a request failed; each transport maps these to its own codes.
 #[derive(Debug, thiserror::Error)]
@@ -70,7 +70,7 @@ pub enum ServiceError {
 impl From<CommandError> for ServiceError {
     fn from(e: CommandError) -> Self {
         match e {
-            CommandError::BadParameter(m) => ServiceError::InvalidArgument(m),
+            CommandError::BadParameter(m) | CommandError::TooFar(m) => ServiceError::InvalidArgument(m),
             CommandError::BadSnapshot(_) => ServiceError::InvalidArgument(e.to_string()),
             _ => ServiceError::FailedPrecondition(e.to_string()),
         }
@@ -162,9 +162,26 @@ pub enum Need {
 struct Entry {
     handle: Arc<SceneHandle>,
     cache: Arc<FrameCache>,
-    /// Serialises this scene's checkpoints; holds the wall time it has run since the last one.
-    checkpoint: Arc<tokio::sync::Mutex<Duration>>,
+    /// Serialises this scene's checkpoints; holds what makes the next one due.
+    checkpoint: Arc<tokio::sync::Mutex<Since>>,
 }
+
+/// What happened to a scene since its last checkpoint.
+#[derive(Debug, Default)]
+struct Since {
+    /// Wall time it has run (a periodic checkpoint is due at `checkpoint_every`).
+    running: Duration,
+    /// When the last checkpoint was written, if any was since the scene was loaded.
+    written: Option<Instant>,
+    /// Stepped by hand (or may have been: a step call whose caller left) since.
+    stepped: bool,
+}
+
+/// The least wall time between two checkpoints of a scene stepped by hand: a step
+/// call that advanced a paused scene is checkpointed before its answer unless the
+/// last checkpoint is younger than this, in which case the maintenance loop (once
+/// a second) writes one at its first tick after this time.
+pub const STEP_CHECKPOINT_GAP: Duration = Duration::from_secs(1);
 
 /// Every scene on a server, shared with the metrics.
 #[derive(Debug, Default)]
@@ -377,7 +394,7 @@ impl Registry {
         let entry = Entry {
             handle: handle.clone(),
             cache: Arc::new(FrameCache::default()),
-            checkpoint: Arc::new(tokio::sync::Mutex::new(Duration::ZERO)),
+            checkpoint: Arc::new(tokio::sync::Mutex::new(Since::default())),
         };
         self.scenes.0.write().expect("lock").insert(id, entry);
         handle

@@ -197,17 +197,20 @@ impl Registry {
     }
 
     /// Adds `elapsed` to the running time of every running scene; those that reach
-    /// the checkpoint interval.
+    /// the checkpoint interval, and those stepped by hand whose last checkpoint is
+    /// [`super::STEP_CHECKPOINT_GAP`] old.
     fn due_for_checkpoint(&self, elapsed: Duration) -> Vec<u64> {
         let scenes = self.scenes.0.read().expect("lock");
         scenes
             .iter()
-            .filter(|(_, e)| e.handle.shared.status().state == State::Running)
             .filter_map(|(&id, e)| {
                 // A checkpoint in progress holds the lock and resets the time anyway.
                 let mut since = e.checkpoint.try_lock().ok()?;
-                *since += elapsed;
-                (*since >= self.options.checkpoint_every).then_some(id)
+                if e.handle.shared.status().state == State::Running {
+                    since.running += elapsed;
+                }
+                let old = since.written.is_none_or(|w| w.elapsed() >= super::STEP_CHECKPOINT_GAP);
+                (since.running >= self.options.checkpoint_every || (since.stepped && old)).then_some(id)
             })
             .collect()
     }

@@ -114,7 +114,7 @@ impl Worker {
                     let r = if self.running.is_some() {
                         Err(CommandError::Running)
                     } else {
-                        self.refuse_if_halted().map(|_| {
+                        self.refuse_if_halted().and_then(|_| self.reachable(until)).map(|_| {
                             self.step_by_hand(steps, until, &abandoned);
                             self.shared.status()
                         })
@@ -176,6 +176,25 @@ impl Worker {
             Some(h) => Err(CommandError::Halted(h.to_string())),
             None => Ok(()),
         }
+    }
+
+    /// Refuses an `until` (s) farther ahead than [`MAX_STEPS_PER_REQUEST`] of the
+    /// scene's largest steps: it would take more steps than one request may.
+    fn reachable(&self, until: Option<f64>) -> Result<(), CommandError> {
+        let Some(t) = until else { return Ok(()) };
+        let (now, largest) = (self.sim.time(), self.sim.largest_step());
+        let latest = now + largest * MAX_STEPS_PER_REQUEST as f64;
+        if t <= latest {
+            return Ok(());
+        }
+        // Six significant digits, rounded down so that the time offered is within reach.
+        let digits = 10f64.powi(5 - latest.abs().log10().floor() as i32);
+        let offer = (latest * digits).floor() / digits;
+        Err(CommandError::TooFar(format!(
+            "until_time: {t} s is more than {MAX_STEPS_PER_REQUEST} steps ahead of t = {now} s (steps are at most \
+             {} s), more than one request may take; ask for at most {offer} s, or run the scene",
+            largest as f32
+        )))
     }
 
     /// Steps `steps` times, or until `until` but at most [`MAX_STEPS_PER_REQUEST`]

@@ -25,7 +25,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     id: "tracer",
     about: "Particle ages and probes (a module of the tests).",
     requires: &["fluid"],
-    has_section: None,
+    section: None,
     validate: |_, _| {},
     count: |_| vec![(PROBES, 4)],
     particles: |_, _| Ok(()),

@@ -38,6 +38,18 @@ pub struct Preset {
     pub scene: fn() -> Scene,
 }
 
+/// A module's section of a scene file.
+#[derive(Debug, Clone, Copy)]
+pub struct Section {
+    /// Its key in the file (`fluids`, `heat`).
+    pub key: &'static str,
+    /// Whether `scene` carries it.
+    pub present: fn(&Scene) -> bool,
+    /// What a scene that lists the module without the section is told, after the key
+    /// (`at least one fluid is required`).
+    pub missing: &'static str,
+}
+
 /// A physics module.
 #[derive(Debug)]
 pub struct ModuleDef {
@@ -47,9 +59,9 @@ pub struct ModuleDef {
     pub about: &'static str,
     /// Modules a scene must also list to use this one.
     pub requires: &'static [&'static str],
-    /// Whether the scene carries this module's section (then it must list the module,
-    /// and a listed module must have its section); `None` for a module without one.
-    pub has_section: Option<fn(&Scene) -> bool>,
+    /// The module's section of a scene file, if it has one (then a scene with the
+    /// section must list the module, and a listed module must have its section).
+    pub section: Option<Section>,
     /// Checks the module's section, naming bad fields by path.
     pub validate: fn(&Scene, &mut Checker),
     /// Elements the module adds to each space, counted without building (the server's

@@ -121,28 +121,45 @@ fn segments(path: &str) -> Vec<&str> {
     path.split('.').flat_map(|part| part.split('[').map(|s| s.trim_end_matches(']'))).collect()
 }
 
-/// Applies `key=value` overrides to a running scene: the new scene, validated,
-/// or an error naming a field that cannot change while the scene runs.
+/// Applies `key=value` overrides to a running scene, all or nothing: the new scene,
+/// validated; or every refused key with its own reason (a field that cannot change
+/// while the scene runs, a value that does not parse or is out of range), each on a
+/// line of its own, and a last line saying that nothing was applied.
 pub fn apply(current: &Scene, overrides: &[String]) -> Result<Scene, SceneError> {
     let now = serde_json::to_value(current).expect("scenes serialise");
-    let mut value = now.clone();
-    apply_overrides(&mut value, overrides)?;
-    let next = from_value(value)?;
-    let mut kept = serde_json::to_value(&next).expect("scenes serialise");
     let tunables = crate::modules::tunables(current);
-    for t in &tunables {
-        copy_path(&mut kept, &now, &segments(t.path));
+    let mut refused = Vec::new();
+    for text in overrides {
+        let key = text.split('=').next().unwrap_or(text).trim();
+        let mut value = now.clone();
+        let alone = apply_overrides(&mut value, std::slice::from_ref(text)).and_then(|()| from_value(value));
+        match alone {
+            Err(e) => refused.push(e.to_string()),
+            Ok(next) => {
+                let mut kept = serde_json::to_value(&next).expect("scenes serialise");
+                for t in &tunables {
+                    copy_path(&mut kept, &now, &segments(t.path));
+                }
+                if kept != now {
+                    refused.push(format!("{key}: cannot change while the scene exists"));
+                }
+            }
+        }
     }
-    if kept != now {
-        let keys: Vec<&str> = overrides.iter().map(|o| o.split('=').next().unwrap_or(o).trim()).collect();
+    let nothing = |mut lines: Vec<String>, tunable: bool| {
         let paths: Vec<&str> = tunables.iter().map(|t| t.path).collect();
-        return Err(SceneError::Invalid(vec![format!(
-            "{}: cannot change while the scene exists; tunable fields are {}",
-            keys.join(", "),
-            paths.join(", ")
-        )]));
+        let list = if tunable { format!("; tunable fields are {}", paths.join(", ")) } else { String::new() };
+        lines.push(format!("nothing was applied{list}"));
+        SceneError::Invalid(lines)
+    };
+    if !refused.is_empty() {
+        let fixed = refused.iter().any(|r| r.ends_with("cannot change while the scene exists"));
+        return Err(nothing(refused, fixed));
     }
-    Ok(next)
+    // Each key alone is fine; together they must make a valid scene too.
+    let mut value = now;
+    apply_overrides(&mut value, overrides)?;
+    from_value(value).map_err(|e| nothing(e.to_string().lines().map(str::to_owned).collect(), false))
 }
 
 #[cfg(test)]
@@ -157,8 +174,29 @@ mod tests {
         assert_eq!(next.gravity, [0.0, -1.0, 0.0]);
         assert_eq!(next.fluids[0].xsph, 0.2);
         let e = apply(&scene, &["particle_spacing=0.01".into()]).unwrap_err().to_string();
-        assert!(e.starts_with("particle_spacing: cannot change while the scene exists"), "{e}");
+        assert!(e.starts_with("particle_spacing: cannot change while the scene exists\nnothing was applied; "), "{e}");
         let e = apply(&scene, &["fluids[0].xsph=7".into()]).unwrap_err().to_string();
-        assert_eq!(e, "fluids[0].xsph: must be between 0 and 1, got 7");
+        assert_eq!(e, "fluids[0].xsph: must be between 0 and 1, got 7\nnothing was applied");
+    }
+
+    /// Several keys: only the refused ones are named, each with its own reason, and
+    /// nothing is applied.
+    #[test]
+    fn a_refusal_names_only_the_refused_keys() {
+        let scene = presets::dam_break();
+        let e = apply(&scene, &["fluids[0].xsph=0.1".into(), "particle_spacing=0.02".into()]).unwrap_err();
+        let lines: Vec<String> = e.to_string().lines().map(str::to_owned).collect();
+        assert_eq!(lines[0], "particle_spacing: cannot change while the scene exists");
+        assert!(lines[1].starts_with("nothing was applied; tunable fields are gravity"), "{lines:?}");
+        assert_eq!(lines.len(), 2, "{lines:?}");
+        let e =
+            apply(&scene, &["fluids[0].xsph=2".into(), "gravity=[0,-1,0]".into(), "solver.kernel=\"mueller\"".into()])
+                .unwrap_err()
+                .to_string();
+        assert_eq!(
+            e.lines().take(2).collect::<Vec<_>>(),
+            ["fluids[0].xsph: must be between 0 and 1, got 2", "solver.kernel: cannot change while the scene exists"]
+        );
+        assert!(!e.contains("gravity:"), "{e}");
     }
 }

@@ -205,11 +205,13 @@ fn check_modules(c: &mut Checker, scene: &Scene) {
         }
     }
     for def in crate::modules::all() {
-        let Some(has_section) = def.has_section else { continue };
+        let Some(section) = def.section else { continue };
         let listed = scene.modules.iter().any(|m| m == def.id);
-        match (listed, has_section(scene)) {
-            (true, false) => c.fail("modules", format!("lists {:?} but the scene has no section for it", def.id)),
-            (false, true) => c.fail("modules", format!("must list {:?}, since the scene has its section", def.id)),
+        match (listed, (section.present)(scene)) {
+            (true, false) => c.fail(section.key, section.missing.into()),
+            (false, true) => {
+                c.fail("modules", format!("must list {:?}, since the scene has its section {}", def.id, section.key))
+            }
             _ => {}
         }
     }
@@ -288,8 +290,10 @@ mod tests {
         assert!(errors(&["particle_spacing=1e-5"]).starts_with("particle_spacing: the scene would create"));
         assert_eq!(
             errors(&["modules=[]"]),
-            "modules: must list \"fluid\", since the scene has its section\nmodules: must list at least one module"
+            "modules: must list \"fluid\", since the scene has its section fluids\nmodules: must list at least one module"
         );
+        // A scene without fluids is told what its file lacks, by the key it spells.
+        assert_eq!(errors(&["fluids=[]"]), "fluids: at least one fluid is required");
         assert_eq!(
             errors(&["modules=[\"fluid\",\"lava\"]"]),
             "modules[1]: unknown module \"lava\"; modules are fluid, heat, snow"

@@ -25,7 +25,7 @@ use crate::kernel::Kernel;
 use crate::materials::{Material, MaterialKind};
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
-use crate::modules::ModuleDef;
+use crate::modules::{ModuleDef, Section};
 use crate::sampling::fill_block;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
@@ -37,7 +37,11 @@ pub static MODULE: ModuleDef = ModuleDef {
     id: "fluid",
     about: "SPH fluid phases: materials sampled from blocks, viscosity, XSPH, gravity.",
     requires: &[],
-    has_section: Some(|scene| !scene.fluids.is_empty()),
+    section: Some(Section {
+        key: "fluids",
+        present: |scene| !scene.fluids.is_empty(),
+        missing: "at least one fluid is required",
+    }),
     validate,
     count: |scene| vec![(PARTICLES, crate::sampling::fluid_particle_count(scene))],
     particles,

@@ -27,9 +27,9 @@ use crate::guard::Bound;
 use crate::kernel::Kernel;
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
-use crate::modules::ModuleDef;
 use crate::modules::fluid::spec::WallShear;
 use crate::modules::fluid::varying;
+use crate::modules::{ModuleDef, Section};
 use crate::scene::Scene;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
@@ -41,7 +41,11 @@ pub static MODULE: ModuleDef = ModuleDef {
     id: "heat",
     about: "Temperature: conduction between fluids and with walls, heat sources, Boussinesq buoyancy.",
     requires: &["fluid"],
-    has_section: Some(|scene| scene.heat.is_some()),
+    section: Some(Section {
+        key: "heat",
+        present: |scene| scene.heat.is_some(),
+        missing: "required by the module \"heat\" (each fluid's thermal properties)",
+    }),
     validate,
     count: |_| Vec::new(),
     particles: |_, _| Ok(()),

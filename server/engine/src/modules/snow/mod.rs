@@ -24,8 +24,8 @@ use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use crate::channels::{ChannelSpec, Source};
 use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
-use crate::modules::ModuleDef;
 use crate::modules::fluid::varying;
+use crate::modules::{ModuleDef, Section};
 use crate::scene::Scene;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
@@ -38,7 +38,11 @@ pub static MODULE: ModuleDef = ModuleDef {
     id: "snow",
     about: "Non-Newtonian viscosity (Cross, power law, Bingham, Herschel-Bulkley, Carreau) for snow avalanches.",
     requires: &["fluid"],
-    has_section: Some(|scene| scene.snow.is_some()),
+    section: Some(Section {
+        key: "snow",
+        present: |scene| scene.snow.is_some(),
+        missing: "required by the module \"snow\" (each fluid's rheology)",
+    }),
     validate,
     count: |_| Vec::new(),
     particles: |_, _| Ok(()),
