@@ -5,8 +5,8 @@
 use crate::cli::BenchArgs;
 use anyhow::Context;
 use floe_engine::Simulation;
+use floe_engine::modules::fluid::presets::DAM_BREAK_A;
 use floe_engine::scene::load;
-use floe_engine::scene::presets::DAM_BREAK_A;
 use floe_engine::validation::dam_break;
 use floe_gpu::Selected;
 use std::time::Instant;
@@ -54,7 +54,7 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     if let Some(seconds) = args.avalanche {
         return avalanche(args.particles[0], &args.overrides, seconds, &backend, args.profile);
     }
-    let scheme = floe_engine::schemes::of(&load::from_preset("dam_break", &args.overrides)?).id;
+    let scheme = floe_engine::scheme::of(&load::from_preset("dam_break", &args.overrides)?).id;
     println!("dam break ({scheme}) on {}, {} timed steps per size", backend.description, args.steps);
     println!(
         "| modules | fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle | solver iterations/step |"

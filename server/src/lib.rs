@@ -67,7 +67,7 @@ pub fn execute(cli: cli::Cli) -> anyhow::Result<()> {
         cli::Command::Admin(args) => admin::admin(args),
         cli::Command::Fuzz(args) => fuzz::command(args),
         cli::Command::Presets => {
-            for p in floe_engine::modules::presets() {
+            for p in floe_engine::module::presets() {
                 println!("{:<14} {}", p.name, p.about);
             }
             Ok(())

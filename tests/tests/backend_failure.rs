@@ -7,7 +7,7 @@ use floe_engine::cpu::CpuBackend;
 use floe_engine::guard::Measures;
 use floe_engine::model::Model;
 use floe_engine::plan::Stage;
-use floe_engine::schemes::{Reduction, Stages};
+use floe_engine::scheme::{Reduction, Stages};
 use floe_engine::simulation::BackendFactory;
 use floe_server::auth::Caller;
 use floe_server::service::{CommandError, State};

@@ -25,7 +25,7 @@ fn traced() -> Vec<String> {
 
 #[tokio::test]
 async fn a_module_of_the_tests_adds_attributes_passes_a_set_and_streams_its_channels() {
-    floe_engine::modules::register(&tracer::MODULE);
+    floe_engine::module::register(&tracer::MODULE);
     let server = common::TestServer::start().await;
     let mut floe = Client::connect(&server.grpc_url()).await.unwrap();
     let o: Vec<String> = traced();
@@ -64,7 +64,7 @@ async fn a_module_of_the_tests_adds_attributes_passes_a_set_and_streams_its_chan
 
 #[test]
 fn a_gpu_refuses_a_module_pass_it_lacks_by_name() {
-    floe_engine::modules::register(&tracer::MODULE);
+    floe_engine::module::register(&tracer::MODULE);
     let Some(gpu) = gpu() else { return };
     let model = Model::build(&from_preset("dam_break", &traced()).unwrap()).unwrap();
     let e = floe_gpu::GpuBackend::new(gpu, model).unwrap_err().to_string();
@@ -100,7 +100,7 @@ fn factories() -> Vec<(&'static str, Box<BackendFactory>)> {
 
 #[test]
 fn an_absent_module_allocates_and_runs_nothing() {
-    floe_engine::modules::register(&tracer::MODULE);
+    floe_engine::module::register(&tracer::MODULE);
     for (backend, make) in factories() {
         for preset in floe_engine::scene::presets::names() {
             // Presets too small for a 0.05 m spacing run at their own.
@@ -133,7 +133,7 @@ fn total(b: &dyn Backend) -> u64 {
 
 #[test]
 fn what_a_module_adds_is_what_its_attributes_declare() {
-    floe_engine::modules::register(&tracer::MODULE);
+    floe_engine::module::register(&tracer::MODULE);
     // The tracer module (CPU): the age of every particle and four probes.
     let without = Simulation::new_cpu(from_preset("dam_break", &["particle_spacing=0.05".into()]).unwrap()).unwrap();
     let with = Simulation::new_cpu(from_preset("dam_break", &traced()).unwrap()).unwrap();
@@ -162,7 +162,7 @@ fn what_a_module_adds_is_what_its_attributes_declare() {
 
 #[test]
 fn a_module_bound_halts_the_scene_naming_the_particle() {
-    floe_engine::modules::register(&tracer::MODULE);
+    floe_engine::module::register(&tracer::MODULE);
     for (bad, says) in [(f32::NAN, "non-finite age (NaN)"), (5e3, "is outside its range [0, 1000] s")] {
         let mut sim = Simulation::new_cpu(from_preset("dam_break", &traced()).unwrap()).unwrap();
         sim.step().unwrap();

@@ -8,8 +8,8 @@ use crate::attrs::{Allocation, Column};
 use crate::channels::{SetSpec, Source};
 use crate::model::Model;
 use crate::quantize::PositionGrid;
-use crate::schemes::Stages;
-pub use crate::schemes::StepReport;
+use crate::scheme::Stages;
+pub use crate::scheme::StepReport;
 pub use floe_proto::Particles;
 use floe_proto::Values;
 

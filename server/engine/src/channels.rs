@@ -106,15 +106,3 @@ pub const MATERIAL: ChannelSpec = ChannelSpec {
     about: "Index of the particle's material in the scene's material table.",
     source: Source::Attr("material"),
 };
-
-/// Pressure from density through each material's equation of state (WCSPH).
-pub const PRESSURE: ChannelSpec = ChannelSpec {
-    name: "pressure",
-    unit: "Pa",
-    components: 1,
-    exact: false,
-    set: PARTICLES,
-    module: "wcsph",
-    about: "Pressure from the equation of state.",
-    source: Source::Derived { from: &["rho"], values: crate::schemes::wcsph::pressures },
-};

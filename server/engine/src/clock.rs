@@ -6,7 +6,7 @@ use crate::guard::{Halted, Measures};
 use crate::math::Real;
 use crate::model::Model;
 use crate::plan::Stage;
-use crate::schemes::{ReduceOp, Reduction, Stages, StepReport};
+use crate::scheme::{ReduceOp, Reduction, Stages, StepReport};
 use crate::timestep::{Limits, StepControl};
 use serde::{Deserialize, Serialize};
 
@@ -132,7 +132,7 @@ impl Clock {
     }
 
     /// Ends a step of `dt` for `n` particles: advances the clock and reports.
-    pub fn advance(&mut self, dt: Real, m: &Measures, n: usize, solves: Vec<crate::schemes::Solve>) -> StepReport {
+    pub fn advance(&mut self, dt: Real, m: &Measures, n: usize, solves: Vec<crate::scheme::Solve>) -> StepReport {
         self.time += dt as f64;
         self.steps += 1;
         StepReport {

@@ -18,8 +18,9 @@
 //!   scheme and the scene's modules through a `ModelBuilder`.
 //! - [`attrs`], [`materials`], [`plan`], [`channels`]: the core's declarations: typed
 //!   attribute columns, the material table, the pass plan, the channels clients stream.
-//! - [`schemes`]: pressure solvers (WCSPH) driving the stages of a step; [`modules`]:
-//!   the physics modules (the fluid) and their registry.
+//! - [`scheme`], [`module`]: what a pressure solver and a physics module are;
+//!   [`schemes`] (WCSPH, DFSPH) and [`modules`] (fluid, heat, snow): those shipped,
+//!   listed in [`registry`], the only place that names them.
 //! - [`math`], [`kernel`], [`neighbors`], [`periodic`]: numeric types, SPH kernels, the
 //!   uniform grid, periodic domains (minimum-image pairs).
 //! - [`boundary`], [`sampling`]: wall particles and constraints, particle lattices;
@@ -43,13 +44,16 @@ pub mod kernel;
 pub mod materials;
 pub mod math;
 pub mod model;
+pub mod module;
 pub mod modules;
 pub mod neighbors;
 pub mod periodic;
 pub mod plan;
 pub mod quantize;
+pub mod registry;
 pub mod sampling;
 pub mod scene;
+pub mod scheme;
 pub mod schemes;
 pub mod simulation;
 pub mod snapshot;

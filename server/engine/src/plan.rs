@@ -22,7 +22,7 @@ pub enum Stage {
     /// Accelerations.
     Force,
     /// The passes of a scheme's iterative solves (DFSPH's): the scheme runs them by
-    /// name, iteration by iteration ([`crate::schemes::Iterate`]), never as a stage.
+    /// name, iteration by iteration ([`crate::scheme::Iterate`]), never as a stage.
     Solve,
     /// Velocity-level updates after the kick that follows an evaluation (XSPH), and
     /// fields integrated once per step (temperature).
@@ -83,7 +83,7 @@ pub struct PassSpec {
 
 impl PassSpec {
     /// A pass of module `module`'s iterative solve (stage [`Stage::Solve`], run by
-    /// name from a [`crate::schemes::Iterate`]), within 1e-4 of the CPU on a GPU.
+    /// name from a [`crate::scheme::Iterate`]), within 1e-4 of the CPU on a GPU.
     pub const fn solve(
         module: &'static str,
         name: &'static str,

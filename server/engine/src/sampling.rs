@@ -1,31 +1,27 @@
-//! Turning scene geometry into particles: fluid blocks on a cubic lattice, and
-//! walls as layers of boundary particles (Akinci et al. 2012, section 3).
+//! Turning scene geometry into particles: boxes on a cubic lattice, and walls as
+//! layers of boundary particles (Akinci et al. 2012, section 3).
 
 use crate::math::{Real, Vec3};
-use crate::scene::{Boundary, Face, FluidBlock, Scene};
+use crate::scene::{Boundary, Face};
 use crate::terrain::HeightGrid;
 
-/// Particles along each axis of `block` on a lattice of `spacing`.
-fn lattice_counts(block: &FluidBlock, spacing: Real) -> [u32; 3] {
-    let counts = ((Vec3::from(block.max) - Vec3::from(block.min)) / spacing + 1e-3).floor();
+/// Particles along each axis of the box `min`-`max` on a lattice of `spacing`.
+fn lattice_counts(min: [f32; 3], max: [f32; 3], spacing: Real) -> [u32; 3] {
+    let counts = ((Vec3::from(max) - Vec3::from(min)) / spacing + 1e-3).floor();
     [counts.x as u32, counts.y as u32, counts.z as u32]
 }
 
-/// How many particles [`fill_block`] places in the fluid blocks of `scene`, counted without
-/// placing them, so a scene too large for a server can be refused before it is built
-/// (an upper bound when a terrain buries part of a block: those are dropped at build).
-pub fn fluid_particle_count(scene: &Scene) -> u64 {
-    let blocks = scene.fluids.iter().flat_map(|f| &f.blocks);
-    blocks
-        .map(|b| lattice_counts(b, scene.particle_spacing).iter().fold(1u64, |n, &c| n.saturating_mul(u64::from(c))))
-        .fold(0u64, u64::saturating_add)
+/// How many particles [`fill_box`] places in the box `min`-`max`, counted without
+/// placing them (a server refuses a scene too large before it is built).
+pub fn box_count(min: [f32; 3], max: [f32; 3], spacing: Real) -> u64 {
+    lattice_counts(min, max, spacing).iter().fold(1u64, |n, &c| n.saturating_mul(u64::from(c)))
 }
 
-/// Particle centres filling `block` on a lattice of `spacing`, the first one
-/// half a spacing inside the lower corner.
-pub fn fill_block(block: &FluidBlock, spacing: Real) -> Vec<Vec3> {
-    let min = Vec3::from(block.min);
-    let [nx, ny, nz] = lattice_counts(block, spacing);
+/// Particle centres filling the box `min`-`max` on a lattice of `spacing`, the
+/// first one half a spacing inside the lower corner.
+pub fn fill_box(min: [f32; 3], max: [f32; 3], spacing: Real) -> Vec<Vec3> {
+    let [nx, ny, nz] = lattice_counts(min, max, spacing);
+    let min = Vec3::from(min);
     let mut out = Vec::with_capacity((nx * ny * nz) as usize);
     for k in 0..nz {
         for j in 0..ny {
@@ -127,20 +123,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_counted_particles_are_those_a_simulation_builds() {
-        for spacing in ["0.05", "0.037", "0.02"] {
-            let scene = crate::scene::load::from_preset("dam_break", &[format!("particle_spacing={spacing}")]).unwrap();
-            let counted = fluid_particle_count(&scene);
-            let built = crate::Simulation::new_cpu(scene).unwrap().particle_count() as u64;
-            assert_eq!(counted, built, "spacing {spacing}");
-        }
-    }
-
-    #[test]
-    fn blocks_fill_on_the_lattice() {
-        let b = FluidBlock::at_rest([0.0; 3], [1.0, 2.0, 0.5]);
-        let p = fill_block(&b, 0.1);
+    fn boxes_fill_on_the_lattice() {
+        let p = fill_box([0.0; 3], [1.0, 2.0, 0.5], 0.1);
         assert_eq!(p.len(), 10 * 20 * 5);
+        assert_eq!(box_count([0.0; 3], [1.0, 2.0, 0.5], 0.1), 1000);
         assert!((p[0] - Vec3::splat(0.05)).length() < 1e-6);
     }
 

@@ -212,7 +212,7 @@ impl Simulation {
 
     /// The named values the scene reports with its statistics: the run's largest
     /// density deviation and speed, each iterative solve's iterations and last
-    /// residual, and what each module measures (its [`crate::modules::ModuleDef::measures`]).
+    /// residual, and what each module measures (its [`crate::module::ModuleDef::measures`]).
     /// Module measures may read state back from the device: call it at most a few
     /// times a second.
     pub fn measures(&self) -> Vec<Measure> {

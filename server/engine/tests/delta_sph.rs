@@ -11,11 +11,10 @@ use floe_engine::Simulation;
 use floe_engine::attrs::{Column, Role};
 use floe_engine::math::Vec3;
 use floe_engine::plan::Stage;
-use floe_engine::scene::Method;
 use floe_engine::scene::load::{Format, from_preset, from_str};
 use floe_engine::validation::hydrostatic;
 
-const WCSPH: &str = Method::Wcsph.setting();
+const WCSPH: &str = "solver.method=\"wcsph\"";
 
 const SPACING: f32 = 0.05;
 

@@ -3,8 +3,8 @@
 //! is state), and halts naming the residual when a solve cannot converge.
 
 use floe_engine::Simulation;
+use floe_engine::modules::fluid::presets::DAM_BREAK_A;
 use floe_engine::scene::load::from_preset;
-use floe_engine::scene::presets::DAM_BREAK_A;
 use floe_engine::validation::{dam_break, hydrostatic};
 
 fn dfsph(name: &str, overrides: &[&str]) -> Simulation {

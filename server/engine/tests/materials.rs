@@ -83,7 +83,7 @@ fn a_light_fluid_rests_on_a_heavy_one_at_density_ratios_of_10_and_100() {
 
 #[test]
 fn one_material_stores_no_index_and_offers_no_material_channel() {
-    let one = Simulation::new_cpu(floe_engine::scene::presets::dam_break()).unwrap();
+    let one = Simulation::new_cpu(floe_engine::modules::fluid::presets::dam_break()).unwrap();
     assert!(one.backend().allocations().iter().all(|a| a.name != "material"));
     assert!(one.channels().iter().all(|c| c.name != "material"));
     let two = layers(10.0);

@@ -2,12 +2,11 @@
 //! references (VALIDATION.md cases 1 and 2) and conservation laws.
 
 use floe_engine::Simulation;
-use floe_engine::scene::Method;
+use floe_engine::modules::fluid::presets::DAM_BREAK_A;
 use floe_engine::scene::load::from_preset;
-use floe_engine::scene::presets::DAM_BREAK_A;
 use floe_engine::validation::{dam_break, hydrostatic};
 
-const WCSPH: &str = Method::Wcsph.setting();
+const WCSPH: &str = "solver.method=\"wcsph\"";
 
 /// A preset on WCSPH, the scheme these checks are about, unless the overrides name
 /// another after it (the dam break's preset uses DFSPH, which tests/dfsph.rs checks).

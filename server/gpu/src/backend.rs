@@ -25,7 +25,7 @@ use floe_engine::model::{BuildError, Model};
 use floe_engine::neighbors::Grid;
 use floe_engine::plan::Stage;
 use floe_engine::quantize::PositionGrid;
-use floe_engine::schemes::{ReduceOp, Reduction, Stages};
+use floe_engine::scheme::{ReduceOp, Reduction, Stages};
 use wgpu::{BindGroup, Buffer};
 
 /// One scene on the GPU.

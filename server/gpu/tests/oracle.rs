@@ -20,11 +20,10 @@ use floe_engine::backend::Backend;
 use floe_engine::model::Model;
 use floe_engine::plan::{PassSpec, Stage};
 use floe_engine::quantize::PositionGrid;
-use floe_engine::scene::Method;
 use floe_engine::scene::load::from_preset;
 use floe_gpu::GpuBackend;
 
-const WCSPH: &str = Method::Wcsph.setting();
+const WCSPH: &str = "solver.method=\"wcsph\"";
 
 /// A CPU and a GPU simulation holding the same state, `steps` CPU steps into `preset`.
 fn pair(gpu: &floe_gpu::GpuContext, preset: &str, overrides: &[&str], steps: usize) -> (Simulation, Simulation) {
@@ -387,7 +386,7 @@ fn measures_kick_and_drift_match_the_cpu() {
 #[test]
 fn reductions_match_the_cpu() {
     let Some(gpu) = common::gpu("reductions_match_the_cpu") else { return };
-    use floe_engine::schemes::{ReduceOp, Reduction};
+    use floe_engine::scheme::{ReduceOp, Reduction};
     let (mut cpu, mut g) = pair(gpu, "dam_break", &["particle_spacing=0.05"], 40);
     for sim in [&mut cpu, &mut g] {
         sim.backend_mut().run(Stage::Sort, 0.0);

@@ -7,13 +7,12 @@ mod common;
 use floe_engine::Simulation;
 use floe_engine::backend::Backend;
 use floe_engine::model::Model;
-use floe_engine::scene::Method;
+use floe_engine::modules::fluid::presets::DAM_BREAK_A;
 use floe_engine::scene::load::from_preset;
-use floe_engine::scene::presets::DAM_BREAK_A;
 use floe_engine::validation::{dam_break, hydrostatic};
 use floe_gpu::{GpuBackend, GpuContext};
 
-const WCSPH: &str = Method::Wcsph.setting();
+const WCSPH: &str = "solver.method=\"wcsph\"";
 
 /// A preset on the GPU, on WCSPH unless the overrides name another scheme after it
 /// (the dam break's preset uses DFSPH).

@@ -9,8 +9,8 @@ mod intervals;
 
 use anyhow::Context;
 use floe_engine::Simulation;
+use floe_engine::modules::fluid::presets::DAM_BREAK_A;
 use floe_engine::scene::load;
-use floe_engine::scene::presets::DAM_BREAK_A;
 use floe_proto::{Bounds, Decoder, Encoder, EncoderConfig, FrameInput, Limits, Mode};
 use std::time::{Duration, Instant};
 

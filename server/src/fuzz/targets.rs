@@ -149,7 +149,8 @@ const SNAPSHOT_PARTICLES: u64 = 4000;
 /// the snapshot is restored and stepped once.
 pub fn snapshot(data: &[u8]) {
     let Ok(scene) = Simulation::snapshot_scene(data) else { return };
-    if floe_engine::sampling::fluid_particle_count(&scene) <= SNAPSHOT_PARTICLES
+    let particles = floe_engine::module::counts(&scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
+    if particles <= SNAPSHOT_PARTICLES
         && let Ok(mut sim) = Simulation::restore(data)
     {
         let _ = sim.step();

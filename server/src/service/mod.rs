@@ -366,7 +366,7 @@ impl Registry {
             // Counted before the scene is built (every particle set the scene's modules
             // create), so a scene over the limit allocates nothing.
             let particles =
-                floe_engine::modules::counts(&scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
+                floe_engine::module::counts(&scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
             if particles > server_max as u64 {
                 return Err(ServiceError::InvalidArgument(format!(
                     "particle_spacing: the scene has {particles} particles, more than this server's limit of {server_max}"

@@ -51,7 +51,7 @@ fn concrete(path: &str, scene: &Value) -> Vec<String> {
 pub(super) fn tunables_json(scene_json: &str) -> String {
     let value: Value = serde_json::from_str(scene_json).expect("a serialised scene");
     let scene = load::from_value(value.clone()).expect("a serialised scene is valid");
-    let map: serde_json::Map<String, Value> = floe_engine::modules::tunables(&scene)
+    let map: serde_json::Map<String, Value> = floe_engine::module::tunables(&scene)
         .iter()
         .flat_map(|t| concrete(t.path, &value))
         .filter_map(|path| value.pointer(&pointer(&path)).map(|v| (path, v.clone())))
@@ -243,7 +243,7 @@ mod tests {
 
     #[test]
     fn tunables_round_trip_through_overrides() {
-        let scene = floe_engine::scene::presets::dam_break();
+        let scene = floe_engine::scene::presets::get("dam_break").unwrap();
         let changed =
             floe_engine::scene::tunable::apply(&scene, &["gravity=[0,-1,0]".into(), "fluids[0].xsph=0.2".into()])
                 .unwrap();
@@ -251,7 +251,7 @@ mod tests {
         let value: Value = serde_json::from_str(&json).unwrap();
         assert_eq!(value["gravity"], serde_json::json!([0.0, -1.0, 0.0]));
         // One value per tunable: the scene has one fluid.
-        assert_eq!(value.as_object().unwrap().len(), floe_engine::modules::tunables(&scene).len());
+        assert_eq!(value.as_object().unwrap().len(), floe_engine::module::tunables(&scene).len());
         let back = floe_engine::scene::tunable::apply(&scene, &tunable_overrides(&json).unwrap()).unwrap();
         assert_eq!(back, changed);
         assert_eq!(pointer("fluids[0].viscosity"), "/fluids/0/viscosity");

@@ -146,7 +146,7 @@ impl Shared {
             particles: sim.particle_count(),
             channels: scene_channels(sim.channels()),
             sets: sim.sets().into_iter().map(|(spec, count)| SceneSet { name: spec.name, count }).collect(),
-            tunables: floe_engine::modules::tunables(sim.scene()),
+            tunables: floe_engine::module::tunables(sim.scene()),
             particle_spacing: sim.scene().particle_spacing,
             backend: sim.backend_name(),
             bounds: (domain.min.to_array(), domain.max.to_array()),

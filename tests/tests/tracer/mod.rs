@@ -16,7 +16,7 @@ use floe_engine::cpu::{CpuCx, CpuPass};
 use floe_engine::guard::Bound;
 use floe_engine::math::Vec3;
 use floe_engine::model::{BuildError, ModelBuilder};
-use floe_engine::modules::ModuleDef;
+use floe_engine::module::ModuleDef;
 use floe_engine::plan::{PassSpec, Stage};
 use floe_engine::scene::Scene;
 

@@ -21,7 +21,7 @@ use crate::math::Real;
 use crate::model::Model;
 use crate::neighbors::Grid;
 use crate::plan::{PassSpec, Stage};
-use crate::schemes::{ReduceOp, Reduction, Stages};
+use crate::scheme::{ReduceOp, Reduction, Stages};
 use neighbors::NeighborLists;
 
 /// What a CPU pass works on.
@@ -58,8 +58,8 @@ pub trait CpuPass: Send + Sync + std::fmt::Debug {
 
 /// Every CPU pass implementation of the core, the schemes and the modules, by name.
 fn all() -> Vec<(&'static str, &'static dyn CpuPass)> {
-    let modules = crate::modules::all();
-    let schemes = crate::schemes::all();
+    let modules = crate::module::all();
+    let schemes = crate::scheme::all();
     let lists = core::PASSES.iter().chain(schemes.iter().flat_map(|s| s.cpu)).chain(modules.iter().flat_map(|m| m.cpu));
     lists.copied().collect()
 }

@@ -23,6 +23,7 @@ pub struct ModelBuilder<'s> {
     pub scene: &'s Scene,
     /// The kernel.
     pub kernel: Kernel,
+    scheme: &'static SchemeDef,
     spacing: Real,
     materials: Vec<Material>,
     particles: NewParticles,
@@ -32,7 +33,7 @@ pub struct ModelBuilder<'s> {
     sound_speed: Option<Real>,
     layout: Layout,
     passes: Vec<&'static PassSpec>,
-    velocity_solves: Vec<crate::schemes::Iterate>,
+    velocity_solves: Vec<crate::scheme::Iterate>,
     channels: Vec<ChannelSpec>,
     sets: Vec<SetSpec>,
     bounds: Vec<Bound>,
@@ -49,6 +50,7 @@ impl<'s> ModelBuilder<'s> {
         Ok(Self {
             scene,
             kernel: Kernel::new(scene.solver.kernel, scene.solver.support_factor * d),
+            scheme: crate::scheme::of(scene),
             spacing: d,
             materials: Vec::new(),
             particles: NewParticles::default(),
@@ -65,10 +67,16 @@ impl<'s> ModelBuilder<'s> {
         })
     }
 
-    /// Adds a material; returns its index.
-    pub fn material(&mut self, name: &str, kind: crate::materials::MaterialKind, rest_density: Real) -> u32 {
+    /// Adds a material with its equation of state; returns its index.
+    pub fn material(
+        &mut self,
+        name: &str,
+        kind: crate::materials::MaterialKind,
+        rest_density: Real,
+        eos: crate::materials::EquationOfState,
+    ) -> u32 {
         let mass = rest_density / lattice_sum(&self.kernel, self.spacing, None);
-        self.materials.push(Material { name: name.into(), kind, rest_density, mass });
+        self.materials.push(Material { name: name.into(), kind, rest_density, eos, mass });
         (self.materials.len() - 1) as u32
     }
 
@@ -112,6 +120,11 @@ impl<'s> ModelBuilder<'s> {
         };
         self.sound_speed = Some(c);
         Ok(c)
+    }
+
+    /// The scene's scheme (built before its modules).
+    pub fn scheme(&self) -> &'static SchemeDef {
+        self.scheme
     }
 
     /// The materials added so far.
@@ -170,7 +183,7 @@ impl<'s> ModelBuilder<'s> {
     }
 
     /// Adds a velocity solve run after every kick (its passes added with [`Self::pass`]).
-    pub fn velocity_solve(&mut self, solve: crate::schemes::Iterate) {
+    pub fn velocity_solve(&mut self, solve: crate::scheme::Iterate) {
         self.velocity_solves.push(solve);
     }
 
@@ -202,8 +215,8 @@ impl<'s> ModelBuilder<'s> {
     /// Runs the scheme and the modules, then assembles the model.
     pub(super) fn finish(mut self) -> Result<Model, BuildError> {
         let scene = self.scene;
-        let scheme = crate::schemes::of(scene);
-        let modules = crate::modules::of(scene);
+        let scheme = self.scheme;
+        let modules = crate::module::of(scene);
         for m in &modules {
             (m.particles)(scene, &mut self)?;
         }

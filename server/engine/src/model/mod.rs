@@ -15,12 +15,12 @@ use crate::guard::Bound;
 use crate::kernel::Kernel;
 use crate::materials::{Material, Materials};
 use crate::math::{Aabb, Real, Vec3};
-use crate::modules::ModuleDef;
+use crate::module::ModuleDef;
 use crate::periodic::Periodicity;
 use crate::plan::{PassSpec, Plan};
 use crate::sampling::sample_boundary;
 use crate::scene::{Boundary, Integrator, Scene, TimeStep};
-use crate::schemes::SchemeDef;
+use crate::scheme::SchemeDef;
 use crate::terrain::HeightGrid;
 use crate::terrain::source::rasterise_all;
 use std::any::{Any, TypeId};
@@ -210,8 +210,8 @@ pub struct Model {
     /// The passes of a step, in order.
     pub plan: Plan,
     /// The modules' velocity solves after each kick, in order
-    /// ([`crate::schemes::velocity_solves`]).
-    pub velocity_solves: Vec<crate::schemes::Iterate>,
+    /// ([`crate::scheme::velocity_solves`]).
+    pub velocity_solves: Vec<crate::scheme::Iterate>,
     /// The channels frames and exports can carry.
     pub channels: Vec<ChannelSpec>,
     /// The particle sets frames can carry.

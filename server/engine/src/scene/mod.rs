@@ -10,12 +10,13 @@
 
 pub mod load;
 pub mod presets;
+pub mod sections;
 pub mod tunable;
 pub mod validate;
 
 use crate::kernel::KernelKind;
-pub use crate::modules::fluid::spec::{EquationOfState, Fluid, FluidBlock, TaylorGreen, Viscosity};
 use schemars::JsonSchema;
+pub use sections::Sections;
 use serde::{Deserialize, Serialize};
 
 /// A complete scene: what is simulated, where, and how.
@@ -37,9 +38,6 @@ pub struct Scene {
     /// Gravitational acceleration (m/s^2).
     #[serde(default = "default_gravity")]
     pub gravity: [f32; 3],
-    /// Fluid phases (the `fluid` module), each a material of its own.
-    #[serde(default)]
-    pub fluids: Vec<Fluid>,
     /// Static walls, sampled with boundary particles (Akinci et al. 2012).
     #[serde(default)]
     pub boundaries: Vec<Boundary>,
@@ -60,12 +58,11 @@ pub struct Scene {
     /// Bounds beyond which the scene halts instead of producing garbage.
     #[serde(default)]
     pub guard: Guard,
-    /// Temperature, conduction and buoyancy (the `heat` module).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub heat: Option<crate::modules::heat::spec::Heat>,
-    /// Non-Newtonian viscosity (the `snow` module).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub snow: Option<crate::modules::snow::spec::Snow>,
+    /// The modules' sections (`fluids`, `heat`, ...), each owned, parsed and
+    /// validated by its module ([`sections`]).
+    #[serde(flatten, skip_deserializing)]
+    #[schemars(skip)]
+    pub sections: Sections,
 }
 
 fn default_name() -> String {
@@ -189,9 +186,9 @@ pub enum Face {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Solver {
-    /// Pressure solver (the scheme that orders a step).
-    #[serde(default)]
-    pub method: Method,
+    /// Pressure solver: the scheme that orders a step (`floe schemes` lists them).
+    #[serde(default = "default_method")]
+    pub method: String,
     /// Kernel family.
     #[serde(default)]
     pub kernel: KernelKind,
@@ -222,61 +219,15 @@ pub struct Solver {
     /// Simulated time (s) at which damping stops.
     #[serde(default)]
     pub damping_until: f32,
-    /// The DFSPH solves' tolerances and iteration limit (used when `method = "dfsph"`).
-    #[serde(default)]
-    pub dfsph: DfsphSettings,
-    /// Transport-velocity formulation (WCSPH only; none by default): particles drift
-    /// with their velocity plus the push of a uniform background pressure, which
-    /// keeps them evenly spread where shear would line them up or clump them.
-    #[serde(default)]
-    pub transport_velocity: Option<TransportVelocity>,
-    /// δ-SPH (WCSPH only; none by default): density integrated by the continuity
-    /// equation with a density-diffusion term instead of summed from positions, so
-    /// the pressure of a disordered or resting fluid is smooth rather than noisy.
-    #[serde(default)]
-    pub delta_sph: Option<DeltaSph>,
+    /// The schemes' settings (`dfsph`, `delta_sph`, ...), each owned, parsed and
+    /// validated by its scheme ([`sections`]).
+    #[serde(flatten, skip_deserializing)]
+    #[schemars(skip)]
+    pub schemes: Sections,
 }
 
-/// δ-SPH (Molteni & Colagrossi 2009, Comput. Phys. Commun. 180; Antuono et al.
-/// 2010, Comput. Phys. Commun. 181): density from the continuity equation,
-/// `drho_i/dt = m_i sum_j v_ij . grad W_ij + sum_b psi_b v_i . grad W_ib`, the time
-/// derivative of the summation density, plus the diffusion
-/// `delta h c sum_j V_j 2 (rho_i - rho_j - rho^H_ij) (x_ij . grad W_ij) / (r^2 + 0.01 h^2)`
-/// (a Laplacian of the density; `V_j = m_j / rho_j`, h half the kernel's support)
-/// between particles of one material (c that material's own speed of sound,
-/// [`EquationOfState::sound_speed`]), with the hydrostatic difference
-/// `rho^H_ij = rho0 g . x_ij / c^2` taken out (Fourtakas et al. 2019, Comput. Fluids
-/// 190, eq. 12, linearised: exact for the linear equation of state, to order
-/// `(v/c)^2` for Tait), so a resting column feels no diffusion. Each particle starts
-/// at the density of the weight of the fluid above it (rest density where gravity
-/// runs along a periodic axis).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct DeltaSph {
-    /// Diffusion coefficient delta (dimensionless, 0 to 1; 0.1 is the usual choice).
-    #[serde(default = "default_delta")]
-    pub delta: f32,
-}
-
-fn default_delta() -> f32 {
-    0.1
-}
-
-/// The transport-velocity formulation of Adami, Hu & Adams (2013, J. Comput. Phys.
-/// 241, eqs. 13 and 14): each drift moves a particle with `v + dt/2 a_b`, where `a_b
-/// = -p_b / m_i sum_j (V_i^2 + V_j^2) grad W_ij` is the acceleration a uniform
-/// background pressure `p_b` would give it, walls included as in the pressure
-/// force; its velocity does not take `a_b`. A particle distribution with holes or
-/// clumps has a non-zero `a_b` that moves particles into the holes; an even one has
-/// none. Meant for closed or periodic domains: at a free surface the missing
-/// neighbours make `a_b` pull particles out of the fluid.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct TransportVelocity {
-    /// Background pressure `p_b` (Pa). Adami et al. take `rho0 c^2`; on the
-    /// Taylor-Green vortex `2 rho0 c^2` matched the exact decay more closely here
-    /// (docs/validation/taylor-green).
-    pub background: f32,
+fn default_method() -> String {
+    crate::registry::SCHEMES[0].id.into()
 }
 
 fn default_support_factor() -> f32 {
@@ -289,7 +240,7 @@ fn default_mach_factor() -> f32 {
 impl Default for Solver {
     fn default() -> Self {
         Self {
-            method: Method::default(),
+            method: default_method(),
             kernel: KernelKind::default(),
             support_factor: default_support_factor(),
             integrator: Integrator::default(),
@@ -299,72 +250,7 @@ impl Default for Solver {
             time_step: TimeStep::default(),
             damping: 0.0,
             damping_until: 0.0,
-            dfsph: DfsphSettings::default(),
-            transport_velocity: None,
-            delta_sph: None,
-        }
-    }
-}
-
-/// DFSPH's two solves (Bender & Koschier 2017): each iterates until its mean
-/// relative error is at most its tolerance, and halts the scene if it is not there
-/// after `max_iterations`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct DfsphSettings {
-    /// Largest mean predicted density error `(rho* - rho0) / rho0` (compression only)
-    /// the constant-density solve leaves: 0.001 is 0.1 %.
-    #[serde(default = "default_density_tolerance")]
-    pub density_tolerance: f32,
-    /// Largest mean density change per step `dt (Drho/Dt) / rho0` (compression only)
-    /// the divergence-free solve leaves: 0.001 is 0.1 % per step.
-    #[serde(default = "default_divergence_tolerance")]
-    pub divergence_tolerance: f32,
-    /// Most iterations of each solve in one step (1 to 10000).
-    #[serde(default = "default_max_iterations")]
-    pub max_iterations: u32,
-}
-
-fn default_density_tolerance() -> f32 {
-    1e-3
-}
-fn default_divergence_tolerance() -> f32 {
-    1e-3
-}
-fn default_max_iterations() -> u32 {
-    100
-}
-
-impl Default for DfsphSettings {
-    fn default() -> Self {
-        Self {
-            density_tolerance: default_density_tolerance(),
-            divergence_tolerance: default_divergence_tolerance(),
-            max_iterations: default_max_iterations(),
-        }
-    }
-}
-
-/// Pressure solver.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum Method {
-    /// Weakly compressible SPH: pressure from an equation of state, explicit steps
-    /// limited by the speed of sound (Monaghan 1994; Becker & Teschner 2007).
-    #[default]
-    Wcsph,
-    /// Divergence-free SPH (Bender & Koschier 2015, 2017): an iterative
-    /// divergence-free solve and constant-density solve per step, steps limited by
-    /// the flow speed alone (`solver.dfsph` holds the tolerances).
-    Dfsph,
-}
-
-impl Method {
-    /// The override (`--set`, a scene's `overrides`) that picks this scheme.
-    pub const fn setting(self) -> &'static str {
-        match self {
-            Method::Wcsph => "solver.method=\"wcsph\"",
-            Method::Dfsph => "solver.method=\"dfsph\"",
+            schemes: Sections::default(),
         }
     }
 }
@@ -453,11 +339,98 @@ impl Default for Guard {
     }
 }
 
-/// The JSON Schema of a scene document, as printed by `floe schema`.
+/// The core's fields of a scene document (and of its `solver` table): the keys the
+/// derived deserialisers take; every other key is a module's or a scheme's section.
+const CORE_KEYS: &[&str] =
+    &["name", "modules", "particle_spacing", "gravity", "boundaries", "domain", "periodic", "solver", "guard"];
+const SOLVER_KEYS: &[&str] = &[
+    "method",
+    "kernel",
+    "support_factor",
+    "integrator",
+    "speed_of_sound",
+    "mach_factor",
+    "expected_max_speed",
+    "time_step",
+    "damping",
+    "damping_until",
+];
+
+impl Scene {
+    /// Reads a scene document: the core's fields, each module's section (parsed by
+    /// the module that owns its key) and each scheme's settings under `solver`; a
+    /// bad or unknown field is named by its path. Not yet validated
+    /// ([`load::from_value`] validates).
+    pub fn from_json(value: serde_json::Value) -> Result<Scene, load::SceneError> {
+        let serde_json::Value::Object(top) = value else {
+            return Err(load::SceneError::Field { path: "scene".into(), message: "must be a table".into() });
+        };
+        let (mut core, sections) = sections::split(top, "", CORE_KEYS, &crate::module::sections())?;
+        let solver_sections = match core.remove("solver") {
+            Some(serde_json::Value::Object(solver)) => {
+                let (rest, schemes) = sections::split(solver, "solver", SOLVER_KEYS, &crate::scheme::settings())?;
+                core.insert("solver".into(), serde_json::Value::Object(rest));
+                schemes
+            }
+            Some(other) => {
+                core.insert("solver".into(), other);
+                Sections::default()
+            }
+            None => sections::split(Default::default(), "solver", SOLVER_KEYS, &crate::scheme::settings())?.1,
+        };
+        let mut scene: Scene = serde_path_to_error::deserialize(serde_json::Value::Object(core)).map_err(|e| {
+            let path = e.path().to_string();
+            let path = if path == "." { "scene".into() } else { path };
+            load::SceneError::Field { path, message: e.into_inner().to_string() }
+        })?;
+        scene.sections = sections;
+        scene.solver.schemes = solver_sections;
+        Ok(scene)
+    }
+
+    /// The section `key` of a module, as a `T`.
+    pub fn section<T: serde::de::DeserializeOwned>(&self, key: &str) -> Option<T> {
+        self.sections.get(key)
+    }
+
+    /// This scene with the field at `path` (as in overrides: `fluids[0].xsph`,
+    /// `heat`) set to `value`, read again (not validated): how presets build on one
+    /// another and set other modules' sections without knowing their types.
+    pub fn with(self, path: &str, value: serde_json::Value) -> Scene {
+        let mut doc = serde_json::to_value(&self).expect("scenes serialise");
+        load::set(&mut doc, path, value).unwrap_or_else(|e| panic!("{path}: {e}"));
+        Scene::from_json(doc).unwrap_or_else(|e| panic!("{path}: {e}"))
+    }
+}
+
+impl Solver {
+    /// A scheme's settings `key`, as a `T` (every scheme's settings have their
+    /// defaults filled in when a scene is read).
+    pub fn settings<T: serde::de::DeserializeOwned>(&self, key: &str) -> Option<T> {
+        self.schemes.get(key)
+    }
+
+    /// These settings with a scheme's settings `key` set to `value` (a preset's).
+    pub fn with(mut self, key: &str, value: serde_json::Value) -> Solver {
+        self.schemes.set(key, &value);
+        self
+    }
+}
+
+/// The JSON Schema of a scene document, as printed by `floe schema`: the core's
+/// fields, each module's section and each scheme's settings under `solver`.
 pub fn json_schema() -> serde_json::Value {
-    let mut schema = serde_json::to_value(schemars::schema_for!(Scene)).expect("a schema is plain JSON");
+    let mut generator = schemars::SchemaGenerator::default();
+    let mut schemas = |defs: Vec<sections::SectionDef>| -> Vec<(&'static str, serde_json::Value)> {
+        defs.iter().map(|d| (d.key, (d.schema)(&mut generator).to_value())).collect()
+    };
+    let (modules, schemes) = (schemas(crate::module::sections()), schemas(crate::scheme::settings()));
+    // The root last: it takes every definition the sections' schemas made.
+    let mut schema = generator.root_schema_for::<Scene>().to_value();
+    sections::add_schemas(&mut schema["properties"], modules);
+    sections::add_schemas(&mut schema["$defs"]["Solver"]["properties"], schemes);
     let core = tunable::CORE.iter();
-    for t in core.chain(crate::modules::all().iter().flat_map(|m| m.tunables)) {
+    for t in core.chain(crate::module::all().iter().flat_map(|m| m.tunables)) {
         tunable::mark(&mut schema, t);
     }
     schema

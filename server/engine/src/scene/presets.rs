@@ -1,16 +1,18 @@
 //! Built-in scenes: every module's presets, by name (`floe presets`).
 
 use super::Scene;
-pub use crate::modules::fluid::presets::{DAM_BREAK_A, dam_break, hydrostatic};
 
 /// Names of the built-in presets, in registry order.
 pub fn names() -> Vec<&'static str> {
-    crate::modules::presets().iter().map(|p| p.name).collect()
+    crate::module::presets().iter().map(|p| p.name).collect()
 }
 
-/// The preset called `name`.
+/// The preset called `name`, as a scene read from its document would be (every
+/// section in the form its owner reads it, defaults filled in).
 pub fn get(name: &str) -> Option<Scene> {
-    crate::modules::presets().iter().find(|p| p.name == name).map(|p| (p.scene)())
+    let preset = crate::module::presets().into_iter().find(|p| p.name == name)?;
+    let doc = serde_json::to_value((preset.scene)()).expect("scenes serialise");
+    Some(Scene::from_json(doc).unwrap_or_else(|e| panic!("preset {name}: {e}")))
 }
 
 #[cfg(test)]

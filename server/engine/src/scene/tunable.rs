@@ -29,7 +29,7 @@ pub struct Tunable {
     pub module: &'static str,
 }
 
-/// The core's tunable fields (modules declare their own: `crate::modules::ModuleDef::tunables`).
+/// The core's tunable fields (modules declare their own: `crate::module::ModuleDef::tunables`).
 pub const CORE: &[Tunable] = &[
     Tunable {
         path: "gravity",
@@ -127,7 +127,7 @@ fn segments(path: &str) -> Vec<&str> {
 /// line of its own, and a last line saying that nothing was applied.
 pub fn apply(current: &Scene, overrides: &[String]) -> Result<Scene, SceneError> {
     let now = serde_json::to_value(current).expect("scenes serialise");
-    let tunables = crate::modules::tunables(current);
+    let tunables = crate::module::tunables(current);
     let mut refused = Vec::new();
     for text in overrides {
         let key = text.split('=').next().unwrap_or(text).trim();
@@ -169,10 +169,10 @@ mod tests {
 
     #[test]
     fn tunable_fields_change_and_others_are_refused() {
-        let scene = presets::dam_break();
+        let scene = presets::get("dam_break").unwrap();
         let next = apply(&scene, &["gravity=[0,-1,0]".into(), "fluids[0].xsph=0.2".into()]).unwrap();
         assert_eq!(next.gravity, [0.0, -1.0, 0.0]);
-        assert_eq!(next.fluids[0].xsph, 0.2);
+        assert_eq!(next.section::<serde_json::Value>("fluids").unwrap()[0]["xsph"], 0.2f32 as f64);
         let e = apply(&scene, &["particle_spacing=0.01".into()]).unwrap_err().to_string();
         assert!(e.starts_with("particle_spacing: cannot change while the scene exists\nnothing was applied; "), "{e}");
         let e = apply(&scene, &["fluids[0].xsph=7".into()]).unwrap_err().to_string();
@@ -183,7 +183,7 @@ mod tests {
     /// nothing is applied.
     #[test]
     fn a_refusal_names_only_the_refused_keys() {
-        let scene = presets::dam_break();
+        let scene = presets::get("dam_break").unwrap();
         let e = apply(&scene, &["fluids[0].xsph=0.1".into(), "particle_spacing=0.02".into()]).unwrap_err();
         let lines: Vec<String> = e.to_string().lines().map(str::to_owned).collect();
         assert_eq!(lines[0], "particle_spacing: cannot change while the scene exists");

@@ -1,7 +1,7 @@
 //! Validation of a deserialised [`Scene`]: every bound a field must respect,
 //! reported as `path: must be ..., got ...`, all errors at once.
 
-use super::{Boundary, Method, Scene, TimeStep};
+use super::{Boundary, Scene, TimeStep};
 
 /// The most particles one scene may create (a guard against requests that would
 /// exhaust memory: under 300 bytes each on the CPU backend, `floe bench --memory`).
@@ -77,11 +77,11 @@ pub fn validate(scene: &Scene) -> Result<(), Vec<String>> {
     c.positive("particle_spacing", scene.particle_spacing);
     c.vector("gravity", &scene.gravity);
     check_modules(&mut c, scene);
-    for m in crate::modules::of(scene) {
+    for m in crate::module::of(scene) {
         (m.validate)(scene, &mut c);
     }
     let counted = scene.particle_spacing.is_finite() && scene.particle_spacing > 0.0;
-    let particles = crate::modules::counts(scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
+    let particles = crate::module::counts(scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
     if counted && particles as f64 > MAX_PARTICLES {
         c.fail(
             "particle_spacing",
@@ -187,13 +187,13 @@ fn check_periodic(c: &mut Checker, scene: &Scene) {
 /// Every listed module exists, once, with its section and its requirements; every
 /// section present belongs to a listed module.
 fn check_modules(c: &mut Checker, scene: &Scene) {
-    let names: Vec<&str> = crate::modules::all().iter().map(|m| m.id).collect();
+    let names: Vec<&str> = crate::module::all().iter().map(|m| m.id).collect();
     for (i, m) in scene.modules.iter().enumerate() {
         let path = format!("modules[{i}]");
         if scene.modules[..i].contains(m) {
             c.fail(&path, format!("{:?} is listed twice", m));
         }
-        match crate::modules::find(m) {
+        match crate::module::find(m) {
             None => c.fail(&path, format!("unknown module {:?}; modules are {}", m, names.join(", "))),
             Some(def) => {
                 for r in def.requires {
@@ -204,13 +204,13 @@ fn check_modules(c: &mut Checker, scene: &Scene) {
             }
         }
     }
-    for def in crate::modules::all() {
+    for def in crate::module::all() {
         let Some(section) = def.section else { continue };
         let listed = scene.modules.iter().any(|m| m == def.id);
-        match (listed, (section.present)(scene)) {
-            (true, false) => c.fail(section.key, section.missing.into()),
+        match (listed, scene.sections.has(section.key())) {
+            (true, false) => c.fail(section.key(), section.missing.into()),
             (false, true) => {
-                c.fail("modules", format!("must list {:?}, since the scene has its section {}", def.id, section.key))
+                c.fail("modules", format!("must list {:?}, since the scene has its section {}", def.id, section.key()))
             }
             _ => {}
         }
@@ -232,19 +232,16 @@ fn check_solver(c: &mut Checker, scene: &Scene) {
     }
     c.non_negative("solver.damping", s.damping);
     c.non_negative("solver.damping_until", s.damping_until);
-    c.within("solver.dfsph.density_tolerance", s.dfsph.density_tolerance, 1e-6, 0.1);
-    c.within("solver.dfsph.divergence_tolerance", s.dfsph.divergence_tolerance, 1e-6, 0.1);
-    c.within("solver.dfsph.max_iterations", s.dfsph.max_iterations as f32, 1.0, 10_000.0);
-    if let Some(t) = s.transport_velocity {
-        c.positive("solver.transport_velocity.background", t.background);
-        if s.method != Method::Wcsph {
-            c.fail("solver.transport_velocity", "works with solver.method = \"wcsph\" only".into());
+    match crate::scheme::find(&s.method) {
+        None => {
+            let known: Vec<&str> = crate::scheme::all().iter().map(|d| d.id).collect();
+            c.fail("solver.method", format!("unknown scheme {:?}; schemes are {}", s.method, known.join(", ")));
         }
-    }
-    if let Some(d) = s.delta_sph {
-        c.within("solver.delta_sph.delta", d.delta, 0.0, 1.0);
-        if s.method != Method::Wcsph {
-            c.fail("solver.delta_sph", "works with solver.method = \"wcsph\" only".into());
+        Some(_) => {
+            // Every scheme checks its settings, and refuses them in a scene of another.
+            for d in crate::scheme::all() {
+                (d.validate)(scene, d.id == s.method, c);
+            }
         }
     }
     match s.time_step {

@@ -1,7 +1,7 @@
 //! The validation cases as `floe validate` runs them: one case, one resolution,
 //! one variant of the solver options, timed, with the case's error norms.
 //!
-//! Each module declares its cases ([`crate::modules::ModuleDef::cases`]): the preset
+//! Each module declares its cases ([`crate::module::ModuleDef::cases`]): the preset
 //! a case runs, its reference, resolutions, variants, bounds and how it measures its
 //! errors. `floe validate` and its report pick them up from the registry.
 
@@ -55,7 +55,7 @@ impl Case {
 
 /// Every case of every registered module.
 pub fn all() -> Vec<&'static Case> {
-    crate::modules::all().iter().flat_map(|m| m.cases.iter()).collect()
+    crate::module::all().iter().flat_map(|m| m.cases.iter()).collect()
 }
 
 /// A variant of the solver options, as `--set` overrides on the preset.

@@ -26,7 +26,7 @@ pub enum Expect {
 }
 
 /// One stiff or extreme scene: a preset with overrides. Modules declare theirs
-/// ([`crate::modules::ModuleDef::stability`]).
+/// ([`crate::module::ModuleDef::stability`]).
 #[derive(Debug, Clone, Serialize)]
 pub struct StabilityCase {
     /// Short name.
@@ -47,7 +47,7 @@ pub struct StabilityCase {
 
 /// Every stability case of every registered module.
 pub fn all() -> Vec<&'static StabilityCase> {
-    crate::modules::all().iter().flat_map(|m| m.stability.iter()).collect()
+    crate::module::all().iter().flat_map(|m| m.stability.iter()).collect()
 }
 
 /// One run of a stability case.

@@ -4,7 +4,32 @@
 //! equations with `b = -2 k^2 nu = -8 pi^2 nu / L^2`.
 
 use crate::backend::Particles;
-use crate::scene::TaylorGreen;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// The Taylor-Green vortex field in the x-y plane (Taylor & Green 1937; the 2D
+/// solution of VALIDATION.md §4): `u = -U cos(2 pi x / L) sin(2 pi y / L)`,
+/// `v = U sin(2 pi x / L) cos(2 pi y / L)`, x and y from the block's lower corner.
+/// It is divergence free and, in a periodic box of side L, decays as `exp(-8 pi^2
+/// nu t / L^2)`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TaylorGreen {
+    /// Peak speed U (m/s).
+    pub amplitude: f32,
+    /// Wavelength L (m): the side of one period of four vortices.
+    pub wavelength: f32,
+}
+
+impl TaylorGreen {
+    /// `(u, v)` (m/s) at `(x, y)` (m) from the field's origin.
+    pub fn velocity(&self, x: f32, y: f32) -> [f32; 2] {
+        let k = std::f32::consts::TAU / self.wavelength;
+        let (sx, cx) = (k * x).sin_cos();
+        let (sy, cy) = (k * y).sin_cos();
+        [-self.amplitude * cx * sy, self.amplitude * sx * cy]
+    }
+}
 
 /// The decay rate b (1/s) of vortices of wavelength `l` (m) at kinematic viscosity `nu` (m^2/s).
 pub fn decay_rate(l: f64, nu: f64) -> f64 {

@@ -2,9 +2,9 @@
 //! battery (VALIDATION.md, last section): the dam break made stiff or extreme.
 
 use crate::Simulation;
+use crate::modules::fluid::presets::DAM_BREAK_A;
 use crate::modules::fluid::presets::{POISEUILLE, TAYLOR_GREEN};
-use crate::scene::presets::DAM_BREAK_A;
-use crate::scene::{Method, TaylorGreen};
+use crate::modules::fluid::spec::TaylorGreen;
 use crate::validation::cases::{Case, Measured, Variant};
 use crate::validation::stability::{Expect, StabilityCase};
 use crate::validation::{dam_break, hydrostatic, poiseuille, run_probed, taylor_green};
@@ -35,8 +35,8 @@ const DAM_BREAK_VARIANTS: [Variant; 6] = [
     Variant { name: "wcsph_delta_sph", overrides: &[WCSPH, "solver.delta_sph={\"delta\":0.1}"] },
 ];
 
-const WCSPH: &str = Method::Wcsph.setting();
-const DFSPH: &str = Method::Dfsph.setting();
+const WCSPH: &str = "solver.method=\"wcsph\"";
+const DFSPH: &str = "solver.method=\"dfsph\"";
 
 /// Laplacian viscosity of water with a little XSPH smoothing, in place of the
 /// presets' artificial viscosity.

@@ -47,7 +47,7 @@ use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
 use crate::periodic::Separation;
 use crate::plan::PassSpec;
-use crate::schemes::{Iterate, Op, ReduceOp, Reduction};
+use crate::scheme::{Iterate, Op, ReduceOp, Reduction};
 use rayon::prelude::*;
 
 /// The space of the solve's scalars.

@@ -25,11 +25,13 @@ use crate::kernel::Kernel;
 use crate::materials::{Material, MaterialKind};
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
-use crate::modules::{ModuleDef, Section};
-use crate::sampling::fill_block;
+use crate::module::{ModuleDef, Section};
+use crate::sampling::{box_count, fill_box};
+use crate::scene::Scene;
+use crate::scene::sections::SectionDef;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
-use crate::scene::{Method, Scene, Viscosity};
+use spec::Viscosity;
 use viscosity::ViscosityModel;
 
 /// The module's definition.
@@ -38,12 +40,11 @@ pub static MODULE: ModuleDef = ModuleDef {
     about: "SPH fluid phases: materials sampled from blocks, viscosity, XSPH, gravity.",
     requires: &[],
     section: Some(Section {
-        key: "fluids",
-        present: |scene| !scene.fluids.is_empty(),
+        def: SectionDef::of::<Vec<spec::Fluid>>(SECTION),
         missing: "at least one fluid is required",
     }),
     validate,
-    count: |scene| vec![(PARTICLES, crate::sampling::fluid_particle_count(scene))],
+    count,
     particles,
     build,
     retune,
@@ -65,6 +66,14 @@ pub static MODULE: ModuleDef = ModuleDef {
     cases: cases::CASES,
     stability: cases::STABILITY,
 };
+
+/// The module's section of a scene: `fluids`, a list of [`spec::Fluid`].
+pub const SECTION: &str = "fluids";
+
+/// The scene's fluids (none if it has no `fluids` section).
+pub fn fluids(scene: &Scene) -> Vec<spec::Fluid> {
+    scene.section(SECTION).unwrap_or_default()
+}
 
 /// The module's live settings.
 pub const TUNABLES: &[Tunable] = &[
@@ -127,11 +136,10 @@ pub struct FluidConsts {
 impl FluidConsts {
     /// The constants of `scene`'s fluids made of `materials`, in a scene whose speed
     /// of sound is `c`: each fluid's artificial viscosity scales with its own speed
-    /// ([`crate::scene::EquationOfState::sound_speed`]).
+    /// ([`crate::materials::EquationOfState::sound_speed`]).
     fn new(scene: &Scene, materials: &[Material], c: Real, kernel: &Kernel, spacing: Real) -> Self {
         let n = materials.len();
-        let viscosity: Vec<ViscosityModel> = scene
-            .fluids
+        let viscosity: Vec<ViscosityModel> = fluids(scene)
             .iter()
             .zip(materials)
             .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, f.eos.sound_speed(c), kernel, spacing))
@@ -144,7 +152,7 @@ impl FluidConsts {
                 mass_ratio.push(materials[a].mass / materials[b].mass);
             }
         }
-        Self { viscosity, pair_viscosity, xsph: scene.fluids.iter().map(|f| f.xsph).collect(), mass_ratio }
+        Self { viscosity, pair_viscosity, xsph: fluids(scene).iter().map(|f| f.xsph).collect(), mass_ratio }
     }
 
     /// Whether any material uses XSPH.
@@ -154,7 +162,7 @@ impl FluidConsts {
 }
 
 fn validate(scene: &Scene, c: &mut Checker) {
-    for (i, f) in scene.fluids.iter().enumerate() {
+    for (i, f) in fluids(scene).iter().enumerate() {
         let p = format!("fluids[{i}]");
         c.positive(&format!("{p}.rest_density"), f.rest_density);
         let background = match f.eos {
@@ -189,18 +197,30 @@ fn validate(scene: &Scene, c: &mut Checker) {
             }
         }
     }
-    if scene.fluids.len() > 256 {
-        c.fail("fluids", format!("at most 256 fluid phases, got {}", scene.fluids.len()));
+    // (Without the section at all the registry says so: the module is listed.)
+    if scene.sections.has(SECTION) && fluids(scene).is_empty() {
+        c.fail(SECTION, "at least one fluid is required".into());
     }
+    if fluids(scene).len() > 256 {
+        c.fail(SECTION, format!("at most 256 fluid phases, got {}", fluids(scene).len()));
+    }
+}
+
+/// How many particles the fluids' blocks hold, counted without placing them (an
+/// upper bound where a terrain buries part of a block: those are dropped at build).
+fn count(scene: &Scene) -> Vec<(&'static str, u64)> {
+    let blocks = fluids(scene).into_iter().flat_map(|f| f.blocks);
+    let n = blocks.map(|b| box_count(b.min, b.max, scene.particle_spacing)).fold(0u64, u64::saturating_add);
+    vec![(PARTICLES, n)]
 }
 
 /// Each fluid is a material; its blocks are filled on the particle lattice.
 fn particles(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let d = scene.particle_spacing;
-    for (i, f) in scene.fluids.iter().enumerate() {
-        let material = b.material(&f.name, MaterialKind::Fluid, f.rest_density);
+    for (i, f) in fluids(scene).iter().enumerate() {
+        let material = b.material(&f.name, MaterialKind::Fluid, f.rest_density, f.eos);
         for (j, block) in f.blocks.iter().enumerate() {
-            let pts = fill_block(block, d);
+            let pts = fill_box(block.min, block.max, d);
             if pts.is_empty() {
                 return Err(BuildError::EmptyBlock { path: format!("fluids[{i}].blocks[{j}]"), spacing: d });
             }
@@ -213,10 +233,10 @@ fn particles(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     // Monaghan's artificial viscosity scales with the speed of sound.
-    let artificial = scene.fluids.iter().any(|f| matches!(f.viscosity, Viscosity::Artificial { .. }));
-    let c = if artificial || scene.solver.method == Method::Wcsph { b.sound_speed()? } else { 0.0 };
+    let artificial = fluids(scene).iter().any(|f| matches!(f.viscosity, Viscosity::Artificial { .. }));
+    let c = if artificial { b.sound_speed()? } else { 0.0 };
     let consts = FluidConsts::new(scene, b.materials(), c, &b.kernel, scene.particle_spacing);
-    b.pass(if scene.solver.method == Method::Wcsph { &forces::WITH_PRESSURE } else { &forces::FORCES });
+    b.pass(if b.scheme().pressure_terms { &forces::WITH_PRESSURE } else { &forces::FORCES });
     if consts.uses_xsph() {
         b.zeros(&XSPH);
         b.pass(&xsph::SUM);
@@ -265,4 +285,19 @@ fn measures(sim: &crate::Simulation) -> Vec<crate::simulation::Measure> {
         })
         .sum();
     vec![crate::simulation::Measure::new("fluid.kinetic_energy", energy, "J")]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_counted_particles_are_those_a_simulation_builds() {
+        for spacing in ["0.05", "0.037", "0.02"] {
+            let scene = crate::scene::load::from_preset("dam_break", &[format!("particle_spacing={spacing}")]).unwrap();
+            let counted = count(&scene)[0].1;
+            let built = crate::Simulation::new_cpu(scene).unwrap().particle_count() as u64;
+            assert_eq!(counted, built, "spacing {spacing}");
+        }
+    }
 }

@@ -1,11 +1,10 @@
 //! The fluid module's built-in scenes. Each is an ordinary [`Scene`] value, so
 //! `--set` overrides and `floe schema` apply to them exactly as to files.
 
-use crate::modules::Preset;
-use crate::scene::{
-    Axis, Boundary, BoxRegion, DeltaSph, Face, Fluid, FluidBlock, Method, Scene, Solver, TaylorGreen,
-    TransportVelocity, Viscosity,
-};
+use super::spec::{Fluid, FluidBlock, TaylorGreen, Viscosity};
+use crate::module::Preset;
+use crate::scene::{Axis, Boundary, BoxRegion, Face, Scene, Solver};
+use serde_json::json;
 
 /// The presets, for the module registry.
 pub const PRESETS: &[Preset] = &[
@@ -47,6 +46,18 @@ fn water(blocks: Vec<FluidBlock>, viscosity: Viscosity) -> Fluid {
     Fluid { name: "water".into(), rest_density: 1000.0, eos: Default::default(), viscosity, xsph: 0.0, blocks }
 }
 
+/// A scene with its fluids: the module's section.
+trait WithFluids {
+    fn with_fluids(self, fluids: Vec<Fluid>) -> Self;
+}
+
+impl WithFluids for Scene {
+    fn with_fluids(mut self, fluids: Vec<Fluid>) -> Self {
+        self.sections.set(super::SECTION, &fluids);
+        self
+    }
+}
+
 fn closed_box(min: [f32; 3], max: [f32; 3]) -> Boundary {
     Boundary::Box { min, max, open: Vec::new(), layers: 1 }
 }
@@ -69,18 +80,17 @@ pub fn dam_break() -> Scene {
         modules: vec!["fluid".into()],
         particle_spacing: a / 28.0,
         gravity: [0.0, -9.81, 0.0],
-        fluids: vec![water(
-            vec![FluidBlock::at_rest([0.0; 3], [a, 2.0 * a, 0.5 * a])],
-            Viscosity::Artificial { alpha: 0.02 },
-        )],
         boundaries: vec![closed_box([0.0; 3], [4.0 * a, 2.4 * a, 0.5 * a])],
         domain: None,
         periodic: Vec::new(),
-        solver: Solver { method: Method::Dfsph, ..Solver::default() },
+        solver: Solver { method: "dfsph".into(), ..Solver::default() },
         guard: Default::default(),
-        heat: None,
-        snow: None,
+        sections: Default::default(),
     }
+    .with_fluids(vec![water(
+        vec![FluidBlock::at_rest([0.0; 3], [a, 2.0 * a, 0.5 * a])],
+        Viscosity::Artificial { alpha: 0.02 },
+    )])
 }
 
 /// Water at rest in a closed tank 0.3 x 1.0 x 0.15 m, filled to H = 0.9 m
@@ -97,23 +107,18 @@ pub fn hydrostatic() -> Scene {
         modules: vec!["fluid".into()],
         particle_spacing: 0.025,
         gravity: [0.0, -9.81, 0.0],
-        fluids: vec![water(
-            vec![FluidBlock::at_rest([0.0; 3], [0.3, 0.9, 0.15])],
-            Viscosity::Artificial { alpha: 0.1 },
-        )],
         boundaries: vec![closed_box([0.0; 3], [0.3, 1.0, 0.15])],
         domain: Some(BoxRegion { min: [-0.1, -0.1, -0.1], max: [0.4, 1.1, 0.25] }),
         periodic: Vec::new(),
-        solver: Solver {
-            damping: 5.0,
-            damping_until: 0.5,
-            delta_sph: Some(DeltaSph { delta: 0.1 }),
-            ..Solver::default()
-        },
+        solver: Solver { damping: 5.0, damping_until: 0.5, ..Solver::default() }
+            .with("delta_sph", json!({ "delta": 0.1 })),
         guard: Default::default(),
-        heat: None,
-        snow: None,
+        sections: Default::default(),
     }
+    .with_fluids(vec![water(
+        vec![FluidBlock::at_rest([0.0; 3], [0.3, 0.9, 0.15])],
+        Viscosity::Artificial { alpha: 0.1 },
+    )])
 }
 
 /// Morris, Fox & Zhu (1997): plates at y = 0 and y = L, periodic along x and z
@@ -129,7 +134,6 @@ pub fn poiseuille() -> Scene {
         modules: vec!["fluid".into()],
         particle_spacing: l / 20.0,
         gravity: [force, 0.0, 0.0],
-        fluids: vec![water(vec![FluidBlock::at_rest([0.0; 3], [w, l, w])], Viscosity::Laplacian { nu })],
         boundaries: vec![Boundary::Box {
             min: [0.0; 3],
             max: [w, l, w],
@@ -140,9 +144,9 @@ pub fn poiseuille() -> Scene {
         periodic: vec![Axis::X, Axis::Z],
         solver: Solver { speed_of_sound: Some(1.0), ..Solver::default() },
         guard: Default::default(),
-        heat: None,
-        snow: None,
+        sections: Default::default(),
     }
+    .with_fluids(vec![water(vec![FluidBlock::at_rest([0.0; 3], [w, l, w])], Viscosity::Laplacian { nu })])
 }
 
 /// Taylor & Green (1937) vortices in a box periodic along every axis: the unit
@@ -166,18 +170,13 @@ pub fn taylor_green() -> Scene {
         modules: vec!["fluid".into()],
         particle_spacing: l / 40.0,
         gravity: [0.0; 3],
-        fluids: vec![water(vec![block], Viscosity::Laplacian { nu })],
         boundaries: Vec::new(),
         domain: Some(BoxRegion { min: [0.0; 3], max: size }),
         periodic: vec![Axis::X, Axis::Y, Axis::Z],
-        solver: Solver {
-            support_factor: 3.0,
-            speed_of_sound: Some(10.0 * u),
-            transport_velocity: Some(TransportVelocity { background: 2.0 * 1000.0 * (10.0 * u).powi(2) }),
-            ..Solver::default()
-        },
+        solver: Solver { support_factor: 3.0, speed_of_sound: Some(10.0 * u), ..Solver::default() }
+            .with("transport_velocity", json!({ "background": 2.0 * 1000.0 * (10.0 * u).powi(2) })),
         guard: Default::default(),
-        heat: None,
-        snow: None,
+        sections: Default::default(),
     }
+    .with_fluids(vec![water(vec![block], Viscosity::Laplacian { nu })])
 }

@@ -34,8 +34,8 @@ impl ViscosityModel {
     /// viscosity carries the kernel's lattice normalisation
     /// ([`Kernel::lattice_laplacian_scale`]): without it the steady Poiseuille
     /// profile stalls about 1 % slow however fine the particles.
-    pub fn new(spec: crate::scene::Viscosity, rho0: Real, c: Real, kernel: &Kernel, spacing: Real) -> Self {
-        use crate::scene::Viscosity;
+    pub fn new(spec: super::spec::Viscosity, rho0: Real, c: Real, kernel: &Kernel, spacing: Real) -> Self {
+        use super::spec::Viscosity;
         let h = 0.5 * kernel.support();
         match spec {
             Viscosity::None => ViscosityModel::None,

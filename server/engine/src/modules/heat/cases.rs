@@ -161,8 +161,8 @@ fn channel_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     if halted.is_some() {
         return (wall, halted, Vec::new());
     }
-    let scene = sim.scene();
-    let (rho_f, l) = (f64::from(scene.fluids[0].rest_density) * f64::from(scene.gravity[0]), 1.0);
+    let rho = sim.model().materials.get(0).rest_density;
+    let (rho_f, l) = (f64::from(rho) * f64::from(sim.scene().gravity[0]), 1.0);
     let (cold, hot) = (f64::from(CHANNEL_T.0), f64::from(CHANNEL_T.1));
     let linear = |y: f64| cold + (hot - cold) * (y / l).clamp(0.0, 1.0);
     let law = sim.model().consts::<HeatConsts>().viscosity[0];
@@ -313,7 +313,8 @@ const CAVITY_SAMPLE: f64 = 0.25;
 /// spacing of it, averaged in bins one spacing long.
 fn cavity_figures(sim: &Simulation, spacing: f64) -> [f64; 3] {
     let p = sim.read(&["velocity", "temperature"]);
-    let thermal = &sim.scene().heat.as_ref().expect("the cavity has heat").fluids[0];
+    let heat = super::section(sim.scene());
+    let thermal = &heat.fluids[0];
     let v = p.channel("velocity").and_then(|v| v.as_vectors()).expect("velocity requested");
     let t = p.channel("temperature").and_then(|t| t.as_scalars()).expect("temperature requested");
     let (l, dt) = (f64::from(CAVITY_L), f64::from(CAVITY_T.0 - CAVITY_T.1));
@@ -435,10 +436,13 @@ mod tests {
     fn rayleigh_prandtl(overrides: &[&str]) -> (f64, f64) {
         let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
         let scene = from_preset("heated_cavity", &overrides).expect("the cavity builds");
-        let heat = scene.heat.as_ref().expect("heat");
-        let (f, thermal) = (&scene.fluids[0], &heat.fluids[0]);
-        let crate::scene::Viscosity::Laplacian { nu } = f.viscosity else { panic!("a Laplacian viscosity") };
-        let alpha = f64::from(thermal.conductivity) / (f64::from(f.rest_density) * f64::from(thermal.heat_capacity));
+        let heat = super::super::section(&scene);
+        let thermal = &heat.fluids[0];
+        // The fluid module's section, read as the document has it.
+        let fluid = &scene.section::<serde_json::Value>("fluids").expect("fluids")[0];
+        let nu = fluid["viscosity"]["nu"].as_f64().expect("a Laplacian viscosity") as f32;
+        let rest_density = fluid["rest_density"].as_f64().expect("a rest density");
+        let alpha = f64::from(thermal.conductivity) / (rest_density * f64::from(thermal.heat_capacity));
         let g = f64::from(heat.buoyancy_gravity.expect("its own g")[1]).abs();
         let dt = f64::from(CAVITY_T.0 - CAVITY_T.1);
         let ra = g * f64::from(thermal.expansion) * dt * f64::from(CAVITY_L).powi(3) / (f64::from(nu) * alpha);

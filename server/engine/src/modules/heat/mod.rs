@@ -27,10 +27,11 @@ use crate::guard::Bound;
 use crate::kernel::Kernel;
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
+use crate::module::{ModuleDef, Section};
 use crate::modules::fluid::spec::WallShear;
 use crate::modules::fluid::varying;
-use crate::modules::{ModuleDef, Section};
 use crate::scene::Scene;
+use crate::scene::sections::SectionDef;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
 use crate::simulation::Measure;
@@ -42,8 +43,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     about: "Temperature: conduction between fluids and with walls, heat sources, Boussinesq buoyancy.",
     requires: &["fluid"],
     section: Some(Section {
-        key: "heat",
-        present: |scene| scene.heat.is_some(),
+        def: SectionDef::of::<spec::Heat>(SECTION),
         missing: "required by the module \"heat\" (each fluid's thermal properties)",
     }),
     validate,
@@ -239,7 +239,7 @@ impl HeatConsts {
                 .iter()
                 .map(|f| TemperatureLaw::new(f.viscosity.as_ref(), heat.max_viscosity, heat.reference_temperature))
                 .collect(),
-            shifts_rheology: scene.snow.is_some(),
+            shifts_rheology: scene.sections.has(crate::modules::snow::SECTION),
             range: heat.range,
         }
     }
@@ -270,17 +270,19 @@ impl HeatConsts {
     }
 }
 
-fn section(scene: &Scene) -> &spec::Heat {
-    scene.heat.as_ref().expect("the registry builds heat only for scenes with a heat section")
+/// The module's section of a scene.
+pub const SECTION: &str = "heat";
+
+/// The scene's `heat` section (the registry builds the module only for scenes with one).
+pub fn section(scene: &Scene) -> spec::Heat {
+    scene.section(SECTION).expect("the registry builds heat only for scenes with a heat section")
 }
 
 fn validate(scene: &Scene, c: &mut Checker) {
-    let Some(heat) = &scene.heat else { return };
-    if heat.fluids.len() != scene.fluids.len() {
-        c.fail(
-            "heat.fluids",
-            format!("must hold one entry per fluid ({}), got {}", scene.fluids.len(), heat.fluids.len()),
-        );
+    let Some(heat) = scene.section::<spec::Heat>(SECTION) else { return };
+    let fluids = crate::modules::fluid::fluids(scene);
+    if heat.fluids.len() != fluids.len() {
+        c.fail("heat.fluids", format!("must hold one entry per fluid ({}), got {}", fluids.len(), heat.fluids.len()));
     }
     let [lo, hi] = heat.range;
     c.positive("heat.range[0]", lo);
@@ -304,7 +306,8 @@ fn validate(scene: &Scene, c: &mut Checker) {
         temperature(c, &format!("{p}.temperature"), f.temperature);
         if let Some(law) = &f.viscosity {
             validate_law(c, &format!("{p}.viscosity"), law);
-            let rheology = scene.snow.as_ref().and_then(|s| s.fluids.get(i));
+            let snow = scene.section::<crate::modules::snow::spec::Snow>(crate::modules::snow::SECTION);
+            let rheology = snow.as_ref().and_then(|s| s.fluids.get(i));
             if rheology == Some(&crate::modules::snow::spec::Rheology::None) {
                 c.fail(
                     &format!("snow.fluids[{i}].model"),
@@ -315,7 +318,7 @@ fn validate(scene: &Scene, c: &mut Checker) {
                     ),
                 );
             }
-            if scene.fluids.get(i).is_some_and(|fluid| fluid.viscosity != crate::scene::Viscosity::None) {
+            if fluids.get(i).is_some_and(|fluid| fluid.viscosity != crate::modules::fluid::spec::Viscosity::None) {
                 c.fail(
                     &format!("fluids[{i}].viscosity"),
                     format!(
@@ -403,7 +406,7 @@ fn initial_temperatures(heat: &spec::Heat, b: &ModelBuilder) -> Vec<Real> {
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let heat = section(scene);
-    let t = initial_temperatures(heat, b);
+    let t = initial_temperatures(&heat, b);
     b.attr(&TEMPERATURE, Column::F32(t));
     b.zeros(&TEMPERATURE_CARRY);
     b.zeros(&HEAT_RATE);

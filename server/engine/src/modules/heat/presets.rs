@@ -2,11 +2,9 @@
 //! overrides and `floe schema` apply to them as to files.
 
 use super::spec::{Heat, TemperatureBox, ThermalFluid, ViscosityLaw};
-use crate::modules::Preset;
-use crate::scene::{
-    Axis, Boundary, BoxRegion, DeltaSph, EquationOfState, Face, Fluid, FluidBlock, Scene, Solver, TimeStep,
-    TransportVelocity, Viscosity,
-};
+use crate::module::Preset;
+use crate::scene::{Axis, Boundary, BoxRegion, Face, Scene, Solver, TimeStep};
+use serde_json::{Value, json};
 
 /// The presets, for the module registry.
 pub const PRESETS: &[Preset] = &[
@@ -50,8 +48,15 @@ pub const CONDUCTION_L: f32 = 0.064;
 /// rho = 1000 kg/m^3, c = 1000 J/(kg K).
 pub const CONDUCTION_ALPHA: f32 = 1e-4;
 
-fn fluid(name: &str, rest_density: f32, viscosity: Viscosity, blocks: Vec<FluidBlock>) -> Fluid {
-    Fluid { name: name.into(), rest_density, eos: Default::default(), viscosity, xsph: 0.0, blocks }
+/// A fluid of the `fluids` section (the fluid module's, as the document has it)
+/// filling the box `min`-`max` at rest.
+fn fluid(name: &str, rest_density: f32, viscosity: Value, min: [f32; 3], max: [f32; 3]) -> Value {
+    json!({ "name": name, "rest_density": rest_density, "viscosity": viscosity, "blocks": [{ "min": min, "max": max }] })
+}
+
+/// A Laplacian viscosity of kinematic viscosity `nu` (m^2/s).
+fn laplacian(nu: f32) -> Value {
+    json!({ "model": "laplacian", "nu": nu })
 }
 
 fn water(temperature: f32, expansion: f32) -> ThermalFluid {
@@ -77,21 +82,22 @@ fn wall_box(min: [f32; 3], max: [f32; 3], temperature: f32) -> TemperatureBox {
     TemperatureBox { min, max, temperature }
 }
 
-fn scene(name: &str, spacing: f32, fluids: Vec<Fluid>, boundaries: Vec<Boundary>, heat: Heat) -> Scene {
-    Scene {
+fn scene(name: &str, spacing: f32, fluids: Vec<Value>, boundaries: Vec<Boundary>, heat: Heat) -> Scene {
+    let mut s = Scene {
         name: name.into(),
         modules: vec!["fluid".into(), "heat".into()],
         particle_spacing: spacing,
         gravity: [0.0, -9.81, 0.0],
-        fluids,
         boundaries,
         domain: None,
         periodic: Vec::new(),
         solver: Solver::default(),
         guard: Default::default(),
-        heat: Some(heat),
-        snow: None,
+        sections: Default::default(),
     }
+    .with("fluids", Value::Array(fluids));
+    s.sections.set(super::SECTION, &heat);
+    s
 }
 
 /// A slab 64 mm long, 8 mm square in section, periodic on every axis, with no
@@ -113,7 +119,7 @@ pub fn conduction() -> Scene {
     let mut s = scene(
         "conduction",
         0.001,
-        vec![fluid("conductor", 1000.0, Viscosity::None, vec![FluidBlock::at_rest([0.0; 3], [l, w, w])])],
+        vec![fluid("conductor", 1000.0, json!({ "model": "none" }), [0.0; 3], [l, w, w])],
         Vec::new(),
         heat,
     );
@@ -133,12 +139,7 @@ pub fn convection() -> Scene {
     scene(
         "convection",
         0.005,
-        vec![fluid(
-            "water",
-            1000.0,
-            Viscosity::Laplacian { nu: 1e-4 },
-            vec![FluidBlock::at_rest([0.0; 3], [lx, ly, lz])],
-        )],
+        vec![fluid("water", 1000.0, laplacian(1e-4), [0.0; 3], [lx, ly, lz])],
         vec![Boundary::Box { min: [0.0; 3], max: [lx, ly, lz], open: Vec::new(), layers: 1 }],
         heat(vec![water(310.0, 2e-3)], vec![floor, lid]),
     )
@@ -148,10 +149,9 @@ pub fn convection() -> Scene {
 /// separated by a flat interface at half height; the heavy one sinks in fingers.
 pub fn two_fluids() -> Scene {
     let (lx, ly, lz) = (0.2, 0.4, 0.04);
-    let visc = Viscosity::Laplacian { nu: 1e-4 };
     let fluids = vec![
-        fluid("light", 1000.0, visc, vec![FluidBlock::at_rest([0.0; 3], [lx, 0.5 * ly, lz])]),
-        fluid("heavy", 3000.0, visc, vec![FluidBlock::at_rest([0.0, 0.5 * ly, 0.0], [lx, ly, lz])]),
+        fluid("light", 1000.0, laplacian(1e-4), [0.0; 3], [lx, 0.5 * ly, lz]),
+        fluid("heavy", 3000.0, laplacian(1e-4), [0.0, 0.5 * ly, 0.0], [lx, ly, lz]),
     ];
     let mut s = scene(
         "two_fluids",
@@ -200,7 +200,7 @@ pub fn heated_cavity() -> Scene {
     let mut s = scene(
         "heated_cavity",
         d,
-        vec![fluid("air-like", rho, Viscosity::Laplacian { nu }, vec![FluidBlock::at_rest([0.0; 3], [l, l, depth])])],
+        vec![fluid("air-like", rho, laplacian(nu), [0.0; 3], [l, l, depth])],
         vec![Boundary::Box { min: [0.0; 3], max: [l, l, depth], open: vec![Face::MinusZ, Face::PlusZ], layers: 2 }],
         heat,
     );
@@ -208,7 +208,7 @@ pub fn heated_cavity() -> Scene {
     s.periodic = vec![Axis::Z];
     s.gravity = [0.0; 3];
     s.solver.speed_of_sound = Some(CAVITY_C);
-    s.solver.transport_velocity = Some(TransportVelocity { background: rho * CAVITY_C * CAVITY_C });
+    s.solver = s.solver.with("transport_velocity", json!({ "background": rho * CAVITY_C * CAVITY_C }));
     s
 }
 
@@ -224,11 +224,10 @@ const CAVITY_C: f32 = 2.0;
 /// lattice from rearranging once settled (docs/heat.md).
 pub fn layers() -> Scene {
     let (lx, ly, lz) = (0.2, 0.2, 0.04);
-    let visc = Viscosity::Artificial { alpha: 0.02 };
-    let eos = EquationOfState::Tait { gamma: 7.0, background: LAYERS_BACKGROUND };
-    let fluid = |name, rest_density, min: [f32; 3], max: [f32; 3]| Fluid {
-        eos,
-        ..fluid(name, rest_density, visc, vec![FluidBlock::at_rest(min, max)])
+    let fluid = |name, rest_density, min: [f32; 3], max: [f32; 3]| {
+        let mut f = fluid(name, rest_density, json!({ "model": "artificial", "alpha": 0.02 }), min, max);
+        f["eos"] = json!({ "kind": "tait", "gamma": 7.0, "background": LAYERS_BACKGROUND });
+        f
     };
     let fluids = vec![
         fluid("heavy", 1000.0, [0.0; 3], [lx, 0.5 * ly, lz]),
@@ -243,7 +242,7 @@ pub fn layers() -> Scene {
     );
     s.solver.damping = 5.0;
     s.solver.damping_until = LAYERS_SETTLE as f32;
-    s.solver.delta_sph = Some(DeltaSph { delta: 0.1 });
+    s.solver = s.solver.with("delta_sph", json!({ "delta": 0.1 }));
     s.solver.time_step = TimeStep::Adaptive { cfl: 0.5, min: 1e-7, max: 5e-3 };
     s
 }
@@ -265,10 +264,11 @@ pub const CHANNEL_T: (f32, f32) = (280.0, 320.0);
 /// diffusivity of 1 m^2/s, so the linear temperature profile sets in as fast as the
 /// flow (both within about 0.3 s); the fluid starts at 300 K.
 pub fn heated_channel() -> Scene {
-    let mut s = crate::modules::fluid::presets::poiseuille();
+    let mut s = crate::scene::presets::get("poiseuille")
+        .expect("the fluid module's channel")
+        .with("fluids[0].viscosity", json!({ "model": "none" }));
     s.name = "heated_channel".into();
     s.modules = vec!["fluid".into(), "heat".into()];
-    s.fluids[0].viscosity = Viscosity::None;
     let (cold, hot) = CHANNEL_T;
     let law = ViscosityLaw::Exponential { mu_ref: 1000.0, t_ref: 300.0, b: 4f32.ln() / (hot - cold) };
     let thermal = ThermalFluid {
@@ -280,6 +280,6 @@ pub fn heated_channel() -> Scene {
     };
     let walls =
         vec![wall_box([-1.0, -1.0, -1.0], [2.0, 0.0, 2.0], cold), wall_box([-1.0, 1.0, -1.0], [2.0, 2.0, 2.0], hot)];
-    s.heat = Some(Heat { max_viscosity: 1e4, range: [270.0, 330.0], ..heat(vec![thermal], walls) });
+    s.sections.set(super::SECTION, &Heat { max_viscosity: 1e4, range: [270.0, 330.0], ..heat(vec![thermal], walls) });
     s
 }

@@ -24,9 +24,10 @@ use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use crate::channels::{ChannelSpec, Source};
 use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
+use crate::module::{ModuleDef, Section};
 use crate::modules::fluid::varying;
-use crate::modules::{ModuleDef, Section};
 use crate::scene::Scene;
+use crate::scene::sections::SectionDef;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
 use crate::simulation::Measure;
@@ -39,8 +40,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     about: "Non-Newtonian viscosity (Cross, power law, Bingham, Herschel-Bulkley, Carreau) for snow avalanches.",
     requires: &["fluid"],
     section: Some(Section {
-        key: "snow",
-        present: |scene| scene.snow.is_some(),
+        def: SectionDef::of::<spec::Snow>(SECTION),
         missing: "required by the module \"snow\" (each fluid's rheology)",
     }),
     validate,
@@ -126,17 +126,19 @@ impl SnowConsts {
     }
 }
 
-fn section(scene: &Scene) -> &spec::Snow {
-    scene.snow.as_ref().expect("the registry builds snow only for scenes with a snow section")
+/// The module's section of a scene.
+pub const SECTION: &str = "snow";
+
+/// The scene's `snow` section (the registry builds the module only for scenes with one).
+pub fn section(scene: &Scene) -> spec::Snow {
+    scene.section(SECTION).expect("the registry builds snow only for scenes with a snow section")
 }
 
 fn validate(scene: &Scene, c: &mut Checker) {
-    let Some(snow) = &scene.snow else { return };
-    if snow.fluids.len() != scene.fluids.len() {
-        c.fail(
-            "snow.fluids",
-            format!("must hold one entry per fluid ({}), got {}", scene.fluids.len(), snow.fluids.len()),
-        );
+    let Some(snow) = scene.section::<spec::Snow>(SECTION) else { return };
+    let fluids = crate::modules::fluid::fluids(scene).len();
+    if snow.fluids.len() != fluids {
+        c.fail("snow.fluids", format!("must hold one entry per fluid ({fluids}), got {}", snow.fluids.len()));
     }
     c.positive("snow.max_viscosity", snow.max_viscosity);
     varying::validate_solver(c, "snow.solver", snow.solver);
@@ -178,7 +180,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.pass(if b.column("viscosity_shift").is_some() { &shear::SHEAR_SHIFTED } else { &shear::SHEAR });
     varying::enable(b, "snow", snow.solver, snow.walls)?;
     b.channel(SHEAR_RATE_CHANNEL);
-    let consts = SnowConsts::new(snow);
+    let consts = SnowConsts::new(&snow);
     b.set_consts(Front::new(b, &consts));
     b.set_consts(consts);
     Ok(())
@@ -186,7 +188,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 
 fn retune(scene: &Scene, model: &mut Model) {
     let snow = section(scene);
-    model.set_consts(SnowConsts::new(snow));
+    model.set_consts(SnowConsts::new(&snow));
     varying::retune(model, snow.solver, snow.walls);
 }
 

@@ -6,10 +6,11 @@
 //! viscous step, not by sound.
 
 use super::spec::{Rheology, Snow};
-use crate::modules::Preset;
+use crate::module::Preset;
 use crate::modules::fluid::spec::{ViscousSolver, WallShear};
-use crate::scene::{Boundary, Face, Fluid, FluidBlock, Scene, Solver, Viscosity};
+use crate::scene::{Boundary, Face, Scene, Solver};
 use crate::terrain::spec::{Heights, Slope, Terrain};
+use serde_json::json;
 
 /// The presets, for the module registry.
 pub const PRESETS: &[Preset] = &[
@@ -39,16 +40,14 @@ pub const PRESETS: &[Preset] = &[
 pub const CHANNEL: (f32, f32, f32) = (1000.0, 0.1, 1.0);
 
 fn channel(name: &str, rheology: Rheology, max_viscosity: f32) -> Scene {
-    let mut s = crate::modules::fluid::presets::poiseuille();
+    let mut s = crate::scene::presets::get("poiseuille")
+        .expect("the fluid module's channel")
+        .with("fluids[0].viscosity", json!({ "model": "none" }));
     s.name = name.into();
     s.modules = vec!["fluid".into(), "snow".into()];
-    s.fluids[0].viscosity = Viscosity::None;
-    s.snow = Some(Snow {
-        fluids: vec![rheology],
-        max_viscosity,
-        walls: WallShear::NoSlip,
-        solver: ViscousSolver::default(),
-    });
+    let snow =
+        Snow { fluids: vec![rheology], max_viscosity, walls: WallShear::NoSlip, solver: ViscousSolver::default() };
+    s.sections.set(super::SECTION, &snow);
     s
 }
 
@@ -94,19 +93,11 @@ pub fn avalanche() -> Scene {
         friction: 0.5,
         layers: 2,
     };
-    Scene {
+    let mut s = Scene {
         name: "avalanche".into(),
         modules: vec!["fluid".into(), "snow".into()],
         particle_spacing: 0.025,
         gravity: [0.0, -9.81, 0.0],
-        fluids: vec![Fluid {
-            name: "snow".into(),
-            rest_density: 300.0,
-            eos: Default::default(),
-            viscosity: Viscosity::None,
-            xsph: 0.0,
-            blocks: vec![FluidBlock::at_rest([0.1, 0.0, 0.0], [1.0, top - 0.05, width])],
-        }],
         boundaries: vec![
             Boundary::Box {
                 min: [0.0, -0.5, 0.0],
@@ -120,12 +111,23 @@ pub fn avalanche() -> Scene {
         periodic: Vec::new(),
         solver: Solver::default(),
         guard: Default::default(),
-        heat: None,
-        snow: Some(Snow {
-            fluids: vec![Rheology::Cross { mu_0: 200.0, mu_inf: 5.0, k: 1.0, n: 1.0 }],
-            max_viscosity: 200.0,
-            walls: WallShear::Slip,
-            solver: ViscousSolver::default(),
-        }),
+        sections: Default::default(),
     }
+    .with(
+        "fluids",
+        json!([{
+            "name": "snow",
+            "rest_density": 300.0,
+            "viscosity": { "model": "none" },
+            "blocks": [{ "min": [0.1, 0.0, 0.0], "max": [1.0, top - 0.05, width] }],
+        }]),
+    );
+    let snow = Snow {
+        fluids: vec![Rheology::Cross { mu_0: 200.0, mu_inf: 5.0, k: 1.0, n: 1.0 }],
+        max_viscosity: 200.0,
+        walls: WallShear::Slip,
+        solver: ViscousSolver::default(),
+    };
+    s.sections.set(super::SECTION, &snow);
+    s
 }

@@ -48,6 +48,7 @@
 //! slowly under the CFL condition, so it is not rescaled.
 
 pub mod cpu;
+pub mod spec;
 
 use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use crate::channels::{ChannelSpec, Source};
@@ -56,15 +57,20 @@ use crate::guard::Halted;
 use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::plan::{PassSpec, Stage};
-use crate::scene::{DfsphSettings, Scene};
-use crate::schemes::{Iterate, Op, ReduceOp, Reduction, SchemeDef, Stages, StepReport, velocity_solves};
+use crate::scene::Scene;
+use crate::scene::sections::SectionDef;
+use crate::scheme::{Iterate, Op, ReduceOp, Reduction, SchemeDef, Stages, StepReport, velocity_solves};
+use spec::DfsphSettings;
 
 /// The scheme's definition.
 pub static SCHEME: SchemeDef = SchemeDef {
     id: "dfsph",
     about: "Divergence-free SPH: a divergence-free and a constant-density solve per step, steps at the flow's CFL limit.",
     build,
-    retune: |scene, model| model.set_consts(DfsphConsts { settings: scene.solver.dfsph }),
+    settings: &[SectionDef::defaulted::<DfsphSettings>(SETTINGS)],
+    pressure_terms: false,
+    validate,
+    retune: |scene, model| model.set_consts(DfsphConsts { settings: settings(scene) }),
     cpu: &[
         ("dfsph.factor", &cpu::Factor),
         ("dfsph.divergence_warm", &cpu::Warm { kappa: "kappa_v", increment: "dkappa_v" }),
@@ -174,7 +180,7 @@ fn pressures(_: &Model, columns: &[Column]) -> Vec<f32> {
 }
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
-    b.set_consts(DfsphConsts { settings: scene.solver.dfsph });
+    b.set_consts(DfsphConsts { settings: settings(scene) });
     for spec in [&ALPHA, &KAPPA, &KAPPA_V, &DKAPPA, &DKAPPA_V, &DENSITY_ERROR, &DIVERGENCE_ERROR] {
         b.zeros(spec);
     }
@@ -191,6 +197,23 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     }
     b.channel(PRESSURE);
     Ok(())
+}
+
+/// The solves' settings in `solver` ([`DfsphSettings`]).
+pub const SETTINGS: &str = "dfsph";
+
+/// The scene's DFSPH settings.
+pub fn settings(scene: &Scene) -> DfsphSettings {
+    scene.solver.settings(SETTINGS).unwrap_or_default()
+}
+
+/// Checks the tolerances and the iteration limit (any scene may carry them: every
+/// scene's `solver` has them, with their defaults).
+fn validate(scene: &Scene, _: bool, c: &mut crate::scene::validate::Checker) {
+    let s = settings(scene);
+    c.within("solver.dfsph.density_tolerance", s.density_tolerance, 1e-6, 0.1);
+    c.within("solver.dfsph.divergence_tolerance", s.divergence_tolerance, 1e-6, 0.1);
+    c.within("solver.dfsph.max_iterations", s.max_iterations as f32, 1.0, 10_000.0);
 }
 
 /// The divergence-free solve with the scene's settings.

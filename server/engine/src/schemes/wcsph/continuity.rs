@@ -1,4 +1,4 @@
-//! δ-SPH (`solver.delta_sph`; see [`crate::scene::DeltaSph`] for the equations and
+//! δ-SPH (`solver.delta_sph`; see [`super::spec::DeltaSph`] for the equations and
 //! their papers): the density's rate from the continuity equation plus the
 //! density diffusion, into `drho`, then `rho += dt drho`. The density pass then
 //! only finds neighbours.
@@ -67,7 +67,7 @@ pub static INTEGRATE: PassSpec = PassSpec {
 pub struct DeltaConsts {
     /// `2 delta h c_a` (m^2/s) of each material, the diffusion's coefficient with the
     /// Laplacian's 2 and the fluid's own speed of sound
-    /// ([`crate::scene::EquationOfState::sound_speed`]).
+    /// ([`crate::materials::EquationOfState::sound_speed`]).
     pub coefficient: Vec<Real>,
     /// `0.01 h^2` (m^2), which keeps the Laplacian finite at small separations.
     pub eta2: Real,
@@ -99,7 +99,7 @@ pub fn build(b: &mut ModelBuilder, delta: Real, sound_speed: Real, eos: &[Eos]) 
     b.pass(&INTEGRATE);
     let h = 0.5 * b.kernel.support();
     DeltaConsts {
-        coefficient: b.scene.fluids.iter().map(|f| 2.0 * delta * h * f.eos.sound_speed(sound_speed)).collect(),
+        coefficient: b.materials().iter().map(|m| 2.0 * delta * h * m.eos.sound_speed(sound_speed)).collect(),
         eta2: 0.01 * h * h,
         hydrostatic: rest.iter().zip(eos).map(|(&r0, e)| g * (r0 / (e.sound_speed() * e.sound_speed()))).collect(),
     }

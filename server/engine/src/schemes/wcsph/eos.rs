@@ -2,8 +2,8 @@
 //! pressure, clamped at zero so free surfaces never pull particles together (no
 //! tensile instability).
 
+use crate::materials::EquationOfState;
 use crate::math::Real;
-use crate::scene::EquationOfState;
 
 /// An equation of state with its constants resolved for one fluid.
 #[derive(Debug, Clone, Copy, PartialEq)]

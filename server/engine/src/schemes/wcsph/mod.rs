@@ -25,22 +25,31 @@
 pub mod continuity;
 pub mod cpu;
 pub mod eos;
+pub mod spec;
 pub mod transport;
 
 use crate::attrs::{AttrSpec, Elem, PARTICLES, Role, WALLS};
+use crate::channels::{ChannelSpec, Source};
 use crate::clock::Clock;
 use crate::guard::Halted;
 use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::plan::{PassSpec, Stage};
+use crate::scene::sections::SectionDef;
 use crate::scene::{Integrator, Scene};
-use crate::schemes::{SchemeDef, Stages, StepReport, velocity_solves};
+use crate::scheme::{SchemeDef, Stages, StepReport, velocity_solves};
 use eos::Eos;
 
 /// The scheme's definition.
 pub static SCHEME: SchemeDef = SchemeDef {
     id: "wcsph",
     about: "Weakly compressible SPH: equation of state, explicit steps at the speed of sound.",
+    settings: &[
+        SectionDef::of::<spec::DeltaSph>(DELTA_SPH),
+        SectionDef::of::<spec::TransportVelocity>(TRANSPORT_VELOCITY),
+    ],
+    pressure_terms: true,
+    validate,
     build,
     retune: |_, _| {},
     cpu: &[
@@ -54,9 +63,14 @@ pub static SCHEME: SchemeDef = SchemeDef {
     signal_speed: |model| model.consts::<WcsphConsts>().signal_speed,
 };
 
+/// δ-SPH's settings in `solver` ([`spec::DeltaSph`]; absent or `null`: the density is summed).
+pub const DELTA_SPH: &str = "delta_sph";
+/// The transport velocity's settings in `solver` ([`spec::TransportVelocity`]; absent or `null`: none).
+pub const TRANSPORT_VELOCITY: &str = "transport_velocity";
+
 /// `p / rho^2` of each particle (m^5/(kg s^2)), the pressure force's term.
 pub static PTERM: AttrSpec = AttrSpec {
-    name: "pterm",
+    name: crate::scheme::PRESSURE_TERM,
     elem: Elem::F32,
     unit: "m^5/(kg s^2)",
     role: Role::Derived,
@@ -116,11 +130,10 @@ pub struct WcsphConsts {
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let c = b.sound_speed()?;
-    let eos: Vec<Eos> =
-        scene.fluids.iter().zip(b.materials()).map(|(f, m)| Eos::new(f.eos, m.rest_density, c)).collect();
-    let transport = scene.solver.transport_velocity.map(|t| t.background);
-    let delta = scene.solver.delta_sph.map(|d| continuity::build(b, d.delta, c, &eos));
-    let signal_speed = signal_speed(scene, b.materials(), c);
+    let eos: Vec<Eos> = b.materials().iter().map(|m| Eos::new(m.eos, m.rest_density, c)).collect();
+    let transport = transport_velocity(scene).map(|t| t.background);
+    let delta = delta_sph(scene).map(|d| continuity::build(b, d.delta, c, &eos));
+    let signal_speed = signal_speed(b.materials(), c);
     b.set_consts(WcsphConsts { eos, transport, delta, signal_speed });
     b.zeros(&PTERM);
     b.zeros(&WALL_P);
@@ -130,7 +143,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         b.zeros(&crate::model::core_attrs::A_TRANSPORT);
         b.pass(&transport::TRANSPORT);
     }
-    b.channel(crate::channels::PRESSURE);
+    b.channel(PRESSURE_CHANNEL);
     Ok(())
 }
 
@@ -144,14 +157,51 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 /// a density ratio of 10). A step sized by `c` alone lets that mode grow at the
 /// interface: the `layers` preset's speeds grew tenfold a second once its
 /// damping stopped (docs/heat.md). `c_a` is the fluid's own speed
-/// ([`crate::scene::EquationOfState::sound_speed`]): one fluid gets exactly `c`.
-fn signal_speed(scene: &Scene, materials: &[crate::materials::Material], c: Real) -> Real {
+/// ([`crate::materials::EquationOfState::sound_speed`]): one fluid gets exactly `c`.
+fn signal_speed(materials: &[crate::materials::Material], c: Real) -> Real {
     let lightest = materials.iter().map(|m| m.rest_density).fold(Real::INFINITY, Real::min);
-    let felt = |(f, m): (&crate::scene::Fluid, &crate::materials::Material)| {
-        f.eos.sound_speed(c) * (m.rest_density / lightest).sqrt()
-    };
-    scene.fluids.iter().zip(materials).map(felt).fold(c, Real::max)
+    let felt = |m: &crate::materials::Material| m.eos.sound_speed(c) * (m.rest_density / lightest).sqrt();
+    materials.iter().map(felt).fold(c, Real::max)
 }
+
+/// Checks the settings: the background pressure and δ, WCSPH's only.
+fn validate(scene: &Scene, chosen: bool, c: &mut crate::scene::validate::Checker) {
+    let only = |c: &mut crate::scene::validate::Checker, key: &str| {
+        if !chosen {
+            c.fail(&format!("solver.{key}"), "works with solver.method = \"wcsph\" only".into());
+        }
+    };
+    if let Some(t) = transport_velocity(scene) {
+        c.positive("solver.transport_velocity.background", t.background);
+        only(c, TRANSPORT_VELOCITY);
+    }
+    if let Some(d) = delta_sph(scene) {
+        c.within("solver.delta_sph.delta", d.delta, 0.0, 1.0);
+        only(c, DELTA_SPH);
+    }
+}
+
+/// The scene's δ-SPH settings, if its density is integrated.
+pub fn delta_sph(scene: &Scene) -> Option<spec::DeltaSph> {
+    scene.solver.settings(DELTA_SPH)
+}
+
+/// The scene's transport-velocity settings, if it has them.
+pub fn transport_velocity(scene: &Scene) -> Option<spec::TransportVelocity> {
+    scene.solver.settings(TRANSPORT_VELOCITY)
+}
+
+/// Pressure from density through each material's equation of state (WCSPH).
+pub const PRESSURE_CHANNEL: ChannelSpec = ChannelSpec {
+    name: "pressure",
+    unit: "Pa",
+    components: 1,
+    exact: false,
+    set: PARTICLES,
+    module: "wcsph",
+    about: "Pressure from the equation of state.",
+    source: Source::Derived { from: &["rho"], values: pressures },
+};
 
 /// The stages of an evaluation.
 const EVALUATE: [Stage; 4] = [Stage::Sort, Stage::Density, Stage::PreForce, Stage::Force];

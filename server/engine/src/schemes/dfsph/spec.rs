@@ -1,0 +1,43 @@
+//! DFSPH's settings in a scene's `solver` table: `dfsph`.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// DFSPH's two solves (Bender & Koschier 2017): each iterates until its mean
+/// relative error is at most its tolerance, and halts the scene if it is not there
+/// after `max_iterations`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DfsphSettings {
+    /// Largest mean predicted density error `(rho* - rho0) / rho0` (compression only)
+    /// the constant-density solve leaves: 0.001 is 0.1 %.
+    #[serde(default = "default_density_tolerance")]
+    pub density_tolerance: f32,
+    /// Largest mean density change per step `dt (Drho/Dt) / rho0` (compression only)
+    /// the divergence-free solve leaves: 0.001 is 0.1 % per step.
+    #[serde(default = "default_divergence_tolerance")]
+    pub divergence_tolerance: f32,
+    /// Most iterations of each solve in one step (1 to 10000).
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: u32,
+}
+
+fn default_density_tolerance() -> f32 {
+    1e-3
+}
+fn default_divergence_tolerance() -> f32 {
+    1e-3
+}
+fn default_max_iterations() -> u32 {
+    100
+}
+
+impl Default for DfsphSettings {
+    fn default() -> Self {
+        Self {
+            density_tolerance: default_density_tolerance(),
+            divergence_tolerance: default_divergence_tolerance(),
+            max_iterations: default_max_iterations(),
+        }
+    }
+}
