@@ -217,12 +217,21 @@ pub struct BenchArgs {
 /// `floe validate`.
 #[derive(Debug, Args)]
 pub struct ValidateArgs {
-    /// Coarse resolutions and short stability runs (a few minutes on 2 cores; the default).
-    #[arg(long, conflicts_with = "full")]
+    /// Every variant at coarse resolutions and short stability runs (the default):
+    /// errors against run time and convergence, bounds checked on the finest run.
+    #[arg(long, conflicts_with_all = ["full", "bounds"])]
     pub quick: bool,
     /// Finer resolutions and longer stability runs (the figures kept in docs/validation/).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "bounds")]
     pub full: bool,
+    /// Every stated bound, fast: each case's first variant at the one spacing its
+    /// bounds are checked at, and the stability battery (what the test suite runs).
+    #[arg(long)]
+    pub bounds: bool,
+    /// Runs at once, each with an equal share of the cores (small scenes step about
+    /// as fast on one core as on two, so two at once finish sooner).
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub jobs: usize,
     /// Backend.
     #[arg(long, value_enum, default_value = "cpu")]
     pub backend: BackendChoice,

@@ -1,26 +1,55 @@
-//! `floe validate --quick`: every supported case and the stability battery run,
-//! their stated bounds hold, and the report is written.
+//! `floe validate`: every stated bound holds (`--bounds`, the stability battery
+//! included), and a quick report holds every run of the cases it was asked for,
+//! with its plots. The whole quick report, every case at every quick spacing, is
+//! `floe validate --quick` (docs/validation/).
 
 use clap::Parser;
 use floe_server::cli::Cli;
 
+/// Every stated bound, each at the spacing its case checks it at, and the stability
+/// battery: `floe validate --bounds`, two runs at once.
 #[test]
-fn quick_validation_meets_every_stated_bound() {
+fn every_stated_bound_holds() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().to_str().unwrap();
-    let cli = Cli::try_parse_from(["floe", "validate", "--quick", "--out", out]).unwrap();
+    let cli = Cli::try_parse_from(["floe", "validate", "--bounds", "--jobs", "2", "--out", out]).unwrap();
     let result = floe_server::execute(cli);
     let report = std::fs::read_to_string(dir.path().join("report.md")).expect("report.md written");
     result.unwrap_or_else(|e| panic!("{e:#}\n\n{report}"));
     assert!(report.contains("**All stated bounds met.**"));
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("report.json")).unwrap()).unwrap();
-    // Every case's variants at each of its quick resolutions, and every battery case.
-    let runs: usize =
-        floe_engine::validation::cases::all().iter().map(|c| c.variants.len() * c.spacings(false).len()).sum();
-    assert_eq!(json["runs"].as_array().unwrap().len(), runs);
+    // One run per case with quick spacings, at its checked spacing, of its first variant.
+    let cases: Vec<_> = floe_engine::validation::cases::all().into_iter().filter(|c| c.checked_at.is_some()).collect();
+    let runs = json["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), cases.len());
+    for (run, case) in runs.iter().zip(&cases) {
+        assert_eq!(run["case"], case.name);
+        assert_eq!(run["variant"], case.default_variant());
+        assert_eq!(run["spacing"].as_f64(), case.checked_at);
+    }
     assert_eq!(json["stability"].as_array().unwrap().len(), floe_engine::validation::stability::all().len());
-    for case in ["hydrostatic", "dam_break", "poiseuille", "bingham_channel"] {
+}
+
+/// A quick report of two cases: every variant at every quick spacing, and plots of
+/// error against run time and of convergence, with lines.
+#[test]
+fn a_quick_report_has_every_run_and_its_plots() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let args =
+        ["floe", "validate", "--quick", "--case", "dam_break", "--case", "conduction", "--jobs", "2", "--out", out];
+    floe_server::execute(Cli::try_parse_from(args).unwrap()).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("report.json")).unwrap()).unwrap();
+    let chosen: Vec<_> = floe_engine::validation::cases::all()
+        .into_iter()
+        .filter(|c| c.name == "dam_break" || c.name == "conduction")
+        .collect();
+    let runs: usize = chosen.iter().map(|c| c.variants.len() * c.spacings(false).len()).sum();
+    assert_eq!(json["runs"].as_array().unwrap().len(), runs);
+    assert!(json["stability"].as_array().unwrap().is_empty());
+    for case in ["dam_break", "conduction"] {
         for plot in ["work_precision", "convergence"] {
             let svg = std::fs::read_to_string(dir.path().join(format!("{case}_{plot}.svg"))).unwrap();
             assert!(svg.starts_with("<svg") && svg.contains("<polyline"), "{case}_{plot}.svg has no lines");

@@ -34,6 +34,11 @@ pub struct Case {
     /// The bounds the case states, checked on the finest run of the first variant:
     /// (norm, largest allowed value).
     pub bounds: &'static [(&'static str, f64)],
+    /// The spacing (m, one of the quick ones) at which `floe validate --bounds` (the
+    /// test suite's run) checks the bounds on the first variant: the coarsest at
+    /// which they hold, so every stated bound is checked in minutes while the reports
+    /// show how the errors converge. `None` for a case with no quick spacing.
+    pub checked_at: Option<f64>,
     /// The solver variants it runs, the defaults first.
     pub variants: &'static [Variant],
     /// Runs the built scene at `spacing` (m) and measures its errors.
@@ -140,6 +145,16 @@ pub fn convergence_order(points: &[(f64, f64)]) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bounds_are_checked_at_one_of_the_quick_spacings() {
+        for case in all() {
+            match case.checked_at {
+                Some(h) => assert!(case.spacings(false).contains(&h), "{}: {h} is not a quick spacing", case.name),
+                None => assert!(case.spacings(false).is_empty(), "{}: has quick spacings but none checked", case.name),
+            }
+        }
+    }
 
     #[test]
     fn convergence_order_of_a_power_law() {

@@ -55,6 +55,7 @@ pub const CASES: &[Case] = &[
         preset: "hydrostatic",
         primary_error: "pressure_l2",
         spacings: (&[0.05, 0.0375, 0.025], &[0.05, 0.0375, 0.025, 0.01875]),
+        checked_at: Some(0.025),
         bounds: &[("pressure_l2", 0.02), ("mean_density_deviation", 0.01)],
         variants: &HYDROSTATIC_VARIANTS,
         measure: hydrostatic_case,
@@ -66,6 +67,7 @@ pub const CASES: &[Case] = &[
         preset: "dam_break",
         primary_error: "front_rms",
         spacings: (&[A / 8.0, A / 12.0, A / 16.0], &[A / 12.0, A / 16.0, A / 22.0, A / 28.0]),
+        checked_at: Some(A / 8.0),
         bounds: &[("front_max_t2_5", 0.35)],
         variants: &DAM_BREAK_VARIANTS,
         measure: dam_break_case,
@@ -77,6 +79,7 @@ pub const CASES: &[Case] = &[
         preset: "poiseuille",
         primary_error: "velocity_l2_steady",
         spacings: (&[0.1, 1.0 / 15.0, 0.05], &[0.1, 1.0 / 15.0, 0.05, 1.0 / 30.0]),
+        checked_at: Some(1.0 / 15.0),
         // Walls mirror the fluid's velocity (no slip on the plates themselves) and the
         // Laplacian carries its lattice normalisation: measured 1.4 %, 0.62 % and 0.36 %
         // from coarse to fine at steady state, 0.36 % at t = 0.1 s.
@@ -91,6 +94,7 @@ pub const CASES: &[Case] = &[
         preset: "taylor_green",
         primary_error: "decay_rate_error",
         spacings: (&[1.0 / 40.0], &[1.0 / 40.0, 1.0 / 60.0, 1.0 / 80.0]),
+        checked_at: Some(1.0 / 40.0),
         bounds: &[("decay_rate_error", 0.02)],
         variants: &[
             Variant { name: "default", overrides: &[] },

@@ -28,6 +28,7 @@ pub const CASES: &[Case] = &[
         preset: "conduction",
         primary_error: "temperature_l2",
         spacings: (&[0.002, 0.0016, 0.001], &[0.002, 0.0016, 0.001, 0.0008]),
+        checked_at: Some(0.002),
         bounds: &[("temperature_l2", 0.01)],
         variants: &[
             Variant { name: "default", overrides: &[] },
@@ -42,6 +43,7 @@ pub const CASES: &[Case] = &[
         preset: "layers",
         primary_error: "spurious_speed",
         spacings: LAYERS_SPACINGS,
+        checked_at: Some(0.0125),
         bounds: LAYERS_BOUNDS,
         variants: &[
             Variant { name: "ratio_10", overrides: &[] },
@@ -62,6 +64,7 @@ pub const CASES: &[Case] = &[
         preset: "layers",
         primary_error: "spurious_speed",
         spacings: LAYERS_SPACINGS,
+        checked_at: Some(0.0125),
         bounds: LAYERS_BOUNDS,
         variants: &[
             // The light fluid made as stiff as water: a linear law with k = 100 c^2
@@ -88,6 +91,7 @@ pub const CASES: &[Case] = &[
         primary_error: "nusselt_error",
         // 10, 15, 20 particles across (the finest 90 s on 2 cores); 25 in `--full`.
         spacings: (&[0.005, 0.0033333, 0.0025], &[0.005, 0.0033333, 0.0025, 0.002]),
+        checked_at: Some(0.0025),
         bounds: &[("nusselt_error", 0.05), ("u_max_error", 0.05), ("v_max_error", 0.05)],
         variants: &[
             Variant { name: "default", overrides: &[] },
@@ -104,6 +108,7 @@ pub const CASES: &[Case] = &[
         primary_error: "nusselt_error",
         // Thinner boundary layers: from 20 particles across, in `--full` only.
         spacings: (&[], &[0.0025, 0.002, 0.0016667]),
+        checked_at: None,
         bounds: &[("nusselt_error", 0.05)],
         variants: &[
             Variant { name: "default", overrides: CAVITY_RA_1E5 },
@@ -121,6 +126,7 @@ pub const CASES: &[Case] = &[
         primary_error: "velocity_l2",
         // The conduction limit sets dt (4000 steps at 0.05 m): 20 layers in `--full` only.
         spacings: (&[0.1, 1.0 / 15.0], &[0.1, 1.0 / 15.0, 0.05, 1.0 / 30.0]),
+        checked_at: Some(0.1),
         bounds: &[("velocity_l2", 0.03), ("temperature_l2", 0.01)],
         variants: &[
             Variant { name: "implicit", overrides: &[] },
