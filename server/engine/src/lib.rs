@@ -21,6 +21,9 @@
 //! - [`scheme`], [`module`]: what a pressure solver and a physics module are;
 //!   [`schemes`] (WCSPH, DFSPH) and [`modules`] (fluid, heat, snow): those shipped,
 //!   listed in [`registry`], the only place that names them.
+//! - [`quantities`]: what modules share (the per-particle viscosity and its factor),
+//!   claimed by modules and resolved by the core; [`viscosity`]: that viscosity's
+//!   force, explicit or implicit.
 //! - [`math`], [`kernel`], [`neighbors`], [`periodic`]: numeric types, SPH kernels, the
 //!   uniform grid, periodic domains (minimum-image pairs).
 //! - [`boundary`], [`sampling`]: wall particles and constraints, particle lattices;
@@ -49,6 +52,7 @@ pub mod modules;
 pub mod neighbors;
 pub mod periodic;
 pub mod plan;
+pub mod quantities;
 pub mod quantize;
 pub mod registry;
 pub mod sampling;
@@ -61,6 +65,7 @@ pub mod summary;
 pub mod terrain;
 pub mod timestep;
 pub mod validation;
+pub mod viscosity;
 
 pub use backend::{Backend, Particles, StepReport};
 pub use guard::Halted;

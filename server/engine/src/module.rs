@@ -70,6 +70,12 @@ pub struct ModuleDef {
     /// Elements the module adds to each space, counted without building (the server's
     /// particle limit refuses a scene before it allocates anything).
     pub count: fn(&Scene) -> Vec<(&'static str, u64)>,
+    /// Materials the module adds (another module's section may hold one entry per
+    /// material: `heat.fluids`), counted without building.
+    pub materials: fn(&Scene) -> usize,
+    /// The module's claims on the quantities modules share
+    /// ([`crate::quantities`]), from its section (valid when called).
+    pub claims: fn(&Scene) -> Vec<crate::quantities::Claim>,
     /// Adds the module's materials and particles (run for every module before any
     /// [`ModuleDef::build`], so the core knows every particle first).
     pub particles: fn(&Scene, &mut ModelBuilder) -> Result<(), BuildError>,
@@ -131,6 +137,11 @@ pub fn counts(scene: &Scene) -> Vec<(&'static str, u64)> {
         }
     }
     out
+}
+
+/// Materials `scene`'s modules will add, counted without building them.
+pub fn materials(scene: &Scene) -> usize {
+    of(scene).iter().map(|m| (m.materials)(scene)).sum()
 }
 
 /// Every preset of every module.

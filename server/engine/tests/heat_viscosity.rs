@@ -104,7 +104,7 @@ fn a_scene_without_a_law_has_no_per_particle_viscosity() {
     assert!(s.model().layout.spec("mu").is_none());
     let passes: Vec<&str> = s.model().plan.passes().iter().map(|p| p.name).collect();
     assert!(
-        !passes.iter().any(|p| *p == "heat.viscosity" || p.starts_with("fluid.implicit") || *p == "fluid.viscosity")
+        !passes.iter().any(|p| *p == "heat.viscosity" || p.starts_with("viscosity."))
     );
     assert!(!s.channels().iter().any(|c| c.name == "viscosity"));
     let with = sim("heated_channel", &["particle_spacing=0.1"]);
@@ -155,13 +155,18 @@ fn a_temperature_law_needs_a_rheology_with_snow() {
         &["particle_spacing=0.1", r#"modules=["fluid","heat","snow"]"#, r#"snow={"fluids":[{"model":"none"}]}"#],
     );
     assert!(err.contains("snow.fluids[0].model: must not be \"none\""), "{err}");
-    assert!(err.contains("heat.fluids[0].viscosity scales the fluid's rheology"), "{err}");
+    assert!(err.contains("heat.fluids[0].viscosity scales this fluid's viscosity"), "{err}");
 }
 
 #[test]
 fn the_laws_are_checked() {
     let err = error("heated_channel", &[r#"fluids[0].viscosity={"model":"laplacian","nu":1}"#]);
-    assert!(err.contains("fluids[0].viscosity: must be {\"model\": \"none\"}"), "{err}");
+    assert!(
+        err.contains(
+            "fluids[0].viscosity: must be {\"model\": \"none\"}: heat.fluids[0].viscosity sets this fluid's viscosity"
+        ),
+        "{err}"
+    );
     let err = error(
         "heated_channel",
         &[r#"heat.fluids[0].viscosity={"law":"table","points":[[300,1],[290,2],[310,1e3],[320,-1]]}"#],

@@ -51,7 +51,7 @@ fn the_viscous_force_only_dissipates() {
         b.run(stage, 1e-3);
     }
     b.upload("a", Column::Vec3(vec![Default::default(); n]));
-    b.run_pass("fluid.viscosity", 1e-3);
+    b.run_pass("viscosity.force", 1e-3);
     b.end_step();
     let columns = b.download(&["v", "a", "mu"]);
     let (Column::Vec3(v), Column::Vec3(a), Column::F32(mu)) = (&columns[0], &columns[1], &columns[2]) else {
@@ -94,7 +94,7 @@ fn implicit_viscosity_reaches_the_channel_profile_at_larger_steps() {
     while s.time() < CHANNEL_T_END {
         let report = s.step().unwrap();
         let solve = report.solves[0];
-        assert_eq!(solve.name, "fluid.viscosity");
+        assert_eq!(solve.name, "viscosity");
         assert!(solve.iterations >= 1 && solve.residual <= 1e-3, "{solve:?}");
     }
     let limit = measure(&s, "snow.explicit_dt_limit");

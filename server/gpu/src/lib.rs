@@ -8,7 +8,8 @@
 //! - [`context`]: adapter choice (hardware first; software such as Mesa's
 //!   lavapipe when allowed), device, compiled kernels.
 //! - [`passes`]: the core's kernels, one `.wgsl` each; [`pass`]: plan passes bound by
-//!   name, with the schemes' and modules' halves in [`schemes`] and [`modules`].
+//!   name, with the schemes' and modules' halves in [`schemes`] and [`modules`], and
+//!   the core's per-particle viscosity in [`viscosity`].
 //! - [`layout`]: the `#[repr(C)]` structs shared with WGSL.
 //! - [`buffers`], [`backend`]: one scene's GPU memory and its `Backend`.
 //! - [`select`]: `auto | gpu | cpu` for the server and the CLI.
@@ -24,6 +25,7 @@ pub mod program;
 pub mod schemes;
 pub mod select;
 pub mod timer;
+pub mod viscosity;
 
 pub use backend::GpuBackend;
 pub use context::{Adapters, GpuContext, GpuError};

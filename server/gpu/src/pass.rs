@@ -108,7 +108,8 @@ pub const HOST_PASSES: &[&str] = &["core.sort", "core.neighbours"];
 /// Every plan pass the GPU implements: the core's, the schemes' and the modules'.
 pub fn all() -> Vec<&'static GpuPass> {
     let core: &[&'static GpuPass] = &[&crate::passes::DENSITY_PASS];
-    core.iter().chain(crate::schemes::PASSES).chain(crate::modules::PASSES).copied().collect()
+    let core = core.iter().chain(crate::viscosity::PASSES);
+    core.chain(crate::schemes::PASSES).chain(crate::modules::PASSES).copied().collect()
 }
 
 /// The implementation of plan pass `name` for `model`.
@@ -121,7 +122,8 @@ pub type UniformSource = fn(&Model) -> Option<Vec<u8>>;
 
 /// Every module uniform by name.
 pub fn uniforms() -> Vec<(&'static str, UniformSource)> {
-    crate::schemes::UNIFORMS.iter().chain(crate::modules::UNIFORMS).copied().collect()
+    let core = std::iter::once(&crate::viscosity::UNIFORM);
+    core.chain(crate::schemes::UNIFORMS).chain(crate::modules::UNIFORMS).copied().collect()
 }
 
 /// Always.

@@ -28,6 +28,8 @@ pub static MODULE: ModuleDef = ModuleDef {
     section: None,
     validate: |_, _| {},
     count: |_| vec![(PROBES, 4)],
+    materials: |_| 0,
+    claims: |_| Vec::new(),
     particles: |_, _| Ok(()),
     build,
     retune: |_, _| {},

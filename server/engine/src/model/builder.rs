@@ -2,6 +2,7 @@
 //! while it is built, and the assembly of the model from it.
 
 use super::*;
+use crate::quantities::Resolution;
 
 /// Particles a module adds to the particle space.
 #[derive(Debug, Default)]
@@ -23,6 +24,9 @@ pub struct ModelBuilder<'s> {
     pub scene: &'s Scene,
     /// The kernel.
     pub kernel: Kernel,
+    /// What each module does with the quantities the modules share (resolved
+    /// before any module builds).
+    pub quantities: Resolution,
     scheme: &'static SchemeDef,
     spacing: Real,
     materials: Vec<Material>,
@@ -50,6 +54,7 @@ impl<'s> ModelBuilder<'s> {
         Ok(Self {
             scene,
             kernel: Kernel::new(scene.solver.kernel, scene.solver.support_factor * d),
+            quantities: crate::quantities::resolution(scene),
             scheme: crate::scheme::of(scene),
             spacing: d,
             materials: Vec::new(),
@@ -239,6 +244,11 @@ impl<'s> ModelBuilder<'s> {
         for m in &modules {
             (m.build)(scene, &mut self)?;
         }
+        // The shared quantities' passes act on what the modules wrote.
+        if let Some(how) = self.quantities.integration() {
+            let scaled = self.quantities.scaled();
+            crate::viscosity::enable(&mut self, how, scaled);
+        }
         let layers = scene.boundaries.iter().map(|b| match b {
             Boundary::Box { layers, .. } | Boundary::Plane { layers, .. } => *layers,
             Boundary::Terrain(t) => t.layers,
@@ -279,6 +289,7 @@ impl<'s> ModelBuilder<'s> {
                 .collect(),
             scheme,
             modules,
+            quantities: self.quantities,
             layout: self.layout,
             plan,
             velocity_solves: self.velocity_solves,
@@ -335,26 +346,4 @@ fn fall_speed(gravity: Vec3, fluid: Aabb, walls: Aabb, initial: Real) -> Real {
     let top = corners(fluid).map(|p| p.dot(down)).fold(Real::INFINITY, Real::min);
     let bottom = corners(fluid).chain(corners(walls)).map(|p| p.dot(down)).fold(Real::NEG_INFINITY, Real::max);
     (2.0 * g * (bottom - top).max(0.0)).sqrt().max(initial)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::modules::fluid::spec::{ViscousSolver, WallShear};
-    use crate::modules::fluid::varying;
-
-    /// One module per scene writes the per-particle viscosity (the heat module's laws
-    /// scale the snow module's rheology rather than write it): a second module turning
-    /// the path on is refused, naming both settings.
-    #[test]
-    fn a_second_module_turning_per_particle_viscosity_on_is_refused() {
-        let scene = crate::scene::load::from_preset("cross_channel", &[]).expect("the preset loads");
-        let mut b = ModelBuilder::new(&scene).expect("a builder");
-        varying::enable(&mut b, "snow", ViscousSolver::Explicit, WallShear::NoSlip).expect("the first");
-        let err = varying::enable(&mut b, "ice", ViscousSolver::Explicit, WallShear::NoSlip).unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            "ice: sets the particles' viscosity, which snow sets already; a scene takes it from one module"
-        );
-    }
 }

@@ -51,14 +51,6 @@ pub enum BuildError {
     /// A terrain's heights cannot be read (e.g. an asset never read from the assets directory).
     #[error("{0}")]
     Terrain(String),
-    /// Two modules of a scene would each set the per-particle viscosity.
-    #[error("{second}: sets the particles' viscosity, which {first} sets already; a scene takes it from one module")]
-    ViscosityTwice {
-        /// The setting of the module that set it first.
-        first: &'static str,
-        /// The other's.
-        second: &'static str,
-    },
     /// The backend cannot hold or run the scene (e.g. it exceeds a GPU's limits).
     #[error("backend: {0}")]
     Backend(String),
@@ -205,6 +197,8 @@ pub struct Model {
     pub scheme: &'static SchemeDef,
     /// The scene's modules, in registry order.
     pub modules: Vec<&'static ModuleDef>,
+    /// What each module does with the quantities the modules share.
+    pub quantities: crate::quantities::Resolution,
     /// Spaces and attributes.
     pub layout: Layout,
     /// The passes of a step, in order.
@@ -226,7 +220,8 @@ impl Model {
     }
 
     /// Takes the tunable settings of `scene` (see [`crate::scene::tunable`]): the
-    /// core's (gravity, time step, damping, guard), then each module's. Attributes
+    /// core's (gravity, time step, damping, guard), then each module's, then the
+    /// shared viscosity's integration. Attributes
     /// and passes may come or go (XSPH switched on); backends follow the layout.
     pub fn retune(&mut self, scene: &Scene) {
         self.gravity = scene.gravity.into();
@@ -237,6 +232,10 @@ impl Model {
         (self.scheme.retune)(scene, self);
         for m in self.modules.clone() {
             (m.retune)(scene, self);
+        }
+        // The roles stay (the modules stay); the viscosity's integration may change.
+        if let Some(how) = crate::quantities::resolution(scene).integration() {
+            crate::viscosity::retune(self, how);
         }
     }
 

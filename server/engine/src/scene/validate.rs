@@ -15,6 +15,11 @@ pub struct Checker {
 }
 
 impl Checker {
+    /// The errors recorded.
+    pub fn into_errors(self) -> Vec<String> {
+        self.errors
+    }
+
     /// Records that the field at `path` is wrong.
     pub fn fail(&mut self, path: &str, message: String) {
         self.errors.push(format!("{path}: {message}"));
@@ -79,6 +84,10 @@ pub fn validate(scene: &Scene) -> Result<(), Vec<String>> {
     check_modules(&mut c, scene);
     for m in crate::module::of(scene) {
         (m.validate)(scene, &mut c);
+    }
+    if c.errors.is_empty() {
+        // Claims parse the sections: only once they are valid.
+        crate::quantities::check(scene, &mut c);
     }
     let counted = scene.particle_spacing.is_finite() && scene.particle_spacing > 0.0;
     let particles = crate::module::counts(scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);

@@ -17,12 +17,6 @@ pub static PASSES: &[&GpuPass] = &[
     &heat::INTEGRATE,
     &heat::VISCOSITY,
     &heat::VISCOSITY_SHIFT,
-    &fluid::VARYING,
-    &fluid::implicit::DIAGONAL,
-    &fluid::implicit::PRECONDITION,
-    &fluid::implicit::PRODUCT,
-    &fluid::implicit::UPDATE,
-    &fluid::implicit::DIRECTION,
     &snow::SHEAR,
     &snow::SHEAR_SHIFTED,
 ];
@@ -33,7 +27,6 @@ pub static FUSED: &[&Fused] = &[&heat::FORCES_AND_CONDUCTION];
 /// Every module's uniform.
 pub static UNIFORMS: &[(&str, UniformSource)] = &[
     ("fluid", fluid::uniform),
-    ("fluid.varying", fluid::varying_uniform),
     ("heat", heat::uniform),
     ("snow", snow::uniform),
 ];

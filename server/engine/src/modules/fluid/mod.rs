@@ -3,20 +3,17 @@
 //! neighbour loop when the scheme is WCSPH, the pressure force.
 //!
 //! - [`spec`]: the scene section (`fluids`).
-//! - [`viscosity`]: the pairwise viscous terms.
-//! - [`varying`]: viscosity that varies from particle to particle (written by
-//!   another module: snow's rheology, heat's temperature law) and its force;
-//!   [`implicit`]: that force by backward Euler (conjugate gradients).
+//! - [`viscosity`]: the pairwise viscous terms. (Viscosity that varies from
+//!   particle to particle, set by another module, is the core's:
+//!   [`crate::viscosity`].)
 //! - [`forces`]: the force pass; [`xsph`]: the XSPH passes.
 //! - [`presets`]: `dam_break`, `hydrostatic`.
 //! - [`cases`]: validation cases and the stability battery.
 
 pub mod cases;
 pub mod forces;
-pub mod implicit;
 pub mod presets;
 pub mod spec;
-pub mod varying;
 pub mod viscosity;
 pub mod xsph;
 
@@ -26,6 +23,7 @@ use crate::materials::{Material, MaterialKind};
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::module::{ModuleDef, Section};
+use crate::quantities::{Claim, Write};
 use crate::sampling::{box_count, fill_box};
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
@@ -45,6 +43,8 @@ pub static MODULE: ModuleDef = ModuleDef {
     }),
     validate,
     count,
+    materials: |scene| fluids(scene).len(),
+    claims,
     particles,
     build,
     retune,
@@ -53,12 +53,6 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("fluid.forces", &forces::Forces),
         ("fluid.xsph", &xsph::Xsph),
         ("fluid.xsph_kick", &xsph::XsphKick),
-        ("fluid.viscosity", &varying::Force),
-        ("fluid.implicit_diagonal", &implicit::Diagonal),
-        ("fluid.implicit_precondition", &implicit::Precondition),
-        ("fluid.implicit_product", &implicit::Product),
-        ("fluid.implicit_update", &implicit::Update),
-        ("fluid.implicit_direction", &implicit::Direction),
     ],
     presets: presets::PRESETS,
     dt_limit,
@@ -73,6 +67,20 @@ pub const SECTION: &str = "fluids";
 /// The scene's fluids (none if it has no `fluids` section).
 pub fn fluids(scene: &Scene) -> Vec<spec::Fluid> {
     scene.section(SECTION).unwrap_or_default()
+}
+
+/// A fluid's own viscosity model is its viscosity: a module's law that would set
+/// the particles' viscosity (`mu`) for it is refused.
+fn claims(scene: &Scene) -> Vec<Claim> {
+    let own = |(i, f): (usize, &spec::Fluid)| {
+        (f.viscosity != Viscosity::None).then(|| Claim {
+            material: i,
+            path: format!("{SECTION}[{i}].viscosity"),
+            write: Write::Own,
+            fix: r#"must be {"model": "none"}"#,
+        })
+    };
+    fluids(scene).iter().enumerate().filter_map(own).collect()
 }
 
 /// The module's live settings.
@@ -104,20 +112,6 @@ pub static XSPH: AttrSpec = AttrSpec {
     space: PARTICLES,
     module: "fluid",
     about: "XSPH velocity correction of the last evaluation.",
-};
-
-/// Dynamic viscosity per particle (Pa s): the one path for viscosity that varies
-/// from particle to particle ([`varying`]). A module whose viscosity depends on
-/// the state (the snow module's rheology, the heat module's temperature law)
-/// writes it; it is allocated only in scenes that have such a module.
-pub static VISCOSITY: AttrSpec = AttrSpec {
-    name: "mu",
-    elem: Elem::F32,
-    unit: "Pa s",
-    role: Role::Derived,
-    space: PARTICLES,
-    module: "fluid",
-    about: "Dynamic viscosity of the particle at its current state.",
 };
 
 /// The module's constants, per material.

@@ -8,8 +8,9 @@
 //! - [`conduction`]: the conduction pass (Cleary & Monaghan 1999).
 //! - [`passes`]: buoyancy (a force pass accumulating into `a`) and the
 //!   integration `T += dt dT/dt` in the kick stage.
-//! - [`viscosity`]: temperature-dependent viscosity laws, written into the fluid
-//!   module's per-particle viscosity.
+//! - [`viscosity`]: temperature-dependent viscosity laws, written into the core's
+//!   per-particle viscosity, or into its factor where another module sets it
+//!   ([`crate::quantities`]).
 //! - [`presets`]: `conduction`, `convection`, `two_fluids`, `heated_cavity`,
 //!   `heated_channel`, `layers`.
 //! - [`cases`]: validation cases and the stability battery.
@@ -28,13 +29,13 @@ use crate::kernel::Kernel;
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::module::{ModuleDef, Section};
-use crate::modules::fluid::spec::WallShear;
-use crate::modules::fluid::varying;
+use crate::quantities::{Claim, Role as QuantityRole, Write};
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
 use crate::simulation::Measure;
+use crate::viscosity::{Integration, WallShear};
 use viscosity::TemperatureLaw;
 
 /// The module's definition.
@@ -48,6 +49,8 @@ pub static MODULE: ModuleDef = ModuleDef {
     }),
     validate,
     count: |_| Vec::new(),
+    materials: |_| 0,
+    claims,
     particles: |_, _| Ok(()),
     build,
     retune,
@@ -122,18 +125,6 @@ pub static HEAT_RATE: AttrSpec = AttrSpec {
     about: "Rate of change of temperature from conduction and sources.",
 };
 
-/// The factor `mu(T) / mu(T0)` of each particle's temperature law, which scales the
-/// snow module's rheology in scenes with both (1 for fluids without a law).
-pub static VISCOSITY_SHIFT: AttrSpec = AttrSpec {
-    name: "viscosity_shift",
-    elem: Elem::F32,
-    unit: "",
-    role: Role::Derived,
-    space: PARTICLES,
-    module: "heat",
-    about: "Temperature shift factor of the rheology's viscosity (1 at the reference temperature).",
-};
-
 /// The temperature channel (a row of proto/channels.json).
 pub const TEMPERATURE_CHANNEL: ChannelSpec = ChannelSpec {
     name: "temperature",
@@ -172,8 +163,8 @@ pub struct HeatConsts {
     pub sources: Vec<HeatInput>,
     /// The temperature law of each material's viscosity (kind `None` where it has none).
     pub viscosity: Vec<TemperatureLaw>,
-    /// Whether the laws scale the snow module's rheology (`viscosity_shift`) rather
-    /// than set the viscosity (`mu`): the scene has both modules.
+    /// Whether the laws scale the viscosity another module sets (the core's
+    /// `viscosity_shift`) rather than set it (`mu`).
     pub shifts_rheology: bool,
     /// The temperatures the scene may reach, `heat.range` (K).
     pub range: [Real; 2],
@@ -203,7 +194,7 @@ impl HeatInput {
 }
 
 impl HeatConsts {
-    fn new(scene: &Scene, kernel: &Kernel) -> Self {
+    fn new(scene: &Scene, kernel: &Kernel, role: Option<QuantityRole>) -> Self {
         let heat = section(scene);
         let spacing = scene.particle_spacing;
         let conductivity: Vec<Real> = heat.fluids.iter().map(|f| f.conductivity).collect();
@@ -239,7 +230,7 @@ impl HeatConsts {
                 .iter()
                 .map(|f| TemperatureLaw::new(f.viscosity.as_ref(), heat.max_viscosity, heat.reference_temperature))
                 .collect(),
-            shifts_rheology: scene.sections.has(crate::modules::snow::SECTION),
+            shifts_rheology: role == Some(QuantityRole::Scales),
             range: heat.range,
         }
     }
@@ -280,9 +271,9 @@ pub fn section(scene: &Scene) -> spec::Heat {
 
 fn validate(scene: &Scene, c: &mut Checker) {
     let Some(heat) = scene.section::<spec::Heat>(SECTION) else { return };
-    let fluids = crate::modules::fluid::fluids(scene);
-    if heat.fluids.len() != fluids.len() {
-        c.fail("heat.fluids", format!("must hold one entry per fluid ({}), got {}", fluids.len(), heat.fluids.len()));
+    let fluids = crate::module::materials(scene);
+    if heat.fluids.len() != fluids {
+        c.fail("heat.fluids", format!("must hold one entry per fluid ({fluids}), got {}", heat.fluids.len()));
     }
     let [lo, hi] = heat.range;
     c.positive("heat.range[0]", lo);
@@ -306,30 +297,10 @@ fn validate(scene: &Scene, c: &mut Checker) {
         temperature(c, &format!("{p}.temperature"), f.temperature);
         if let Some(law) = &f.viscosity {
             validate_law(c, &format!("{p}.viscosity"), law);
-            let snow = scene.section::<crate::modules::snow::spec::Snow>(crate::modules::snow::SECTION);
-            let rheology = snow.as_ref().and_then(|s| s.fluids.get(i));
-            if rheology == Some(&crate::modules::snow::spec::Rheology::None) {
-                c.fail(
-                    &format!("snow.fluids[{i}].model"),
-                    format!(
-                        "must not be \"none\": with the snow module {p}.viscosity scales the fluid's rheology \
-                         (a Newtonian fluid: {{\"model\": \"newtonian\", \"mu\": its viscosity at \
-                         heat.reference_temperature}})"
-                    ),
-                );
-            }
-            if fluids.get(i).is_some_and(|fluid| fluid.viscosity != crate::modules::fluid::spec::Viscosity::None) {
-                c.fail(
-                    &format!("fluids[{i}].viscosity"),
-                    format!(
-                        "must be {{\"model\": \"none\"}}: {p}.viscosity sets the fluid's viscosity from its temperature"
-                    ),
-                );
-            }
         }
     }
     c.positive("heat.max_viscosity", heat.max_viscosity);
-    varying::validate_solver(c, "heat.viscous_solver", heat.viscous_solver);
+    crate::viscosity::validate_solver(c, "heat.viscous_solver", heat.viscous_solver);
     for (name, boxes) in [("regions", &heat.regions), ("walls", &heat.walls)] {
         for (i, b) in boxes.iter().enumerate() {
             let p = format!("heat.{name}[{i}]");
@@ -404,24 +375,36 @@ fn initial_temperatures(heat: &spec::Heat, b: &ModelBuilder) -> Vec<Real> {
         .collect()
 }
 
+/// Each fluid's temperature law sets its viscosity, or scales the viscosity
+/// another module sets from the fluid's state (a rheology) by `mu(T) / mu(T0)`.
+fn claims(scene: &Scene) -> Vec<Claim> {
+    let heat = section(scene);
+    let how = Integration { solver: heat.viscous_solver, walls: WallShear::NoSlip };
+    let law = |(i, f): (usize, &spec::ThermalFluid)| {
+        f.viscosity.is_some().then(|| Claim {
+            material: i,
+            path: format!("{SECTION}.fluids[{i}].viscosity"),
+            write: Write::SetsOrScales { how },
+            fix: "",
+        })
+    };
+    heat.fluids.iter().enumerate().filter_map(law).collect()
+}
+
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let heat = section(scene);
     let t = initial_temperatures(&heat, b);
     b.attr(&TEMPERATURE, Column::F32(t));
     b.zeros(&TEMPERATURE_CARRY);
     b.zeros(&HEAT_RATE);
-    let consts = HeatConsts::new(scene, &b.kernel);
+    let consts = HeatConsts::new(scene, &b.kernel, b.quantities.role(MODULE.id));
     b.pass(&conduction::CONDUCTION);
     if consts.buoyant() {
         b.pass(&passes::BUOYANCY);
     }
     b.pass(&passes::INTEGRATE);
-    if consts.viscous() && consts.shifts_rheology {
-        b.zeros(&VISCOSITY_SHIFT);
-        b.pass(&viscosity::SHIFT);
-    } else if consts.viscous() {
-        varying::enable(b, "heat.fluids[*].viscosity", heat.viscous_solver, WallShear::NoSlip)?;
-        b.pass(&viscosity::VISCOSITY);
+    if consts.viscous() {
+        b.pass(if consts.shifts_rheology { &viscosity::SHIFT } else { &viscosity::VISCOSITY });
     }
     b.bound(Bound { attr: "temperature", what: "temperature", unit: "K", min: heat.range[0], max: heat.range[1] });
     b.channel(TEMPERATURE_CHANNEL);
@@ -431,7 +414,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 
 /// Conductivities and expansion may change; buoyancy's pass comes and goes with it.
 fn retune(scene: &Scene, model: &mut Model) {
-    let consts = HeatConsts::new(scene, &model.kernel);
+    let consts = HeatConsts::new(scene, &model.kernel, model.quantities.role(MODULE.id));
     let names: Vec<&str> = model.plan.passes().iter().map(|p| p.name).collect();
     if consts.buoyant() != names.contains(&passes::BUOYANCY.name) {
         let mut list: Vec<_> =
@@ -469,7 +452,7 @@ fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
         .map(|(l, m)| l.largest(lo, hi) / m.rest_density)
         .fold(0.0, Real::max);
     // Scaling a rheology, the snow module's clamp bounds the viscosity and its limit.
-    let explicit = c.viscous() && !c.shifts_rheology && !varying::is_implicit(model) && nu > 0.0;
+    let explicit = c.viscous() && !c.shifts_rheology && !crate::viscosity::is_implicit(model) && nu > 0.0;
     let viscous = explicit.then(|| ("temperature-dependent viscosity", 0.125 * h * h / nu));
     [diffusion, viscous].into_iter().flatten().min_by(|a, b| a.1.total_cmp(&b.1))
 }

@@ -2,7 +2,7 @@
 //! where the fluid starts hotter or colder, which walls hold a fixed temperature,
 //! and volumetric heat sources. Temperatures are absolute (K).
 
-use crate::modules::fluid::spec::ViscousSolver;
+use crate::viscosity::ViscousSolver;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -1,15 +1,16 @@
 //! Temperature-dependent viscosity: each fluid's law (`heat.fluids[*].viscosity`),
 //! resolved into one form both backends evaluate with the same arithmetic (the
-//! GPU's viscosity.wgsl), and the pass `heat.viscosity` that writes the fluid
-//! module's per-particle viscosity `mu` from the temperature before the forces.
-//! The force of those viscosities is the fluid module's
-//! ([`crate::modules::fluid::varying`]).
+//! GPU's viscosity.wgsl), and the pass `heat.viscosity` that writes the core's
+//! per-particle viscosity `mu` from the temperature before the forces. The force
+//! of those viscosities is the core's ([`crate::viscosity`]).
 //!
-//! In a scene with the snow module as well, a law scales the fluid's rheology
-//! instead (a shift factor, as in time-temperature superposition's vertical shift):
-//! `heat.viscosity_shift` writes `a_T = mu(T) / mu(T0)`, T0 the module's reference
-//! temperature, and the snow module's viscosity is `a_T mu(shear rate)`, so the
-//! rheology holds at T0 and stiffens or thins with the law around it.
+//! Where another module sets the viscosity from the fluid's state (the snow
+//! module's rheology), a law scales it instead (a shift factor, as in
+//! time-temperature superposition's vertical shift): `heat.viscosity_shift` writes
+//! `a_T = mu(T) / mu(T0)` into the core's factor, T0 the module's reference
+//! temperature, and the setter's viscosity is `a_T mu(shear rate)`, so the
+//! rheology holds at T0 and stiffens or thins with the law around it
+//! ([`crate::quantities`] decides which, from the modules' claims).
 
 use super::HeatConsts;
 use super::spec::ViscosityLaw;

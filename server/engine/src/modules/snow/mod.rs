@@ -6,9 +6,9 @@
 //!
 //! - [`spec`]: the scene section (`snow`).
 //! - [`rheology`]: the viscosity laws.
-//! - [`shear`]: the shear-rate pass, which writes the fluid module's per-particle
-//!   viscosity; the fluid module's [`varying`](crate::modules::fluid::varying)
-//!   path adds its force, explicit or implicit.
+//! - [`shear`]: the shear-rate pass, which writes the core's per-particle
+//!   viscosity ([`crate::quantities::VISCOSITY`]); the core's
+//!   [`viscosity`](crate::viscosity) adds its force, explicit or implicit.
 //! - [`presets`]: channel flows and the avalanche.
 //! - [`channel`]: reference profiles of the channel flows; [`cases`]: validation
 //!   cases and the stability battery.
@@ -25,12 +25,13 @@ use crate::channels::{ChannelSpec, Source};
 use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::module::{ModuleDef, Section};
-use crate::modules::fluid::varying;
+use crate::quantities::{Claim, Write};
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
 use crate::simulation::Measure;
+use crate::viscosity::Integration;
 use rheology::Law;
 use spec::Rheology;
 
@@ -45,6 +46,8 @@ pub static MODULE: ModuleDef = ModuleDef {
     }),
     validate,
     count: |_| Vec::new(),
+    materials: |_| 0,
+    claims,
     particles: |_, _| Ok(()),
     build,
     retune,
@@ -136,12 +139,12 @@ pub fn section(scene: &Scene) -> spec::Snow {
 
 fn validate(scene: &Scene, c: &mut Checker) {
     let Some(snow) = scene.section::<spec::Snow>(SECTION) else { return };
-    let fluids = crate::modules::fluid::fluids(scene).len();
+    let fluids = crate::module::materials(scene);
     if snow.fluids.len() != fluids {
         c.fail("snow.fluids", format!("must hold one entry per fluid ({fluids}), got {}", snow.fluids.len()));
     }
     c.positive("snow.max_viscosity", snow.max_viscosity);
-    varying::validate_solver(c, "snow.solver", snow.solver);
+    crate::viscosity::validate_solver(c, "snow.solver", snow.solver);
     for (i, r) in snow.fluids.iter().enumerate() {
         let p = |f: &str| format!("snow.fluids[{i}].{f}");
         match *r {
@@ -173,12 +176,28 @@ fn validate(scene: &Scene, c: &mut Checker) {
     }
 }
 
+/// Each fluid's rheology sets its viscosity (a module's law may scale it, except
+/// a fluid's without a rheology, whose viscosity is 0).
+fn claims(scene: &Scene) -> Vec<Claim> {
+    let snow = section(scene);
+    let how = Integration { solver: snow.solver, walls: snow.walls };
+    let rheology = |(i, r): (usize, &Rheology)| {
+        let none = *r == Rheology::None;
+        Claim {
+            material: i,
+            path: if none { format!("{SECTION}.fluids[{i}].model") } else { format!("{SECTION}.fluids[{i}]") },
+            write: Write::Sets { how, scalable: !none },
+            fix: r#"must not be "none" (a Newtonian fluid: {"model": "newtonian", "mu": its viscosity})"#,
+        }
+    };
+    snow.fluids.iter().enumerate().map(rheology).collect()
+}
+
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let snow = section(scene);
     b.zeros(&SHEAR_RATE);
-    // The heat module (built first) leaves its temperature shift where a law asks.
-    b.pass(if b.column("viscosity_shift").is_some() { &shear::SHEAR_SHIFTED } else { &shear::SHEAR });
-    varying::enable(b, "snow", snow.solver, snow.walls)?;
+    // Another module's law may scale the rheology (the core allocates the factor).
+    b.pass(if b.quantities.scaled() { &shear::SHEAR_SHIFTED } else { &shear::SHEAR });
     b.channel(SHEAR_RATE_CHANNEL);
     let consts = SnowConsts::new(&snow);
     b.set_consts(Front::new(b, &consts));
@@ -187,9 +206,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 }
 
 fn retune(scene: &Scene, model: &mut Model) {
-    let snow = section(scene);
-    model.set_consts(SnowConsts::new(&snow));
-    varying::retune(model, snow.solver, snow.walls);
+    model.set_consts(SnowConsts::new(&section(scene)));
 }
 
 /// The explicit viscous limit `0.125 h^2 rho0 / mu_max` (Morris et al. 1997, eq. 20)
@@ -203,7 +220,7 @@ pub fn explicit_dt_limit(model: &Model) -> Option<Real> {
 
 /// The explicit viscous limit, unless the viscosity is implicit (no limit on dt).
 fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
-    let limit = explicit_dt_limit(model).filter(|_| !varying::is_implicit(model))?;
+    let limit = explicit_dt_limit(model).filter(|_| !crate::viscosity::is_implicit(model))?;
     Some(("non-Newtonian viscosity", limit))
 }
 

@@ -7,7 +7,7 @@
 
 use super::spec::{Rheology, Snow};
 use crate::module::Preset;
-use crate::modules::fluid::spec::{ViscousSolver, WallShear};
+use crate::viscosity::{ViscousSolver, WallShear};
 use crate::scene::{Boundary, Face, Scene, Solver};
 use crate::terrain::spec::{Heights, Slope, Terrain};
 use serde_json::json;

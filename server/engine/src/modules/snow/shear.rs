@@ -4,8 +4,8 @@
 //! `L_i = 1/rho_i sum_j m_j (v_j - v_i) (x) grad_i W_ij` (Monaghan 2005, Rep. Prog.
 //! Phys. 68, eq. 2.12, the difference form, exact for a uniform flow), the strain
 //! rate `D = (L + L^T) / 2`, the shear rate `g = sqrt(2 D:D)` and the viscosity
-//! `mu_i = mu(g)` of the particle's law, into the fluid module's per-particle
-//! viscosity, whose force ([`crate::modules::fluid::varying`]) follows.
+//! `mu_i = mu(g)` of the particle's law, into the core's per-particle viscosity,
+//! whose force ([`crate::viscosity`]) follows.
 //!
 //! A wall particle b (pseudo-mass `psi_b`) is the mirror image of the fluid
 //! particle, velocity `-v_i`, as in the force. With `snow.walls = "slip"` walls
@@ -15,7 +15,7 @@ use super::SnowConsts;
 use crate::cpu::neighbors::CHUNK;
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
-use crate::modules::fluid::varying::VaryingViscosity;
+use crate::viscosity::VaryingViscosity;
 use crate::periodic::Separation;
 use crate::plan::{PassSpec, Stage};
 use rayon::prelude::*;
@@ -31,9 +31,9 @@ pub static SHEAR: PassSpec = PassSpec {
     tolerance: 1e-4,
 };
 
-/// The same, each viscosity scaled by the heat module's temperature shift factor
-/// `viscosity_shift` (scenes with both modules; clamped to `snow.max_viscosity`
-/// after scaling).
+/// The same, each viscosity scaled by the core's factor `viscosity_shift`, which
+/// another module writes (the heat module's temperature shift; clamped to
+/// `snow.max_viscosity` after scaling).
 pub static SHEAR_SHIFTED: PassSpec = PassSpec {
     name: "snow.shear",
     module: "snow",

@@ -4,7 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use crate::modules::fluid::spec::{ViscousSolver, WallShear};
+use crate::viscosity::{ViscousSolver, WallShear};
 
 /// Non-Newtonian viscosity per fluid.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]

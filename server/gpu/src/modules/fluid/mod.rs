@@ -1,10 +1,6 @@
 //! The fluid module on the GPU: the force pass (with the WCSPH pressure terms or
 //! without), the XSPH sum and kick, and the module uniform `fluid` (per material:
-//! viscosity and XSPH; per material pair: the mixed viscosity and the mass ratio);
-//! the per-particle viscosity's force with its uniform `fluid.varying` (the walls' shear
-//! factor), and [`implicit`]: that force's implicit solve.
-
-pub mod implicit;
+//! viscosity and XSPH; per material pair: the mixed viscosity and the mass ratio).
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
@@ -14,7 +10,6 @@ use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
 use floe_engine::modules::fluid::FluidConsts;
-use floe_engine::modules::fluid::varying::VaryingViscosity;
 use floe_engine::modules::fluid::viscosity::ViscosityModel;
 
 /// The bindings of the force pass with the WCSPH pressure terms (a kernel walking
@@ -55,26 +50,6 @@ pub static FORCES: GpuPass = GpuPass {
     bindings: &[(U, "params"), (U, "fluid"), (R, "x"), (R, "v"), (R, "rho"), (R, "starts"), (R, "walls"), (W, "a")],
     space: PARTICLES,
     when: |m| !has_pressure_terms(m),
-};
-
-/// The viscous force of the per-particle viscosities (explicit solver).
-pub static VARYING: GpuPass = GpuPass {
-    name: "fluid.viscosity",
-    source: walk_kernel!("varying_walls.wgsl", "varying.wgsl"),
-    entry: "main",
-    bindings: &[
-        (U, "params"),
-        (U, "fluid.varying"),
-        (R, "x"),
-        (R, "v"),
-        (R, "rho"),
-        (R, "mu"),
-        (R, "starts"),
-        (R, "walls"),
-        (W, "a"),
-    ],
-    space: PARTICLES,
-    when: always,
 };
 
 const XSPH_BINDINGS: &[(Access, &str)] =
@@ -134,11 +109,4 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         }
     }
     Some(bytemuck::bytes_of(&p).to_vec())
-}
-
-/// The `fluid.varying` uniform's bytes, when the scene's viscosity varies per particle.
-pub fn varying_uniform(model: &Model) -> Option<Vec<u8>> {
-    model.layout.spec("mu")?;
-    let c = model.consts::<VaryingViscosity>();
-    Some(bytemuck::bytes_of(&[c.wall_shear, c.scale, 0.0, 0.0]).to_vec())
 }

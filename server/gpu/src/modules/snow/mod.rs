@@ -1,6 +1,6 @@
 //! The snow module on the GPU: the shear-rate pass, with the module uniform `snow`
 //! (per material: the viscosity law and its clamp). The force of the viscosities it
-//! writes is the fluid module's (`modules::fluid::varying`).
+//! writes is the core's ([`crate::viscosity`]).
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::GpuPass;
@@ -9,7 +9,7 @@ use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
-use floe_engine::modules::fluid::varying::VaryingViscosity;
+use floe_engine::viscosity::VaryingViscosity;
 use floe_engine::modules::snow::SnowConsts;
 
 /// Shear rate and viscosity per particle.

@@ -1,5 +1,5 @@
 // Ap_i = d_i p_i - dt sum_j w_ij p_j and the term p_i . Ap_i (floe-engine
-// `modules::fluid::implicit::Product`, term by term in the same order). The walls'
+// `viscosity::implicit::Product`, term by term in the same order). The walls'
 // mirror term is in d alone.
 
 // x: the step's dt (s).

@@ -1,5 +1,5 @@
 // The viscous force of the per-particle viscosities (floe-engine
-// `modules::fluid::varying`, term by term in the same order): a_i += sum_j m_j (mu_i + mu_j) / (rho_i rho_j) F_ij v_ij (Morris,
+// `viscosity`, term by term in the same order): a_i += sum_j m_j (mu_i + mu_j) / (rho_i rho_j) F_ij v_ij (Morris,
 // Fox & Zhu 1997), F_ij = r dW/dr / (r^2 + 0.01 h^2); a wall particle mirrors the
 // particle (velocity -v_i, viscosity mu_i, density rho_i), times the walls' shear
 // factor (0 for slip walls); the sum times the lattice normalisation.

@@ -1,6 +1,6 @@
-//! Implicit viscosity (the [`super::spec::ViscousSolver::Implicit`] a module enables
-//! per-particle viscosity with, such as `snow.solver`): the viscous force of
-//! [`super::varying`] integrated by backward Euler after each kick, as Weiler,
+//! Implicit viscosity (the [`super::ViscousSolver::Implicit`] the module that sets the
+//! per-particle viscosity chooses, such as `snow.solver`): the viscous force of
+//! [`super`] integrated by backward Euler after each kick, as Weiler,
 //! Koschier, Brand & Bender (2018, "A physically consistent implicit viscosity
 //! solver for SPH fluids", Computer Graphics Forum 37(2)) do for theirs, so stiff
 //! viscosities (mu_0 / mu_inf of 1e4 and more) run at the pressure-limited dt.
@@ -22,12 +22,12 @@
 //!
 //! Passes (stage `Solve`, run by the solve, [`solve`]) and the sums between them,
 //! which stay on the device in `visc_scalars` (`RZ`, `R0Z`, `PAP`, `RZ_NEW`):
-//! 1. `fluid.implicit_diagonal`: `d`, `r`;
-//! 2. `fluid.implicit_precondition`: `p = z = r / d`; per particle `r.z`, summed
+//! 1. `viscosity.implicit_diagonal`: `d`, `r`;
+//! 2. `viscosity.implicit_precondition`: `p = z = r / d`; per particle `r.z`, summed
 //!    into `RZ` and, kept for the convergence test, `R0Z`;
-//! 3. per iteration: `fluid.implicit_product` (`Ap`, `p.Ap` summed into `PAP`),
-//!    `fluid.implicit_update` (`alpha = RZ / PAP`, `v += alpha p`, `r -= alpha Ap`,
-//!    `r.z` summed into `RZ_NEW`), `fluid.implicit_direction`
+//! 3. per iteration: `viscosity.implicit_product` (`Ap`, `p.Ap` summed into `PAP`),
+//!    `viscosity.implicit_update` (`alpha = RZ / PAP`, `v += alpha p`, `r -= alpha Ap`,
+//!    `r.z` summed into `RZ_NEW`), `viscosity.implicit_direction`
 //!    (`p = z + (RZ_NEW / RZ) p`, then `RZ = RZ_NEW`).
 //!
 //! The residual is `sqrt(r.z / r0.z)` in the preconditioner's norm: the residual
@@ -40,7 +40,7 @@
 //! flow at rest has `r0 = 0`: its residual is 0 after the one iteration every solve
 //! runs.
 
-use super::varying::VaryingViscosity;
+use super::{MODULE, VaryingViscosity};
 use crate::attrs::{AttrSpec, Attrs, Elem, PARTICLES, Role};
 use crate::cpu::neighbors::{CHUNK, ChunkNeighbors};
 use crate::cpu::{CpuCx, CpuPass};
@@ -51,7 +51,7 @@ use crate::scheme::{Iterate, Op, ReduceOp, Reduction};
 use rayon::prelude::*;
 
 /// The space of the solve's scalars.
-pub const SCALARS_SPACE: &str = "fluid.viscosity_solve";
+pub const SCALARS_SPACE: &str = "viscosity.solve";
 /// Slots of `visc_scalars`: `r.z` (the current one), `r.z` at the start, `p.Ap`, `r.z` (the new one).
 pub const RZ: u32 = 0;
 /// See [`RZ`].
@@ -62,7 +62,7 @@ pub const PAP: u32 = 2;
 pub const RZ_NEW: u32 = 3;
 
 const fn attr(name: &'static str, elem: Elem, unit: &'static str, about: &'static str) -> AttrSpec {
-    AttrSpec { name, elem, unit, role: Role::Derived, space: PARTICLES, module: "fluid", about }
+    AttrSpec { name, elem, unit, role: Role::Derived, space: PARTICLES, module: MODULE, about }
 }
 
 /// The residual `M v* - (M + dt K) v`.
@@ -84,7 +84,7 @@ pub static SCALARS: AttrSpec = AttrSpec {
     unit: "kg m^2/s^2",
     role: Role::Derived,
     space: SCALARS_SPACE,
-    module: "fluid",
+    module: MODULE,
     about: "Implicit viscosity: r.z, r.z at the start, p.Ap and the new r.z, summed on the device.",
 };
 
@@ -93,34 +93,34 @@ pub const ATTRS: [&AttrSpec; 7] = [&R, &P, &AP, &DIAGONAL, &DOT, &RESIDUAL, &SCA
 
 /// `d` and the starting residual `r = dt m a`.
 pub static DIAGONAL_PASS: PassSpec =
-    PassSpec::solve("fluid", "fluid.implicit_diagonal", &["x", "v", "rho", "mu"], &["visc_diag", "visc_r"], &[]);
+    PassSpec::solve(MODULE, "viscosity.implicit_diagonal", &["x", "v", "rho", "mu"], &["visc_diag", "visc_r"], &[]);
 /// `p = r / d`, the terms of `r.z`.
 pub static PRECONDITION: PassSpec = PassSpec::solve(
-    "fluid",
-    "fluid.implicit_precondition",
+    MODULE,
+    "viscosity.implicit_precondition",
     &["visc_r", "visc_diag"],
     &["visc_p", "visc_dot", "visc_residual"],
     &[],
 );
 /// `Ap` and the terms of `p.Ap`.
 pub static PRODUCT: PassSpec = PassSpec::solve(
-    "fluid",
-    "fluid.implicit_product",
+    MODULE,
+    "viscosity.implicit_product",
     &["x", "rho", "mu", "visc_p", "visc_diag"],
     &["visc_ap", "visc_dot"],
     &[],
 );
 /// The step along `p`: velocities and residual, the terms of the new `r.z`.
 pub static UPDATE: PassSpec = PassSpec::solve(
-    "fluid",
-    "fluid.implicit_update",
+    MODULE,
+    "viscosity.implicit_update",
     &["visc_scalars", "visc_p", "visc_ap", "visc_diag"],
     &["visc_dot", "visc_residual"],
     &["v", "visc_r"],
 );
 /// The next search direction.
 pub static DIRECTION: PassSpec =
-    PassSpec::solve("fluid", "fluid.implicit_direction", &["visc_scalars", "visc_r", "visc_diag"], &[], &["visc_p"]);
+    PassSpec::solve(MODULE, "viscosity.implicit_direction", &["visc_scalars", "visc_r", "visc_diag"], &[], &["visc_p"]);
 
 /// Every pass of the solve.
 pub const PASSES: [&PassSpec; 5] = [&DIAGONAL_PASS, &PRECONDITION, &PRODUCT, &UPDATE, &DIRECTION];
@@ -131,24 +131,24 @@ const fn sum(slot: u32) -> Op {
 
 /// The start: diagonal, residual, preconditioned direction and the first sums.
 const START: &[Op] = &[
-    Op::Pass("fluid.implicit_diagonal"),
-    Op::Pass("fluid.implicit_precondition"),
+    Op::Pass("viscosity.implicit_diagonal"),
+    Op::Pass("viscosity.implicit_precondition"),
     sum(RZ),
     Op::Sum { attr: "visc_residual", into: "visc_scalars", slot: R0Z },
 ];
 
 /// One conjugate-gradient iteration.
 const ITERATION: &[Op] = &[
-    Op::Pass("fluid.implicit_product"),
+    Op::Pass("viscosity.implicit_product"),
     sum(PAP),
-    Op::Pass("fluid.implicit_update"),
+    Op::Pass("viscosity.implicit_update"),
     sum(RZ_NEW),
-    Op::Pass("fluid.implicit_direction"),
+    Op::Pass("viscosity.implicit_direction"),
     sum(RZ),
 ];
 
 /// The solve's name (in step reports and statistics).
-pub const NAME: &str = "fluid.viscosity";
+pub const NAME: &str = "viscosity";
 
 /// The solve at relative residual `tolerance`, with at most `max` iterations.
 pub fn solve(tolerance: f32, max: u32) -> Iterate {
@@ -170,19 +170,19 @@ pub fn ratio(a: Real, b: Real) -> Real {
     if b > 0.0 { a / b } else { 0.0 }
 }
 
-/// `fluid.implicit_diagonal` on the CPU.
+/// `viscosity.implicit_diagonal` on the CPU.
 #[derive(Debug)]
 pub struct Diagonal;
-/// `fluid.implicit_precondition` on the CPU.
+/// `viscosity.implicit_precondition` on the CPU.
 #[derive(Debug)]
 pub struct Precondition;
-/// `fluid.implicit_product` on the CPU.
+/// `viscosity.implicit_product` on the CPU.
 #[derive(Debug)]
 pub struct Product;
-/// `fluid.implicit_update` on the CPU.
+/// `viscosity.implicit_update` on the CPU.
 #[derive(Debug)]
 pub struct Update;
-/// `fluid.implicit_direction` on the CPU.
+/// `viscosity.implicit_direction` on the CPU.
 #[derive(Debug)]
 pub struct Direction;
 

@@ -1,10 +1,13 @@
-//! Viscosity that varies from particle to particle: the attribute `mu` (Pa s), which
-//! one module per scene writes before the forces (the snow module's rheology from
-//! the shear rate, the heat module's law from the temperature), and the viscous
-//! force of those viscosities, explicit (the pass below) or implicit
-//! ([`super::implicit`]). A module turns the path on with [`enable`].
+//! Viscosity that varies from particle to particle, a quantity of the core that
+//! modules share ([`crate::quantities`]): the attribute `mu` (Pa s), which one
+//! module per scene writes before the forces (the snow module's rheology from the
+//! shear rate, the heat module's law from the temperature), the factor another
+//! module may scale it by (`viscosity_shift`, the heat module's temperature shift
+//! of a rheology), and the viscous force of those viscosities, explicit (the pass
+//! below) or implicit ([`implicit`]). The core turns the path on ([`enable`]) from
+//! the modules' claims, after every module has built.
 //!
-//! The force, `fluid.viscosity`, takes each pair's viscosity as `mu_i + mu_j`:
+//! The force, `viscosity.force`, takes each pair's viscosity as `mu_i + mu_j`:
 //! `a_i = sum_j m_j (mu_i + mu_j) / (rho_i rho_j) F_ij v_ij`,
 //! `F_ij = x_ij . grad_i W_ij / (r_ij^2 + 0.01 h^2)` (Morris, Fox & Zhu 1997,
 //! J. Comput. Phys. 136, eq. 8, with the per-particle viscosity of their variable-
@@ -29,21 +32,53 @@
 //! steady profiles at every resolution. The GPU's varying.wgsl adds the same terms
 //! in the same order.
 
-use super::implicit;
-use super::spec::{ViscousSolver, WallShear};
+pub mod implicit;
+mod settings;
+
+pub use settings::{ViscousSolver, WallShear};
+
+use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
 use crate::channels::{ChannelSpec, Source};
 use crate::cpu::neighbors::CHUNK;
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
-use crate::model::{BuildError, Model, ModelBuilder};
+use crate::model::{Model, ModelBuilder};
 use crate::periodic::Separation;
 use crate::plan::{PassSpec, Stage};
 use rayon::prelude::*;
 
+/// The module name of the viscosity's passes, attributes and channel: the core's
+/// shared quantity, run after every module's passes of a stage (they act on what
+/// the modules wrote).
+pub const MODULE: &str = "viscosity";
+
+/// Dynamic viscosity per particle (Pa s), the quantity [`crate::quantities::VISCOSITY`].
+pub static MU: AttrSpec = AttrSpec {
+    name: "mu",
+    elem: Elem::F32,
+    unit: "Pa s",
+    role: Role::Derived,
+    space: PARTICLES,
+    module: MODULE,
+    about: "Dynamic viscosity of the particle at its current state.",
+};
+
+/// The factor the module that sets `mu` multiplies it by, the quantity
+/// [`crate::quantities::VISCOSITY_FACTOR`] (1 where no module scales it).
+pub static FACTOR: AttrSpec = AttrSpec {
+    name: "viscosity_shift",
+    elem: Elem::F32,
+    unit: "",
+    role: Role::Derived,
+    space: PARTICLES,
+    module: MODULE,
+    about: "Factor on the viscosity a module sets (a temperature shift of a rheology; 1 at its reference).",
+};
+
 /// The viscous force of the per-particle viscosities, added to the accelerations.
 pub static FORCE: PassSpec = PassSpec {
-    name: "fluid.viscosity",
-    module: "fluid",
+    name: "viscosity.force",
+    module: MODULE,
     stage: Stage::Force,
     reads: &["x", "v", "rho", "mu"],
     writes: &[],
@@ -58,16 +93,14 @@ pub const CHANNEL: ChannelSpec = ChannelSpec {
     components: 1,
     exact: false,
     set: crate::attrs::PARTICLES,
-    module: "fluid",
+    module: MODULE,
     about: "Dynamic viscosity of the particle at its current state (shear rate, temperature).",
     source: Source::Attr("mu"),
 };
 
-/// How the per-particle viscosities act: set by the module that enables them.
+/// How the per-particle viscosities act, as the module that sets them chose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VaryingViscosity {
-    /// The setting that enabled them (a module's section, for errors).
-    pub owner: &'static str,
     /// 1 where walls hold the fluid at rest (no slip), 0 where they exert no shear.
     pub wall_shear: Real,
     /// The lattice normalisation of the pair sum ([`crate::kernel::Kernel::pair_lattice_scale`]),
@@ -76,26 +109,29 @@ pub struct VaryingViscosity {
 }
 
 impl VaryingViscosity {
-    fn new(owner: &'static str, walls: WallShear, scale: Real) -> Self {
-        Self { owner, wall_shear: if walls == WallShear::NoSlip { 1.0 } else { 0.0 }, scale }
+    fn new(walls: WallShear, scale: Real) -> Self {
+        Self { wall_shear: if walls == WallShear::NoSlip { 1.0 } else { 0.0 }, scale }
     }
 }
 
-/// Turns per-particle viscosity on for the module whose setting `owner` asks for it:
-/// allocates `mu` (which that module's own pass must write before the forces), the
-/// viscous force or the implicit solve, and the viscosity channel. One module per
-/// scene: a second is refused, naming both settings.
-pub fn enable(
-    b: &mut ModelBuilder,
-    owner: &'static str,
-    solver: ViscousSolver,
-    walls: WallShear,
-) -> Result<(), BuildError> {
-    if let Some(first) = b.consts::<VaryingViscosity>() {
-        return Err(BuildError::ViscosityTwice { first: first.owner, second: owner });
+/// How the module that sets the per-particle viscosity integrates its force.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Integration {
+    /// Explicit or implicit, and the implicit solve's settings.
+    pub solver: ViscousSolver,
+    /// The walls' condition.
+    pub walls: WallShear,
+}
+
+/// Turns per-particle viscosity on: allocates `mu` (which the setting module's own
+/// pass writes before the forces), the factor if a module scales it, the viscous
+/// force or the implicit solve, and the viscosity channel.
+pub fn enable(b: &mut ModelBuilder, how: Integration, scaled: bool) {
+    b.zeros(&MU);
+    if scaled {
+        b.zeros(&FACTOR);
     }
-    b.zeros(&super::VISCOSITY);
-    match solver {
+    match how.solver {
         ViscousSolver::Explicit => b.pass(&FORCE),
         ViscousSolver::Implicit { tolerance, max_iterations } => {
             b.space(implicit::SCALARS_SPACE, 4);
@@ -110,16 +146,15 @@ pub fn enable(
     }
     b.channel(CHANNEL);
     let scale = b.kernel.pair_lattice_scale(b.scene.particle_spacing);
-    b.set_consts(VaryingViscosity::new(owner, walls, scale));
-    Ok(())
+    b.set_consts(VaryingViscosity::new(how.walls, scale));
 }
 
-/// Applies new settings of the module that enabled the path: the walls, and the
+/// Applies new settings of the module that sets the viscosity: the walls, and the
 /// implicit solve's tolerance and iteration limit.
-pub fn retune(model: &mut Model, solver: ViscousSolver, walls: WallShear) {
+pub fn retune(model: &mut Model, how: Integration) {
     let c = *model.consts::<VaryingViscosity>();
-    model.set_consts(VaryingViscosity::new(c.owner, walls, c.scale));
-    if let ViscousSolver::Implicit { tolerance, max_iterations } = solver {
+    model.set_consts(VaryingViscosity::new(how.walls, c.scale));
+    if let ViscousSolver::Implicit { tolerance, max_iterations } = how.solver {
         let solve = implicit::solve(tolerance, max_iterations);
         for s in model.velocity_solves.iter_mut().filter(|s| s.name == solve.name) {
             *s = solve;
@@ -132,6 +167,16 @@ pub fn is_implicit(model: &Model) -> bool {
     model.velocity_solves.iter().any(|s| s.name == implicit::NAME)
 }
 
+/// The core's CPU passes of the viscosity.
+pub static CPU: &[(&str, &dyn CpuPass)] = &[
+    ("viscosity.force", &Force),
+    ("viscosity.implicit_diagonal", &implicit::Diagonal),
+    ("viscosity.implicit_precondition", &implicit::Precondition),
+    ("viscosity.implicit_product", &implicit::Product),
+    ("viscosity.implicit_update", &implicit::Update),
+    ("viscosity.implicit_direction", &implicit::Direction),
+];
+
 /// Checks a module's viscous solver settings under `path`.
 pub fn validate_solver(c: &mut crate::scene::validate::Checker, path: &str, solver: ViscousSolver) {
     if let ViscousSolver::Implicit { tolerance, max_iterations } = solver {
@@ -142,7 +187,7 @@ pub fn validate_solver(c: &mut crate::scene::validate::Checker, path: &str, solv
     }
 }
 
-/// `fluid.viscosity` on the CPU.
+/// `viscosity.force` on the CPU.
 #[derive(Debug)]
 pub struct Force;
 

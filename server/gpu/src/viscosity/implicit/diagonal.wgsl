@@ -1,6 +1,6 @@
 // The diagonal d_i = m_i + dt (sum_j w_ij + w_iw) and the starting residual
 // r_i = dt (sum_j w_ij (v_j - v_i) - w_iw v_i) (floe-engine
-// `modules::fluid::implicit::Diagonal`, term by term in the same order); w_iw is the
+// `viscosity::implicit::Diagonal`, term by term in the same order); w_iw is the
 // no-slip walls' mirror term m_i 4 mu_i / rho_i^2 sum_b psi_b |F_ib|, times the
 // walls' shear factor.
 

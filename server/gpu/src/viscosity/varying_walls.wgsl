@@ -1,4 +1,4 @@
-// The `fluid.varying` uniform (floe-gpu `modules::fluid::varying_uniform`) of the
+// The `viscosity` uniform (floe-gpu `viscosity::uniform`) of the
 // per-particle viscosity's force and implicit solve: x is the walls' shear factor
 // (1 no slip, 0 slip), y the pair sum's lattice normalisation.
 

@@ -1,5 +1,5 @@
 // One step along the search direction (floe-engine
-// `modules::fluid::implicit::Update`): alpha = RZ / PAP, v += alpha p,
+// `viscosity::implicit::Update`): alpha = RZ / PAP, v += alpha p,
 // r -= alpha Ap, and per particle the new r.z and r.z / R0Z.
 
 // The solve's scalars: r.z, r.z at the start, p.Ap, the new r.z.

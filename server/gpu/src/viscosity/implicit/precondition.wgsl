@@ -1,6 +1,6 @@
 // The first search direction p = z = r / d, and per particle r.z, twice: summed
 // into RZ and into R0Z, the start's for the convergence test (floe-engine
-// `modules::fluid::implicit::Precondition`).
+// `viscosity::implicit::Precondition`).
 
 @group(0) @binding(1) var<storage, read> res: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> diag: array<f32>;

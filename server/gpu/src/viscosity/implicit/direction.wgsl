@@ -1,5 +1,5 @@
 // The next search direction p = r / d + (RZ_NEW / RZ) p (floe-engine
-// `modules::fluid::implicit::Direction`).
+// `viscosity::implicit::Direction`).
 
 // The solve's scalars: r.z, r.z at the start, p.Ap, the new r.z.
 @group(0) @binding(1) var<storage, read> scalars: array<f32>;

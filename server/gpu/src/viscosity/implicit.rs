@@ -1,5 +1,5 @@
 //! Implicit viscosity on the GPU: the conjugate-gradient passes of floe-engine
-//! `modules::fluid::implicit`, one kernel each; the sums between them stay on the
+//! `viscosity::implicit`, one kernel each; the sums between them stay on the
 //! device (`visc_scalars`).
 
 use crate::pass::{GpuPass, always};
@@ -9,12 +9,12 @@ use floe_engine::attrs::PARTICLES;
 
 /// `d` and the starting residual.
 pub static DIAGONAL: GpuPass = GpuPass {
-    name: "fluid.implicit_diagonal",
+    name: "viscosity.implicit_diagonal",
     source: walk_kernel!("varying_walls.wgsl", "implicit/pair.wgsl", "implicit/diagonal.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
-        (U, "fluid.varying"),
+        (U, "viscosity"),
         (U, "dt"),
         (R, "x"),
         (R, "v"),
@@ -31,7 +31,7 @@ pub static DIAGONAL: GpuPass = GpuPass {
 
 /// The first direction and the terms of `r.z`.
 pub static PRECONDITION: GpuPass = GpuPass {
-    name: "fluid.implicit_precondition",
+    name: "viscosity.implicit_precondition",
     source: particle_kernel!("implicit/precondition.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (R, "visc_r"), (R, "visc_diag"), (W, "visc_p"), (W, "visc_dot"), (W, "visc_residual")],
@@ -41,12 +41,12 @@ pub static PRECONDITION: GpuPass = GpuPass {
 
 /// `Ap` and the terms of `p.Ap`.
 pub static PRODUCT: GpuPass = GpuPass {
-    name: "fluid.implicit_product",
+    name: "viscosity.implicit_product",
     source: walk_kernel!(fluid_only; "varying_walls.wgsl", "implicit/pair.wgsl", "implicit/product.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
-        (U, "fluid.varying"),
+        (U, "viscosity"),
         (U, "dt"),
         (R, "x"),
         (R, "rho"),
@@ -63,7 +63,7 @@ pub static PRODUCT: GpuPass = GpuPass {
 
 /// The step along the direction.
 pub static UPDATE: GpuPass = GpuPass {
-    name: "fluid.implicit_update",
+    name: "viscosity.implicit_update",
     source: particle_kernel!("implicit/shared.wgsl", "implicit/update.wgsl"),
     entry: "main",
     bindings: &[
@@ -83,7 +83,7 @@ pub static UPDATE: GpuPass = GpuPass {
 
 /// The next direction.
 pub static DIRECTION: GpuPass = GpuPass {
-    name: "fluid.implicit_direction",
+    name: "viscosity.implicit_direction",
     source: particle_kernel!("implicit/shared.wgsl", "implicit/direction.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (R, "visc_scalars"), (R, "visc_r"), (R, "visc_diag"), (W, "visc_p")],
