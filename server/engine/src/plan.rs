@@ -2,11 +2,17 @@
 //!
 //! The core, the scene's scheme and each of its modules declare their passes
 //! ([`PassSpec`]: a name both backends implement, a stage, and the attributes it
-//! reads, writes and accumulates into). [`Plan::build`] orders them by stage, then
-//! by declaration order (core, scheme, modules in registry order) within a stage,
-//! so both backends run the same sequence and sums happen in the same order. It
-//! refuses a scene whose passes conflict (two writers of one attribute that do not
-//! both accumulate into it) or read what nothing provides, naming both sides.
+//! reads, writes and accumulates into). [`Plan::build`] orders them by stage and,
+//! within a stage, by what they read and write: a pass comes after the passes of
+//! its stage that write or accumulate into what it reads, and after those that
+//! write what it accumulates into. Passes that share nothing (or accumulate into
+//! the same attribute) keep a fixed order, whatever order they were declared in:
+//! the core's and the scheme's first, then the modules' in registry order, then the
+//! core's shared quantities' ([`crate::viscosity`], which act on what the modules
+//! wrote). So both backends run the same sequence and sums happen in the same
+//! order. It refuses a scene whose passes conflict (two writers of one attribute
+//! that do not both accumulate into it), wait on each other, or read what nothing
+//! provides, naming both sides.
 //! `floe plan SCENE` prints the plan.
 
 /// When in a step a pass runs. A scheme runs the stages in its own order (WCSPH:
@@ -95,6 +101,44 @@ impl PassSpec {
     }
 }
 
+/// Where a pass's module stands among passes of a stage that share nothing: the
+/// core and the scheme first, then the modules in registry order, then the core's
+/// shared quantities.
+fn rank(module: &str) -> usize {
+    if module == crate::viscosity::MODULE {
+        return usize::MAX;
+    }
+    crate::module::all().iter().position(|m| m.id == module).map_or(0, |i| i + 1)
+}
+
+/// Whether `first` must run before `then` among a stage's `passes`: it writes what
+/// `then` reads or accumulates into, or it accumulates into what `then` reads where
+/// a pass of the stage writes it (a sum the stage computes, such as the
+/// accelerations). Accumulating into what no pass of the stage writes updates
+/// state the step carries (the density a continuity equation integrates): a pass
+/// reading it keeps its ranked place, before or after.
+fn precedes(first: &PassSpec, then: &PassSpec, passes: &[&PassSpec]) -> bool {
+    let computed = |a: &str| passes.iter().any(|p| p.writes.contains(&a));
+    let produces = |p: &PassSpec, a: &str| p.writes.contains(&a) || (p.accumulates.contains(&a) && computed(a));
+    then.reads.iter().any(|a| produces(first, a) && !produces(then, a))
+        || then.accumulates.iter().any(|a| first.writes.contains(a))
+}
+
+/// One stage's passes ordered by [`precedes`], each as early as its inputs allow
+/// in the ranked order.
+fn by_dependencies(mut left: Vec<&'static PassSpec>) -> Result<Vec<&'static PassSpec>, PlanError> {
+    let all = left.clone();
+    let mut out = Vec::with_capacity(left.len());
+    while !left.is_empty() {
+        let free = |p: &&PassSpec| !left.iter().any(|q| q.name != p.name && precedes(q, p, &all));
+        let Some(i) = left.iter().position(free) else {
+            return Err(PlanError::Cycle(left.iter().map(|p| p.name).collect::<Vec<_>>().join(", ")));
+        };
+        out.push(left.remove(i));
+    }
+    Ok(out)
+}
+
 /// The module of the pass called `name` among `passes`.
 fn module_of(passes: &[&'static PassSpec], name: &str) -> &'static str {
     passes.iter().find(|p| p.name == name).map_or("", |p| p.module)
@@ -121,6 +165,9 @@ pub enum PlanError {
         /// The attribute.
         attr: &'static str,
     },
+    /// Passes of one stage each need what another writes first.
+    #[error("passes {0} each read what another of them writes; none can run first")]
+    Cycle(String),
     /// A pass accumulates into an attribute that no earlier pass writes and the
     /// scene does not hold.
     #[error("{pass} accumulates into {attr} before any pass writes it")]
@@ -139,12 +186,18 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// Orders `passes` (in declaration order) by stage and checks them against the
-    /// attributes the scene allocates, `attrs`.
+    /// Orders `passes` by stage and by what they read and write (see the module
+    /// doc), and checks them against the attributes the scene allocates, `attrs`.
     pub fn build(passes: Vec<&'static PassSpec>, attrs: &[&str]) -> Result<Plan, PlanError> {
-        let mut ordered = passes;
-        // A stable sort: declaration order within a stage.
-        ordered.sort_by_key(|p| p.stage);
+        let mut ranked = passes;
+        // A stable sort: declaration order within one module's passes of a stage.
+        ranked.sort_by_key(|p| (p.stage, rank(p.module)));
+        let mut ordered: Vec<&'static PassSpec> = Vec::with_capacity(ranked.len());
+        for stage in Stage::ALL {
+            let passes: Vec<_> = ranked.iter().copied().filter(|p| p.stage == stage).collect();
+            // A solve's passes run in the order its scheme calls them.
+            ordered.extend(if stage == Stage::Solve { passes } else { by_dependencies(passes)? });
+        }
         let mut writer: Vec<(&'static str, &'static str)> = Vec::new();
         for p in &ordered {
             for &attr in p.writes {
@@ -235,6 +288,23 @@ mod tests {
         let names: Vec<&str> = plan.passes().iter().map(|p| p.name).collect();
         assert_eq!(names, ["b.density", "a.force", "d.force"]);
         assert!(plan.table().contains("force      d.force"));
+    }
+
+    static READS_ACC: PassSpec = pass("r.force", Stage::Force, &["acc"], &["out"]);
+    static READS_OUT: PassSpec = pass("q.force", Stage::Force, &["out"], &["more"]);
+    static LOOP: PassSpec = pass("l.force", Stage::Force, &["more"], &["out2"]);
+    static LOOP_BACK: PassSpec = pass("k.force", Stage::Force, &["out2"], &["more"]);
+
+    #[test]
+    fn a_pass_follows_what_it_reads_whatever_order_it_was_declared_in() {
+        let want = ["a.force", "d.force", "r.force", "q.force"];
+        for list in [vec![&READS_OUT, &READS_ACC, &D, &A], vec![&A, &D, &READS_ACC, &READS_OUT]] {
+            let plan = Plan::build(list, &["x", "t"]).unwrap();
+            let names: Vec<&str> = plan.passes().iter().map(|p| p.name).collect();
+            assert_eq!(names, want);
+        }
+        let e = Plan::build(vec![&LOOP, &LOOP_BACK], &[]).unwrap_err();
+        assert_eq!(e.to_string(), "passes l.force, k.force each read what another of them writes; none can run first");
     }
 
     #[test]

@@ -103,9 +103,7 @@ fn a_scene_without_a_law_has_no_per_particle_viscosity() {
     let s = sim("convection", &["particle_spacing=0.01"]);
     assert!(s.model().layout.spec("mu").is_none());
     let passes: Vec<&str> = s.model().plan.passes().iter().map(|p| p.name).collect();
-    assert!(
-        !passes.iter().any(|p| *p == "heat.viscosity" || p.starts_with("viscosity."))
-    );
+    assert!(!passes.iter().any(|p| *p == "heat.viscosity" || p.starts_with("viscosity.")));
     assert!(!s.channels().iter().any(|c| c.name == "viscosity"));
     let with = sim("heated_channel", &["particle_spacing=0.1"]);
     assert!(with.channels().iter().any(|c| c.name == "viscosity" && c.unit == "Pa s"));

@@ -314,7 +314,7 @@ fn fused_kernels_match_the_cpu() {
     }
     // The heat variants under WCSPH fuse the force pass with conduction wherever a
     // device binds their ten storage buffers (lavapipe, and desktop GPUs, bind far more).
-    if gpu.max_storage_buffers() >= floe_gpu::modules::heat::FORCES_AND_CONDUCTION.storage_buffers() {
+    if gpu.max_storage_buffers() >= floe_gpu::modules::fused::FORCES_AND_CONDUCTION.storage_buffers() {
         assert!(fused >= 2, "{fused} fused stages checked");
     }
 }

@@ -60,7 +60,11 @@ pub trait CpuPass: Send + Sync + std::fmt::Debug {
 fn all() -> Vec<(&'static str, &'static dyn CpuPass)> {
     let modules = crate::module::all();
     let schemes = crate::scheme::all();
-    let lists = core::PASSES.iter().chain(crate::viscosity::CPU).chain(schemes.iter().flat_map(|s| s.cpu)).chain(modules.iter().flat_map(|m| m.cpu));
+    let lists = core::PASSES
+        .iter()
+        .chain(crate::viscosity::CPU)
+        .chain(schemes.iter().flat_map(|s| s.cpu))
+        .chain(modules.iter().flat_map(|m| m.cpu));
     lists.copied().collect()
 }
 

@@ -1,6 +1,7 @@
 //! The GPU halves of the engine's modules, in folders named as the engine's.
 
 pub mod fluid;
+pub mod fused;
 pub mod heat;
 pub mod snow;
 
@@ -22,11 +23,8 @@ pub static PASSES: &[&GpuPass] = &[
 ];
 
 /// Kernels doing several modules' passes in one neighbour walk.
-pub static FUSED: &[&Fused] = &[&heat::FORCES_AND_CONDUCTION];
+pub static FUSED: &[&Fused] = &[&fused::FORCES_AND_CONDUCTION];
 
 /// Every module's uniform.
-pub static UNIFORMS: &[(&str, UniformSource)] = &[
-    ("fluid", fluid::uniform),
-    ("heat", heat::uniform),
-    ("snow", snow::uniform),
-];
+pub static UNIFORMS: &[(&str, UniformSource)] =
+    &[("fluid", fluid::uniform), ("heat", heat::uniform), ("snow", snow::uniform)];

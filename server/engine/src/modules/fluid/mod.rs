@@ -49,11 +49,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     build,
     retune,
     tunables: TUNABLES,
-    cpu: &[
-        ("fluid.forces", &forces::Forces),
-        ("fluid.xsph", &xsph::Xsph),
-        ("fluid.xsph_kick", &xsph::XsphKick),
-    ],
+    cpu: &[("fluid.forces", &forces::Forces), ("fluid.xsph", &xsph::Xsph), ("fluid.xsph_kick", &xsph::XsphKick)],
     presets: presets::PRESETS,
     dt_limit,
     measures,

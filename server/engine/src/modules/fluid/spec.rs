@@ -92,4 +92,3 @@ impl Default for Viscosity {
         Self::Artificial { alpha: 0.02 }
     }
 }
-

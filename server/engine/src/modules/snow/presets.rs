@@ -7,9 +7,9 @@
 
 use super::spec::{Rheology, Snow};
 use crate::module::Preset;
-use crate::viscosity::{ViscousSolver, WallShear};
 use crate::scene::{Boundary, Face, Scene, Solver};
 use crate::terrain::spec::{Heights, Slope, Terrain};
+use crate::viscosity::{ViscousSolver, WallShear};
 use serde_json::json;
 
 /// The presets, for the module registry.

@@ -15,9 +15,9 @@ use super::SnowConsts;
 use crate::cpu::neighbors::CHUNK;
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
-use crate::viscosity::VaryingViscosity;
 use crate::periodic::Separation;
 use crate::plan::{PassSpec, Stage};
+use crate::viscosity::VaryingViscosity;
 use rayon::prelude::*;
 
 /// Shear rate and viscosity per particle.

@@ -5,8 +5,7 @@
 //! viscosity's temperature law).
 
 use crate::layout::MAX_MATERIALS;
-use crate::modules::fluid::{FORCES_WITH_PRESSURE_BINDINGS, has_pressure_terms};
-use crate::pass::{Fused, GpuPass, always};
+use crate::pass::{GpuPass, always};
 use crate::passes::{particle_kernel, walk_kernel};
 use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
@@ -32,31 +31,6 @@ pub static CONDUCTION: GpuPass = GpuPass {
     ],
     space: PARTICLES,
     when: always,
-};
-
-/// The fluid's force pass (with WCSPH's pressure terms) and conduction in one
-/// neighbour walk: conduction then costs little more than its arithmetic. Ten
-/// storage buffers: where a device allows fewer, the two passes run their own
-/// kernels.
-pub static FORCES_AND_CONDUCTION: Fused = Fused {
-    passes: &["fluid.forces", "heat.conduction"],
-    kernel: GpuPass {
-        name: "fluid.forces+heat.conduction",
-        source: walk_kernel!(
-            "../fluid/forces.wgsl",
-            "../fluid/forces_pressure.wgsl",
-            "heat.wgsl",
-            "conduction.wgsl",
-            "forces_conduction.wgsl"
-        ),
-        entry: "main",
-        bindings: &crate::program::join::<10, 3, 13>(
-            FORCES_WITH_PRESSURE_BINDINGS,
-            [(U, "heat"), (R, "temperature"), (W, "heat_rate")],
-        ),
-        space: PARTICLES,
-        when: has_pressure_terms,
-    },
 };
 
 /// The Boussinesq term of the body force.

@@ -9,8 +9,8 @@ use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
-use floe_engine::viscosity::VaryingViscosity;
 use floe_engine::modules::snow::SnowConsts;
+use floe_engine::viscosity::VaryingViscosity;
 
 /// Shear rate and viscosity per particle.
 pub static SHEAR: GpuPass = GpuPass {
