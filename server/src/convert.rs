@@ -86,6 +86,16 @@ pub fn scene_info(shared: &Shared) -> pb::SceneInfo {
                 module: t.module.into(),
             })
             .collect(),
+        materials: shared
+            .materials
+            .iter()
+            .map(|m| pb::MaterialDescription {
+                name: m.name.clone(),
+                kind: m.kind.name().into(),
+                rest_density: m.rest_density,
+                look: m.look.name().into(),
+            })
+            .collect(),
         owner: shared.owner.clone(),
     }
 }

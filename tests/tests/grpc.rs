@@ -240,6 +240,13 @@ async fn channels_are_named_by_the_scene_and_streamed_by_name() {
     assert_eq!(info.sets.len(), 1);
     assert_eq!((info.sets[0].name.as_str(), info.sets[0].count, info.sets[0].index), ("particles", 1000, 0));
     assert!(info.tunables.iter().any(|t| t.path == "fluids[*].xsph" && t.max == Some(1.0)));
+    let looks = |info: &pb::SceneInfo| -> Vec<(String, String)> {
+        info.materials.iter().map(|m| (m.name.clone(), m.look.clone())).collect()
+    };
+    assert_eq!(looks(&info), [("water".to_string(), "water".to_string())]);
+    let snow = s.client.create_scene(preset("avalanche", &["particle_spacing=0.05"])).await.unwrap().into_inner();
+    assert_eq!(looks(&snow), [("snow".to_string(), "snow".to_string())]);
+    assert_eq!((snow.materials[0].kind.as_str(), snow.materials[0].rest_density), ("fluid", 300.0));
 
     let request = pb::StreamFramesRequest {
         scene_id: info.scene_id,

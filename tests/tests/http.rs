@@ -61,6 +61,10 @@ async fn rest_mirrors_the_control_calls() {
     assert_eq!(v["channels"][0]["name"], "velocity");
     assert_eq!(v["channels"][2]["unit"], "Pa");
     assert_eq!(v["sets"][0], serde_json::json!({"name": "particles", "count": 1000, "index": 0}));
+    assert_eq!(
+        v["materials"],
+        serde_json::json!([{"name": "water", "kind": "fluid", "rest_density": 1000.0, "look": "water"}])
+    );
     let id = v["scene_id"].as_u64().unwrap();
 
     let (s, v) = call(&app, "POST", &format!("/api/v1/scenes/{id}/step"), Some(r#"{"steps": 5}"#.into())).await;

@@ -9,7 +9,7 @@ import { acting, showError } from './notify.js';
 import { wallLines } from './outline.js';
 import { PlotPanel } from './plots.js';
 import { Recorder } from './recorder.js';
-import { Renderer, SNOW, WATER } from './render.js';
+import { LOOKS, Renderer } from './render.js';
 import { Replay } from './replay.js';
 import { sliders } from './tunables.js';
 
@@ -101,7 +101,8 @@ function open(scene) {
   state.wantOpen = true;
   banner(scene.halt_reason ? `Halted: ${scene.halt_reason}` : null);
   showColourModes(scene.channels ?? DEFAULT_CHANNELS);
-  renderer.plain = scene.scene?.modules?.includes('snow') ? SNOW : WATER;
+  // The first material's look (a scene of several materials draws them all in it).
+  renderer.look = LOOKS[scene.materials?.[0]?.look] ?? LOOKS.water;
   showTunables(scene);
   const tank = scene.scene?.boundaries?.find((b) => b.kind === 'box');
   showScene({ min: scene.bounds_min, max: scene.bounds_max }, wallLines(scene.scene), scene.particle_spacing, changed, tank);

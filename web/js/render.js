@@ -15,9 +15,17 @@ import { SPHERE_POINT, SPRITE_VERT } from './sprite.js';
 import { Surface, pixelsAcross } from './surface.js';
 import { TerrainMeshes } from './terrain.js';
 
-/** Plain particle colours (RGB, 0 to 1). */
-export const WATER = [0.25, 0.55, 0.9];
-export const SNOW = [0.93, 0.95, 0.98];
+/**
+ * How a material is drawn without a colour map, by the look the server sends with each
+ * material (`SceneInfo.materials[].look`): its RGB (0 to 1), and whether the surface view
+ * draws it as an opaque body rather than as translucent water.
+ */
+export const LOOKS = {
+  water: { rgb: [0.25, 0.55, 0.9], opaque: false },
+  snow: { rgb: [0.93, 0.95, 0.98], opaque: true },
+  ice: { rgb: [0.78, 0.88, 0.96], opaque: false },
+  solid: { rgb: [0.6, 0.6, 0.62], opaque: true },
+};
 
 const FRAG = `#version 300 es
 precision highp float;
@@ -97,8 +105,8 @@ export class Renderer {
     this.radius = physicalRadius(this.spacing);
     this.range = [0, 1];
     this.coloured = false;
-    /** RGB of particles drawn without a colour map: water blue, or white for snow. */
-    this.plain = WATER;
+    /** How particles are drawn without a colour map (one of LOOKS). */
+    this.look = LOOKS.water;
     /** `'surface'` or `'spheres'`. */
     this.view = 'spheres';
     /** @type {Surface|null} made when first drawn */
@@ -207,7 +215,7 @@ export class Renderer {
       this.surface ??= new Surface(gl);
       this.surface.draw({ proj, view, vao: this.vao, count: this.drawnCount, radius: this.radius,
         grain: far ? CELL * this.radius : this.radius, box: this.box, width: w, height: h, distance,
-        background: (p, v) => this.#background(p, v), opaque: this.plain === SNOW ? SNOW : null });
+        background: (p, v) => this.#background(p, v), opaque: this.look.opaque ? this.look.rgb : null });
       // Walls in front of the water.
       this.outline.draw(proj, view);
       return true;
@@ -221,7 +229,7 @@ export class Renderer {
     gl.uniform1f(u.u_viewport_h, h);
     gl.uniform2f(u.u_range, this.range[0], this.range[1]);
     gl.uniform1i(u.u_coloured, this.coloured ? 1 : 0);
-    gl.uniform3fv(u.u_plain, this.plain);
+    gl.uniform3fv(u.u_plain, this.look.rgb);
     gl.uniform1i(u.u_scaled, 0);
     gl.bindVertexArray(this.vao);
     gl.drawArrays(gl.POINTS, 0, this.drawnCount);

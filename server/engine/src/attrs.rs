@@ -98,6 +98,10 @@ pub struct AttrSpec {
     pub unit: &'static str,
     /// What the core does with it.
     pub role: Role,
+    /// A state attribute added after scenes that hold it were first saved: a
+    /// snapshot without it restores it as the scene builds it (zeros for a
+    /// rounding carry) instead of being refused.
+    pub added_later: bool,
     /// The index space it belongs to (`particles`, `walls`, or one a module declares).
     pub space: &'static str,
     /// The module that declares it (`core`, a scheme's name, or a module's).
@@ -408,6 +412,7 @@ mod tests {
         elem: Elem::Vec3,
         unit: "m",
         role: Role::State,
+        added_later: false,
         space: PARTICLES,
         module: "core",
         about: "",

@@ -27,6 +27,50 @@ pub enum MaterialKind {
     Solid,
 }
 
+impl MaterialKind {
+    /// `fluid` or `solid`.
+    pub fn name(self) -> &'static str {
+        match self {
+            MaterialKind::Fluid => "fluid",
+            MaterialKind::Solid => "solid",
+        }
+    }
+}
+
+/// How viewers draw a material's particles when no channel colours them. The
+/// server sends each material's look with the scene's info; the viewer knows no
+/// module.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Look {
+    /// Blue and translucent (the surface view renders it as water).
+    #[default]
+    Water,
+    /// White and opaque.
+    Snow,
+    /// Pale blue-white and translucent.
+    Ice,
+    /// Grey and opaque.
+    Solid,
+}
+
+impl Look {
+    /// Its name, as scene files and the scene's info spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Look::Water => "water",
+            Look::Snow => "snow",
+            Look::Ice => "ice",
+            Look::Solid => "solid",
+        }
+    }
+
+    /// Whether it is the default (scene files may leave it out).
+    pub fn is_water(&self) -> bool {
+        *self == Look::Water
+    }
+}
+
 /// One material.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
@@ -38,6 +82,8 @@ pub struct Material {
     pub rest_density: Real,
     /// Its equation of state (a scheme with pressure from density, WCSPH, reads it).
     pub eos: EquationOfState,
+    /// How viewers draw it.
+    pub look: Look,
     /// Particle mass (kg): `rho0 / sum_j W(x_ij)` over a full cubic lattice of the
     /// particle spacing, so summation gives exactly `rho0` in the initial interior.
     /// (`rho0 spacing^3` would not: poly6 at support 2 spacings sums ~10 % high on a

@@ -149,19 +149,15 @@ fn read_v1(r: &mut Reader<'_>) -> Result<Parts, SnapshotError> {
     Ok(Parts { scene, stats, halt, clock, sections })
 }
 
-/// State attributes that snapshots written before they existed lack: such a snapshot
-/// restores them as the scene builds them (zeros: no rounding carried yet).
-const ADDED_LATER: &[&str] = &["temperature_carry"];
-
 /// Checks that `sections` are exactly the state attributes of `model` (those of
-/// [`ADDED_LATER`] may be missing), each with its type and element count, and that
+/// [`crate::attrs::AttrSpec::added_later`] may be missing), each with its type and element count, and that
 /// the ids are a permutation.
 pub fn check_sections(model: &Model, sections: &[Section]) -> Result<(), SnapshotError> {
     let bad = |m: String| Err(SnapshotError::Malformed(m));
     let wanted: Vec<_> = model.layout.specs().filter(|s| s.role == Role::State).collect();
     for spec in &wanted {
         let Some(s) = sections.iter().find(|s| s.name == spec.name) else {
-            if ADDED_LATER.contains(&spec.name) {
+            if spec.added_later {
                 continue;
             }
             return bad(format!("no section for attribute {} ({})", spec.name, spec.module));

@@ -161,6 +161,8 @@ pub struct SceneView {
     pub channels: Vec<ChannelView>,
     /// The scene's particle sets, with counts and the index frames carry.
     pub sets: Vec<SetView>,
+    /// The scene's materials, in the order of the `material` channel's indices.
+    pub materials: Vec<MaterialView>,
     /// The settings `parameters` may change.
     pub tunables: Vec<floe_engine::scene::tunable::Tunable>,
     /// What the scheme and modules measured (refreshed at most twice a second while
@@ -198,6 +200,19 @@ pub struct SetView {
     pub count: usize,
     /// Its frames' set byte.
     pub index: usize,
+}
+
+/// A material of a scene.
+#[derive(Debug, Serialize)]
+pub struct MaterialView {
+    /// Name, as the scene file gives it.
+    pub name: String,
+    /// `fluid` or `solid`.
+    pub kind: &'static str,
+    /// Rest density (kg/m^3).
+    pub rest_density: f32,
+    /// How viewers draw it: `water`, `snow`, `ice` or `solid`.
+    pub look: &'static str,
 }
 
 /// A value a scene reports.
@@ -261,6 +276,16 @@ impl SceneView {
                 .iter()
                 .enumerate()
                 .map(|(index, s)| SetView { name: s.name, count: s.count, index })
+                .collect(),
+            materials: shared
+                .materials
+                .iter()
+                .map(|m| MaterialView {
+                    name: m.name.clone(),
+                    kind: m.kind.name(),
+                    rest_density: m.rest_density,
+                    look: m.look.name(),
+                })
                 .collect(),
             tunables: shared.tunables.clone(),
             measures: s

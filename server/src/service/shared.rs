@@ -96,6 +96,8 @@ pub struct Shared {
     pub sets: Vec<SceneSet>,
     /// The settings that may change while the scene exists.
     pub tunables: Vec<floe_engine::scene::tunable::Tunable>,
+    /// The scene's materials (shared with the model: they never change).
+    pub materials: Arc<floe_engine::materials::Materials>,
     /// Particle spacing (m).
     pub particle_spacing: f32,
     /// The backend stepping the scene (`gpu`, `cpu`); resets and restores keep it.
@@ -147,6 +149,7 @@ impl Shared {
             channels: scene_channels(sim.channels()),
             sets: sim.sets().into_iter().map(|(spec, count)| SceneSet { name: spec.name, count }).collect(),
             tunables: floe_engine::module::tunables(sim.scene()),
+            materials: Arc::new(sim.model().materials.clone()),
             particle_spacing: sim.scene().particle_spacing,
             backend: sim.backend_name(),
             bounds: (domain.min.to_array(), domain.max.to_array()),

@@ -79,9 +79,10 @@ impl<'s> ModelBuilder<'s> {
         kind: crate::materials::MaterialKind,
         rest_density: Real,
         eos: crate::materials::EquationOfState,
+        look: crate::materials::Look,
     ) -> u32 {
         let mass = rest_density / lattice_sum(&self.kernel, self.spacing, None);
-        self.materials.push(Material { name: name.into(), kind, rest_density, eos, mass });
+        self.materials.push(Material { name: name.into(), kind, rest_density, eos, look, mass });
         (self.materials.len() - 1) as u32
     }
 

@@ -65,6 +65,7 @@ pub mod core_attrs {
         elem: Elem::Vec3,
         unit: "m",
         role: Role::State,
+        added_later: false,
         space: PARTICLES,
         module: "core",
         about: "Particle position.",
@@ -92,6 +93,7 @@ pub mod core_attrs {
         elem: Elem::U32,
         unit: "",
         role: Role::Derived,
+        added_later: false,
         about: "Slot of each stable id.",
         ..X
     };
@@ -104,6 +106,7 @@ pub mod core_attrs {
         elem: Elem::F32,
         unit: "kg/m^3",
         role: Role::Derived,
+        added_later: false,
         about: "Density by summation.",
         ..X
     };

@@ -62,7 +62,7 @@ pub const PAP: u32 = 2;
 pub const RZ_NEW: u32 = 3;
 
 const fn attr(name: &'static str, elem: Elem, unit: &'static str, about: &'static str) -> AttrSpec {
-    AttrSpec { name, elem, unit, role: Role::Derived, space: PARTICLES, module: MODULE, about }
+    AttrSpec { name, elem, unit, role: Role::Derived, added_later: false, space: PARTICLES, module: MODULE, about }
 }
 
 /// The residual `M v* - (M + dt K) v`.
@@ -83,6 +83,7 @@ pub static SCALARS: AttrSpec = AttrSpec {
     elem: Elem::F32,
     unit: "kg m^2/s^2",
     role: Role::Derived,
+    added_later: false,
     space: SCALARS_SPACE,
     module: MODULE,
     about: "Implicit viscosity: r.z, r.z at the start, p.Ap and the new r.z, summed on the device.",

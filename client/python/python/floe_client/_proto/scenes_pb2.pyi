@@ -57,7 +57,7 @@ class CreateSceneRequest(_message.Message):
     def __init__(self, preset: _Optional[str] = ..., document: _Optional[str] = ..., document_format: _Optional[str] = ..., overrides: _Optional[_Iterable[str]] = ...) -> None: ...
 
 class SceneInfo(_message.Message):
-    __slots__ = ("scene_id", "name", "state", "sim_time", "steps", "particles", "bounds_min", "bounds_max", "halt_reason", "scene_json", "backend", "channels", "sets", "tunables", "owner")
+    __slots__ = ("scene_id", "name", "state", "sim_time", "steps", "particles", "bounds_min", "bounds_max", "halt_reason", "scene_json", "backend", "channels", "sets", "tunables", "materials", "owner")
     SCENE_ID_FIELD_NUMBER: _ClassVar[int]
     NAME_FIELD_NUMBER: _ClassVar[int]
     STATE_FIELD_NUMBER: _ClassVar[int]
@@ -72,6 +72,7 @@ class SceneInfo(_message.Message):
     CHANNELS_FIELD_NUMBER: _ClassVar[int]
     SETS_FIELD_NUMBER: _ClassVar[int]
     TUNABLES_FIELD_NUMBER: _ClassVar[int]
+    MATERIALS_FIELD_NUMBER: _ClassVar[int]
     OWNER_FIELD_NUMBER: _ClassVar[int]
     scene_id: int
     name: str
@@ -87,8 +88,9 @@ class SceneInfo(_message.Message):
     channels: _containers.RepeatedCompositeFieldContainer[ChannelDescription]
     sets: _containers.RepeatedCompositeFieldContainer[ParticleSet]
     tunables: _containers.RepeatedCompositeFieldContainer[Tunable]
+    materials: _containers.RepeatedCompositeFieldContainer[MaterialDescription]
     owner: str
-    def __init__(self, scene_id: _Optional[int] = ..., name: _Optional[str] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., bounds_min: _Optional[_Iterable[float]] = ..., bounds_max: _Optional[_Iterable[float]] = ..., halt_reason: _Optional[str] = ..., scene_json: _Optional[str] = ..., backend: _Optional[str] = ..., channels: _Optional[_Iterable[_Union[ChannelDescription, _Mapping]]] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., tunables: _Optional[_Iterable[_Union[Tunable, _Mapping]]] = ..., owner: _Optional[str] = ...) -> None: ...
+    def __init__(self, scene_id: _Optional[int] = ..., name: _Optional[str] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., bounds_min: _Optional[_Iterable[float]] = ..., bounds_max: _Optional[_Iterable[float]] = ..., halt_reason: _Optional[str] = ..., scene_json: _Optional[str] = ..., backend: _Optional[str] = ..., channels: _Optional[_Iterable[_Union[ChannelDescription, _Mapping]]] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., tunables: _Optional[_Iterable[_Union[Tunable, _Mapping]]] = ..., materials: _Optional[_Iterable[_Union[MaterialDescription, _Mapping]]] = ..., owner: _Optional[str] = ...) -> None: ...
 
 class ChannelDescription(_message.Message):
     __slots__ = ("name", "tag", "unit", "components", "set", "exact", "about", "module")
@@ -119,6 +121,18 @@ class ParticleSet(_message.Message):
     count: int
     index: int
     def __init__(self, name: _Optional[str] = ..., count: _Optional[int] = ..., index: _Optional[int] = ...) -> None: ...
+
+class MaterialDescription(_message.Message):
+    __slots__ = ("name", "kind", "rest_density", "look")
+    NAME_FIELD_NUMBER: _ClassVar[int]
+    KIND_FIELD_NUMBER: _ClassVar[int]
+    REST_DENSITY_FIELD_NUMBER: _ClassVar[int]
+    LOOK_FIELD_NUMBER: _ClassVar[int]
+    name: str
+    kind: str
+    rest_density: float
+    look: str
+    def __init__(self, name: _Optional[str] = ..., kind: _Optional[str] = ..., rest_density: _Optional[float] = ..., look: _Optional[str] = ...) -> None: ...
 
 class Tunable(_message.Message):
     __slots__ = ("path", "unit", "min", "max", "about", "module")

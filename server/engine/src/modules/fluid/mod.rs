@@ -105,6 +105,7 @@ pub static XSPH: AttrSpec = AttrSpec {
     elem: Elem::Vec3,
     unit: "m/s",
     role: Role::Derived,
+    added_later: false,
     space: PARTICLES,
     module: "fluid",
     about: "XSPH velocity correction of the last evaluation.",
@@ -208,7 +209,7 @@ fn count(scene: &Scene) -> Vec<(&'static str, u64)> {
 fn particles(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let d = scene.particle_spacing;
     for (i, f) in fluids(scene).iter().enumerate() {
-        let material = b.material(&f.name, MaterialKind::Fluid, f.rest_density, f.eos);
+        let material = b.material(&f.name, MaterialKind::Fluid, f.rest_density, f.eos, f.look);
         for (j, block) in f.blocks.iter().enumerate() {
             let pts = fill_box(block.min, block.max, d);
             if pts.is_empty() {

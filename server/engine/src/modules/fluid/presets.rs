@@ -1,7 +1,7 @@
 //! The fluid module's built-in scenes. Each is an ordinary [`Scene`] value, so
 //! `--set` overrides and `floe schema` apply to them exactly as to files.
 
-use super::spec::{Fluid, FluidBlock, TaylorGreen, Viscosity};
+use super::spec::{Fluid, FluidBlock, Look, TaylorGreen, Viscosity};
 use crate::module::Preset;
 use crate::scene::{Axis, Boundary, BoxRegion, Face, Scene, Solver};
 use serde_json::json;
@@ -43,7 +43,15 @@ pub const TAYLOR_GREEN: (f32, f32, f32) = (1.0, 1.0, 0.01);
 pub const DAM_BREAK_A: f32 = 0.5;
 
 fn water(blocks: Vec<FluidBlock>, viscosity: Viscosity) -> Fluid {
-    Fluid { name: "water".into(), rest_density: 1000.0, eos: Default::default(), viscosity, xsph: 0.0, blocks }
+    Fluid {
+        name: "water".into(),
+        rest_density: 1000.0,
+        eos: Default::default(),
+        viscosity,
+        xsph: 0.0,
+        look: Look::Water,
+        blocks,
+    }
 }
 
 /// A scene with its fluids: the module's section.

@@ -1,7 +1,7 @@
 //! The fluid module's scene section: fluid phases (each a material), their
 //! equation of state, viscosity, XSPH, and the blocks they fill.
 
-pub use crate::materials::EquationOfState;
+pub use crate::materials::{EquationOfState, Look};
 pub use crate::validation::taylor_green::TaylorGreen;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -25,6 +25,9 @@ pub struct Fluid {
     /// XSPH velocity correction factor epsilon (Monaghan 1989), 0 to 1; 0 disables it.
     #[serde(default)]
     pub xsph: f32,
+    /// How viewers draw it: "water" (the default), "snow", "ice" or "solid".
+    #[serde(default, skip_serializing_if = "Look::is_water")]
+    pub look: Look,
     /// Boxes filled with particles on a cubic lattice of `particle_spacing`.
     pub blocks: Vec<FluidBlock>,
 }

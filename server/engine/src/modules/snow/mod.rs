@@ -94,6 +94,7 @@ pub static SHEAR_RATE: AttrSpec = AttrSpec {
     elem: Elem::F32,
     unit: "1/s",
     role: Role::Derived,
+    added_later: false,
     space: PARTICLES,
     module: "snow",
     about: "Shear rate sqrt(2 D:D) of the last evaluation.",

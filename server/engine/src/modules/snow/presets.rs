@@ -119,6 +119,7 @@ pub fn avalanche() -> Scene {
             "name": "snow",
             "rest_density": 300.0,
             "viscosity": { "model": "none" },
+            "look": "snow",
             "blocks": [{ "min": [0.1, 0.0, 0.0], "max": [1.0, top - 0.05, width] }],
         }]),
     );

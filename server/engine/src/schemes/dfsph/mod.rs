@@ -102,7 +102,7 @@ pub struct DfsphConsts {
 }
 
 const fn attr(name: &'static str, unit: &'static str, role: Role, about: &'static str) -> AttrSpec {
-    AttrSpec { name, elem: Elem::F32, unit, role, space: PARTICLES, module: "dfsph", about }
+    AttrSpec { name, elem: Elem::F32, unit, role, added_later: false, space: PARTICLES, module: "dfsph", about }
 }
 
 /// The factor `alpha = 1 / D` of each particle.

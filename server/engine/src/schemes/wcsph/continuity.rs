@@ -35,6 +35,7 @@ pub static DRHO: AttrSpec = AttrSpec {
     elem: Elem::F32,
     unit: "kg/(m^3 s)",
     role: Role::Derived,
+    added_later: false,
     space: PARTICLES,
     module: "wcsph",
     about: "Rate of change of the density: continuity equation plus diffusion.",
