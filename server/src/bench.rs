@@ -1,10 +1,12 @@
-//! `floe bench`: fluid particle-steps per second on the dam break (with `--heat`,
-//! also with the heat module, side by side), peak memory,
-//! time to solution with the surge-front error, and (`--codec`) the frame codec.
+//! `floe bench`: fluid particle-steps per second on the dam break, peak memory,
+//! time to solution with the surge-front error, the modules' benchmarks (`--case`:
+//! the dam break with a module beside it, or a module's preset run for a time),
+//! and (`--codec`) the frame codec.
 
 use crate::cli::BenchArgs;
 use anyhow::Context;
 use floe_engine::Simulation;
+use floe_engine::module::{BenchCase, BenchKind};
 use floe_engine::modules::fluid::presets::DAM_BREAK_A;
 use floe_engine::scene::load;
 use floe_engine::validation::dam_break;
@@ -24,14 +26,6 @@ fn dam_break(particles: usize, overrides: &[String], backend: &Selected) -> anyh
     Ok(Simulation::new(load::from_preset("dam_break", &all)?, &*backend.factory)?)
 }
 
-/// The heat module on the dam break (`--heat`): water's properties with a tenfold
-/// expansion, a floor held at 350 K under water at 300 K.
-const HEAT: &[&str] = &[
-    "modules=[\"fluid\",\"heat\"]",
-    "heat={\"fluids\":[{\"conductivity\":0.6,\"heat_capacity\":4186,\"expansion\":2e-3,\"temperature\":300}],\
-     \"walls\":[{\"min\":[-1,-1,-1],\"max\":[3,0,1],\"temperature\":350}]}",
-];
-
 /// Peak resident set size of this process (bytes), from /proc.
 fn peak_rss() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -44,15 +38,29 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     if args.lab {
         return lab(&args);
     }
+    if args.list {
+        println!("| case | module benchmark |\n|---|---|");
+        for c in floe_engine::module::bench_cases() {
+            println!("| {} | {} |", c.name, c.about);
+        }
+        return Ok(());
+    }
     if let Some(frames) = args.codec {
         return crate::codec_bench::codec_bench(args.particles[0], frames);
     }
+    let case = args.case.as_deref().map(find_case).transpose()?;
     let backend = floe_gpu::select::select_with(args.backend.into(), args.profile)?;
     if let Some(seconds) = args.solve {
         return solve(args.particles[0], &args.overrides, seconds, &backend);
     }
-    if let Some(seconds) = args.avalanche {
-        return avalanche(args.particles[0], &args.overrides, seconds, &backend, args.profile);
+    let mut beside = args.overrides.clone();
+    match case.map(|c| c.kind) {
+        Some(BenchKind::Run { preset, measures }) => {
+            let seconds = args.until.context("--case of a preset needs --until SECONDS (simulated time)")?;
+            return run_preset(preset, measures, args.particles[0], &args.overrides, seconds, &backend, args.profile);
+        }
+        Some(BenchKind::Beside(overrides)) => beside.extend(overrides.iter().map(|s| s.to_string())),
+        None => {}
     }
     let scheme = floe_engine::scheme::of(&load::from_preset("dam_break", &args.overrides)?).id;
     println!("dam break ({scheme}) on {}, {} timed steps per size", backend.description, args.steps);
@@ -60,11 +68,9 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
         "| modules | fluid particles | steps | wall s | ms/step | M particle-steps/s | peak RSS bytes/particle | device bytes/particle | solver iterations/step |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
-    let mut heated = args.overrides.clone();
-    heated.extend(HEAT.iter().map(|s| s.to_string()));
-    let mut variants = vec![("fluid", &args.overrides)];
-    if args.heat {
-        variants.push(("fluid, heat", &heated));
+    let mut variants = vec![("fluid".to_string(), &args.overrides)];
+    if let Some(c) = case {
+        variants.push((format!("fluid, {}", c.name), &beside));
     }
     let mut profiles = Vec::new();
     for (&n, (modules, overrides)) in args.particles.iter().flat_map(|n| variants.iter().map(move |v| (n, v))) {
@@ -114,21 +120,30 @@ fn print_profile(label: &str, kernels: &[(&'static str, f64, f64)], backend: &st
     }
 }
 
-/// `--avalanche`: the avalanche preset scaled to about `particles` (its particle
-/// count goes as the cube of the spacing), simulated for `seconds`.
-fn avalanche(
+/// The module benchmark called `name`.
+fn find_case(name: &str) -> anyhow::Result<BenchCase> {
+    let cases = floe_engine::module::bench_cases();
+    let names: Vec<&str> = cases.iter().map(|c| c.name).collect();
+    cases.iter().copied().find(|c| c.name == name).with_context(|| format!("no bench case {name}; there are {names:?}"))
+}
+
+/// A module's preset scaled to about `particles` (its particle count goes as the
+/// cube of the spacing), simulated for `seconds`; the table ends with `measures`.
+fn run_preset(
+    preset: &str,
+    measures: &[&str],
     particles: usize,
     overrides: &[String],
     seconds: f64,
     backend: &Selected,
     profile: bool,
 ) -> anyhow::Result<()> {
-    let reference = load::from_preset("avalanche", overrides)?;
+    let reference = load::from_preset(preset, overrides)?;
     let counted = Simulation::new_cpu(reference.clone())?.particle_count();
     let spacing = reference.particle_spacing * (counted as f32 / particles as f32).cbrt();
     let all: Vec<String> =
         std::iter::once(format!("particle_spacing={spacing}")).chain(overrides.iter().cloned()).collect();
-    let mut sim = Simulation::new(load::from_preset("avalanche", &all)?, &*backend.factory)?;
+    let mut sim = Simulation::new(load::from_preset(preset, &all)?, &*backend.factory)?;
     let kernels_before = sim.kernel_times();
     let t0 = Instant::now();
     while sim.time() < seconds {
@@ -136,26 +151,26 @@ fn avalanche(
     }
     let wall = t0.elapsed().as_secs_f64();
     let steps = sim.steps();
-    let measure = |name: &str| sim.measures().into_iter().find(|m| m.name == name).map_or(f64::NAN, |m| m.value);
-    println!("avalanche on {}, spacing {spacing:.4} m", backend.description);
+    let reported = sim.measures();
+    let found: Vec<_> = measures.iter().map(|&name| (name, reported.iter().find(|m| m.name == name))).collect();
+    println!("{preset} on {}, spacing {spacing:.4} m", backend.description);
+    let heads: String = found.iter().map(|(name, m)| format!(" {name} {} |", m.map_or("", |m| &m.unit))).collect();
     println!(
-        "| particles | simulated s | steps | dt mean s | explicit viscous limit s | solver iterations/step | wall s | M particle-steps/s | real-time factor | front m | run-out m |"
+        "| particles | simulated s | steps | dt mean s | solver iterations/step | wall s | M particle-steps/s | real-time factor |{heads}"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(found.len()));
+    let values: String = found.iter().map(|(_, m)| format!(" {:.4} |", m.map_or(f64::NAN, |m| m.value))).collect();
     println!(
-        "| {} | {:.3} | {steps} | {:.2e} | {:.2e} | {} | {wall:.2} | {:.3} | {:.4} | {:.3} | {:.3} |",
+        "| {} | {:.3} | {steps} | {:.2e} | {} | {wall:.2} | {:.3} | {:.4} |{values}",
         sim.particle_count(),
         sim.time(),
         sim.stats().dt_mean,
-        measure("snow.explicit_dt_limit"),
         per_step_iterations(&sim, iterations(&sim), steps),
         sim.particle_count() as f64 * steps as f64 / wall / 1e6,
         sim.time() / wall,
-        measure("snow.front"),
-        measure("snow.runout"),
     );
     if profile {
-        let label = format!("{} particles (avalanche)", sim.particle_count());
+        let label = format!("{} particles ({preset})", sim.particle_count());
         print_profile(&label, &per_step(&kernels_before, &sim.kernel_times(), steps), backend.name);
     }
     Ok(())

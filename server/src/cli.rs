@@ -178,20 +178,21 @@ pub struct BenchArgs {
     /// this many dam-break frames at the first particle count.
     #[arg(long, value_name = "FRAMES", conflicts_with = "solve")]
     pub codec: Option<usize>,
-    /// Also time each size with the heat module (conduction, buoyancy, a floor held
-    /// at 350 K), each size's two rows side by side.
-    #[arg(long, conflicts_with_all = ["codec", "solve"])]
-    pub heat: bool,
+    /// A module's benchmark (`floe bench --list` names them): one that runs beside the
+    /// dam break times each size twice, side by side; one that runs a preset simulates
+    /// it for `--until` seconds at about the first particle count.
+    #[arg(long = "case", value_name = "NAME", conflicts_with_all = ["codec", "solve"])]
+    pub case: Option<String>,
+    /// `--case` of a preset: simulated seconds.
+    #[arg(long, value_name = "SECONDS", requires = "case")]
+    pub until: Option<f64>,
+    /// List the modules' benchmarks.
+    #[arg(long)]
+    pub list: bool,
     /// Time to solution instead: simulate this many seconds of the dam break
     /// at the first particle count and report wall time and surge-front error.
     #[arg(long, value_name = "SECONDS")]
     pub solve: Option<f64>,
-    /// The snow avalanche instead: simulate this many seconds of the `avalanche`
-    /// preset at about the first particle count and report particle-steps/s, the
-    /// real-time factor, the time step against the viscous limit and the run-out
-    /// (with `--profile`, time per pass).
-    #[arg(long, value_name = "SECONDS", conflicts_with_all = ["codec", "solve", "heat"])]
-    pub avalanche: Option<f64>,
     /// A lab server under load instead: this binary serving with users and tokens, a
     /// dam break of the first particle count running flat out, viewers and scripted
     /// users; the solver's steps/s alone and under load, lost calls, memory.

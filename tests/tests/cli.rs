@@ -168,3 +168,17 @@ fn admin_store_options_go_before_or_after_the_subcommand() {
     let err = floe(&["admin", "user", "list", "--database", "postgres://floe@127.0.0.1:1/none"]).unwrap_err();
     assert!(format!("{err:#}").contains("127.0.0.1:1"), "{err:#}");
 }
+
+/// `floe bench --case` takes the modules' benchmarks by name: a module's preset
+/// runs for the simulated time asked for; a wrong name or a missing time is named.
+#[test]
+fn bench_cases_come_from_the_modules() {
+    let names: Vec<&str> = floe_engine::module::bench_cases().iter().map(|c| c.name).collect();
+    assert_eq!(names, ["heat", "avalanche"]);
+    let err = floe(&["bench", "--case", "nope"]).unwrap_err();
+    assert_eq!(format!("{err:#}"), "no bench case nope; there are [\"heat\", \"avalanche\"]");
+    let err = floe(&["bench", "--backend", "cpu", "--case", "avalanche"]).unwrap_err();
+    assert_eq!(format!("{err:#}"), "--case of a preset needs --until SECONDS (simulated time)");
+    floe(&["bench", "--backend", "cpu", "--case", "avalanche", "--until", "0.001", "--particles", "2000"]).unwrap();
+    floe(&["bench", "--backend", "cpu", "--case", "heat", "--particles", "2000", "--steps", "2"]).unwrap();
+}

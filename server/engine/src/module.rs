@@ -35,6 +35,33 @@ pub struct Preset {
     pub scene: fn() -> Scene,
 }
 
+/// A benchmark a module brings to `floe bench --case NAME`.
+#[derive(Debug, Clone, Copy)]
+pub struct BenchCase {
+    /// Name, as `--case` takes it.
+    pub name: &'static str,
+    /// What it times.
+    pub about: &'static str,
+    /// How it runs.
+    pub kind: BenchKind,
+}
+
+/// How a [`BenchCase`] runs.
+#[derive(Debug, Clone, Copy)]
+pub enum BenchKind {
+    /// The dam break with these overrides, timed beside the dam break alone at each
+    /// size (what the module adds to a fluid step).
+    Beside(&'static [&'static str]),
+    /// A preset scaled to about the first particle count and simulated for
+    /// `--until` seconds; the table reports these measures of the module at the end.
+    Run {
+        /// The preset.
+        preset: &'static str,
+        /// Measures to report ([`ModuleDef::measures`] names).
+        measures: &'static [&'static str],
+    },
+}
+
 /// A module's section of a scene file: a key of the document the module owns,
 /// parsed and validated by it.
 #[derive(Debug, Clone, Copy)]
@@ -99,6 +126,8 @@ pub struct ModuleDef {
     pub cases: &'static [Case],
     /// Stiff and extreme scenes that must finish or halt with a reason.
     pub stability: &'static [StabilityCase],
+    /// Benchmarks (`floe bench --case NAME`).
+    pub bench: &'static [BenchCase],
 }
 
 static EXTRA: RwLock<Vec<&'static ModuleDef>> = RwLock::new(Vec::new());
@@ -142,6 +171,11 @@ pub fn counts(scene: &Scene) -> Vec<(&'static str, u64)> {
 /// Materials `scene`'s modules will add, counted without building them.
 pub fn materials(scene: &Scene) -> usize {
     of(scene).iter().map(|m| (m.materials)(scene)).sum()
+}
+
+/// Every module's benchmarks.
+pub fn bench_cases() -> Vec<BenchCase> {
+    all().iter().flat_map(|m| m.bench.iter().copied()).collect()
 }
 
 /// Every preset of every module.

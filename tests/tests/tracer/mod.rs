@@ -40,6 +40,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     measures: |_| Vec::new(),
     cases: &[],
     stability: &[],
+    bench: &[],
 };
 
 /// The probes' space.

@@ -55,6 +55,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     measures,
     cases: cases::CASES,
     stability: cases::STABILITY,
+    bench: &[],
 };
 
 /// The module's section of a scene: `fluids`, a list of [`spec::Fluid`].

@@ -28,7 +28,7 @@ use crate::guard::Bound;
 use crate::kernel::Kernel;
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
-use crate::module::{ModuleDef, Section};
+use crate::module::{BenchCase, BenchKind, ModuleDef, Section};
 use crate::quantities::{Claim, Role as QuantityRole, Write};
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
@@ -67,6 +67,16 @@ pub static MODULE: ModuleDef = ModuleDef {
     measures,
     cases: cases::CASES,
     stability: cases::STABILITY,
+    bench: &[BenchCase {
+        name: "heat",
+        about: "The dam break with heat (water's properties, a tenfold expansion, a floor held at 350 K under \
+                water at 300 K) beside the dam break alone",
+        kind: BenchKind::Beside(&[
+            "modules=[\"fluid\",\"heat\"]",
+            "heat={\"fluids\":[{\"conductivity\":0.6,\"heat_capacity\":4186,\"expansion\":2e-3,\"temperature\":300}],\
+             \"walls\":[{\"min\":[-1,-1,-1],\"max\":[3,0,1],\"temperature\":350}]}",
+        ]),
+    }],
 };
 
 /// The module's live settings.

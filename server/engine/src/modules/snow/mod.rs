@@ -24,7 +24,7 @@ use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use crate::channels::{ChannelSpec, Source};
 use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
-use crate::module::{ModuleDef, Section};
+use crate::module::{BenchCase, BenchKind, ModuleDef, Section};
 use crate::quantities::{Claim, Write};
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
@@ -58,6 +58,14 @@ pub static MODULE: ModuleDef = ModuleDef {
     measures,
     cases: cases::CASES,
     stability: cases::STABILITY,
+    bench: &[BenchCase {
+        name: "avalanche",
+        about: "The avalanche preset: the time step against the explicit viscous limit, front and run-out",
+        kind: BenchKind::Run {
+            preset: "avalanche",
+            measures: &["snow.explicit_dt_limit", "snow.front", "snow.runout"],
+        },
+    }],
 };
 
 /// The module's live settings.
