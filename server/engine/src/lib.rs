@@ -24,6 +24,7 @@
 //! - [`quantities`]: what modules share (the per-particle viscosity and its factor),
 //!   claimed by modules and resolved by the core; [`viscosity`]: that viscosity's
 //!   force, explicit or implicit.
+//! - [`mesh`]: bodies from OBJ and STL meshes, checked and filled with particles.
 //! - [`math`], [`kernel`], [`neighbors`], [`periodic`]: numeric types, SPH kernels, the
 //!   uniform grid, periodic domains (minimum-image pairs).
 //! - [`boundary`], [`sampling`]: wall particles and constraints, particle lattices;
@@ -46,6 +47,7 @@ pub mod guard;
 pub mod kernel;
 pub mod materials;
 pub mod math;
+pub mod mesh;
 pub mod model;
 pub mod module;
 pub mod modules;

@@ -6,7 +6,7 @@ use crate::scene::{Boundary, Face};
 use crate::terrain::HeightGrid;
 
 /// Particles along each axis of the box `min`-`max` on a lattice of `spacing`.
-fn lattice_counts(min: [f32; 3], max: [f32; 3], spacing: Real) -> [u32; 3] {
+pub(crate) fn lattice_counts(min: [f32; 3], max: [f32; 3], spacing: Real) -> [u32; 3] {
     let counts = ((Vec3::from(max) - Vec3::from(min)) / spacing + 1e-3).floor();
     [counts.x as u32, counts.y as u32, counts.z as u32]
 }

@@ -32,6 +32,9 @@ pub use builder::ModelBuilder;
 /// Why a valid scene still cannot be built.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum BuildError {
+    /// A mesh cannot be used (named by its field and file).
+    #[error("{0}")]
+    Mesh(String),
     /// A block of particles is smaller than one particle spacing.
     #[error("{path}: holds no particle at particle_spacing {spacing} m; make it larger or the spacing smaller")]
     EmptyBlock {

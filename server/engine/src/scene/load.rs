@@ -129,12 +129,13 @@ pub fn from_preset(name: &str, overrides: &[String]) -> Result<Scene, SceneError
     from_value(value)
 }
 
-/// Reads the terrain assets `scene` names from the assets directory `dir` into the
-/// scene (see `terrain::source::read_assets`): a name that is not a plain file name,
+/// Reads the terrain and mesh assets `scene` names from the assets directory `dir`
+/// into the scene (see `terrain::source::read_assets`, `mesh::read_assets`): a name that is not a plain file name,
 /// any asset when there is no directory, and a missing or unusable file are refused
 /// naming the field.
 pub fn with_assets(mut scene: Scene, dir: Option<&Path>) -> Result<Scene, SceneError> {
     crate::terrain::source::read_assets(&mut scene, dir).map_err(SceneError::Invalid)?;
+    crate::mesh::read_assets(&mut scene, dir).map_err(SceneError::Invalid)?;
     Ok(scene)
 }
 

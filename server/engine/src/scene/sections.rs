@@ -42,6 +42,12 @@ impl Sections {
         self.0.contains_key(key)
     }
 
+    /// Every section's document, by key, to edit in place (the core reading assets
+    /// a section names into it).
+    pub(crate) fn iter_mut(&mut self) -> impl Iterator<Item = (&String, &mut Value)> {
+        self.0.iter_mut()
+    }
+
     /// The keys present.
     pub fn keys(&self) -> impl Iterator<Item = &str> {
         self.0.keys().map(String::as_str)

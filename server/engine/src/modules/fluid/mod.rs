@@ -187,6 +187,9 @@ fn validate(scene: &Scene, c: &mut Checker) {
                 c.finite(&format!("{bp}.taylor_green.amplitude"), tg.amplitude);
                 c.positive(&format!("{bp}.taylor_green.wavelength"), tg.wavelength);
             }
+            if let Some(mesh) = &b.mesh {
+                crate::mesh::validate(c, &format!("{bp}.mesh"), mesh);
+            }
         }
     }
     // (Without the section at all the registry says so: the module is listed.)
@@ -199,7 +202,8 @@ fn validate(scene: &Scene, c: &mut Checker) {
 }
 
 /// How many particles the fluids' blocks hold, counted without placing them (an
-/// upper bound where a terrain buries part of a block: those are dropped at build).
+/// upper bound where a terrain buries part of a block or a mesh shapes it: those
+/// outside are dropped at build).
 fn count(scene: &Scene) -> Vec<(&'static str, u64)> {
     let blocks = fluids(scene).into_iter().flat_map(|f| f.blocks);
     let n = blocks.map(|b| box_count(b.min, b.max, scene.particle_spacing)).fold(0u64, u64::saturating_add);
@@ -212,12 +216,20 @@ fn particles(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     for (i, f) in fluids(scene).iter().enumerate() {
         let material = b.material(&f.name, MaterialKind::Fluid, f.rest_density, f.eos, f.look);
         for (j, block) in f.blocks.iter().enumerate() {
-            let pts = fill_box(block.min, block.max, d);
+            let path = format!("fluids[{i}].blocks[{j}]");
+            let bounds = Aabb::new(block.min.into(), block.max.into());
+            let pts = match &block.mesh {
+                None => fill_box(block.min, block.max, d),
+                Some(m) => {
+                    let mesh = m.load().map_err(|e| BuildError::Mesh(format!("{path}.mesh: {e}")))?;
+                    mesh.fitted(bounds).fill(bounds, d)
+                }
+            };
             if pts.is_empty() {
-                return Err(BuildError::EmptyBlock { path: format!("fluids[{i}].blocks[{j}]"), spacing: d });
+                return Err(BuildError::EmptyBlock { path, spacing: d });
             }
             let velocities = pts.iter().map(|x| Vec3::from(block.velocity_at((*x).into()))).collect();
-            b.particles(material, pts, velocities, Aabb::new(block.min.into(), block.max.into()));
+            b.particles(material, pts, velocities, bounds);
         }
     }
     Ok(())

@@ -53,12 +53,16 @@ pub struct FluidBlock {
     /// Taylor-Green vortices added to `velocity`, for flows that start in motion.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub taylor_green: Option<TaylorGreen>,
+    /// A closed mesh (OBJ or STL) that shapes the block: scaled uniformly and
+    /// centred to fit the box `min`-`max`, the block holds the lattice points inside it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<crate::mesh::MeshSource>,
 }
 
 impl FluidBlock {
     /// A block at rest between `min` and `max`.
     pub fn at_rest(min: [f32; 3], max: [f32; 3]) -> Self {
-        Self { min, max, velocity: [0.0; 3], taylor_green: None }
+        Self { min, max, velocity: [0.0; 3], taylor_green: None, mesh: None }
     }
 
     /// The initial velocity (m/s) of a particle at `x` (m): `velocity` plus the
