@@ -62,6 +62,40 @@ async fn a_module_of_the_tests_adds_attributes_passes_a_set_and_streams_its_chan
     server.shutdown().await;
 }
 
+/// A quaternion and a 3x3 matrix per particle: stepped, read as a channel, and
+/// carried through a snapshot bit for bit.
+#[test]
+fn rotations_and_matrices_are_attributes_like_any_other() {
+    floe_engine::module::register(&tracer::MODULE);
+    let mut sim = Simulation::new_cpu(from_preset("dam_break", &traced()).unwrap()).unwrap();
+    for _ in 0..20 {
+        sim.step().unwrap();
+    }
+    let t = sim.time() as f32;
+    let p = sim.read(&["spin"]);
+    let spin = p.channel("spin").unwrap();
+    let Values::Float { components: 4, data } = spin else { panic!("four components: {spin:?}") };
+    let q = floe_engine::math::Quat::from_slice(&data[..4]);
+    let (axis, angle) = q.to_axis_angle();
+    assert!((angle - t).abs() < 1e-4 && (axis.y - 1.0).abs() < 1e-4, "{axis} {angle} at t = {t}");
+    let state = sim.backend().state();
+    let frame = state.iter().find(|s| s.name == "frame");
+    assert!(frame.is_none(), "a derived matrix is not saved");
+    let saved = sim.snapshot();
+    let mut back = Simulation::restore(&saved).unwrap();
+    for _ in 0..5 {
+        sim.step().unwrap();
+        back.step().unwrap();
+    }
+    let words = |s: &Simulation, name: &str| {
+        let state = s.backend().state();
+        state.iter().find(|c| c.name == name).map(|c| c.column.words()).unwrap()
+    };
+    assert_eq!(words(&sim, "spin"), words(&back, "spin"));
+    let frames: Vec<_> = sim.backend().allocations().into_iter().filter(|a| a.name == "frame").collect();
+    assert_eq!(frames[0].bytes, 36 * sim.particle_count() as u64, "nine f32 per particle on the CPU");
+}
+
 #[test]
 fn a_gpu_refuses_a_module_pass_it_lacks_by_name() {
     floe_engine::module::register(&tracer::MODULE);
@@ -113,7 +147,14 @@ fn an_absent_module_allocates_and_runs_nothing() {
                 sim.step().unwrap();
             }
             let scene = sim.scene().modules.clone();
-            let present = |m: &str| m == "core" || m == sim.model().scheme.id || scene.iter().any(|s| s == m);
+            // The core's shared viscosity is there where a module of the scene claims it.
+            let viscous = sim.model().quantities.integration().is_some();
+            let present = |m: &str| {
+                m == "core"
+                    || m == sim.model().scheme.id
+                    || scene.iter().any(|s| s == m)
+                    || (m == floe_engine::viscosity::MODULE && viscous)
+            };
             for a in sim.backend().allocations() {
                 assert!(present(a.module), "{backend} {preset}: {} allocated for absent module {}", a.name, a.module);
             }
@@ -134,7 +175,7 @@ fn total(b: &dyn Backend) -> u64 {
 #[test]
 fn what_a_module_adds_is_what_its_attributes_declare() {
     floe_engine::module::register(&tracer::MODULE);
-    // The tracer module (CPU): the age of every particle and four probes.
+    // The tracer module (CPU): the age, spin and frame of every particle and four probes.
     let without = Simulation::new_cpu(from_preset("dam_break", &["particle_spacing=0.05".into()]).unwrap()).unwrap();
     let with = Simulation::new_cpu(from_preset("dam_break", &traced()).unwrap()).unwrap();
     let added: Vec<_> = with.backend().allocations().into_iter().filter(|a| a.module == "tracer").collect();
@@ -146,7 +187,7 @@ fn what_a_module_adds_is_what_its_attributes_declare() {
         .map(|s| s.elem.cpu_bytes() as u64 * with.model().layout.count(s.space) as u64)
         .sum();
     assert_eq!(added.iter().map(|a| a.bytes).sum::<u64>(), declared);
-    assert_eq!(declared, 4 * 1000 + 12 * 4 + 4 * 4);
+    assert_eq!(declared, (4 + 16 + 36) * 1000 + 12 * 4 + 4 * 4);
     assert_eq!(total(with.backend()) - total(without.backend()), declared);
     // XSPH, on both backends: its corrections are the fluid's optional attribute.
     for (backend, make) in factories() {

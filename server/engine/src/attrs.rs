@@ -14,7 +14,7 @@
 //! them, and the guard checks them for non-finite values; [`Role::Derived`] columns
 //! are recomputed from state every step (after a sort or a restore) and never saved.
 
-use crate::math::{Real, Vec3};
+use crate::math::{Mat3, Quat, Real, Vec3};
 use std::marker::PhantomData;
 
 /// Element type of an attribute.
@@ -30,6 +30,13 @@ pub enum Elem {
     Vec4,
     /// A symmetric 3x3 tensor: xx, yy, zz, xy, xz, yz.
     Sym3,
+    /// A 3x3 matrix ([`Mat3`], column-major: three columns of three f32; on the GPU
+    /// a WGSL `mat3x3<f32>`, each column padded to a vec4).
+    Mat3,
+    /// A rotation as a unit quaternion ([`Quat`]: x, y, z, then the scalar part w;
+    /// Hamilton's product, a vector rotated as `q v q*`; on the GPU a `vec4<f32>` in
+    /// the same order). Zeroed columns hold the identity.
+    Quat,
 }
 
 impl Elem {
@@ -38,17 +45,20 @@ impl Elem {
         match self {
             Elem::F32 | Elem::U32 => 4,
             Elem::Vec3 => 12,
-            Elem::Vec4 => 16,
+            Elem::Vec4 | Elem::Quat => 16,
             Elem::Sym3 => 24,
+            Elem::Mat3 => 36,
         }
     }
 
-    /// 32-bit words per element in a GPU buffer (vec3 padded to a vec4).
+    /// 32-bit words per element in a GPU buffer (vec3 padded to a vec4, a matrix's
+    /// columns each to a vec4).
     pub fn gpu_words(self) -> usize {
         match self {
             Elem::F32 | Elem::U32 => 1,
-            Elem::Vec3 | Elem::Vec4 => 4,
+            Elem::Vec3 | Elem::Vec4 | Elem::Quat => 4,
             Elem::Sym3 => 6,
+            Elem::Mat3 => 12,
         }
     }
 
@@ -57,8 +67,9 @@ impl Elem {
         match self {
             Elem::F32 | Elem::U32 => 1,
             Elem::Vec3 => 3,
-            Elem::Vec4 => 4,
+            Elem::Vec4 | Elem::Quat => 4,
             Elem::Sym3 => 6,
+            Elem::Mat3 => 9,
         }
     }
 
@@ -70,8 +81,13 @@ impl Elem {
             Elem::Vec3 => 2,
             Elem::Vec4 => 3,
             Elem::Sym3 => 4,
+            Elem::Mat3 => 5,
+            Elem::Quat => 6,
         }
     }
+
+    /// Every element type, in tag order.
+    pub const ALL: [Elem; 7] = [Elem::F32, Elem::U32, Elem::Vec3, Elem::Vec4, Elem::Sym3, Elem::Mat3, Elem::Quat];
 }
 
 /// What the core does with an attribute.
@@ -128,6 +144,10 @@ pub enum Column {
     Vec4(Vec<[f32; 4]>),
     /// Symmetric tensors.
     Sym3(Vec<[f32; 6]>),
+    /// 3x3 matrices.
+    Mat3(Vec<Mat3>),
+    /// Rotations.
+    Quat(Vec<Quat>),
 }
 
 impl Column {
@@ -139,6 +159,8 @@ impl Column {
             Elem::Vec3 => Column::Vec3(vec![Vec3::ZERO; n]),
             Elem::Vec4 => Column::Vec4(vec![[0.0; 4]; n]),
             Elem::Sym3 => Column::Sym3(vec![[0.0; 6]; n]),
+            Elem::Mat3 => Column::Mat3(vec![Mat3::ZERO; n]),
+            Elem::Quat => Column::Quat(vec![Quat::IDENTITY; n]),
         }
     }
 
@@ -150,6 +172,8 @@ impl Column {
             Column::Vec3(_) => Elem::Vec3,
             Column::Vec4(_) => Elem::Vec4,
             Column::Sym3(_) => Elem::Sym3,
+            Column::Mat3(_) => Elem::Mat3,
+            Column::Quat(_) => Elem::Quat,
         }
     }
 
@@ -161,6 +185,8 @@ impl Column {
             Column::Vec3(v) => v.len(),
             Column::Vec4(v) => v.len(),
             Column::Sym3(v) => v.len(),
+            Column::Mat3(v) => v.len(),
+            Column::Quat(v) => v.len(),
         }
     }
 
@@ -177,6 +203,8 @@ impl Column {
             Column::Vec3(v) => v.iter().flat_map(|x| x.to_array()).map(f32::to_bits).collect(),
             Column::Vec4(v) => v.iter().flatten().map(|x| x.to_bits()).collect(),
             Column::Sym3(v) => v.iter().flatten().map(|x| x.to_bits()).collect(),
+            Column::Mat3(v) => v.iter().flat_map(|x| x.to_cols_array()).map(f32::to_bits).collect(),
+            Column::Quat(v) => v.iter().flat_map(|x| x.to_array()).map(f32::to_bits).collect(),
         }
     }
 
@@ -198,6 +226,8 @@ impl Column {
             Elem::Sym3 => {
                 Column::Sym3(words.chunks_exact(6).map(|w| std::array::from_fn(|k| f32::from_bits(w[k]))).collect())
             }
+            Elem::Mat3 => Column::Mat3(words.chunks_exact(9).map(|w| Mat3::from_cols_slice(&f(w))).collect()),
+            Elem::Quat => Column::Quat(words.chunks_exact(4).map(|w| Quat::from_slice(&f(w))).collect()),
         })
     }
 
@@ -214,6 +244,8 @@ impl Column {
             Column::Vec3(v) => v.iter().position(|x| !x.is_finite()),
             Column::Vec4(v) => v.iter().position(|x| x.iter().any(|c| !c.is_finite())),
             Column::Sym3(v) => v.iter().position(|x| x.iter().any(|c| !c.is_finite())),
+            Column::Mat3(v) => v.iter().position(|x| !x.is_finite()),
+            Column::Quat(v) => v.iter().position(|x| !x.is_finite()),
         }
     }
 
@@ -225,6 +257,8 @@ impl Column {
             Column::Vec3(v) => permute(v, &mut scratch.vec3, order),
             Column::Vec4(v) => permute(v, &mut scratch.vec4, order),
             Column::Sym3(v) => permute(v, &mut scratch.sym3, order),
+            Column::Mat3(v) => permute(v, &mut scratch.mat3, order),
+            Column::Quat(v) => permute(v, &mut scratch.quat, order),
         }
     }
 }
@@ -263,6 +297,8 @@ element!(u32, U32);
 element!(Vec3, Vec3);
 element!([f32; 4], Vec4);
 element!([f32; 6], Sym3);
+element!(Mat3, Mat3);
+element!(Quat, Quat);
 
 /// A typed handle on a column, resolved once from the attribute's name.
 #[derive(Debug)]
@@ -299,6 +335,8 @@ struct Scratch {
     vec3: Vec<Vec3>,
     vec4: Vec<[f32; 4]>,
     sym3: Vec<[f32; 6]>,
+    mat3: Vec<Mat3>,
+    quat: Vec<Quat>,
 }
 
 /// The CPU store: one column per declared attribute.
@@ -442,5 +480,26 @@ mod tests {
         assert_eq!(back.words(), c.words());
         assert_eq!(back.first_non_finite(), Some(0));
         assert!(Column::from_words(Elem::Vec3, &[1, 2]).is_none());
+    }
+
+    #[test]
+    fn matrices_and_rotations_round_trip_and_sort() {
+        let m = |k: f32| Mat3::from_cols_array(&std::array::from_fn(|i| k * 10.0 + i as f32));
+        let q = |k: f32| Quat::from_rotation_z(k);
+        let columns = [Column::Mat3(vec![m(0.0), m(1.0), m(2.0)]), Column::Quat(vec![q(0.0), q(1.0), q(2.0)])];
+        for c in columns {
+            let elem = c.elem();
+            assert_eq!(c.words().len(), 3 * elem.components());
+            let back = Column::from_words(elem, &c.words()).unwrap();
+            assert_eq!(back, c);
+            let tag = Elem::ALL.iter().position(|&e| e == elem).unwrap();
+            assert_eq!(tag, elem.tag() as usize, "ALL is in tag order");
+            let mut sorted = c.clone();
+            sorted.permute(&[2, 0, 1], &mut Scratch::default());
+            let third = Column::from_words(elem, &c.words()[2 * elem.components()..]).unwrap();
+            assert_eq!(Column::from_words(elem, &sorted.words()[..elem.components()]).unwrap(), third);
+        }
+        assert_eq!(Column::zeros(Elem::Quat, 2), Column::Quat(vec![Quat::IDENTITY; 2]), "identity, not zeros");
+        assert_eq!((Elem::Mat3.cpu_bytes(), Elem::Mat3.gpu_words(), Elem::Quat.gpu_words()), (36, 12, 4));
     }
 }

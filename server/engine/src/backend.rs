@@ -151,6 +151,8 @@ pub fn read<B: Backend + ?Sized>(
             Column::Vec3(v) => (v.iter().flat_map(|x| x.to_array()).collect(), 3),
             Column::Vec4(v) => (v.iter().flatten().copied().collect(), 4),
             Column::Sym3(v) => (v.iter().flatten().copied().collect(), 6),
+            Column::Mat3(v) => (v.iter().flat_map(|m| m.to_cols_array()).collect(), 9),
+            Column::Quat(v) => (v.iter().flat_map(|q| q.to_array()).collect(), 4),
         }
     };
     let positions = positions.unwrap_or_else(|| {

@@ -8,6 +8,10 @@ pub type Real = f32;
 
 /// 3-vector of per-particle state (12 bytes, no padding: memory per particle matters).
 pub type Vec3 = glam::Vec3;
+/// A 3x3 matrix (column-major).
+pub type Mat3 = glam::Mat3;
+/// A rotation (unit quaternion, x y z w, w the scalar part).
+pub type Quat = glam::Quat;
 
 /// Axis-aligned box in metres.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -83,7 +83,7 @@ pub fn read(bytes: &[u8]) -> Result<Parts, SnapshotError> {
             for i in 0..count {
                 let name = text(&mut r, "section name")?;
                 let tag = r.bytes_fixed(1, "section type")?[0];
-                let elem = [Elem::F32, Elem::U32, Elem::Vec3, Elem::Vec4, Elem::Sym3]
+                let elem = Elem::ALL
                     .into_iter()
                     .find(|e| e.tag() == tag)
                     .ok_or_else(|| bad(format!("section {i} ({name}): unknown element type {tag}")))?;

@@ -55,10 +55,15 @@ fn init<T: bytemuck::Pod>(device: &Device, label: &str, data: &[T], usage: U) ->
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
 }
 
-/// An attribute's values as the GPU stores them: 32-bit words, vec3 padded to vec4.
+/// An attribute's values as the GPU stores them: 32-bit words, vec3 (and each
+/// column of a 3x3 matrix) padded to a vec4.
 pub fn gpu_words(column: &Column) -> Vec<u32> {
+    let padded = |x: glam::Vec3| [x.x, x.y, x.z, 0.0];
     match column {
-        Column::Vec3(v) => v.iter().flat_map(|x| [x.x, x.y, x.z, 0.0]).map(f32::to_bits).collect(),
+        Column::Vec3(v) => v.iter().flat_map(|&x| padded(x)).map(f32::to_bits).collect(),
+        Column::Mat3(v) => {
+            v.iter().flat_map(|m| [m.x_axis, m.y_axis, m.z_axis]).flat_map(padded).map(f32::to_bits).collect()
+        }
         other => other.words(),
     }
 }
@@ -70,6 +75,17 @@ pub fn from_gpu_words(elem: Elem, words: &[u32]) -> Column {
             words
                 .chunks_exact(4)
                 .map(|w| glam::Vec3::new(f32::from_bits(w[0]), f32::from_bits(w[1]), f32::from_bits(w[2])))
+                .collect(),
+        ),
+        Elem::Mat3 => Column::Mat3(
+            words
+                .chunks_exact(12)
+                .map(|w| {
+                    let col = |c: usize| {
+                        glam::Vec3::new(f32::from_bits(w[c]), f32::from_bits(w[c + 1]), f32::from_bits(w[c + 2]))
+                    };
+                    glam::Mat3::from_cols(col(0), col(4), col(8))
+                })
                 .collect(),
         ),
         other => Column::from_words(other, words).expect("whole elements"),
@@ -237,4 +253,23 @@ fn readback(device: &Device, label: &str, size: u64) -> Buffer {
         usage: U::MAP_READ | U::COPY_DST,
         mapped_at_creation: false,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A matrix's columns and a vec3 are padded to vec4s (WGSL's `mat3x3<f32>` and
+    /// `vec3<f32>` array strides) and come back as they went.
+    #[test]
+    fn padded_types_round_trip() {
+        let m = glam::Mat3::from_cols_array(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
+        let c = Column::Mat3(vec![m, m.transpose()]);
+        let words = gpu_words(&c);
+        assert_eq!(words.len(), 2 * Elem::Mat3.gpu_words());
+        assert_eq!(f32::from_bits(words[4]), 4.0, "the second column starts at word 4");
+        assert_eq!(from_gpu_words(Elem::Mat3, &words), c);
+        let q = Column::Quat(vec![glam::Quat::from_rotation_x(0.5)]);
+        assert_eq!(from_gpu_words(Elem::Quat, &gpu_words(&q)), q);
+    }
 }

@@ -6,6 +6,10 @@
 //! - `age` (s), per particle: the time since the scene started, advanced by the
 //!   pass `tracer.age` in the kick stage (`age += dt`), guarded to stay within
 //!   [0, 1000] s.
+//! - `spin`, per particle, a rotation (quaternion, state) turning about y at 1 rad/s,
+//!   and `frame`, its 3x3 matrix (derived), both written by `tracer.spin` in the
+//!   kick stage: the element types a solid's orientation needs, through snapshots
+//!   and channels (`spin`; a 3x3 matrix has more components than a frame carries).
 //! - `probes`, a second particle set of four points on the domain's diagonal, with
 //!   `probe_age` (s): the mean age of the particles, written by `tracer.probe` after
 //!   each step.
@@ -14,7 +18,7 @@ use floe_engine::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use floe_engine::channels::{ChannelSpec, SetSpec, Source};
 use floe_engine::cpu::{CpuCx, CpuPass};
 use floe_engine::guard::Bound;
-use floe_engine::math::Vec3;
+use floe_engine::math::{Mat3, Quat, Vec3};
 use floe_engine::model::{BuildError, ModelBuilder};
 use floe_engine::module::ModuleDef;
 use floe_engine::plan::{PassSpec, Stage};
@@ -34,7 +38,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     build,
     retune: |_, _| {},
     tunables: &[],
-    cpu: &[("tracer.age", &Age), ("tracer.probe", &Probe)],
+    cpu: &[("tracer.age", &Age), ("tracer.spin", &Spin), ("tracer.probe", &Probe)],
     presets: &[],
     dt_limit: |_| None,
     measures: |_| Vec::new(),
@@ -55,6 +59,28 @@ static AGE: AttrSpec = AttrSpec {
     space: PARTICLES,
     module: "tracer",
     about: "Time since the scene started.",
+};
+
+static SPIN: AttrSpec = AttrSpec {
+    name: "spin",
+    elem: Elem::Quat,
+    unit: "",
+    role: Role::State,
+    added_later: false,
+    space: PARTICLES,
+    module: "tracer",
+    about: "Orientation, turning about y at 1 rad/s.",
+};
+
+static FRAME: AttrSpec = AttrSpec {
+    name: "frame",
+    elem: Elem::Mat3,
+    unit: "",
+    role: Role::Derived,
+    added_later: false,
+    space: PARTICLES,
+    module: "tracer",
+    about: "The orientation as a rotation matrix.",
 };
 
 static PROBE_X: AttrSpec = AttrSpec {
@@ -89,6 +115,16 @@ static AGE_PASS: PassSpec = PassSpec {
     tolerance: 0.0,
 };
 
+static SPIN_PASS: PassSpec = PassSpec {
+    name: "tracer.spin",
+    module: "tracer",
+    stage: Stage::Kick,
+    reads: &["spin"],
+    writes: &["spin", "frame"],
+    accumulates: &[],
+    tolerance: 0.0,
+};
+
 static PROBE_PASS: PassSpec = PassSpec {
     name: "tracer.probe",
     module: "tracer",
@@ -101,12 +137,15 @@ static PROBE_PASS: PassSpec = PassSpec {
 
 fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.zeros(&AGE);
+    b.zeros(&SPIN);
+    b.zeros(&FRAME);
     b.bound(Bound { attr: "age", what: "age", unit: "s", min: 0.0, max: 1e3 });
     b.space(PROBES, 4);
     let probes = (0..4).map(|k| Vec3::splat(0.1 * k as f32)).collect();
     b.attr(&PROBE_X, Column::Vec3(probes));
     b.zeros(&PROBE_AGE);
     b.pass(&AGE_PASS);
+    b.pass(&SPIN_PASS);
     b.pass(&PROBE_PASS);
     b.set(SetSpec { name: "probes", space: PROBES, position: "probe_x", id: None });
     b.channel(ChannelSpec {
@@ -118,6 +157,16 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         module: "tracer",
         about: "Time since the scene started.",
         source: Source::Attr("age"),
+    });
+    b.channel(ChannelSpec {
+        name: "spin",
+        unit: "",
+        components: 4,
+        exact: false,
+        set: PARTICLES,
+        module: "tracer",
+        about: "Orientation (quaternion x, y, z, w).",
+        source: Source::Attr("spin"),
     });
     b.channel(ChannelSpec {
         name: "probe_age",
@@ -141,6 +190,21 @@ impl CpuPass for Age {
         let dt = cx.dt;
         let h = cx.attrs.handle::<f32>("age");
         cx.attrs.get_mut(h).iter_mut().for_each(|a| *a += dt);
+    }
+}
+
+/// `spin = rot_y(dt) spin`, `frame = R(spin)`.
+#[derive(Debug)]
+struct Spin;
+
+impl CpuPass for Spin {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let turn = Quat::from_rotation_y(cx.dt);
+        let h = cx.attrs.handle::<Quat>("spin");
+        cx.attrs.get_mut(h).iter_mut().for_each(|q| *q = (turn * *q).normalize());
+        let spins = cx.attrs.get(h).to_vec();
+        let f = cx.attrs.handle::<Mat3>("frame");
+        cx.attrs.get_mut(f).iter_mut().zip(spins).for_each(|(m, q)| *m = Mat3::from_quat(q));
     }
 }
 
