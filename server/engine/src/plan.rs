@@ -7,7 +7,7 @@
 //! its stage that write or accumulate into what it reads, and after those that
 //! write what it accumulates into. Passes that share nothing (or accumulate into
 //! the same attribute) keep a fixed order, whatever order they were declared in:
-//! the core's and the scheme's first, then the modules' in registry order, then the
+//! the core's, then the scheme's, then the modules' in registry order, then the
 //! core's shared quantities' ([`crate::viscosity`], which act on what the modules
 //! wrote). So both backends run the same sequence and sums happen in the same
 //! order. It refuses a scene whose passes conflict (two writers of one attribute
@@ -102,13 +102,20 @@ impl PassSpec {
 }
 
 /// Where a pass's module stands among passes of a stage that share nothing: the
-/// core and the scheme first, then the modules in registry order, then the core's
-/// shared quantities.
+/// core first, then the scheme, then the modules in registry order, then the
+/// core's shared quantities.
 fn rank(module: &str) -> usize {
+    if module == "core" {
+        return 0;
+    }
     if module == crate::viscosity::MODULE {
         return usize::MAX;
     }
-    crate::module::all().iter().position(|m| m.id == module).map_or(0, |i| i + 1)
+    match crate::module::all().iter().position(|m| m.id == module) {
+        Some(i) => i + 2,
+        // A scheme's (or a test's own passes).
+        None => 1,
+    }
 }
 
 /// Whether `first` must run before `then` among a stage's `passes`: it writes what

@@ -130,7 +130,7 @@ pub static FACTOR: PassSpec = PassSpec {
     name: "dfsph.factor",
     module: "dfsph",
     stage: Stage::Density,
-    reads: &["x", "rho"],
+    reads: &["x"],
     writes: &["alpha"],
     accumulates: &[],
     tolerance: 1e-4,
@@ -143,8 +143,13 @@ pub static DIVERGENCE_WARM: PassSpec =
 pub static DIVERGENCE_KICK: PassSpec =
     PassSpec::solve("dfsph", "dfsph.divergence_kick", &["x", "dkappa_v"], &[], &["v", "kappa_v"]);
 /// The compression rate, its increment and residual.
-pub static DIVERGENCE_ERROR_PASS: PassSpec =
-    PassSpec::solve("dfsph", "dfsph.divergence_error", &["x", "v", "alpha"], &["dkappa_v", "divergence_error"], &[]);
+pub static DIVERGENCE_ERROR_PASS: PassSpec = PassSpec::solve(
+    "dfsph",
+    "dfsph.divergence_error",
+    &["x", "v", "rho", "alpha"],
+    &["dkappa_v", "divergence_error"],
+    &[],
+);
 /// The density solve's warm start.
 pub static DENSITY_WARM: PassSpec =
     PassSpec::solve("dfsph", "dfsph.density_warm", &["kappa"], &["dkappa", "kappa"], &[]);

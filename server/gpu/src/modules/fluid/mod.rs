@@ -4,7 +4,7 @@
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
-use crate::passes::walk_kernel;
+use crate::passes::{particle_kernel, walk_kernel};
 use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
@@ -52,15 +52,12 @@ pub static FORCES: GpuPass = GpuPass {
     when: |m| !has_pressure_terms(m),
 };
 
-const XSPH_BINDINGS: &[(Access, &str)] =
-    &[(U, "params"), (U, "fluid"), (R, "x"), (W, "v"), (R, "rho"), (R, "starts"), (W, "xsph")];
-
 /// The XSPH sum.
 pub static XSPH: GpuPass = GpuPass {
     name: "fluid.xsph",
     source: walk_kernel!(fluid_only; "xsph.wgsl"),
     entry: "main",
-    bindings: XSPH_BINDINGS,
+    bindings: &[(U, "params"), (U, "fluid"), (R, "x"), (R, "v"), (R, "rho"), (R, "starts"), (W, "xsph")],
     space: PARTICLES,
     when: always,
 };
@@ -68,9 +65,9 @@ pub static XSPH: GpuPass = GpuPass {
 /// The XSPH kick.
 pub static XSPH_KICK: GpuPass = GpuPass {
     name: "fluid.xsph_kick",
-    source: walk_kernel!(fluid_only; "xsph.wgsl"),
-    entry: "kick",
-    bindings: XSPH_BINDINGS,
+    source: particle_kernel!("xsph_kick.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (R, "xsph"), (W, "v")],
     space: PARTICLES,
     when: always,
 };

@@ -1,6 +1,6 @@
-// XSPH (Monaghan 1989, eq. 2.6; floe-engine `modules::fluid::xsph`): `main`
-// sums `dv_i = eps_i sum_j 2 m_j / (rho_i + rho_j) (v_j - v_i) W_ij`; `kick`
-// adds it to the velocity after the kick that follows an evaluation.
+// XSPH (Monaghan 1989, eq. 2.6; floe-engine `modules::fluid::xsph`): the sum
+// `dv_i = eps_i sum_j 2 m_j / (rho_i + rho_j) (v_j - v_i) W_ij` (xsph_kick.wgsl
+// adds it to the velocity after the kick that follows an evaluation).
 
 struct Fluid {
     material: array<vec4<f32>, 16>,
@@ -9,7 +9,7 @@ struct Fluid {
 
 @group(0) @binding(1) var<uniform> fluid: Fluid;
 @group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
-@group(0) @binding(3) var<storage, read_write> vel: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read> vel: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read> rho: array<f32>;
 @group(0) @binding(5) var<storage, read> starts: array<u32>;
 @group(0) @binding(6) var<storage, read_write> xsph: array<vec4<f32>>;
@@ -33,13 +33,4 @@ fn walk_pair(i: u32, j: u32, x_ij: vec3<f32>, r2: f32) {
 
 fn walk_end(i: u32) {
     xsph[i] = vec4<f32>(xsph_dv * fluid.material[material_of(pos[i])].w, 0.0);
-}
-
-@compute @workgroup_size(WG)
-fn kick(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n) {
-        return;
-    }
-    vel[i] = vec4<f32>(vel[i].xyz + xsph[i].xyz, 0.0);
 }
