@@ -182,8 +182,8 @@ fn a_fluid_block_may_be_a_mesh_inline_or_an_asset() {
     let read = crate::scene::load::with_assets(named, Some(dir.path())).unwrap();
     let sim = crate::Simulation::new_cpu(read.clone()).unwrap();
     assert_eq!(sim.particle_count() as f64, n, "the asset fills as the inline mesh does");
-    let block = &read.section::<Vec<crate::modules::fluid::spec::Fluid>>("fluids").unwrap()[0].blocks[0];
-    let mesh = block.mesh.as_ref().unwrap();
+    let document = serde_json::to_value(&read).unwrap();
+    let mesh: MeshSource = serde_json::from_value(document["fluids"][0]["blocks"][0]["mesh"].clone()).unwrap();
     assert_eq!((mesh.asset.as_deref(), mesh.file.as_deref()), (None, Some("ring.obj")), "read into the scene");
 
     let refused = |asset: &str| {
