@@ -15,6 +15,7 @@
 //! are recomputed from state every step (after a sort or a restore) and never saved.
 
 use crate::math::{Mat3, Quat, Real, Vec3};
+use crate::plan::PassSpec;
 use std::marker::PhantomData;
 
 /// Element type of an attribute.
@@ -345,13 +346,37 @@ pub struct Attrs {
     specs: Vec<&'static AttrSpec>,
     columns: Vec<Column>,
     scratch: Scratch,
+    /// The pass running, if one is: it sees only the attributes it declares.
+    view: Option<&'static PassSpec>,
 }
 
 impl Attrs {
     /// A store holding `columns`, each with its declaration.
     pub fn new(columns: Vec<(&'static AttrSpec, Column)>) -> Self {
         let (specs, columns) = columns.into_iter().unzip();
-        Self { specs, columns, scratch: Scratch::default() }
+        Self { specs, columns, scratch: Scratch::default(), view: None }
+    }
+
+    /// Narrows the store to what `pass` declares while it runs (`None` after): a
+    /// handle to an attribute it neither reads, writes nor accumulates into, or
+    /// mutable values of one it only reads, panics naming the pass and the
+    /// attribute, so a pass's declaration is the whole of what it touches (the
+    /// backend's GPU bindings are checked against the same declaration). The
+    /// material index (`material`) is every pass's to read, as on the GPU, where it
+    /// rides in each position's w.
+    pub fn view(&mut self, pass: Option<&'static PassSpec>) {
+        self.view = pass;
+    }
+
+    fn check(&self, name: &str, write: bool) {
+        let Some(p) = self.view else { return };
+        let produces = p.writes.contains(&name) || p.accumulates.contains(&name);
+        let reads = produces || p.reads.contains(&name) || name == "material";
+        if !(if write { produces } else { reads }) {
+            let how = if write { "changes" } else { "uses" };
+            let declared = if write { "write or accumulate into" } else { "declare" };
+            panic!("pass {} {how} attribute {name}, which it does not {declared} (its PassSpec)", p.name);
+        }
     }
 
     /// The columns with their declarations, the store given up.
@@ -372,6 +397,7 @@ impl Attrs {
     /// The handle of attribute `name` of type `T`, if the scene has it.
     pub fn find<T: Element>(&self, name: &str) -> Option<Attr<T>> {
         let index = self.specs.iter().position(|s| s.name == name)?;
+        self.check(name, false);
         assert_eq!(self.specs[index].elem, T::ELEM, "attribute {name} is not a {:?}", T::ELEM);
         Some(Attr { index, _type: PhantomData })
     }
@@ -389,6 +415,7 @@ impl Attrs {
 
     /// The values of `a`, mutable.
     pub fn get_mut<T: Element>(&mut self, a: Attr<T>) -> &mut Vec<T> {
+        self.check(self.specs[a.index].name, true);
         T::slice_mut(&mut self.columns[a.index]).expect("handles are typed")
     }
 
@@ -480,6 +507,52 @@ mod tests {
         assert_eq!(back.words(), c.words());
         assert_eq!(back.first_non_finite(), Some(0));
         assert!(Column::from_words(Elem::Vec3, &[1, 2]).is_none());
+    }
+
+    /// A pass reading `t` and writing `r`.
+    static PASS: PassSpec = PassSpec {
+        name: "test.pass",
+        module: "test",
+        stage: crate::plan::Stage::Force,
+        reads: &["t"],
+        writes: &["r"],
+        accumulates: &[],
+        tolerance: 0.0,
+    };
+
+    fn viewed() -> Attrs {
+        let mut a = Attrs::new(vec![
+            (&X, Column::Vec3(vec![Vec3::ZERO; 2])),
+            (&T, Column::F32(vec![1.0, 2.0])),
+            (&R, Column::F32(vec![0.0; 2])),
+        ]);
+        a.view(Some(&PASS));
+        a
+    }
+
+    #[test]
+    fn a_running_pass_sees_what_it_declares() {
+        let mut a = viewed();
+        let (t, r) = (a.handle::<f32>("t"), a.handle::<f32>("r"));
+        let doubled: Vec<f32> = a.get(t).iter().map(|v| 2.0 * v).collect();
+        a.put(r, doubled);
+        assert_eq!(a.get(r), &[2.0, 4.0]);
+        a.view(None);
+        assert_eq!(a.get(a.handle::<Vec3>("x")).len(), 2, "outside a pass everything is there");
+    }
+
+    #[test]
+    #[should_panic(expected = "pass test.pass uses attribute x, which it does not declare")]
+    fn a_pass_using_an_undeclared_attribute_is_stopped() {
+        viewed().handle::<Vec3>("x");
+    }
+
+    #[test]
+    #[should_panic(expected = "pass test.pass changes attribute t, which it does not write or accumulate into")]
+    fn a_pass_changing_what_it_only_reads_is_stopped() {
+        let mut a = viewed();
+        let t = a.handle::<f32>("t");
+        a.get_mut(t)[0] = 3.0;
     }
 
     #[test]

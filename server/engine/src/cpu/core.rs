@@ -21,7 +21,7 @@ pub static SORT: PassSpec = PassSpec {
     name: "core.sort",
     module: "core",
     stage: Stage::Sort,
-    reads: &["x"],
+    reads: &["x", "id"],
     writes: &["slot_of"],
     accumulates: &[],
     tolerance: 0.0,
@@ -90,22 +90,33 @@ fn density<const SUM: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let k = &model.kernel;
     let h2 = k.support() * k.support();
     let walls = &model.wall_particles;
-    let (x, rho_h) = (cx.attrs.handle::<Vec3>("x"), cx.attrs.handle::<Real>("rho"));
-    let material = cx.attrs.find::<u32>("material");
-    let mut rho = cx.attrs.take(rho_h);
+    let x = cx.attrs.handle::<Vec3>("x");
+    // Summing, the density's values are reused in place.
+    let summed = SUM.then(|| {
+        let h = cx.attrs.handle::<Real>("rho");
+        (h, cx.attrs.take(h))
+    });
     let pos = cx.attrs.get(x);
-    let materials = material.map(|m| cx.attrs.get(m));
     let grid = &*cx.grid;
-    cx.nb.chunks.resize_with(pos.len().div_ceil(CHUNK), Default::default);
-    rho.par_chunks_mut(CHUNK).zip(cx.nb.chunks.par_iter_mut()).enumerate().for_each(|(c, (rho_c, nb))| {
+    let count = pos.len();
+    cx.nb.chunks.resize_with(count.div_ceil(CHUNK), Default::default);
+    let lists = |c: usize, nb: &mut crate::cpu::neighbors::ChunkNeighbors| {
         nb.clear();
+        for i in c * CHUNK..((c + 1) * CHUNK).min(count) {
+            nb.push(sep, grid, pos, &walls.grid, &walls.positions, pos[i], h2);
+        }
+    };
+    let Some((rho_h, mut rho)) = summed else {
+        // The neighbour lists alone (a scheme that integrates the density).
+        cx.nb.chunks.par_iter_mut().enumerate().for_each(|(c, nb)| lists(c, nb));
+        return;
+    };
+    let materials = cx.attrs.find::<u32>("material").map(|m| cx.attrs.get(m));
+    rho.par_chunks_mut(CHUNK).zip(cx.nb.chunks.par_iter_mut()).enumerate().for_each(|(c, (rho_c, nb))| {
+        lists(c, nb);
         for (n, rho_i) in rho_c.iter_mut().enumerate() {
             let i = c * CHUNK + n;
             let xi = pos[i];
-            nb.push(sep, grid, pos, &walls.grid, &walls.positions, xi, h2);
-            if !SUM {
-                continue;
-            }
             let a = materials.map_or(0, |m| m[i] as usize);
             let (m, psi) = (model.materials.get(a).mass, &walls.psi[a]);
             let sum: Real =

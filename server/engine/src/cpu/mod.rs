@@ -132,7 +132,9 @@ impl CpuBackend {
             sort: &mut self.sort,
             dt,
         };
+        cx.attrs.view(Some(pass));
         imp.run(&mut cx);
+        cx.attrs.view(None);
         record(&mut self.times, pass.name, t0);
     }
 }
