@@ -49,6 +49,9 @@ impl Stages for Faulty {
     fn drift(&mut self, dt: f32) {
         self.0.drift(dt)
     }
+    fn sweep(&mut self, k: u32) {
+        self.0.sweep(k)
+    }
     fn particle_id(&mut self, slot: u32) -> u32 {
         self.0.particle_id(slot)
     }

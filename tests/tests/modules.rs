@@ -96,15 +96,59 @@ fn rotations_and_matrices_are_attributes_like_any_other() {
     assert_eq!(frames[0].bytes, 36 * sim.particle_count() as u64, "nine f32 per particle on the CPU");
 }
 
+/// A module with a pass the GPU lacks.
+static CPU_ONLY: floe_engine::module::ModuleDef = floe_engine::module::ModuleDef {
+    id: "cpu_only",
+    about: "A pass with no GPU half (a module of the tests).",
+    requires: &["fluid"],
+    section: None,
+    validate: |_, _| {},
+    count: |_| Vec::new(),
+    materials: |_| 0,
+    claims: |_| Vec::new(),
+    particles: |_, _| Ok(()),
+    build: |_, b| {
+        b.pass(&NOTHING);
+        Ok(())
+    },
+    retune: |_, _| {},
+    tunables: &[],
+    cpu: &[("cpu_only.nothing", &Nothing)],
+    presets: &[],
+    dt_limit: |_| None,
+    measures: |_| Vec::new(),
+    cases: &[],
+    stability: &[],
+    bench: &[],
+};
+
+static NOTHING: floe_engine::plan::PassSpec = floe_engine::plan::PassSpec {
+    name: "cpu_only.nothing",
+    module: "cpu_only",
+    stage: floe_engine::plan::Stage::PostStep,
+    reads: &[],
+    writes: &[],
+    accumulates: &[],
+    tolerance: 0.0,
+};
+
+#[derive(Debug)]
+struct Nothing;
+
+impl floe_engine::cpu::CpuPass for Nothing {
+    fn run(&self, _: &mut floe_engine::cpu::CpuCx<'_>) {}
+}
+
 #[test]
 fn a_gpu_refuses_a_module_pass_it_lacks_by_name() {
-    floe_engine::module::register(&tracer::MODULE);
+    floe_engine::module::register(&CPU_ONLY);
     let Some(gpu) = gpu() else { return };
-    let model = Model::build(&from_preset("dam_break", &traced()).unwrap()).unwrap();
+    let o = ["particle_spacing=0.05".to_string(), "modules=[\"fluid\",\"cpu_only\"]".to_string()];
+    let model = Model::build(&from_preset("dam_break", &o).unwrap()).unwrap();
     let e = floe_gpu::GpuBackend::new(gpu, model).unwrap_err().to_string();
     assert_eq!(
         e,
-        "backend: pass tracer.age (module tracer) has no GPU implementation; run this scene on the CPU backend"
+        "backend: pass cpu_only.nothing (module cpu_only) has no GPU implementation; run this scene on the CPU backend"
     );
 }
 
@@ -175,7 +219,7 @@ fn total(b: &dyn Backend) -> u64 {
 #[test]
 fn what_a_module_adds_is_what_its_attributes_declare() {
     floe_engine::module::register(&tracer::MODULE);
-    // The tracer module (CPU): the age, spin and frame of every particle and four probes.
+    // The tracer module (CPU).
     let without = Simulation::new_cpu(from_preset("dam_break", &["particle_spacing=0.05".into()]).unwrap()).unwrap();
     let with = Simulation::new_cpu(from_preset("dam_break", &traced()).unwrap()).unwrap();
     let added: Vec<_> = with.backend().allocations().into_iter().filter(|a| a.module == "tracer").collect();
@@ -187,8 +231,12 @@ fn what_a_module_adds_is_what_its_attributes_declare() {
         .map(|s| s.elem.cpu_bytes() as u64 * with.model().layout.count(s.space) as u64)
         .sum();
     assert_eq!(added.iter().map(|a| a.bytes).sum::<u64>(), declared);
-    assert_eq!(declared, (4 + 16 + 36) * 1000 + 12 * 4 + 4 * 4);
-    assert_eq!(total(with.backend()) - total(without.backend()), declared);
+    // Per particle: age, spin, frame, its memberships' first and count, its groups'
+    // sum, its depth below the floor; per membership (two a particle): member,
+    // segment, live, order, and two vectors; per group: start, len, a vector; four probes.
+    assert_eq!(declared, (4 + 16 + 36 + 8 + 12 + 4) * 1000 + (16 + 24) * 2000 + (8 + 12) * 16 + 12 * 4 + 4 * 4);
+    // The core adds the positions a position solve starts from.
+    assert_eq!(total(with.backend()) - total(without.backend()), declared + 12 * 1000);
     // XSPH, on both backends: its corrections are the fluid's optional attribute.
     for (backend, make) in factories() {
         let scene =
@@ -215,5 +263,147 @@ fn a_module_bound_halts_the_scene_naming_the_particle() {
         let halted = sim.step().unwrap_err();
         assert_eq!(halted.particle, Some(id), "{halted}");
         assert!(halted.reason.contains(says), "{halted}");
+    }
+}
+
+/// Every membership's member, segment and live flag, the positions and ids, and
+/// the tracer's sums, from `b`.
+fn group_sums(b: &dyn Backend) -> (Vec<floe_engine::math::Vec3>, Vec<floe_engine::math::Vec3>) {
+    let names = ["x", "id", "tracer_groups_member", "tracer_groups_segment", "tracer_groups_live"];
+    let c = b.download(&names);
+    let (Column::Vec3(x), Column::U32(id), Column::U32(member), Column::U32(segment), Column::U32(live)) =
+        (&c[0], &c[1], &c[2], &c[3], &c[4])
+    else {
+        panic!("types")
+    };
+    let mut slot = vec![0; id.len()];
+    for (k, &i) in id.iter().enumerate() {
+        slot[i as usize] = k;
+    }
+    let live = |k: usize| live[k] != 0;
+    let mut groups = vec![floe_engine::math::Vec3::ZERO; tracer::GROUP_COUNT];
+    for k in (0..member.len()).filter(|&k| live(k)) {
+        groups[segment[k] as usize] += x[slot[member[k] as usize]];
+    }
+    let mut particles = vec![floe_engine::math::Vec3::ZERO; x.len()];
+    for k in (0..member.len()).filter(|&k| live(k)) {
+        particles[slot[member[k] as usize]] += groups[segment[k] as usize];
+    }
+    (groups, particles)
+}
+
+fn vec3s(b: &dyn Backend, name: &str) -> Vec<floe_engine::math::Vec3> {
+    match b.download(&[name]).remove(0) {
+        Column::Vec3(v) => v,
+        other => panic!("{name}: {other:?}"),
+    }
+}
+
+/// The tracer's groups on a backend: each group's sum is its live members'
+/// positions summed in membership order, each particle's the sum of its groups';
+/// a member that leaves both its groups drops out of the sums, and the snapshot
+/// keeps it out.
+fn groups_follow_the_map(make: &BackendFactory, backend: &str) {
+    let mut sim = Simulation::new(from_preset("dam_break", &traced()).unwrap(), make).unwrap();
+    for _ in 0..3 {
+        sim.step().unwrap();
+    }
+    let (groups, particles) = group_sums(sim.backend());
+    assert_eq!(vec3s(sim.backend(), "group_x_sum"), groups, "{backend}");
+    assert_eq!(vec3s(sim.backend(), "group_sums"), particles, "{backend}");
+    // Particle 5 leaves both its groups.
+    let c = sim.backend().download(&["tracer_groups_member", "tracer_groups_live"]);
+    let (Column::U32(member), Column::U32(mut live)) = (c[0].clone(), c[1].clone()) else { panic!("u32") };
+    for (k, _) in member.iter().enumerate().filter(|(_, m)| **m == 5) {
+        live[k] = 0;
+    }
+    assert_eq!(live.iter().filter(|&&l| l == 0).count(), 2);
+    sim.backend_mut().upload("tracer_groups_live", Column::U32(live.clone()));
+    sim.step().unwrap();
+    let (groups, particles) = group_sums(sim.backend());
+    assert_eq!(vec3s(sim.backend(), "group_x_sum"), groups, "{backend}: without particle 5");
+    assert_eq!(vec3s(sim.backend(), "group_sums"), particles, "{backend}: without particle 5");
+    let slot5 = (0..sim.particle_count() as u32).find(|&k| sim.backend_mut().particle_id(k) == 5).unwrap();
+    assert_eq!(particles[slot5 as usize], floe_engine::math::Vec3::ZERO, "{backend}: particle 5 is in no group");
+    let back = Simulation::restore_on(&sim.snapshot(), make).unwrap();
+    assert_eq!(back.backend().download(&["tracer_groups_live"]).remove(0), Column::U32(live), "{backend}");
+}
+
+#[test]
+fn a_map_sums_its_segments_and_members_and_a_member_can_leave() {
+    floe_engine::module::register(&tracer::MODULE);
+    floe_gpu::pass::register(&tracer::gpu::MODULE);
+    for (backend, make) in factories() {
+        groups_follow_the_map(&make, backend);
+    }
+}
+
+/// The floor solve: every step converges in at most one iteration (of four
+/// sweeps, one colour each: with a sweep index that did not reach the passes, a
+/// quarter of the particles would be lifted per iteration and the solve would
+/// never converge), leaves no particle below the floor, and its velocity update
+/// is the displacement over dt.
+#[test]
+fn a_position_solve_sweeps_colours_and_updates_velocities() {
+    floe_engine::module::register(&tracer::MODULE);
+    floe_gpu::pass::register(&tracer::gpu::MODULE);
+    for (backend, make) in factories() {
+        let mut sim = Simulation::new(from_preset("dam_break", &traced()).unwrap(), &make).unwrap();
+        let floor = sim.model().consts::<tracer::TracerConsts>().floor;
+        let mut lifted = 0;
+        for step in 0..40 {
+            let report = sim.step().unwrap();
+            let solve = report.solves.iter().find(|s| s.name == "tracer.floor").expect("the floor solve reports");
+            assert!(solve.iterations <= 1 && solve.residual == 0.0, "{backend} step {step}: {solve:?}");
+            lifted += solve.iterations;
+            let lowest = vec3s(sim.backend(), "x").iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+            assert!(lowest >= floor, "{backend} step {step}: a particle at {lowest} m below the floor {floor} m");
+        }
+        assert!(lifted > 5, "{backend}: the floor lifted particles in {lifted} of 40 steps");
+        // The core's halves by hand: keep the prediction, move every position, and
+        // the velocity gains the displacement over dt.
+        let (v0, dt) = (vec3s(sim.backend(), "v"), 2e-3);
+        let b = sim.backend_mut();
+        b.run_pass("core.predict", dt);
+        b.end_step();
+        let predicted = vec3s(b, "x");
+        let lifted: Vec<_> =
+            predicted.iter().enumerate().map(|(i, p)| *p + floe_engine::math::Vec3::Y * (1e-5 * i as f32)).collect();
+        b.upload("x", Column::Vec3(lifted.clone()));
+        b.run_pass("core.velocity_from_positions", dt);
+        b.end_step();
+        assert_eq!(vec3s(b, "x_predicted"), predicted, "{backend}");
+        let v = vec3s(b, "v");
+        for i in 0..v.len() {
+            let expected = v0[i] + (lifted[i] - predicted[i]) * (1.0 / dt);
+            assert!(
+                (v[i] - expected).abs().max_element() <= 1e-6 * expected.abs().max_element().max(1.0),
+                "{backend} {i}"
+            );
+        }
+    }
+}
+
+/// The tracer's own kernels, registered from outside floe-gpu, step as its CPU
+/// passes do: every age is the simulated time, every spin turned by it, every
+/// probe the mean age.
+#[test]
+fn a_module_of_the_tests_runs_on_every_backend() {
+    floe_engine::module::register(&tracer::MODULE);
+    floe_gpu::pass::register(&tracer::gpu::MODULE);
+    for (backend, make) in factories() {
+        let mut sim = Simulation::new(from_preset("dam_break", &traced()).unwrap(), &make).unwrap();
+        for _ in 0..20 {
+            sim.step().unwrap();
+        }
+        let t = sim.time() as f32;
+        let p = sim.read(&["age", "spin"]);
+        let ages = p.channel("age").and_then(Values::as_scalars).unwrap();
+        assert!(ages.iter().all(|a| (a - t).abs() <= 1e-4 * t), "{backend}: ages {:?} at t = {t}", &ages[..3]);
+        let Some(Values::Float { components: 4, data }) = p.channel("spin") else { panic!("{backend}: spin") };
+        let (axis, angle) = floe_engine::math::Quat::from_slice(&data[..4]).to_axis_angle();
+        assert!((angle - t).abs() < 1e-4 && (axis.y - 1.0).abs() < 1e-4, "{backend}: {axis} {angle} at t = {t}");
+        let Column::F32(probes) = sim.backend().download(&["probe_age"]).remove(0) else { panic!("f32") };
+        assert!(probes.iter().all(|a| (a - t).abs() <= 1e-4 * t), "{backend}: probes {probes:?} at t = {t}");
     }
 }

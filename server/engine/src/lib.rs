@@ -25,6 +25,9 @@
 //!   claimed by modules and resolved by the core; [`viscosity`]: that viscosity's
 //!   force, explicit or implicit.
 //! - [`mesh`]: bodies from OBJ and STL meshes, checked and filled with particles.
+//! - [`maps`]: many-to-many index maps between spaces (clusters and their
+//!   particles) with gathers and segmented sums; [`position_solve`]: modules'
+//!   iterative solves over predicted positions.
 //! - [`math`], [`kernel`], [`neighbors`], [`periodic`]: numeric types, SPH kernels, the
 //!   uniform grid, periodic domains (minimum-image pairs).
 //! - [`boundary`], [`sampling`]: wall particles and constraints, particle lattices;
@@ -45,6 +48,7 @@ pub mod clock;
 pub mod cpu;
 pub mod guard;
 pub mod kernel;
+pub mod maps;
 pub mod materials;
 pub mod math;
 pub mod mesh;
@@ -54,6 +58,7 @@ pub mod modules;
 pub mod neighbors;
 pub mod periodic;
 pub mod plan;
+pub mod position_solve;
 pub mod quantities;
 pub mod quantize;
 pub mod registry;

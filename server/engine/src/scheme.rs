@@ -45,6 +45,9 @@ pub trait Stages {
     fn kick(&mut self, dt: Real, keep: Real);
     /// `x += dt v`, then the walls' non-penetration constraints.
     fn drift(&mut self, dt: Real);
+    /// Sets the sweep index passes read during a swept iteration (a Gauss-Seidel
+    /// colour; see [`Iterate::sweeps`]).
+    fn sweep(&mut self, k: u32);
     /// The stable id of the particle in sorted slot `slot`.
     fn particle_id(&mut self, slot: u32) -> u32;
     /// The first slot whose value of `attr` is outside `[min, max]` or not finite,
@@ -138,7 +141,8 @@ impl Op {
 
 /// Runs passes until a residual is at most a tolerance: PySPH's
 /// `Group(iterate=True, min_iterations, max_iterations)` and the loop of every
-/// solver that iterates (DFSPH's two solves, implicit viscosity, shape matching).
+/// solver that iterates (DFSPH's two solves, implicit viscosity, the position solves of
+/// [`crate::position_solve`]).
 ///
 /// `start` runs once (a warm start, the first residual), then the residual is
 /// checked before each iteration: a solve already within its tolerance after
@@ -161,6 +165,10 @@ pub struct Iterate {
     pub max: u32,
     /// Iterations between two residual checks (each a small readback on a GPU).
     pub check_every: u32,
+    /// Sweeps per iteration: the iteration's operations run this many times, the
+    /// passes seeing the sweep index `0 .. sweeps` ([`Stages::sweep`]; e.g. one
+    /// sweep per colour of a coloured Gauss-Seidel iteration). 1 for most solves.
+    pub sweeps: u32,
 }
 
 impl Iterate {
@@ -183,8 +191,11 @@ impl Iterate {
             if k == self.max {
                 break;
             }
-            for op in self.iteration {
-                op.run(s, dt);
+            for sweep in 0..self.sweeps.max(1) {
+                s.sweep(sweep);
+                for op in self.iteration {
+                    op.run(s, dt);
+                }
             }
         }
         Err(format!(

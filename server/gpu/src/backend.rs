@@ -307,6 +307,16 @@ impl Stages for GpuBackend {
         self.flush();
     }
 
+    /// Recorded as a copy of the index into the `sweep` uniform, so the passes
+    /// recorded after it read it (scenes without swept solves have neither buffer).
+    fn sweep(&mut self, k: u32) {
+        let b = &self.buffers;
+        let (Some(values), Some(sweep)) = (b.find("sweep_values").cloned(), b.find("sweep").cloned()) else { return };
+        let mut e = self.take_recorder();
+        e.encoder.copy_buffer_to_buffer(&values, 4 * u64::from(k), &sweep, 0, 4);
+        self.pending = Some(e);
+    }
+
     fn particle_id(&mut self, slot: u32) -> u32 {
         self.flush();
         self.download_words(&[(self.buffers.get("id"), 4 * slot as u64, 4)])[0][0]

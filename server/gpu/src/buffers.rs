@@ -174,12 +174,29 @@ impl Buffers {
             ("measures_readback", readback(device, "measures readback", std::mem::size_of::<Measures>() as u64)),
             ("reduce_readback", readback(device, "reduction readback", 4)),
         ];
-        let uniforms = crate::pass::uniforms()
+        let mut uniforms: Vec<(&'static str, Buffer)> = crate::pass::uniforms()
             .into_iter()
             .filter_map(|(name, make)| {
                 make(model).map(|bytes| (name, init(device, name, &bytes, U::UNIFORM | U::COPY_DST)))
             })
             .collect();
+        // Each index map's counts, named after the map.
+        for map in &model.maps {
+            let c = floe_engine::maps::Counts::of(map, &model.layout);
+            uniforms.push((
+                map.name,
+                init(device, map.name, &[c.segments, c.memberships, c.members, c.sorted], U::UNIFORM),
+            ));
+        }
+        // The sweep index of swept solves: copied from `sweep_values` into the
+        // `sweep` uniform between dispatches.
+        let sweeps = model.velocity_solves.iter().chain(&model.position_solves).map(|s| s.sweeps).max().unwrap_or(0);
+        let mut core = core;
+        if sweeps > 1 {
+            let values: Vec<u32> = (0..sweeps).collect();
+            core.push(("sweep", init(device, "sweep", &[0u32; 4], U::UNIFORM | U::COPY_DST)));
+            core.push(("sweep_values", init(device, "sweep values", &values, U::STORAGE | U::COPY_SRC)));
+        }
         let mut strides: Vec<(u32, Buffer)> = Vec::new();
         for (spec, _) in &attrs {
             let s = spec.elem.gpu_words() as u32;

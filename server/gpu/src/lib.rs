@@ -9,7 +9,8 @@
 //!   lavapipe when allowed), device, compiled kernels.
 //! - [`passes`]: the core's kernels, one `.wgsl` each; [`pass`]: plan passes bound by
 //!   name, with the schemes' and modules' halves in [`schemes`] and [`modules`], and
-//!   the core's per-particle viscosity in [`viscosity`].
+//!   the core's per-particle viscosity in [`viscosity`]; [`maps`]: the generic
+//!   passes over index maps (gathers and segmented sums), for modules' passes.
 //! - [`layout`]: the `#[repr(C)]` structs shared with WGSL.
 //! - [`buffers`], [`backend`]: one scene's GPU memory and its `Backend`.
 //! - [`select`]: `auto | gpu | cpu` for the server and the CLI.
@@ -18,6 +19,7 @@ pub mod backend;
 pub mod buffers;
 pub mod context;
 pub mod layout;
+pub mod maps;
 pub mod modules;
 pub mod pass;
 pub mod passes;

@@ -107,9 +107,35 @@ pub const HOST_PASSES: &[&str] = &["core.sort", "core.neighbours"];
 
 /// Every plan pass the GPU implements: the core's, the schemes' and the modules'.
 pub fn all() -> Vec<&'static GpuPass> {
-    let core: &[&'static GpuPass] = &[&crate::passes::DENSITY_PASS];
+    let core: &[&'static GpuPass] =
+        &[&crate::passes::DENSITY_PASS, &crate::passes::PREDICT_PASS, &crate::passes::VELOCITY_FROM_POSITIONS_PASS];
     let core = core.iter().chain(crate::viscosity::PASSES);
-    core.chain(crate::schemes::PASSES).chain(crate::modules::PASSES).copied().collect()
+    let extra = EXTRA.read().expect("registry lock");
+    let registered = extra.iter().flat_map(|m| m.passes);
+    core.chain(crate::schemes::PASSES).chain(crate::modules::PASSES).chain(registered).copied().collect()
+}
+
+/// The GPU half of a module registered at run time (a module compiled outside
+/// this crate, registered with floe-engine's `module::register`).
+#[derive(Debug)]
+pub struct GpuModule {
+    /// Its id (as its `ModuleDef` has it).
+    pub id: &'static str,
+    /// Its passes.
+    pub passes: &'static [&'static GpuPass],
+    /// Its uniforms.
+    pub uniforms: &'static [(&'static str, UniformSource)],
+}
+
+static EXTRA: std::sync::RwLock<Vec<&'static GpuModule>> = std::sync::RwLock::new(Vec::new());
+
+/// Adds a module's GPU half (after the built-in ones); registering one twice
+/// changes nothing.
+pub fn register(module: &'static GpuModule) {
+    let mut extra = EXTRA.write().expect("registry lock");
+    if !extra.iter().any(|m| m.id == module.id) {
+        extra.push(module);
+    }
 }
 
 /// The implementation of plan pass `name` for `model`.
@@ -123,7 +149,9 @@ pub type UniformSource = fn(&Model) -> Option<Vec<u8>>;
 /// Every module uniform by name.
 pub fn uniforms() -> Vec<(&'static str, UniformSource)> {
     let core = std::iter::once(&crate::viscosity::UNIFORM);
-    core.chain(crate::schemes::UNIFORMS).chain(crate::modules::UNIFORMS).copied().collect()
+    let extra = EXTRA.read().expect("registry lock");
+    let registered = extra.iter().flat_map(|m| m.uniforms);
+    core.chain(crate::schemes::UNIFORMS).chain(crate::modules::UNIFORMS).chain(registered).copied().collect()
 }
 
 /// Always.

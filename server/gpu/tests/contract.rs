@@ -17,7 +17,7 @@ use floe_gpu::program::Access;
 /// Buffers of the core a kernel may bind besides attributes (buffers.rs).
 const CORE_BUFFERS: &[&str] = &["starts", "walls", "constraints", "heights"];
 /// Uniforms of the core.
-const CORE_UNIFORMS: &[&str] = &["params", "dt"];
+const CORE_UNIFORMS: &[&str] = &["params", "dt", "sweep"];
 
 /// Every preset, and variants with the optional passes on.
 fn scenes() -> Vec<(String, Model)> {
@@ -50,7 +50,8 @@ fn scenes() -> Vec<(String, Model)> {
 
 /// What is wrong with `kernel` as the GPU half of `passes` (one, or a fusion's) in `model`.
 fn disagreements(model: &Model, passes: &[&PassSpec], kernel: &GpuPass) -> Vec<String> {
-    let uniforms: Vec<&str> = floe_gpu::pass::uniforms().iter().map(|(n, _)| *n).collect();
+    let modules = floe_gpu::pass::uniforms().into_iter().map(|(n, _)| n);
+    let uniforms: Vec<&str> = modules.chain(model.maps.iter().map(|m| m.name)).collect();
     let is_attr = |name: &str| model.layout.spec(name).is_some();
     let declared = |name: &str| passes.iter().any(|p| p.reads.contains(&name) || produces(p, name));
     let mut out = Vec::new();

@@ -13,16 +13,33 @@
 //! - `probes`, a second particle set of four points on the domain's diagonal, with
 //!   `probe_age` (s): the mean age of the particles, written by `tracer.probe` after
 //!   each step.
+//! - `tracer_groups`, an index map: sixteen groups of particles, each particle in
+//!   two (`id % 8` and `8 + (id / 8) % 8`). After each step `group_x_sum` is each
+//!   group's sum of its live members' positions (m) and `group_sums` each
+//!   particle's sum of its groups' sums: a gather, a segmented sum, a spread and a
+//!   member sum, the core's generic map passes.
+//! - `tracer.floor`, a position solve after each drift: no particle below the
+//!   lowest initial particle (`floor`, m); an iteration projects the particles of
+//!   colour `id % 4` in the sweep of that colour, so one iteration of four sweeps
+//!   converges (a broken sweep index never would); the residual is the deepest
+//!   particle's depth below the floor (`tracer_depth`, m).
+//!
+//! Its GPU half (`gpu.rs`) is registered as the module is, from outside floe-gpu.
 
 use floe_engine::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use floe_engine::channels::{ChannelSpec, SetSpec, Source};
 use floe_engine::cpu::{CpuCx, CpuPass};
 use floe_engine::guard::Bound;
+use floe_engine::maps::MapSpec;
+use floe_engine::maps::cpu::{Gather, MemberSum, SegmentSum, Spread};
 use floe_engine::math::{Mat3, Quat, Vec3};
 use floe_engine::model::{BuildError, ModelBuilder};
 use floe_engine::module::ModuleDef;
 use floe_engine::plan::{PassSpec, Stage};
 use floe_engine::scene::Scene;
+use floe_engine::scheme::{Iterate, Op, ReduceOp, Reduction};
+
+pub mod gpu;
 
 /// The module's definition.
 pub static MODULE: ModuleDef = ModuleDef {
@@ -38,7 +55,17 @@ pub static MODULE: ModuleDef = ModuleDef {
     build,
     retune: |_, _| {},
     tunables: &[],
-    cpu: &[("tracer.age", &Age), ("tracer.spin", &Spin), ("tracer.probe", &Probe)],
+    cpu: &[
+        ("tracer.age", &Age),
+        ("tracer.spin", &Spin),
+        ("tracer.probe", &Probe),
+        ("tracer.group_x", &Gather::<Vec3>::new(&GROUPS, "x", "tracer_groups_x")),
+        ("tracer.group_sum", &SegmentSum::<Vec3>::new(&GROUPS, "tracer_groups_x", "group_x_sum")),
+        ("tracer.group_spread", &Spread::<Vec3>::new(&GROUPS, "group_x_sum", "tracer_groups_sum")),
+        ("tracer.member_sum", &MemberSum::<Vec3>::new(&GROUPS, "tracer_groups_sum", "group_sums")),
+        ("tracer.floor_project", &FloorProject),
+        ("tracer.floor_depth", &FloorDepth),
+    ],
     presets: &[],
     dt_limit: |_| None,
     measures: |_| Vec::new(),
@@ -122,7 +149,7 @@ static SPIN_PASS: PassSpec = PassSpec {
     reads: &["spin"],
     writes: &["spin", "frame"],
     accumulates: &[],
-    tolerance: 0.0,
+    tolerance: 1e-5,
 };
 
 static PROBE_PASS: PassSpec = PassSpec {
@@ -132,8 +159,81 @@ static PROBE_PASS: PassSpec = PassSpec {
     reads: &["age"],
     writes: &["probe_age"],
     accumulates: &[],
-    tolerance: 0.0,
+    tolerance: 1e-5,
 };
+
+/// The groups: particles by id.
+pub static GROUPS: MapSpec =
+    floe_engine::index_map!("tracer_groups", segments: "groups", members: PARTICLES, module: "tracer");
+
+/// Groups (the map's segments).
+pub const GROUP_COUNT: usize = 16;
+
+/// The two groups of particle `id`.
+pub fn groups_of(id: u32) -> [usize; 2] {
+    [(id % 8) as usize, 8 + ((id / 8) % 8) as usize]
+}
+
+/// Colours of the floor solve (its sweeps).
+pub const COLOURS: u32 = 4;
+
+const fn derived(name: &'static str, elem: Elem, unit: &'static str, space: &'static str) -> AttrSpec {
+    AttrSpec { name, elem, unit, role: Role::Derived, added_later: false, space, module: "tracer", about: name }
+}
+
+static GROUP_X: AttrSpec = derived("tracer_groups_x", Elem::Vec3, "m", "tracer_groups");
+static GROUP_X_SUM: AttrSpec = derived("group_x_sum", Elem::Vec3, "m", "groups");
+static GROUP_SUM_SPREAD: AttrSpec = derived("tracer_groups_sum", Elem::Vec3, "m", "tracer_groups");
+static GROUP_SUMS: AttrSpec = derived("group_sums", Elem::Vec3, "m", PARTICLES);
+static DEPTH: AttrSpec = derived("tracer_depth", Elem::F32, "m", PARTICLES);
+
+const fn post_step(name: &'static str, reads: &'static [&'static str], writes: &'static [&'static str]) -> PassSpec {
+    PassSpec { name, module: "tracer", stage: Stage::PostStep, reads, writes, accumulates: &[], tolerance: 0.0 }
+}
+
+static GROUP_X_PASS: PassSpec =
+    post_step("tracer.group_x", &["tracer_groups_member", "slot_of", "x"], &["tracer_groups_x"]);
+static GROUP_SUM_PASS: PassSpec = post_step(
+    "tracer.group_sum",
+    &["tracer_groups_start", "tracer_groups_len", "tracer_groups_live", "tracer_groups_x"],
+    &["group_x_sum"],
+);
+static GROUP_SPREAD_PASS: PassSpec =
+    post_step("tracer.group_spread", &["tracer_groups_segment", "group_x_sum"], &["tracer_groups_sum"]);
+static MEMBER_SUM_PASS: PassSpec = post_step(
+    "tracer.member_sum",
+    &[
+        "tracer_groups_first",
+        "tracer_groups_count",
+        "tracer_groups_order",
+        "tracer_groups_live",
+        "id",
+        "tracer_groups_sum",
+    ],
+    &["group_sums"],
+);
+static FLOOR_PROJECT: PassSpec = PassSpec::solve("tracer", "tracer.floor_project", &["id"], &["x"], &[]);
+static FLOOR_DEPTH: PassSpec = PassSpec::solve("tracer", "tracer.floor_depth", &["x"], &["tracer_depth"], &[]);
+
+/// The floor solve.
+pub const FLOOR_SOLVE: Iterate = Iterate {
+    name: "tracer.floor",
+    start: &[Op::Pass("tracer.floor_depth")],
+    iteration: &[Op::Pass("tracer.floor_project"), Op::Pass("tracer.floor_depth")],
+    residual: Reduction { attr: "tracer_depth", op: ReduceOp::Max },
+    tolerance: 0.0,
+    min: 0,
+    max: 8,
+    check_every: 1,
+    sweeps: COLOURS,
+};
+
+/// The tracer's constants.
+#[derive(Debug, Clone, Copy)]
+pub struct TracerConsts {
+    /// Height of the floor (m): the lowest initial particle's.
+    pub floor: f32,
+}
 
 fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.zeros(&AGE);
@@ -148,6 +248,26 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.pass(&SPIN_PASS);
     b.pass(&PROBE_PASS);
     b.set(SetSpec { name: "probes", space: PROBES, position: "probe_x", id: None });
+    let n = b.count(PARTICLES) as u32;
+    let mut lists = vec![Vec::new(); GROUP_COUNT];
+    for id in 0..n {
+        for g in groups_of(id) {
+            lists[g].push(id);
+        }
+    }
+    b.map(&GROUPS, &lists);
+    for spec in [&GROUP_X, &GROUP_X_SUM, &GROUP_SUM_SPREAD, &GROUP_SUMS, &DEPTH] {
+        b.zeros(spec);
+    }
+    for pass in [&GROUP_X_PASS, &GROUP_SUM_PASS, &GROUP_SPREAD_PASS, &MEMBER_SUM_PASS, &FLOOR_PROJECT, &FLOOR_DEPTH] {
+        b.pass(pass);
+    }
+    let floor = match b.column("x") {
+        Some(Column::Vec3(x)) => x.iter().map(|p| p.y).fold(f32::INFINITY, f32::min),
+        _ => unreachable!("the core allocates positions first"),
+    };
+    b.set_consts(TracerConsts { floor });
+    b.position_solve(FLOOR_SOLVE);
     b.channel(ChannelSpec {
         name: "age",
         unit: "s",
@@ -218,5 +338,39 @@ impl CpuPass for Probe {
         let mean = ages.iter().map(|&a| f64::from(a)).sum::<f64>() / ages.len().max(1) as f64;
         let h = cx.attrs.handle::<f32>("probe_age");
         cx.attrs.get_mut(h).iter_mut().for_each(|p| *p = mean as f32);
+    }
+}
+
+/// Particles of colour `sweep` (`id % 4`) below the floor are lifted onto it.
+#[derive(Debug)]
+struct FloorProject;
+
+impl CpuPass for FloorProject {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let floor = cx.model.consts::<TracerConsts>().floor;
+        let (x, id) = (cx.attrs.handle::<Vec3>("x"), cx.attrs.handle::<u32>("id"));
+        let mut pos = cx.attrs.take(x);
+        for (p, &id) in pos.iter_mut().zip(cx.attrs.get(id)) {
+            if id % COLOURS == cx.sweep {
+                p.y = p.y.max(floor);
+            }
+        }
+        cx.attrs.put(x, pos);
+    }
+}
+
+/// `tracer_depth = max(0, floor - y)`.
+#[derive(Debug)]
+struct FloorDepth;
+
+impl CpuPass for FloorDepth {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let floor = cx.model.consts::<TracerConsts>().floor;
+        let (x, d) = (cx.attrs.handle::<Vec3>("x"), cx.attrs.handle::<f32>("tracer_depth"));
+        let mut depth = cx.attrs.take(d);
+        for (d, p) in depth.iter_mut().zip(cx.attrs.get(x)) {
+            *d = (floor - p.y).max(0.0);
+        }
+        cx.attrs.put(d, depth);
     }
 }

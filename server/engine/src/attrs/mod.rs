@@ -265,7 +265,7 @@ impl Column {
 }
 
 /// A Rust type stored in a [`Column`].
-pub trait Element: Copy + Send + Sync + 'static {
+pub trait Element: Copy + Send + Sync + std::fmt::Debug + 'static {
     /// Its element type.
     const ELEM: Elem;
     /// The column's values, if it holds this type.

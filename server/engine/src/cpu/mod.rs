@@ -39,6 +39,8 @@ pub struct CpuCx<'a> {
     pub sort: &'a mut SortScratch,
     /// The step's dt (s), for passes that integrate.
     pub dt: Real,
+    /// The sweep of the iteration running (see [`crate::scheme::Iterate::sweeps`]).
+    pub sweep: u32,
 }
 
 /// Scratch space of the counting sort.
@@ -63,6 +65,7 @@ fn all() -> Vec<(&'static str, &'static dyn CpuPass)> {
     let lists = core::PASSES
         .iter()
         .chain(crate::viscosity::CPU)
+        .chain(crate::position_solve::CPU)
         .chain(schemes.iter().flat_map(|s| s.cpu))
         .chain(modules.iter().flat_map(|m| m.cpu));
     lists.copied().collect()
@@ -92,6 +95,8 @@ pub struct CpuBackend {
     /// Wall time (s) and calls of every pass, kick and drift so far
     /// ([`Backend::kernel_times`]).
     times: Vec<(&'static str, f64, u64)>,
+    /// The sweep index passes see ([`Stages::sweep`]).
+    sweep: u32,
 }
 
 impl CpuBackend {
@@ -109,6 +114,7 @@ impl CpuBackend {
             passes,
             ran: Vec::new(),
             times: Vec::new(),
+            sweep: 0,
         }
     }
 
@@ -131,6 +137,7 @@ impl CpuBackend {
             nb: &mut self.nb,
             sort: &mut self.sort,
             dt,
+            sweep: self.sweep,
         };
         cx.attrs.view(Some(pass));
         imp.run(&mut cx);
@@ -205,6 +212,10 @@ impl Stages for CpuBackend {
         let t0 = std::time::Instant::now();
         core::drift(&self.model, &mut self.attrs, dt);
         record(&mut self.times, "drift", t0);
+    }
+
+    fn sweep(&mut self, k: u32) {
+        self.sweep = k;
     }
 
     fn particle_id(&mut self, slot: u32) -> u32 {

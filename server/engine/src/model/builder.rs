@@ -38,6 +38,8 @@ pub struct ModelBuilder<'s> {
     layout: Layout,
     passes: Vec<&'static PassSpec>,
     velocity_solves: Vec<crate::scheme::Iterate>,
+    position_solves: Vec<crate::scheme::Iterate>,
+    maps: Vec<&'static crate::maps::MapSpec>,
     channels: Vec<ChannelSpec>,
     sets: Vec<SetSpec>,
     bounds: Vec<Bound>,
@@ -65,6 +67,8 @@ impl<'s> ModelBuilder<'s> {
             layout: Layout::default(),
             passes: Vec::new(),
             velocity_solves: Vec::new(),
+            position_solves: Vec::new(),
+            maps: Vec::new(),
             channels: Vec::new(),
             bounds: Vec::new(),
             sets: vec![crate::channels::PARTICLE_SET],
@@ -193,6 +197,38 @@ impl<'s> ModelBuilder<'s> {
         self.velocity_solves.push(solve);
     }
 
+    /// Adds a position solve run after every drift (its passes added with
+    /// [`Self::pass`]); the first one brings the core's prediction and velocity
+    /// update ([`crate::position_solve`]).
+    pub fn position_solve(&mut self, solve: crate::scheme::Iterate) {
+        use crate::position_solve::{PREDICT, VELOCITY_FROM_POSITIONS, X_PREDICTED};
+        if self.position_solves.is_empty() {
+            self.zeros(&X_PREDICTED);
+            self.pass(&PREDICT);
+            self.pass(&VELOCITY_FROM_POSITIONS);
+        }
+        self.position_solves.push(solve);
+    }
+
+    /// Declares index map `map` (see [`crate::maps`]) with its segments' member
+    /// lists: segment `s` holds the members (ids of `map.members`) `lists[s]`. The
+    /// segment space is declared here, or must already have `lists.len()` elements.
+    pub fn map(&mut self, map: &'static crate::maps::MapSpec, lists: &[Vec<u32>]) {
+        let members = self.count(map.members);
+        let structure = map.structure(lists, members);
+        if self.layout.spaces.iter().any(|(s, _)| *s == map.segments) {
+            assert_eq!(self.count(map.segments), lists.len(), "map {}: one list per segment", map.name);
+        } else {
+            self.space(map.segments, lists.len());
+        }
+        self.space(map.name, structure.memberships);
+        self.space(map.by_member, members);
+        for (spec, column) in structure.columns {
+            self.attr(spec, column);
+        }
+        self.maps.push(map);
+    }
+
     /// Offers a channel.
     pub fn channel(&mut self, spec: ChannelSpec) {
         self.channels.push(spec);
@@ -294,6 +330,8 @@ impl<'s> ModelBuilder<'s> {
             layout: self.layout,
             plan,
             velocity_solves: self.velocity_solves,
+            position_solves: self.position_solves,
+            maps: self.maps,
             channels: self.channels,
             bounds: self.bounds,
             sets: self.sets,

@@ -212,6 +212,11 @@ pub struct Model {
     /// The modules' velocity solves after each kick, in order
     /// ([`crate::scheme::velocity_solves`]).
     pub velocity_solves: Vec<crate::scheme::Iterate>,
+    /// The modules' position solves after each drift, in order
+    /// ([`crate::position_solve::run`]).
+    pub position_solves: Vec<crate::scheme::Iterate>,
+    /// The index maps ([`crate::maps`]).
+    pub maps: Vec<&'static crate::maps::MapSpec>,
     /// The channels frames and exports can carry.
     pub channels: Vec<ChannelSpec>,
     /// The particle sets frames can carry.

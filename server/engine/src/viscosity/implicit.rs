@@ -162,6 +162,7 @@ pub fn solve(tolerance: f32, max: u32) -> Iterate {
         min: 1,
         max,
         check_every: 1,
+        sweeps: 1,
     }
 }
 

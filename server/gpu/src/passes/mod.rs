@@ -68,6 +68,26 @@ pub static DENSITY_PASS: crate::pass::GpuPass = crate::pass::GpuPass {
     when: crate::pass::always,
 };
 
+/// `x_predicted = x` (floe-engine `position_solve`).
+pub static PREDICT_PASS: crate::pass::GpuPass = crate::pass::GpuPass {
+    name: "core.predict",
+    source: particle_kernel!("predict.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (R, "x"), (W, "x_predicted")],
+    space: floe_engine::attrs::PARTICLES,
+    when: crate::pass::always,
+};
+
+/// `v += (x - x_predicted) / dt` (floe-engine `position_solve`).
+pub static VELOCITY_FROM_POSITIONS_PASS: crate::pass::GpuPass = crate::pass::GpuPass {
+    name: "core.velocity_from_positions",
+    source: particle_kernel!("velocity_from_positions.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "dt"), (R, "x"), (R, "x_predicted"), (W, "v")],
+    space: floe_engine::attrs::PARTICLES,
+    when: crate::pass::always,
+};
+
 /// Particles per partial of the reductions (their workgroup size).
 pub const PER_PARTIAL: u32 = 256;
 

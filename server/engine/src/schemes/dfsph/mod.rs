@@ -236,6 +236,7 @@ pub fn divergence_solve(s: &DfsphSettings) -> Iterate {
         min: 1,
         max: s.max_iterations,
         check_every: 1,
+        sweeps: 1,
     }
 }
 
@@ -250,6 +251,7 @@ pub fn density_solve(s: &DfsphSettings) -> Iterate {
         min: 2,
         max: s.max_iterations,
         check_every: 1,
+        sweeps: 1,
     }
 }
 
@@ -271,6 +273,7 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     solves.push(density_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?);
     s.drift(dt);
     s.run(Stage::Drift, dt);
+    solves.extend(crate::position_solve::run(clock, s, dt)?);
     s.run(Stage::PostStep, dt);
     s.end_step();
     Ok(clock.advance(dt, &m, n, solves))

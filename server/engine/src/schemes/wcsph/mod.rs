@@ -35,6 +35,7 @@ use crate::guard::Halted;
 use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::plan::{PassSpec, Stage};
+use crate::position_solve;
 use crate::scene::sections::SectionDef;
 use crate::scene::{Integrator, Scene};
 use crate::scheme::{SchemeDef, Stages, StepReport, velocity_solves};
@@ -218,10 +219,11 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
             let dt = clock.dt(s.model(), &m)?;
             let keep = clock.keep(s.model(), dt);
             s.kick(dt, keep);
-            let solves = velocity_solves(clock, s, dt)?;
+            let mut solves = velocity_solves(clock, s, dt)?;
             s.run(Stage::Kick, dt);
             s.drift(dt);
             s.run(Stage::Drift, dt);
+            solves.extend(position_solve::run(clock, s, dt)?);
             (dt, m, solves)
         }
         Integrator::Leapfrog => {
@@ -235,9 +237,10 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
             s.kick(half, keep);
             s.drift(dt);
             s.run(Stage::Drift, dt);
+            let mut solves = position_solve::run(clock, s, dt)?;
             let m = clock.evaluate(s, &EVALUATE)?;
             s.kick(half, keep);
-            let solves = velocity_solves(clock, s, dt)?;
+            solves.extend(velocity_solves(clock, s, dt)?);
             s.run(Stage::Kick, dt);
             (dt, m, solves)
         }

@@ -1,0 +1,13 @@
+// age += dt.
+
+@group(0) @binding(1) var<uniform> dt: vec4<f32>;
+@group(0) @binding(2) var<storage, read_write> age: array<f32>;
+
+@compute @workgroup_size(WG)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = thread_index(gid, groups);
+    if (i >= params.n) {
+        return;
+    }
+    age[i] += dt.x;
+}

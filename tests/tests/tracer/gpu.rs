@@ -1,0 +1,82 @@
+//! The tracer's GPU half, registered from outside floe-gpu
+//! (`floe_gpu::pass::register`): its own kernels (WGSL beside this file, after
+//! floe-gpu's `common.wgsl`) and the core's generic map kernels
+//! (`floe_gpu::map_pass!`).
+
+use super::{COLOURS, PROBES, TracerConsts};
+use floe_engine::attrs::PARTICLES;
+use floe_engine::model::Model;
+use floe_gpu::pass::{GpuModule, GpuPass, always};
+use floe_gpu::program::Access::{Read as R, ReadWrite as W, Uniform as U};
+
+/// floe-gpu's prelude of every particle kernel, then the tracer's files.
+macro_rules! kernel {
+    ($($file:literal),+) => {
+        concat!(include_str!("../../../server/gpu/src/passes/common.wgsl"), $("\n", include_str!($file)),+)
+    };
+}
+
+/// The module's GPU half.
+pub static MODULE: GpuModule = GpuModule {
+    id: "tracer",
+    passes: &[&AGE, &SPIN, &PROBE, &FLOOR_PROJECT, &FLOOR_DEPTH, &GROUP_X, &GROUP_SUM, &GROUP_SPREAD, &MEMBER_SUM],
+    uniforms: &[("tracer", uniform)],
+};
+
+static AGE: GpuPass = GpuPass {
+    name: "tracer.age",
+    source: kernel!("age.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "dt"), (W, "age")],
+    space: PARTICLES,
+    when: always,
+};
+
+static SPIN: GpuPass = GpuPass {
+    name: "tracer.spin",
+    source: kernel!("spin.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "dt"), (W, "spin"), (W, "frame")],
+    space: PARTICLES,
+    when: always,
+};
+
+static PROBE: GpuPass = GpuPass {
+    name: "tracer.probe",
+    source: kernel!("tracer.wgsl", "probe.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "tracer"), (R, "age"), (W, "probe_age")],
+    space: PROBES,
+    when: always,
+};
+
+static FLOOR_PROJECT: GpuPass = GpuPass {
+    name: "tracer.floor_project",
+    source: kernel!("tracer.wgsl", "floor_project.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "tracer"), (U, "sweep"), (R, "id"), (W, "x")],
+    space: PARTICLES,
+    when: always,
+};
+
+static FLOOR_DEPTH: GpuPass = GpuPass {
+    name: "tracer.floor_depth",
+    source: kernel!("tracer.wgsl", "floor_depth.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "tracer"), (R, "x"), (W, "tracer_depth")],
+    space: PARTICLES,
+    when: always,
+};
+
+static GROUP_X: GpuPass =
+    floe_gpu::map_pass!(gather "tracer.group_x", map "tracer_groups", words 4, from "x" into "tracer_groups_x");
+static GROUP_SUM: GpuPass = floe_gpu::map_pass!(segment_sum "tracer.group_sum", map "tracer_groups", segments "groups", words 4, from "tracer_groups_x" into "group_x_sum");
+static GROUP_SPREAD: GpuPass = floe_gpu::map_pass!(spread "tracer.group_spread", map "tracer_groups", words 4, from "group_x_sum" into "tracer_groups_sum");
+static MEMBER_SUM: GpuPass = floe_gpu::map_pass!(member_sum "tracer.member_sum", map "tracer_groups", members "particles", words 4, from "tracer_groups_sum" into "group_sums");
+
+/// The `tracer` uniform (`Tracer` in tracer.wgsl).
+fn uniform(model: &Model) -> Option<Vec<u8>> {
+    let c = model.has_module("tracer").then(|| model.consts::<TracerConsts>())?;
+    let words = [c.floor.to_bits(), COLOURS, model.layout.count(PROBES) as u32, 0];
+    Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())
+}
