@@ -311,5 +311,6 @@ pub fn particles(frame: Frame, scene: Option<&SceneInfo>) -> Particles {
         set: set.unwrap_or_else(|| if index == 0 { "particles".into() } else { format!("set {index}") }),
         positions: frame.positions,
         channels: frame.channels.into_iter().map(|(kind, values)| (name(kind), values)).collect(),
+        grid: frame.grid,
     }
 }

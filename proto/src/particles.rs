@@ -1,19 +1,24 @@
 //! A copy of a particle set's state for output: positions plus named channels, in
 //! identity order (index = particle id) when it comes from a simulation. The engine
 //! produces it, the server encodes it into frames, clients rebuild it from frames,
-//! and the writers in [`crate::export`] save it.
+//! and the writers in [`crate::export`] save it. A grid (a module's field on
+//! regular cells) travels the same way, with its cells' values as channels and no
+//! positions.
 
-use crate::frame::Values;
+use crate::frame::{GridInfo, Values};
 
 /// Positions and named channels of one particle set.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Particles {
     /// The particle set they belong to (`particles` for a scene's SPH particles).
     pub set: String,
-    /// Positions (m).
+    /// Positions (m); empty for a grid.
     pub positions: Vec<[f32; 3]>,
-    /// Other channels by name (`velocity`, `density`, ...), one value per particle each.
+    /// Other channels by name (`velocity`, `density`, ...), one value per particle
+    /// (or cell, x fastest) each.
     pub channels: Vec<(String, Values)>,
+    /// The cells, when the set is a grid.
+    pub grid: Option<GridInfo>,
 }
 
 impl Particles {
@@ -23,12 +28,17 @@ impl Particles {
     }
 
     /// Every `k`-th particle (0, k, 2k, ...): the same particles in every frame, so
-    /// identity-ordered streams of a decimated scene stay consistent.
+    /// identity-ordered streams of a decimated scene stay consistent. A grid is
+    /// always whole.
     pub fn every(&self, k: usize) -> Particles {
+        if self.grid.is_some() {
+            return self.clone();
+        }
         Particles {
             set: self.set.clone(),
             positions: self.positions.iter().step_by(k).copied().collect(),
             channels: self.channels.iter().map(|(n, v)| (n.clone(), v.every(k))).collect(),
+            grid: None,
         }
     }
 }

@@ -105,6 +105,7 @@ fn sets(shared: &Shared) -> Vec<pb::ParticleSet> {
         name: s.name.into(),
         count: s.count as u64,
         index: i as u32,
+        grid: s.grid,
     };
     shared.sets.iter().enumerate().map(set).collect()
 }

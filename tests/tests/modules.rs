@@ -36,7 +36,7 @@ async fn a_module_of_the_tests_adds_attributes_passes_a_set_and_streams_its_chan
     assert_eq!((age.unit.as_str(), age.components, age.module.as_str()), ("s", 1, "tracer"));
     assert!(age.tag >= 64, "a channel without a row in channels.json gets a per-scene tag");
     let sets: Vec<(&str, u64, u32)> = info.sets.iter().map(|s| (s.name.as_str(), s.count, s.index)).collect();
-    assert_eq!(sets, [("particles", 1000, 0), ("probes", 4, 1)]);
+    assert_eq!(sets, [("particles", 1000, 0), ("probes", 4, 1), ("columns", 64, 2)]);
     let stepped = floe.step(info.scene_id, 25).await.unwrap();
     let t = stepped.sim_time as f32;
 
@@ -59,6 +59,26 @@ async fn a_module_of_the_tests_adds_attributes_passes_a_set_and_streams_its_chan
     assert!((p.positions[3][0] - 0.3).abs() < 1e-4);
     let mean = p.channel("probe_age").and_then(Values::as_scalars).unwrap();
     assert!(mean.iter().all(|a| (a - t).abs() <= 1e-4 * t), "probe ages {mean:?} at t = {t}");
+
+    // The columns stream as grid frames: cells, no positions; a grid is sent whole.
+    let columns = info.sets.iter().find(|s| s.name == "columns").expect("the columns set");
+    assert!(columns.grid && columns.count == 64);
+    let request =
+        FrameRequest { channels: vec!["column_count".into()], set: "columns".into(), ..FrameRequest::default() };
+    let mut grid = floe.frames(info.scene_id, request).await.unwrap();
+    let frame = grid.next().await.unwrap().unwrap();
+    assert_eq!(frame.header.mode, floe_proto::Mode::Grid);
+    let max_error = frame.header.channels.iter().map(|c| c.ranges[0].max_error).fold(0.0, f32::max);
+    let cells = grid.particles(frame);
+    let g = cells.grid.expect("a grid frame's cells");
+    assert_eq!((g.dims, cells.positions.len()), ([8, 1, 8], 0));
+    let counts = cells.channel("column_count").and_then(Values::as_scalars).unwrap();
+    let total: f32 = counts.iter().sum();
+    assert!((total - 1000.0).abs() <= 64.0 * max_error, "{total} particles over the cells (error {max_error})");
+    let request = FrameRequest { set: "columns".into(), decimation: 2, ..FrameRequest::default() };
+    let e = floe.frames(info.scene_id, request).await.unwrap_err();
+    assert_eq!(common::code(&e), tonic::Code::InvalidArgument, "{e}");
+    assert!(e.to_string().contains("decimation: set columns is a grid, sent whole"), "{e}");
     server.shutdown().await;
 }
 
@@ -233,8 +253,12 @@ fn what_a_module_adds_is_what_its_attributes_declare() {
     assert_eq!(added.iter().map(|a| a.bytes).sum::<u64>(), declared);
     // Per particle: age, spin, frame, its memberships' first and count, its groups'
     // sum, its depth below the floor; per membership (two a particle): member,
-    // segment, live, order, and two vectors; per group: start, len, a vector; four probes.
-    assert_eq!(declared, (4 + 16 + 36 + 8 + 12 + 4) * 1000 + (16 + 24) * 2000 + (8 + 12) * 16 + 12 * 4 + 4 * 4);
+    // segment, live, order, and two vectors; per group: start, len, a vector; four
+    // probes; 64 columns' counts.
+    assert_eq!(
+        declared,
+        (4 + 16 + 36 + 8 + 12 + 4) * 1000 + (16 + 24) * 2000 + (8 + 12) * 16 + 12 * 4 + 4 * 4 + 4 * 64
+    );
     // The core adds the positions a position solve starts from.
     assert_eq!(total(with.backend()) - total(without.backend()), declared + 12 * 1000);
     // XSPH, on both backends: its corrections are the fluid's optional attribute.
@@ -405,5 +429,47 @@ fn a_module_of_the_tests_runs_on_every_backend() {
         assert!((angle - t).abs() < 1e-4 && (axis.y - 1.0).abs() < 1e-4, "{backend}: {axis} {angle} at t = {t}");
         let Column::F32(probes) = sim.backend().download(&["probe_age"]).remove(0) else { panic!("f32") };
         assert!(probes.iter().all(|a| (a - t).abs() <= 1e-4 * t), "{backend}: probes {probes:?} at t = {t}");
+    }
+}
+
+/// Counts of the particles above each cell of the tracer's columns, from `b`'s positions.
+fn columns_from_positions(b: &dyn Backend, grid: &floe_proto::GridInfo) -> Vec<f32> {
+    let mut counts = vec![0.0; (grid.dims[0] * grid.dims[2]) as usize];
+    for p in vec3s(b, "x") {
+        if let Some(k) = tracer::column_of(grid, p) {
+            counts[k] += 1.0;
+        }
+    }
+    counts
+}
+
+/// A module's grid reads as a set of cells, no positions, values x fastest, and
+/// changes as the scene runs.
+#[test]
+fn a_grid_is_a_set_of_cells_that_changes() {
+    floe_engine::module::register(&tracer::MODULE);
+    floe_gpu::pass::register(&tracer::gpu::MODULE);
+    for (backend, make) in factories() {
+        let mut sim = Simulation::new(from_preset("dam_break", &traced()).unwrap(), &make).unwrap();
+        let (spec, cells) = sim.sets().into_iter().find(|(s, _)| s.name == "columns").expect("the columns set");
+        let grid = spec.grid.expect("a grid");
+        assert_eq!((grid.dims, cells), ([8, 1, 8], 64));
+        let mut seen = Vec::new();
+        for _ in 0..3 {
+            for _ in 0..15 {
+                sim.step().unwrap();
+            }
+            let p = sim.read_set(&spec, &["column_count"]);
+            assert!(p.positions.is_empty() && p.grid == Some(grid), "{backend}");
+            let counts = p.channel("column_count").and_then(Values::as_scalars).unwrap().to_vec();
+            assert_eq!(counts, columns_from_positions(sim.backend(), &grid), "{backend}");
+            assert_eq!(
+                counts.iter().sum::<f32>(),
+                sim.particle_count() as f32,
+                "{backend}: every particle is above a cell"
+            );
+            seen.push(counts);
+        }
+        assert!(seen[0] != seen[2], "{backend}: the columns change as the water flows");
     }
 }

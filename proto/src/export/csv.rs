@@ -47,6 +47,7 @@ mod tests {
                 ("density".into(), Values::scalars(vec![1000.0])),
                 ("material".into(), Values::Exact(vec![2])),
             ],
+            grid: None,
         };
         let mut buf = Vec::new();
         write_csv(&mut buf, &p).unwrap();

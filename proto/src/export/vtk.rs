@@ -67,6 +67,7 @@ mod tests {
                 ("density".into(), Values::scalars(vec![1000.0, 1001.0])),
                 ("material".into(), Values::Exact(vec![0, 1])),
             ],
+            grid: None,
         };
         let mut buf = Vec::new();
         write_vtk(&mut buf, &p, 0.25).unwrap();

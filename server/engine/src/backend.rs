@@ -104,7 +104,7 @@ pub fn read<B: Backend + ?Sized>(
         .collect();
     // Every attribute needed, once: ids, positions, each channel's sources.
     let mut names: Vec<&str> = set.id.into_iter().collect();
-    if positions.is_none() {
+    if positions.is_none() && set.grid.is_none() {
         names.push(set.position);
     }
     for s in &specs {
@@ -156,6 +156,9 @@ pub fn read<B: Backend + ?Sized>(
         }
     };
     let positions = positions.unwrap_or_else(|| {
+        if set.grid.is_some() {
+            return Vec::new();
+        }
         let (p, _) = floats(column(set.position));
         order(p, 3).chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
     });
@@ -181,5 +184,5 @@ pub fn read<B: Backend + ?Sized>(
             (s.name.to_string(), values)
         })
         .collect();
-    Particles { set: set.name.to_string(), positions, channels }
+    Particles { set: set.name.to_string(), positions, channels, grid: set.grid }
 }

@@ -51,8 +51,9 @@ impl PartialEq for ChannelSpec {
 }
 
 /// A set of particles a frame can carry: its space and the attributes that place
-/// and identify its particles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// and identify its particles; or a grid, a module's field on regular cells (a
+/// snow depth over the ground), whose cells are its space's elements, x fastest.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SetSpec {
     /// Name, as stream requests give it.
     pub name: &'static str,
@@ -63,13 +64,24 @@ pub struct SetSpec {
     /// The attribute holding each slot's stable id, for a space that is re-sorted
     /// (values come out in id order); `None` when slots never move.
     pub id: Option<&'static str>,
+    /// The cells, for a grid (its frames are grid frames; `position` is unused).
+    pub grid: Option<floe_proto::GridInfo>,
+}
+
+impl SetSpec {
+    /// A grid set: the cells `grid` of space `space` (one element per cell, x
+    /// fastest, then y, then z).
+    pub fn grid(name: &'static str, space: &'static str, grid: floe_proto::GridInfo) -> Self {
+        Self { name, space, position: "", id: None, grid: Some(grid) }
+    }
 }
 
 /// The set every SPH scene has: its fluid (and later solid) particles.
 pub const PARTICLES: &str = "particles";
 
 /// The SPH particle set.
-pub const PARTICLE_SET: SetSpec = SetSpec { name: PARTICLES, space: PARTICLES, position: "x", id: Some("id") };
+pub const PARTICLE_SET: SetSpec =
+    SetSpec { name: PARTICLES, space: PARTICLES, position: "x", id: Some("id"), grid: None };
 
 /// Velocity (core: every particle set that moves has one).
 pub const VELOCITY: ChannelSpec = ChannelSpec {

@@ -196,10 +196,12 @@ pub struct ChannelView {
 pub struct SetView {
     /// Name.
     pub name: &'static str,
-    /// Particles in it.
+    /// Particles (or cells) in it.
     pub count: usize,
     /// Its frames' set byte.
     pub index: usize,
+    /// Whether it is a grid (its frames are grid frames, cells x fastest).
+    pub grid: bool,
 }
 
 /// A material of a scene.
@@ -275,7 +277,7 @@ impl SceneView {
                 .sets
                 .iter()
                 .enumerate()
-                .map(|(index, s)| SetView { name: s.name, count: s.count, index })
+                .map(|(index, s)| SetView { name: s.name, count: s.count, index, grid: s.grid })
                 .collect(),
             materials: shared
                 .materials

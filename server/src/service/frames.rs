@@ -66,7 +66,7 @@ fn input<'a>(shared: &Shared, p: &'a Particles, o: &FrameOptions) -> FrameInput<
             Some((kind, p.channel(name)?.as_ref()))
         })
         .collect();
-    FrameInput { positions: &p.positions, grid: None, set: o.set, channels }
+    FrameInput { positions: &p.positions, grid: p.grid, set: o.set, channels }
 }
 
 /// Encodes published state `s` with `o`'s set, channels and decimation (`s` holds

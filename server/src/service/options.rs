@@ -21,7 +21,8 @@ pub struct FrameRequest {
     pub max_fps: Option<f64>,
     /// Bits per position axis, 8 to 16 (default 16).
     pub position_bits: Option<u32>,
-    /// `unordered` (default) or `identity`.
+    /// `unordered` (default) or `identity`; a grid set's frames are grid frames
+    /// whichever is asked.
     pub mode: Option<String>,
     /// Send every n-th particle, 1 to 1000 (default 1: all).
     pub decimation: Option<u32>,
@@ -38,7 +39,7 @@ pub struct FrameOptions {
     pub max_fps: f64,
     /// Bits per position axis (8 to 16).
     pub position_bits: u8,
-    /// Unordered or identity-ordered.
+    /// Unordered, identity-ordered, or grid (a grid set).
     pub mode: Mode,
     /// Send every n-th particle (particles 0, n, 2n, ...); 1 sends all.
     pub decimation: u32,
@@ -92,6 +93,15 @@ impl FrameRequest {
         if !(1..=MAX_DECIMATION).contains(&decimation) {
             return bad(format!("decimation: must be 1 to {MAX_DECIMATION}, got {decimation}"));
         }
+        // A grid is sent whole, as grid frames (its cells keep their order, so either
+        // mode asked gets them).
+        let mode = match (scene.sets[set].grid, decimation) {
+            (false, _) => mode,
+            (true, 1) => Mode::Grid,
+            (true, _) => {
+                return bad(format!("decimation: set {set_name} is a grid, sent whole; ask for 1, got {decimation}"));
+            }
+        };
         Ok(FrameOptions { channels, max_fps, position_bits: position_bits as u8, mode, decimation, set: set as u8 })
     }
 }

@@ -147,7 +147,11 @@ impl Shared {
             scene_json: Mutex::new(serde_json::to_string(sim.scene()).expect("scenes serialise")),
             particles: sim.particle_count(),
             channels: scene_channels(sim.channels()),
-            sets: sim.sets().into_iter().map(|(spec, count)| SceneSet { name: spec.name, count }).collect(),
+            sets: sim
+                .sets()
+                .into_iter()
+                .map(|(spec, count)| SceneSet { name: spec.name, count, grid: spec.grid.is_some() })
+                .collect(),
             tunables: floe_engine::module::tunables(sim.scene()),
             materials: Arc::new(sim.model().materials.clone()),
             particle_spacing: sim.scene().particle_spacing,
@@ -286,8 +290,10 @@ pub struct SceneChannel {
 pub struct SceneSet {
     /// Name (`particles`).
     pub name: &'static str,
-    /// Particles in it.
+    /// Particles (or cells) in it.
     pub count: usize,
+    /// Whether it is a grid (its frames are grid frames).
+    pub grid: bool,
 }
 
 /// The wire tags of a scene's channels: the table's tag where `proto/channels.json`

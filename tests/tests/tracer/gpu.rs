@@ -3,7 +3,7 @@
 //! floe-gpu's `common.wgsl`) and the core's generic map kernels
 //! (`floe_gpu::map_pass!`).
 
-use super::{COLOURS, PROBES, TracerConsts};
+use super::{COLOURS, COLUMNS as COLUMN_SPACE, PROBES, TracerConsts};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
 use floe_gpu::pass::{GpuModule, GpuPass, always};
@@ -19,7 +19,18 @@ macro_rules! kernel {
 /// The module's GPU half.
 pub static MODULE: GpuModule = GpuModule {
     id: "tracer",
-    passes: &[&AGE, &SPIN, &PROBE, &FLOOR_PROJECT, &FLOOR_DEPTH, &GROUP_X, &GROUP_SUM, &GROUP_SPREAD, &MEMBER_SUM],
+    passes: &[
+        &AGE,
+        &SPIN,
+        &PROBE,
+        &FLOOR_PROJECT,
+        &FLOOR_DEPTH,
+        &GROUP_X,
+        &GROUP_SUM,
+        &GROUP_SPREAD,
+        &MEMBER_SUM,
+        &COLUMNS,
+    ],
     uniforms: &[("tracer", uniform)],
 };
 
@@ -68,6 +79,15 @@ static FLOOR_DEPTH: GpuPass = GpuPass {
     when: always,
 };
 
+static COLUMNS: GpuPass = GpuPass {
+    name: "tracer.columns",
+    source: kernel!("tracer.wgsl", "columns.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "tracer"), (R, "x"), (W, "column_count")],
+    space: COLUMN_SPACE,
+    when: always,
+};
+
 static GROUP_X: GpuPass =
     floe_gpu::map_pass!(gather "tracer.group_x", map "tracer_groups", words 4, from "x" into "tracer_groups_x");
 static GROUP_SUM: GpuPass = floe_gpu::map_pass!(segment_sum "tracer.group_sum", map "tracer_groups", segments "groups", words 4, from "tracer_groups_x" into "group_x_sum");
@@ -77,6 +97,25 @@ static MEMBER_SUM: GpuPass = floe_gpu::map_pass!(member_sum "tracer.member_sum",
 /// The `tracer` uniform (`Tracer` in tracer.wgsl).
 fn uniform(model: &Model) -> Option<Vec<u8>> {
     let c = model.has_module("tracer").then(|| model.consts::<TracerConsts>())?;
-    let words = [c.floor.to_bits(), COLOURS, model.layout.count(PROBES) as u32, 0];
+    let g = &c.columns;
+    let f = |x: f32| x.to_bits();
+    let words = [
+        f(c.floor),
+        COLOURS,
+        model.layout.count(PROBES) as u32,
+        0,
+        f(g.origin[0]),
+        f(g.origin[1]),
+        f(g.origin[2]),
+        0,
+        f(g.size[0]),
+        f(g.size[1]),
+        f(g.size[2]),
+        0,
+        g.dims[0],
+        g.dims[1],
+        g.dims[2],
+        0,
+    ];
     Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())
 }

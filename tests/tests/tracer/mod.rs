@@ -24,6 +24,10 @@
 //!   converges (a broken sweep index never would); the residual is the deepest
 //!   particle's depth below the floor (`tracer_depth`, m).
 //!
+//! - `columns`, a grid of 8 x 1 x 8 cells over the domain's floor, with
+//!   `column_count`: the particles above each cell after each step, streamed as
+//!   grid frames.
+//!
 //! Its GPU half (`gpu.rs`) is registered as the module is, from outside floe-gpu.
 
 use floe_engine::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
@@ -65,6 +69,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("tracer.member_sum", &MemberSum::<Vec3>::new(&GROUPS, "tracer_groups_sum", "group_sums")),
         ("tracer.floor_project", &FloorProject),
         ("tracer.floor_depth", &FloorDepth),
+        ("tracer.columns", &Columns),
     ],
     presets: &[],
     dt_limit: |_| None,
@@ -174,6 +179,23 @@ pub fn groups_of(id: u32) -> [usize; 2] {
     [(id % 8) as usize, 8 + ((id / 8) % 8) as usize]
 }
 
+/// The columns' space and set.
+pub const COLUMNS: &str = "columns";
+/// Cells of the columns' grid along x and z.
+pub const COLUMN_CELLS: u32 = 8;
+
+static COLUMN_COUNT: AttrSpec = derived("column_count", Elem::F32, "", COLUMNS);
+static COLUMNS_PASS: PassSpec = post_step("tracer.columns", &["x"], &["column_count"]);
+
+/// The cell of the columns' grid `grid` above which position `p` is, if any.
+pub fn column_of(grid: &floe_proto::GridInfo, p: Vec3) -> Option<usize> {
+    let cell = |axis: usize, at: f32| {
+        let k = ((at - grid.origin[axis]) / grid.size[axis] * grid.dims[axis] as f32).floor();
+        (k >= 0.0 && k < grid.dims[axis] as f32).then_some(k as usize)
+    };
+    Some(cell(0, p.x)? + grid.dims[0] as usize * cell(2, p.z)?)
+}
+
 /// Colours of the floor solve (its sweeps).
 pub const COLOURS: u32 = 4;
 
@@ -233,6 +255,8 @@ pub const FLOOR_SOLVE: Iterate = Iterate {
 pub struct TracerConsts {
     /// Height of the floor (m): the lowest initial particle's.
     pub floor: f32,
+    /// The columns' grid.
+    pub columns: floe_proto::GridInfo,
 }
 
 fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
@@ -247,7 +271,7 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.pass(&AGE_PASS);
     b.pass(&SPIN_PASS);
     b.pass(&PROBE_PASS);
-    b.set(SetSpec { name: "probes", space: PROBES, position: "probe_x", id: None });
+    b.set(SetSpec { name: "probes", space: PROBES, position: "probe_x", id: None, grid: None });
     let n = b.count(PARTICLES) as u32;
     let mut lists = vec![Vec::new(); GROUP_COUNT];
     for id in 0..n {
@@ -266,7 +290,27 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         Some(Column::Vec3(x)) => x.iter().map(|p| p.y).fold(f32::INFINITY, f32::min),
         _ => unreachable!("the core allocates positions first"),
     };
-    b.set_consts(TracerConsts { floor });
+    let d = b.domain();
+    let columns = floe_proto::GridInfo {
+        origin: d.min.to_array(),
+        size: (d.max - d.min).to_array(),
+        dims: [COLUMN_CELLS, 1, COLUMN_CELLS],
+    };
+    b.space(COLUMNS, (COLUMN_CELLS * COLUMN_CELLS) as usize);
+    b.zeros(&COLUMN_COUNT);
+    b.pass(&COLUMNS_PASS);
+    b.set(SetSpec::grid(COLUMNS, COLUMNS, columns));
+    b.channel(ChannelSpec {
+        name: "column_count",
+        unit: "",
+        components: 1,
+        exact: false,
+        set: COLUMNS,
+        module: "tracer",
+        about: "Particles above each cell.",
+        source: Source::Attr("column_count"),
+    });
+    b.set_consts(TracerConsts { floor, columns });
     b.position_solve(FLOOR_SOLVE);
     b.channel(ChannelSpec {
         name: "age",
@@ -372,5 +416,24 @@ impl CpuPass for FloorDepth {
             *d = (floor - p.y).max(0.0);
         }
         cx.attrs.put(d, depth);
+    }
+}
+
+/// Counts the particles above each cell of the columns' grid.
+#[derive(Debug)]
+struct Columns;
+
+impl CpuPass for Columns {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let grid = cx.model.consts::<TracerConsts>().columns;
+        let c = cx.attrs.handle::<f32>("column_count");
+        let mut counts = cx.attrs.take(c);
+        counts.iter_mut().for_each(|n| *n = 0.0);
+        for &p in cx.attrs.get(cx.attrs.handle::<Vec3>("x")) {
+            if let Some(k) = column_of(&grid, p) {
+                counts[k] += 1.0;
+            }
+        }
+        cx.attrs.put(c, counts);
     }
 }

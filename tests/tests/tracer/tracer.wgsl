@@ -5,6 +5,13 @@ struct Tracer {
     colours: u32,
     probes: u32,
     _pad: u32,
+    // The columns' grid: origin and size (m), cells per axis.
+    origin: vec3<f32>,
+    _pad1: u32,
+    size: vec3<f32>,
+    _pad2: u32,
+    dims: vec3<u32>,
+    _pad3: u32,
 }
 
 @group(0) @binding(1) var<uniform> tracer: Tracer;

@@ -40,6 +40,7 @@ pub struct ModelBuilder<'s> {
     velocity_solves: Vec<crate::scheme::Iterate>,
     position_solves: Vec<crate::scheme::Iterate>,
     maps: Vec<&'static crate::maps::MapSpec>,
+    domain: Option<Aabb>,
     channels: Vec<ChannelSpec>,
     sets: Vec<SetSpec>,
     bounds: Vec<Bound>,
@@ -69,6 +70,7 @@ impl<'s> ModelBuilder<'s> {
             velocity_solves: Vec::new(),
             position_solves: Vec::new(),
             maps: Vec::new(),
+            domain: None,
             channels: Vec::new(),
             bounds: Vec::new(),
             sets: vec![crate::channels::PARTICLE_SET],
@@ -135,6 +137,12 @@ impl<'s> ModelBuilder<'s> {
     /// The scene's scheme (built before its modules).
     pub fn scheme(&self) -> &'static SchemeDef {
         self.scheme
+    }
+
+    /// The domain (m): known once every module added its particles, so to the
+    /// scheme's and the modules' `build`.
+    pub fn domain(&self) -> Aabb {
+        self.domain.expect("the domain is known when the scheme and the modules build")
     }
 
     /// The materials added so far.
@@ -270,6 +278,7 @@ impl<'s> ModelBuilder<'s> {
             Some(b) => Aabb::new(b.min.into(), b.max.into()),
             None => wall_box.expanded(self.kernel.support()),
         };
+        self.domain = Some(domain);
         let periodic = Periodicity::new(domain, scene.periodic_axes());
         if periodic.any() {
             for x in &mut self.particles.positions {
