@@ -21,7 +21,9 @@ FLOE_REQUIRE_GPU=1 FLOE_REQUIRE_POSTGRES=1 cargo test --workspace
 echo "== JavaScript decoder against the golden frames"
 node --test web/test/
 echo "== viewer in headless Chromium"
+# floe, floectl, and floe with the tests' tracer module compiled in (its grid).
 cargo build -q -p floe-server -p floe-client
+cargo build -q -p floe-tests --example floe_traced
 (cd tests/browser && npm ci --no-audit --no-fund --silent)
 node --test tests/browser/
 echo "== Python client (client/python) against floe serve"

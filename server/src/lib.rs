@@ -3,6 +3,8 @@
 //! The `floe` command: the simulation server (`floe serve`, gRPC), offline runs,
 //! benchmarks, validation and the scene schema.
 //!
+//! - [`entry`]: the command's entry point (a binary that compiles in more modules
+//!   registers them and calls it).
 //! - [`cli`]: the command line (clap).
 //! - [`run`]: `floe run`, an offline simulation with progress, exports and a summary.
 //! - [`bench`]: `floe bench`, throughput, memory and time to solution.
@@ -32,6 +34,7 @@ pub mod codec_bench;
 pub mod convert;
 pub mod default_scene;
 pub mod echo;
+pub mod entry;
 pub mod fuzz;
 pub mod grpc;
 pub mod grpc_guard;

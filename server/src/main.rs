@@ -1,41 +1,6 @@
-//! `floe`: parse the command line, set up logging, hand over to [`floe_server::execute`].
-
-use clap::Parser;
-use floe_server::cli::LogFormat;
-use std::io::IsTerminal;
+//! `floe`: parse the command line, set up logging, hand over to [`floe_server::execute`]
+//! (all in [`floe_server::entry::main`]).
 
 fn main() -> std::process::ExitCode {
-    quiet_mesa_device_select();
-    let cli = floe_server::cli::Cli::parse();
-    // Fuzzing creates and deletes scenes by the thousand: only warnings by default.
-    let level = if matches!(cli.command, floe_server::cli::Command::Fuzz(_)) { "warn" } else { "info" };
-    let logs = tracing_subscriber::fmt()
-        .with_env_filter(tracing_subscriber::EnvFilter::try_from_env("FLOE_LOG").unwrap_or_else(|_| level.into()))
-        .with_writer(std::io::stderr);
-    match cli.log_format {
-        // Colour on a terminal only: a log file or journal gets plain text.
-        LogFormat::Text => logs.with_ansi(std::io::stderr().is_terminal()).init(),
-        // One object per line, the event's fields at the top level, for log collectors.
-        LogFormat::Json => logs.json().flatten_event(true).with_current_span(false).init(),
-    }
-    match floe_server::execute(cli) {
-        Ok(()) => std::process::ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            std::process::ExitCode::FAILURE
-        }
-    }
-}
-
-/// Mesa's Vulkan device-select layer connects to a Wayland display to rank the
-/// GPUs and prints "error: XDG_RUNTIME_DIR is invalid" on a server without one.
-/// Floe ranks adapters itself (`floe_gpu::context`), so the layer is switched off
-/// unless the user set `NODEVICE_SELECT` one way or the other.
-#[allow(unsafe_code)]
-fn quiet_mesa_device_select() {
-    if std::env::var_os("NODEVICE_SELECT").is_none() {
-        // SAFETY: the first thing `main` does, before any other thread exists, so
-        // nothing reads the environment while it changes.
-        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
-    }
+    floe_server::entry::main()
 }

@@ -2,7 +2,8 @@
 # The Python client's tests, as tests/run-all.sh runs them: a virtualenv under target/,
 # the package installed into it with its test extras (the extension built with the dev
 # profile, sharing the workspace's build), ruff's lint and format check, then pytest
-# against target/debug/floe and target/debug/floectl (`cargo build -p floe-server -p floe-client`).
+# against target/debug/floe and target/debug/floectl (`cargo build -p floe-server -p floe-client`)
+# and target/debug/examples/floe_traced (`cargo build -p floe-tests --example floe_traced`).
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
 venv=target/python-venv

@@ -47,6 +47,8 @@ class ParticleSet:
     count: int
     #: The set index its frames carry.
     index: int
+    #: A grid: its frames are grid frames (``Frame.header.grid``, cells x fastest, no positions).
+    grid: bool = False
 
 
 @dataclass(frozen=True)
@@ -109,7 +111,7 @@ class SceneInfo:
             channels=tuple(
                 ChannelInfo(c.name, c.tag, c.unit, c.components, c.set, c.exact, c.about, c.module) for c in m.channels
             ),
-            sets=tuple(ParticleSet(s.name, s.count, s.index) for s in m.sets),
+            sets=tuple(ParticleSet(s.name, s.count, s.index, s.grid) for s in m.sets),
             tunables=tuple(
                 Tunable(
                     t.path,
