@@ -11,6 +11,7 @@ import { PlotPanel } from './plots.js';
 import { Recorder } from './recorder.js';
 import { LOOKS, Renderer } from './render.js';
 import { Replay } from './replay.js';
+import { FPS as OTHER_FPS, OtherSets } from './sets.js';
 import { sliders } from './tunables.js';
 
 const $ = (id) => document.getElementById(id);
@@ -29,6 +30,7 @@ const post = (path, body) => api(path, { method: 'POST', body: JSON.stringify(bo
 
 const canvas = $('view');
 const renderer = new Renderer(canvas);
+const others = new OtherSets((sets) => renderer.setOthers(sets.drawable()));
 // `?fps=N`: the frames per second the view keeps while it moves, lowering its resolution to do
 // so (0: never lower it); js/resolution.js.
 const motionFps = Number(new URLSearchParams(location.search).get('fps') ?? NaN);
@@ -92,6 +94,8 @@ function close() {
   state.socket?.close();
   state.socket = null;
   state.heldBytes = null;
+  others.close();
+  renderer.setOthers([]);
 }
 
 function open(scene) {
@@ -163,6 +167,11 @@ function connect() {
   const ws = new WebSocket(url, credentials.protocols());
   ws.binaryType = 'arraybuffer';
   state.socket = ws;
+  others.open(state.scene, (set, channels) => {
+    const u = new URL(url);
+    u.search = new URLSearchParams({ set, channels, max_fps: String(OTHER_FPS) });
+    return u;
+  }, credentials.protocols());
   ws.onmessage = (e) => {
     if (typeof e.data === 'string') return onText(JSON.parse(e.data));
     state.bytes += e.data.byteLength;
@@ -377,6 +386,7 @@ function setView(view) {
   $('colour-section').classList.toggle('inactive', renderer.view === 'surface');
 }
 $('view-mode').onchange = () => setView($('view-mode').value);
+$('other-sets').onchange = () => renderer.showOthers($('other-sets').checked);
 
 // Recording and replay.
 const recorder = new Recorder({
@@ -501,6 +511,7 @@ function frame(now) {
       replay.active ? '' : `bytes/frm  ${state.lastBytes} (${(state.lastBytes / Math.max(renderer.count, 1)).toFixed(2)} B/particle)`,
       `decode     ${state.decodeMs.toFixed(2)} ms`,
       s ? `dropped    ${s.dropped_frames}` : '',
+      ...(replay.active ? [] : others.summary()),
     ].filter(Boolean).join('\n');
   }
   requestAnimationFrame(frame);

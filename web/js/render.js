@@ -2,12 +2,14 @@
 // sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection) and
 // the fluid's surface (surface.js); particles hidden deep inside the fluid are left out or
 // merged (cull.js). Both draw particles at their physical size (spacing.js); the scene's box walls
-// are lines (outline.js), its floor a checkerboard (floor.js) and its terrains lit meshes
-// (terrain.js).
+// are lines (outline.js), its floor a checkerboard (floor.js), its terrains lit meshes
+// (terrain.js) and its other sets, grids and a module's own particles, tiles and points
+// (others.js).
 
 import { CELL, cubeLumps, cubesOf, innerCubes, lumpedParticles, outerParticles } from './cull.js';
 import { ATTRIBUTES, programWith } from './gl.js';
 import { Floor } from './floor.js';
+import { Others } from './others.js';
 import { Outline } from './outline.js';
 import { Resolution } from './resolution.js';
 import { physicalRadius } from './spacing.js';
@@ -81,6 +83,8 @@ export class Renderer {
     this.floor = new Floor(gl);
     /** The scene's terrains; `setTerrain(list)` when they arrive. */
     this.terrain = new TerrainMeshes(gl);
+    /** The scene's other sets; `setOthers(sets)` as their frames arrive. */
+    this.others = new Others(gl);
     this.vao = gl.createVertexArray();
     gl.bindVertexArray(this.vao);
     this.posBuf = gl.createBuffer();
@@ -132,6 +136,18 @@ export class Renderer {
   /** The scene's terrains, as `GET /api/v1/scenes/{id}/terrain` lists them ([] for none). */
   setTerrain(terrains) {
     this.terrain.set(terrains);
+    this.version += 1;
+  }
+
+  /** The scene's other sets (`OtherSets.drawable()`, sets.js), drawn under the particles' view. */
+  setOthers(sets) {
+    this.others.set(sets, LOOKS.solid.rgb);
+    this.version += 1;
+  }
+
+  /** Shows or hides the other sets. */
+  showOthers(visible) {
+    this.others.visible = visible;
     this.version += 1;
   }
 
@@ -237,7 +253,10 @@ export class Renderer {
     return true;
   }
 
-  /** Clears the bound framebuffer to the background and draws the floor, terrains and walls. */
+  /**
+   * Clears the bound framebuffer to the background and draws the floor, terrains, the other sets
+   * and walls.
+   */
   #background(proj, view) {
     const gl = this.gl;
     gl.clearColor(...BACKGROUND, 1);
@@ -246,6 +265,7 @@ export class Renderer {
     gl.depthFunc(gl.LESS);
     this.floor.draw(proj, view);
     this.terrain.draw(proj, view);
+    this.others.draw(proj, view);
     this.outline.draw(proj, view);
   }
 }

@@ -1,0 +1,123 @@
+// Draws the scene's other sets (sets.js): a grid as one tile per cell, coloured by its value
+// through the colour map (a flat grid, one cell high, at its floor; a deeper one layer by layer
+// at each cell's centre height), and a module's own particles as points in the solid look.
+
+import { programWith } from './gl.js';
+
+const VERT = `#version 300 es
+uniform mat4 u_proj, u_view;
+uniform float u_point;
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec3 a_colour;
+out vec3 v_colour;
+void main() {
+  v_colour = a_colour;
+  gl_PointSize = u_point;
+  gl_Position = u_proj * u_view * vec4(a_pos, 1.0);
+}`;
+
+const FRAG = `#version 300 es
+precision highp float;
+in vec3 v_colour;
+out vec4 colour;
+void main() {
+  colour = vec4(v_colour, 1.0);
+}`;
+
+/** The colour map of the particles' spheres (render.js), for `t` in 0 to 1. */
+export function ramp(t) {
+  const a = [0.267, 0.005, 0.329], b = [0.128, 0.567, 0.551], c = [0.993, 0.906, 0.144];
+  const [p, q, s] = t < 0.5 ? [a, b, t * 2] : [b, c, t * 2 - 1];
+  return p.map((x, k) => x + (q[k] - x) * s);
+}
+
+/** A tile's share of its cell (the rest is the gap between tiles). */
+const TILE = 0.9;
+
+/**
+ * Triangles (positions and colours, three floats per vertex) of a grid's tiles: cell (i, j, k)
+ * (x fastest) a square of `TILE` of its cell in x-z at height `origin.y` for a grid one cell
+ * high, else at its centre's; coloured by `values` over their range.
+ * @param {{origin: number[], size: number[], dims: number[]}} grid
+ * @param {Float32Array|null} values one per cell
+ */
+export function gridTiles(grid, values) {
+  const { origin, size, dims } = grid;
+  const cell = [0, 1, 2].map((a) => size[a] / dims[a]);
+  const n = dims[0] * dims[1] * dims[2];
+  let lo = Infinity, hi = -Infinity;
+  for (let i = 0; i < n && values; i++) { lo = Math.min(lo, values[i]); hi = Math.max(hi, values[i]); }
+  const positions = new Float32Array(n * 18), colours = new Float32Array(n * 18);
+  const half = [0.5 * TILE * cell[0], 0.5 * TILE * cell[2]];
+  for (let k = 0; k < dims[2]; k++) {
+    for (let j = 0; j < dims[1]; j++) {
+      for (let i = 0; i < dims[0]; i++) {
+        const c = i + dims[0] * (j + dims[1] * k);
+        const x = origin[0] + (i + 0.5) * cell[0], z = origin[2] + (k + 0.5) * cell[2];
+        const y = dims[1] === 1 ? origin[1] : origin[1] + (j + 0.5) * cell[1];
+        const corners = [[-1, -1], [1, -1], [1, 1], [-1, -1], [1, 1], [-1, 1]];
+        const rgb = ramp(values && hi > lo ? (values[c] - lo) / (hi - lo) : 0.5);
+        corners.forEach(([sx, sz], v) => {
+          positions.set([x + sx * half[0], y, z + sz * half[1]], c * 18 + v * 3);
+          colours.set(rgb, c * 18 + v * 3);
+        });
+      }
+    }
+  }
+  return { positions, colours, count: n * 6 };
+}
+
+/** The renderer of the other sets. */
+export class Others {
+  constructor(gl) {
+    this.gl = gl;
+    this.program = programWith(gl, VERT, FRAG, ['u_proj', 'u_view', 'u_point']);
+    /** @type {{mode: number, count: number, vao: WebGLVertexArrayObject, buffers: WebGLBuffer[]}[]} */
+    this.meshes = [];
+    /** Whether they are drawn. */
+    this.visible = true;
+  }
+
+  /** Takes what to draw (`OtherSets.drawable()`); `solid` is the RGB of a set's particles. */
+  set(sets, solid) {
+    const gl = this.gl;
+    for (const m of this.meshes) {
+      gl.deleteVertexArray(m.vao);
+      m.buffers.forEach((b) => gl.deleteBuffer(b));
+    }
+    this.meshes = sets.map((s) => {
+      const mesh = s.grid
+        ? { mode: gl.TRIANGLES, ...gridTiles(s.grid, s.values) }
+        : { mode: gl.POINTS, positions: s.positions, colours: new Float32Array(s.positions.length).map((_, i) => solid[i % 3]),
+          count: s.positions.length / 3 };
+      const vao = gl.createVertexArray();
+      gl.bindVertexArray(vao);
+      const buffers = [mesh.positions, mesh.colours].map((data, location) => {
+        const b = gl.createBuffer();
+        gl.bindBuffer(gl.ARRAY_BUFFER, b);
+        gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
+        gl.enableVertexAttribArray(location);
+        gl.vertexAttribPointer(location, 3, gl.FLOAT, false, 0, 0);
+        return b;
+      });
+      gl.bindVertexArray(null);
+      return { mode: mesh.mode, count: mesh.count, vao, buffers };
+    });
+  }
+
+  /** Draws them with the camera's matrices (depth-tested, with the particles). */
+  draw(proj, view) {
+    if (!this.visible || this.meshes.length === 0) return;
+    const gl = this.gl, { program, u } = this.program;
+    gl.enable(gl.DEPTH_TEST);
+    gl.useProgram(program);
+    gl.uniformMatrix4fv(u.u_proj, false, proj);
+    gl.uniformMatrix4fv(u.u_view, false, view);
+    gl.uniform1f(u.u_point, 6.0 * devicePixelRatio);
+    for (const m of this.meshes) {
+      gl.bindVertexArray(m.vao);
+      gl.drawArrays(m.mode, 0, m.count);
+    }
+    gl.bindVertexArray(null);
+  }
+}

@@ -1,0 +1,78 @@
+// The scene's sets besides its SPH particles (`SceneInfo.sets`): a module's own particles (the
+// tracer's probes) and its grids (a field on regular cells, sent as grid frames). Each streams on
+// a WebSocket of its own with its set's first channel, decoded here on the page (they are small),
+// and is drawn by the renderer (others.js) with the scene's particles.
+
+import { Decoder } from './codec/index.js';
+
+/** Frames per second asked for each other set: they are small and change slowly. */
+const FPS = 10;
+
+/** The latest frame of each of a scene's other sets, as they arrive. */
+export class OtherSets {
+  /** @param {(sets: OtherSets) => void} onFrame called after each frame decoded */
+  constructor(onFrame) {
+    this.onFrame = onFrame;
+    /** @type {Map<string, {socket: WebSocket, decoder: Decoder, frame: object|null, grid: boolean}>} */
+    this.sets = new Map();
+  }
+
+  /**
+   * Streams every set of `scene` but its particles: `url(set, channels)` is the WebSocket URL of
+   * a set's frames, `protocols` the sockets' subprotocols (credentials).
+   */
+  open(scene, url, protocols) {
+    this.close();
+    for (const set of scene.sets ?? []) {
+      if (set.index === 0) continue;
+      const channel = (scene.channels ?? []).find((c) => c.set === set.name)?.name ?? '';
+      const socket = new WebSocket(url(set.name, channel), protocols);
+      socket.binaryType = 'arraybuffer';
+      const entry = { socket, decoder: new Decoder(), frame: null, grid: set.grid === true, channel };
+      socket.onmessage = (e) => {
+        if (typeof e.data === 'string') return;
+        entry.frame = entry.decoder.decode(e.data);
+        this.onFrame(this);
+      };
+      this.sets.set(set.name, entry);
+    }
+  }
+
+  /** Closes every set's stream. */
+  close() {
+    for (const { socket } of this.sets.values()) socket.close();
+    this.sets.clear();
+  }
+
+  /**
+   * What to draw: per set with a frame, its name, whether it is a grid, its positions or grid,
+   * and its channel's values (one per particle or cell, vectors by magnitude).
+   */
+  drawable() {
+    const out = [];
+    for (const [name, { frame, grid }] of this.sets) {
+      if (!frame) continue;
+      const c = frame.channels[0];
+      const n = frame.header.particleCount;
+      let values = null;
+      if (c) {
+        values = new Float32Array(n);
+        for (let i = 0; i < n; i++) {
+          let s = 0;
+          for (let k = 0; k < c.components; k++) s += c.values[c.components * i + k] ** 2;
+          values[i] = c.components === 1 ? c.values[i] : Math.sqrt(s);
+        }
+      }
+      out.push({ name, grid: grid ? frame.grid : null, positions: frame.positions, values, step: frame.header.step });
+    }
+    return out;
+  }
+
+  /** One line per set for the stats overlay: name, cells or particles, the step of its frame. */
+  summary() {
+    return this.drawable().map((s) => `${s.name.padEnd(10)} ${s.grid
+      ? `${s.grid.dims.join(' x ')} cells` : `${s.positions.length / 3} particles`} (step ${s.step})`);
+  }
+}
+
+export { FPS };
