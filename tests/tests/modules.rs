@@ -473,3 +473,41 @@ fn a_grid_is_a_set_of_cells_that_changes() {
         assert!(seen[0] != seen[2], "{backend}: the columns change as the water flows");
     }
 }
+
+/// A ground that grows is ground particles land on: the tracer raises the core's
+/// `ground_height` under the avalanche preset's snow, and every particle over the
+/// terrain stays on or above the ground as it is now, not as it was rasterised; the
+/// raised ground is saved with the scene.
+#[test]
+fn a_ground_that_grows_is_ground_particles_land_on() {
+    floe_engine::module::register(&tracer::MODULE);
+    floe_gpu::pass::register(&tracer::gpu::MODULE);
+    let o = ["particle_spacing=0.1".to_string(), r#"modules=["fluid","snow","tracer"]"#.to_string()];
+    for (backend, make) in factories() {
+        let mut sim = Simulation::new(from_preset("avalanche", &o).unwrap(), &make).unwrap();
+        let Column::F32(raster) = sim.backend().download(&["ground_height"]).remove(0) else { panic!("f32") };
+        while sim.time() < 0.25 {
+            sim.step().unwrap();
+        }
+        let risen = tracer::RISE * sim.time() as f32;
+        assert!(risen >= 0.05, "{backend}: the ground rose {risen} m");
+        let Column::F32(ground) = sim.backend().download(&["ground_height"]).remove(0) else { panic!("f32") };
+        for (g, r) in ground.iter().zip(&raster) {
+            assert!((g - r - risen).abs() <= 1e-4, "{backend}: ground {g} m over the raster's {r} m, not {risen} m");
+        }
+        let terrain = sim.model().wall_constraints.iter().find_map(|w| match w {
+            floe_engine::boundary::WallConstraint::Terrain(t) => Some(t.clone()),
+            _ => None,
+        });
+        let t = terrain.expect("the avalanche has a terrain");
+        let mut over = 0;
+        for p in vec3s(sim.backend(), "x").into_iter().filter(|p| t.grid.covers(p.x, p.z)) {
+            let (h, _) = t.grid.eval_on(&ground[t.first..], p.x, p.z);
+            assert!(p.y >= h - 1e-4, "{backend}: a particle at {p} under the ground at {h} m");
+            over += 1;
+        }
+        assert!(over > 100, "{backend}: {over} particles over the terrain");
+        let back = Simulation::restore_on(&sim.snapshot(), &make).unwrap();
+        assert_eq!(back.backend().download(&["ground_height"]).remove(0), Column::F32(ground), "{backend}");
+    }
+}

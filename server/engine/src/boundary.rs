@@ -172,15 +172,17 @@ impl WallConstraint {
                 grid: grid.expect("a terrain is built with its height grid").clone(),
                 friction: t.friction,
                 contact: spacing,
+                first: 0,
             }),
         }
     }
 
     /// Projects `x` back onto the wall if it crossed it, removing the velocity
     /// component into the wall; a terrain also applies friction, for which `g_dt` is
-    /// gravity times the drift's dt (m/s).
+    /// gravity times the drift's dt (m/s), and meets the ground as `ground` has it
+    /// (the core's `ground_height`: every terrain's node heights).
     #[inline]
-    pub fn apply(&self, x: &mut Vec3, v: &mut Vec3, g_dt: Vec3) {
+    pub fn apply(&self, x: &mut Vec3, v: &mut Vec3, g_dt: Vec3, ground: &[Real]) {
         match self {
             WallConstraint::Box { min, max, closed, reach } => {
                 // Only particles within the wall's slab (not far outside the box,
@@ -216,7 +218,7 @@ impl WallConstraint {
                     *v -= *normal * vn;
                 }
             }
-            WallConstraint::Terrain(t) => t.apply(x, v, g_dt),
+            WallConstraint::Terrain(t) => t.apply(x, v, g_dt, ground),
         }
     }
 }
@@ -231,11 +233,11 @@ mod tests {
         let b = Boundary::Box { min: [0.0; 3], max: [1.0; 3], open: vec![Face::PlusY], layers: 1 };
         let c = WallConstraint::new(&b, 0.1, None);
         let (mut x, mut v) = (Vec3::new(-0.05, 0.5, 0.5), Vec3::new(-1.0, 0.0, 2.0));
-        c.apply(&mut x, &mut v, Vec3::ZERO);
+        c.apply(&mut x, &mut v, Vec3::ZERO, &[]);
         assert_eq!((x, v), (Vec3::new(0.0, 0.5, 0.5), Vec3::new(0.0, 0.0, 2.0)));
         // The open top lets particles out.
         let (mut x, mut v) = (Vec3::new(0.5, 1.05, 0.5), Vec3::Y);
-        c.apply(&mut x, &mut v, Vec3::ZERO);
+        c.apply(&mut x, &mut v, Vec3::ZERO, &[]);
         assert_eq!(x.y, 1.05);
     }
 
@@ -244,10 +246,10 @@ mod tests {
         let b = Boundary::Plane { center: [0.0; 3], normal: [0.0, 1.0, 0.0], size: [1.0, 1.0], layers: 1 };
         let c = WallConstraint::new(&b, 0.1, None);
         let (mut x, mut v) = (Vec3::new(0.1, -0.05, 0.1), Vec3::new(1.0, -1.0, 0.0));
-        c.apply(&mut x, &mut v, Vec3::ZERO);
+        c.apply(&mut x, &mut v, Vec3::ZERO, &[]);
         assert!((x - Vec3::new(0.1, 0.0, 0.1)).length() < 1e-6 && (v - Vec3::X).length() < 1e-6);
         let (mut x, mut v) = (Vec3::new(2.0, -0.05, 0.0), -Vec3::Y);
-        c.apply(&mut x, &mut v, Vec3::ZERO);
+        c.apply(&mut x, &mut v, Vec3::ZERO, &[]);
         assert_eq!(x.y, -0.05);
     }
 

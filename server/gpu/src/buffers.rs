@@ -150,7 +150,7 @@ impl Buffers {
         // Particle run starts (counts before the scan), then the wall grid's fixed starts.
         let mut starts = vec![0u32; cells as usize + 1];
         starts.extend_from_slice(walls.grid.starts());
-        let (constraints, heights) = Constraint::all(&model.wall_constraints);
+        let constraints = Constraint::all(&model.wall_constraints);
         let scratch = 4 * widest as u64 * n;
         if scratch > gpu.max_binding() {
             return Err(too_big("the sort", scratch));
@@ -165,7 +165,6 @@ impl Buffers {
             ("sort_scratch", storage(device, "sort scratch", scratch, U::empty())),
             ("walls", init(device, "wall particles", &wall_data, U::STORAGE)),
             ("constraints", init(device, "wall constraints", &constraints, U::STORAGE)),
-            ("heights", init(device, "terrain heights", &heights, U::STORAGE)),
             ("partials", storage(device, "measure partials", 32 * n.div_ceil(256), U::empty())),
             ("reduce_partials", storage(device, "reduction partials", 4 * n.div_ceil(256), U::empty())),
             ("reduce_words", init(device, "reduction", &[Words::default()], U::UNIFORM | U::COPY_DST)),

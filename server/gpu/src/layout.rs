@@ -129,7 +129,7 @@ pub struct Constraint {
     /// 0 box, 1 plane, 2 terrain.
     pub kind: u32,
     /// Box: bit `2 axis + side` set for each closed face; terrain: index of its first
-    /// height in the `heights` buffer.
+    /// height in the core's `ground_height`.
     pub closed: u32,
     /// How far outside the surface the constraint reaches (m).
     pub reach: f32,
@@ -147,22 +147,19 @@ pub struct Constraint {
 const _: () = assert!(std::mem::size_of::<Constraint>() == 80);
 
 impl Constraint {
-    /// The GPU constraints of `walls`, and every terrain's heights one after another
-    /// (each terrain's constraint gives where its own start).
-    pub fn all(walls: &[WallConstraint]) -> (Vec<Constraint>, Vec<f32>) {
-        let mut heights = Vec::new();
-        let constraints = walls
+    /// The GPU constraints of `walls` (a terrain's gives where its heights start in
+    /// the core's `ground_height`, every terrain's nodes one after another).
+    pub fn all(walls: &[WallConstraint]) -> Vec<Constraint> {
+        walls
             .iter()
             .map(|w| {
                 let mut c = Constraint::from(w);
                 if let WallConstraint::Terrain(t) = w {
-                    c.closed = heights.len() as u32;
-                    heights.extend_from_slice(&t.grid.heights);
+                    c.closed = t.first as u32;
                 }
                 c
             })
-            .collect();
-        (constraints, heights)
+            .collect()
     }
 }
 

@@ -15,7 +15,7 @@ use floe_gpu::pass::{GpuPass, HOST_PASSES};
 use floe_gpu::program::Access;
 
 /// Buffers of the core a kernel may bind besides attributes (buffers.rs).
-const CORE_BUFFERS: &[&str] = &["starts", "walls", "constraints", "heights"];
+const CORE_BUFFERS: &[&str] = &["starts", "walls", "constraints"];
 /// Uniforms of the core.
 const CORE_UNIFORMS: &[&str] = &["params", "dt", "sweep"];
 

@@ -3,7 +3,7 @@
 //! floe-gpu's `common.wgsl`) and the core's generic map kernels
 //! (`floe_gpu::map_pass!`).
 
-use super::{COLOURS, COLUMNS as COLUMN_SPACE, PROBES, TracerConsts};
+use super::{COLOURS, COLUMNS as COLUMN_SPACE, PROBES, RISE, TracerConsts};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
 use floe_gpu::pass::{GpuModule, GpuPass, always};
@@ -30,6 +30,7 @@ pub static MODULE: GpuModule = GpuModule {
         &GROUP_SPREAD,
         &MEMBER_SUM,
         &COLUMNS,
+        &RAISE_GROUND,
     ],
     uniforms: &[("tracer", uniform)],
 };
@@ -88,6 +89,15 @@ static COLUMNS: GpuPass = GpuPass {
     when: always,
 };
 
+static RAISE_GROUND: GpuPass = GpuPass {
+    name: "tracer.raise_ground",
+    source: kernel!("tracer.wgsl", "raise_ground.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "tracer"), (U, "dt"), (W, "ground_height")],
+    space: floe_engine::terrain::GROUND_SPACE,
+    when: always,
+};
+
 static GROUP_X: GpuPass =
     floe_gpu::map_pass!(gather "tracer.group_x", map "tracer_groups", words 4, from "x" into "tracer_groups_x");
 static GROUP_SUM: GpuPass = floe_gpu::map_pass!(segment_sum "tracer.group_sum", map "tracer_groups", segments "groups", words 4, from "tracer_groups_x" into "group_x_sum");
@@ -103,7 +113,7 @@ fn uniform(model: &Model) -> Option<Vec<u8>> {
         f(c.floor),
         COLOURS,
         model.layout.count(PROBES) as u32,
-        0,
+        f(RISE),
         f(g.origin[0]),
         f(g.origin[1]),
         f(g.origin[2]),

@@ -28,6 +28,9 @@
 //!   `column_count`: the particles above each cell after each step, streamed as
 //!   grid frames.
 //!
+//! - `tracer.raise_ground`, in scenes with a terrain: the core's `ground_height` rises
+//!   at `RISE` (m/s) everywhere, a ground that grows under the particles.
+//!
 //! Its GPU half (`gpu.rs`) is registered as the module is, from outside floe-gpu.
 
 use floe_engine::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
@@ -70,6 +73,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("tracer.floor_project", &FloorProject),
         ("tracer.floor_depth", &FloorDepth),
         ("tracer.columns", &Columns),
+        ("tracer.raise_ground", &RaiseGround),
     ],
     presets: &[],
     dt_limit: |_| None,
@@ -196,6 +200,19 @@ pub fn column_of(grid: &floe_proto::GridInfo, p: Vec3) -> Option<usize> {
     Some(cell(0, p.x)? + grid.dims[0] as usize * cell(2, p.z)?)
 }
 
+/// How fast the ground rises in scenes with a terrain (m/s).
+pub const RISE: f32 = 0.2;
+
+static RAISE_GROUND: PassSpec = PassSpec {
+    name: "tracer.raise_ground",
+    module: "tracer",
+    stage: Stage::Kick,
+    reads: &[],
+    writes: &[],
+    accumulates: &["ground_height"],
+    tolerance: 0.0,
+};
+
 /// Colours of the floor solve (its sweeps).
 pub const COLOURS: u32 = 4;
 
@@ -310,6 +327,9 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         about: "Particles above each cell.",
         source: Source::Attr("column_count"),
     });
+    if b.count(floe_engine::terrain::GROUND_SPACE) > 0 {
+        b.pass(&RAISE_GROUND);
+    }
     b.set_consts(TracerConsts { floor, columns });
     b.position_solve(FLOOR_SOLVE);
     b.channel(ChannelSpec {
@@ -435,5 +455,17 @@ impl CpuPass for Columns {
             }
         }
         cx.attrs.put(c, counts);
+    }
+}
+
+/// `ground_height += RISE dt`.
+#[derive(Debug)]
+struct RaiseGround;
+
+impl CpuPass for RaiseGround {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let rise = RISE * cx.dt;
+        let h = cx.attrs.handle::<f32>("ground_height");
+        cx.attrs.get_mut(h).iter_mut().for_each(|g| *g += rise);
     }
 }

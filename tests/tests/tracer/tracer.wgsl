@@ -4,7 +4,8 @@ struct Tracer {
     floor: f32,
     colours: u32,
     probes: u32,
-    _pad: u32,
+    // How fast the ground rises (m/s).
+    rise: f32,
     // The columns' grid: origin and size (m), cells per axis.
     origin: vec3<f32>,
     _pad1: u32,

@@ -184,12 +184,14 @@ pub fn kick(attrs: &mut crate::attrs::Attrs, dt: Real, keep: Real) {
 
 /// `x += dt v` (with `v + dt/2 a_transport` in scenes that have that attribute),
 /// then the walls' non-penetration constraints (and a terrain's friction, which takes
-/// gravity times dt as part of the normal load); positions that left through a
-/// periodic face come back through the opposite one.
+/// gravity times dt as part of the normal load, on the ground as `ground_height`
+/// has it now); positions that left through a periodic face come back through the
+/// opposite one.
 pub fn drift(model: &Model, attrs: &mut crate::attrs::Attrs, dt: Real) {
     let (x, v) = (attrs.handle::<Vec3>("x"), attrs.handle::<Vec3>("v"));
     let (mut pos, mut vel) = (attrs.take(x), attrs.take(v));
     let transport = attrs.find::<Vec3>("a_transport").map(|t| attrs.get(t));
+    let ground: &[Real] = attrs.find::<Real>(crate::terrain::GROUND.name).map_or(&[], |g| attrs.get(g));
     let walls = &model.wall_constraints;
     let periodic = &model.periodic;
     let (g_dt, half) = (model.gravity * dt, 0.5 * dt);
@@ -199,7 +201,7 @@ pub fn drift(model: &Model, attrs: &mut crate::attrs::Attrs, dt: Real) {
             None => *x += *v * dt,
         }
         for w in walls {
-            w.apply(x, v, g_dt);
+            w.apply(x, v, g_dt, ground);
         }
         if periodic.any() {
             *x = periodic.wrap(*x);

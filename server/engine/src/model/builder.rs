@@ -327,12 +327,7 @@ impl<'s> ModelBuilder<'s> {
             sound_speed,
             materials: Materials::new(self.materials),
             wall_particles,
-            wall_constraints: scene
-                .boundaries
-                .iter()
-                .zip(&self.grids)
-                .map(|(b, g)| WallConstraint::new(b, d, g.as_ref()))
-                .collect(),
+            wall_constraints: wall_constraints(scene, &self.grids, d),
             scheme,
             modules,
             quantities: self.quantities,
@@ -363,6 +358,12 @@ impl<'s> ModelBuilder<'s> {
             self.attr(&MATERIAL, Column::U32(p.materials));
         }
         self.zeros(&RHO);
+        // Every terrain's node heights, one after another: the ground as it is now.
+        let ground: Vec<Real> = self.grids.iter().flatten().flat_map(|g| g.heights.iter().copied()).collect();
+        if !ground.is_empty() {
+            self.space(crate::terrain::GROUND_SPACE, ground.len());
+            self.attr(&crate::terrain::GROUND, Column::F32(ground));
+        }
         self.pass(&crate::cpu::core::SORT);
         self.pass(&crate::cpu::core::DENSITY);
         self.channel(crate::channels::VELOCITY);
@@ -372,6 +373,22 @@ impl<'s> ModelBuilder<'s> {
         }
         (self.particles.bounds, self.particles.fastest) = (p.bounds, p.fastest);
     }
+}
+
+/// The walls' constraints, each terrain's reading the ground from its first node in
+/// `ground_height` (the terrains' nodes one after another).
+fn wall_constraints(scene: &Scene, grids: &[Option<Arc<HeightGrid>>], spacing: Real) -> Vec<WallConstraint> {
+    let mut first = 0;
+    let walls = scene.boundaries.iter().zip(grids).map(|(b, g)| WallConstraint::new(b, spacing, g.as_ref()));
+    walls
+        .map(|mut w| {
+            if let WallConstraint::Terrain(t) = &mut w {
+                t.first = first;
+                first += t.grid.heights.len();
+            }
+            w
+        })
+        .collect()
 }
 
 /// `sqrt(2 g H)`, H the drop from the fluid's top to the lowest point of fluid

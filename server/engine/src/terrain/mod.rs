@@ -11,6 +11,12 @@
 //! Akinci wall machinery with every scheme; fluid a block would place under the
 //! ground is dropped at build ([`HeightGrid::buried`]).
 //!
+//! The ground a particle meets is the core attribute [`GROUND`] (`ground_height`):
+//! every terrain's node heights, one terrain after another, state that starts as the
+//! raster and that a module may change while the scene runs (a snow cover that grows
+//! is ground particles land on). The wall particles and the viewer's terrain mesh
+//! stay on the raster.
+//!
 //! After every drift ([`TerrainConstraint::apply`]), a particle below the surface is
 //! put back on it (vertically) and loses its velocity into it; a particle in contact
 //! (closer than one particle spacing to the surface) then feels Coulomb friction, the
@@ -24,8 +30,25 @@
 pub mod source;
 pub mod spec;
 
+use crate::attrs::{AttrSpec, Elem, Role};
 use crate::math::{Real, Vec3};
 use std::sync::Arc;
+
+/// The space of the terrains' nodes (all terrains', one after another).
+pub const GROUND_SPACE: &str = "ground";
+
+/// The ground's height at every terrain node (m): the raster's at first; modules may
+/// write it (a growing snow cover), and the drift's terrain constraint reads it.
+pub static GROUND: AttrSpec = AttrSpec {
+    name: "ground_height",
+    elem: Elem::F32,
+    unit: "m",
+    role: Role::State,
+    added_later: true,
+    space: GROUND_SPACE,
+    module: "core",
+    about: "Height of the ground at each terrain node.",
+};
 
 /// A terrain's heights on a regular grid: node `(i, k)` at
 /// `(min.x + i cell.x, min.z + k cell.z)`, stored at `k nx + i`.
@@ -58,12 +81,18 @@ impl HeightGrid {
     /// Height (m) and unit upward normal at `(x, z)`, bilinear in the grid's cell
     /// (clamped to the footprint); the normal is that of the bilinear patch.
     pub fn eval(&self, x: Real, z: Real) -> (Real, Vec3) {
+        self.eval_on(&self.heights, x, z)
+    }
+
+    /// [`HeightGrid::eval`] with heights `heights` at the grid's nodes in place of
+    /// its own (the ground as it is now: see [`GROUND`]).
+    pub fn eval_on(&self, heights: &[Real], x: Real, z: Real) -> (Real, Vec3) {
         let u = ((x - self.min[0]) / self.cell[0]).clamp(0.0, (self.nx - 1) as Real);
         let w = ((z - self.min[1]) / self.cell[1]).clamp(0.0, (self.nz - 1) as Real);
         let i = (u.floor() as u32).min(self.nx - 2);
         let k = (w.floor() as u32).min(self.nz - 2);
         let (fu, fw) = (u - i as Real, w - k as Real);
-        let at = |i: u32, k: u32| self.heights[(k * self.nx + i) as usize];
+        let at = |i: u32, k: u32| heights[(k * self.nx + i) as usize];
         let (h00, h10, h01, h11) = (at(i, k), at(i + 1, k), at(i, k + 1), at(i + 1, k + 1));
         let h = (h00 * (1.0 - fu) + h10 * fu) * (1.0 - fw) + (h01 * (1.0 - fu) + h11 * fu) * fw;
         let dx = ((h10 - h00) * (1.0 - fw) + (h11 - h01) * fw) / self.cell[0];
@@ -143,19 +172,22 @@ pub struct TerrainConstraint {
     pub friction: Real,
     /// Particles closer than this to the surface are in contact (m): one spacing.
     pub contact: Real,
+    /// Index of its first node in [`GROUND`].
+    pub first: usize,
 }
 
 impl TerrainConstraint {
     /// Puts a particle under the surface back on it, removing its velocity into the
     /// surface; then, in contact, reduces its tangential speed by `friction` times the
     /// step's normal load (the normal speed removed plus `-(g dt) . n`, `g_dt` being
-    /// gravity times the drift's dt), to zero at most.
+    /// gravity times the drift's dt), to zero at most. `ground` is [`GROUND`]'s
+    /// values (every terrain's; this one's from `first`).
     #[inline]
-    pub fn apply(&self, x: &mut Vec3, v: &mut Vec3, g_dt: Vec3) {
+    pub fn apply(&self, x: &mut Vec3, v: &mut Vec3, g_dt: Vec3, ground: &[Real]) {
         if !self.grid.covers(x.x, x.z) {
             return;
         }
-        let (h, n) = self.grid.eval(x.x, x.z);
+        let (h, n) = self.grid.eval_on(&ground[self.first..], x.x, x.z);
         let mut removed = 0.0;
         if x.y < h {
             x.y = h;

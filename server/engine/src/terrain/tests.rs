@@ -203,7 +203,7 @@ fn the_surface_is_sampled_about_a_spacing_apart_along_the_slope() {
 #[test]
 fn contact_friction_slows_without_reversing_and_the_ground_holds() {
     let grid = Arc::new(rasterise(&slope(30.0, 0.0), 0.05).unwrap());
-    let c = TerrainConstraint { grid: grid.clone(), friction: 0.5, contact: 0.05 };
+    let c = TerrainConstraint { grid: grid.clone(), friction: 0.5, contact: 0.05, first: 0 };
     let g_dt = Vec3::new(0.0, -9.81, 0.0) * 1e-3;
     let (s, co) = (30f32.to_radians().sin(), 30f32.to_radians().cos());
     let (n, down_slope) = (Vec3::new(s, co, 0.0), Vec3::new(co, -s, 0.0));
@@ -211,17 +211,17 @@ fn contact_friction_slows_without_reversing_and_the_ground_holds() {
     // inward speed gone, the tangential speed reduced by mu (removed + g cos a dt).
     let (h, _) = grid.eval(0.5, 0.5);
     let (mut x, mut v) = (Vec3::new(0.5, h - 0.01, 0.5), down_slope * 2.0 - n * 1.0);
-    c.apply(&mut x, &mut v, g_dt);
+    c.apply(&mut x, &mut v, g_dt, &grid.heights);
     assert!((x.y - h).abs() < 1e-6);
     let want = 2.0 - 0.5 * (1.0 + 9.81e-3 * co);
     assert!(v.dot(n).abs() < 1e-5 && (v.dot(down_slope) - want).abs() < 1e-5, "{v}");
     // A slow particle in contact stops; it does not turn back up the slope.
     let (mut x, mut v) = (Vec3::new(0.5, h + 0.02, 0.5), down_slope * 1e-3);
-    c.apply(&mut x, &mut v, g_dt);
+    c.apply(&mut x, &mut v, g_dt, &grid.heights);
     assert!(v.length() < 1e-6 && v.dot(down_slope) > -1e-9, "{v}");
     // Out of contact (two spacings up) nothing changes.
     let (mut x, mut v) = (Vec3::new(0.5, h + 0.12, 0.5), down_slope);
-    c.apply(&mut x, &mut v, g_dt);
+    c.apply(&mut x, &mut v, g_dt, &grid.heights);
     assert_eq!(v, down_slope);
 }
 

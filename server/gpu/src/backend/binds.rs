@@ -71,9 +71,11 @@ pub(super) fn core_binds(gpu: &GpuContext, b: &Buffers, grid: &Grid) -> CoreBind
             .map(|s| {
                 let (x, v, a) = (b.get("x"), b.get("v"), b.get("a"));
                 // Scenes without a transport term bind `a` there; the drift reads it
-                // only when its step says so.
+                // only when its step says so. Scenes without terrain have no ground and
+                // bind the constraints there (the drift reads heights only for a terrain).
                 let transport = b.find("a_transport").unwrap_or(a);
-                p.kick.bind(d, &[b.get("params"), s, x, v, a, b.get("constraints"), b.get("heights"), transport])
+                let ground = b.find("ground_height").unwrap_or(b.get("constraints"));
+                p.kick.bind(d, &[b.get("params"), s, x, v, a, b.get("constraints"), ground, transport])
             })
             .collect(),
         quantize: p

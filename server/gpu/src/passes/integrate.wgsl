@@ -35,8 +35,8 @@ struct Constraint {
 @group(0) @binding(1) var<uniform> step: Step;
 @group(0) @binding(2) var<storage, read_write> pos: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read_write> vel: array<vec4<f32>>;
-// The kick: accelerations; the drift: the walls' constraints and the terrains'
-// heights (one layout each).
+// The kick: accelerations; the drift: the walls' constraints and the ground's
+// heights (`ground_height`, every terrain's nodes; one layout each).
 @group(0) @binding(4) var<storage, read> acc: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read> constraints: array<Constraint>;
 @group(0) @binding(6) var<storage, read> heights: array<f32>;
