@@ -85,6 +85,15 @@ impl Backend for Faulty {
     fn passes_run(&self) -> Vec<&'static str> {
         self.0.passes_run()
     }
+    fn compact(&mut self) {
+        self.0.compact()
+    }
+    fn emit(&mut self, births: &floe_engine::population::Births, first_id: u32) {
+        self.0.emit(births, first_id)
+    }
+    fn set_particle_count(&mut self, n: usize) {
+        self.0.set_particle_count(n)
+    }
 }
 
 #[tokio::test]

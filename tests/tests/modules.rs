@@ -511,3 +511,126 @@ fn a_ground_that_grows_is_ground_particles_land_on() {
         assert_eq!(back.backend().download(&["ground_height"]).remove(0), Column::F32(ground), "{backend}");
     }
 }
+
+/// The dam break with the tracer's births and deaths: `births` born after every
+/// step at the first initial positions, particles older than `lifetime` removed.
+fn populated(births: u32, lifetime: f32) -> Vec<String> {
+    let mut o = traced();
+    o.push(format!("tracer={{\"births\":{births},\"lifetime\":{lifetime}}}"));
+    o
+}
+
+fn ids(b: &dyn Backend) -> Vec<u32> {
+    match b.download(&["id"]).remove(0) {
+        Column::U32(v) => v,
+        other => panic!("ids: {other:?}"),
+    }
+}
+
+/// Every step replaces all 1,000 particles with 1,000 born (lifetime 0): ids are
+/// never reused, the scene holds 1,000 particles and the same memory throughout, a
+/// snapshot taken midway steps on bit for bit, and frames carry the live particles.
+#[test]
+fn particles_are_born_and_die_with_ids_never_reused_and_memory_flat() {
+    floe_engine::module::register(&tracer::MODULE);
+    floe_gpu::pass::register(&tracer::gpu::MODULE);
+    for (backend, make) in factories() {
+        // A million births on the CPU; a tenth of them on a software GPU.
+        let steps: u32 = if backend == "cpu" { 1000 } else { 100 };
+        let mut sim = Simulation::new(from_preset("dam_break", &populated(1000, 0.0)).unwrap(), &make).unwrap();
+        assert_eq!(sim.model().particle_capacity(), 1000 + 10_000);
+        let memory = total(sim.backend());
+        let mut saved = None;
+        for step in 1..=steps {
+            sim.step().unwrap();
+            if step % 50 == 0 || step == 1 {
+                let ids = ids(sim.backend());
+                assert_eq!(ids.len(), 1000, "{backend} step {step}");
+                // This step's births only: ids from 1000 step on, each once.
+                let mut sorted = ids.clone();
+                sorted.sort_unstable();
+                let first = 1000 * step;
+                assert_eq!(sorted, (first..first + 1000).collect::<Vec<_>>(), "{backend} step {step}");
+                assert_eq!(total(sim.backend()), memory, "{backend} step {step}: memory changed");
+            }
+            if step == steps / 2 {
+                saved = Some(sim.snapshot());
+            }
+        }
+        assert_eq!(
+            sim.model().population.as_ref().unwrap().next_id,
+            1000 * (steps + 1),
+            "{backend}: {} births",
+            1000 * steps
+        );
+        // The snapshot taken midway steps on bit for bit.
+        let mut back = Simulation::restore_on(&saved.unwrap(), &make).unwrap();
+        let mut again = Simulation::new(from_preset("dam_break", &populated(1000, 0.0)).unwrap(), &make).unwrap();
+        for _ in 0..steps / 2 {
+            again.step().unwrap();
+        }
+        for _ in 0..10 {
+            back.step().unwrap();
+            again.step().unwrap();
+        }
+        let state = |s: &Simulation| s.backend().state();
+        assert_eq!(state(&back), state(&again), "{backend}: the restored scene steps on as the original");
+        // Frames: the live particles, in id order.
+        let p = sim.read(&["velocity"]);
+        assert_eq!(p.positions.len(), 1000);
+    }
+}
+
+/// Particles marked for removal go; the others keep their order and state.
+#[test]
+fn removed_particles_go_and_the_others_keep_their_order() {
+    floe_engine::module::register(&tracer::MODULE);
+    floe_gpu::pass::register(&tracer::gpu::MODULE);
+    for (backend, make) in factories() {
+        let mut sim = Simulation::new(from_preset("dam_break", &populated(0, 1e3)).unwrap(), &make).unwrap();
+        for _ in 0..5 {
+            sim.step().unwrap();
+        }
+        let names = ["id", "x", "v", "age"];
+        let before = sim.backend().download(&names);
+        let Column::U32(id) = &before[0] else { panic!("u32 ids") };
+        let keep: Vec<bool> = id.iter().map(|i| i % 3 != 0).collect();
+        let remove = Column::F32(keep.iter().map(|&k| if k { 0.0 } else { 1.0 }).collect());
+        sim.backend_mut().upload("remove", remove);
+        sim.backend_mut().compact();
+        let after = sim.backend().download(&names);
+        let kept = keep.iter().filter(|&&k| k).count();
+        assert_eq!(sim.particle_count(), kept, "{backend}");
+        for ((name, b), a) in names.iter().zip(&before).zip(&after) {
+            let per = b.elem().components();
+            let kept_words: Vec<u32> =
+                b.words().chunks(per).zip(&keep).filter(|(_, k)| **k).flat_map(|(w, _)| w.to_vec()).collect();
+            assert_eq!(a.words(), kept_words, "{backend}: {name}");
+        }
+        // The scene steps on with the others.
+        sim.step().unwrap();
+    }
+}
+
+/// Through the service: a scene whose particles are born and die counts its
+/// capacity against the limits, streams its live particles in unordered frames and
+/// refuses identity-ordered ones, naming why.
+#[tokio::test]
+async fn a_scene_whose_particles_are_born_and_die_streams_its_live_particles() {
+    floe_engine::module::register(&tracer::MODULE);
+    let server = common::TestServer::start().await;
+    let mut floe = Client::connect(&server.grpc_url()).await.unwrap();
+    let o = populated(500, 0.0);
+    let refs: Vec<&str> = o.iter().map(String::as_str).collect();
+    let info = floe.create_preset("dam_break", &refs).await.unwrap();
+    assert_eq!(info.particles, 1000 + 5000, "the capacity: 1,000 particles and room for ten steps' births");
+    floe.step(info.scene_id, 3).await.unwrap();
+    let request = FrameRequest { identity: false, ..FrameRequest::default() };
+    let mut frames = floe.frames(info.scene_id, request).await.unwrap();
+    let frame = frames.next().await.unwrap().unwrap();
+    assert_eq!((frame.header.step, frame.positions.len()), (3, 500));
+    let e = floe.frames(info.scene_id, FrameRequest::default()).await.unwrap_err();
+    assert_eq!(common::code(&e), tonic::Code::InvalidArgument, "{e}");
+    assert!(e.to_string().contains("born and die"), "{e}");
+    server.shutdown().await;
+}

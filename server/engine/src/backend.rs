@@ -65,6 +65,14 @@ pub trait Backend: Stages + Send {
     fn particle_count(&self) -> usize {
         self.model().particle_count()
     }
+    /// Removes the particles the `remove` attribute marks, the others keeping their
+    /// order (a scene with removal, after each step; see [`crate::population`]).
+    fn compact(&mut self);
+    /// Appends `births`, with ids from `first_id` on (within the scene's capacity,
+    /// which the caller checked); their other attributes start at zero.
+    fn emit(&mut self, births: &crate::population::Births, first_id: u32);
+    /// Sets the number of live particles (a restored scene's), resizing what they hold.
+    fn set_particle_count(&mut self, n: usize);
     /// Every state attribute's values, in slot order (a snapshot's sections).
     fn state(&self) -> Vec<Section> {
         let names: Vec<&'static str> =
@@ -131,14 +139,31 @@ pub fn read<B: Backend + ?Sized>(
         Column::U32(v) => v.as_slice(),
         _ => panic!("ids are u32"),
     });
+    // The slot of each particle in id order: the inverse of the ids where they are
+    // 0 .. n (a scene whose particles are never born nor die), else the slots sorted
+    // by id.
+    let by_id: Option<Vec<usize>> = ids.map(|ids| {
+        let n = ids.len();
+        let mut by = vec![usize::MAX; n];
+        for (k, &id) in ids.iter().enumerate() {
+            match by.get_mut(id as usize) {
+                Some(slot) => *slot = k,
+                None => {
+                    let mut sorted: Vec<usize> = (0..n).collect();
+                    sorted.sort_unstable_by_key(|&k| ids[k]);
+                    return sorted;
+                }
+            }
+        }
+        by
+    });
     let order = |values: Vec<f32>, components: usize| -> Vec<f32> {
-        match ids {
+        match &by_id {
             None => values,
-            Some(ids) => {
-                let mut out = vec![0.0; values.len()];
-                for (k, &id) in ids.iter().enumerate() {
-                    let (to, from) = (id as usize * components, k * components);
-                    out[to..to + components].copy_from_slice(&values[from..from + components]);
+            Some(by_id) => {
+                let mut out = Vec::with_capacity(values.len());
+                for &k in by_id {
+                    out.extend_from_slice(&values[k * components..(k + 1) * components]);
                 }
                 out
             }

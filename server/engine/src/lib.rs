@@ -27,7 +27,8 @@
 //! - [`mesh`]: bodies from OBJ and STL meshes, checked and filled with particles.
 //! - [`maps`]: many-to-many index maps between spaces (clusters and their
 //!   particles) with gathers and segmented sums; [`position_solve`]: modules'
-//!   iterative solves over predicted positions.
+//!   iterative solves over predicted positions; [`population`]: particles born and
+//!   removed while a scene runs.
 //! - [`math`], [`kernel`], [`neighbors`], [`periodic`]: numeric types, SPH kernels, the
 //!   uniform grid, periodic domains (minimum-image pairs).
 //! - [`boundary`], [`sampling`]: wall particles and constraints, particle lattices;
@@ -58,6 +59,7 @@ pub mod modules;
 pub mod neighbors;
 pub mod periodic;
 pub mod plan;
+pub mod population;
 pub mod position_solve;
 pub mod quantities;
 pub mod quantize;

@@ -69,8 +69,8 @@ pub struct Section {
     /// Its key and type.
     pub def: SectionDef,
     /// What a scene that lists the module without the section is told, after the key
-    /// (`at least one fluid is required`).
-    pub missing: &'static str,
+    /// (`at least one fluid is required`); `None` for a section that may be left out.
+    pub missing: Option<&'static str>,
 }
 
 impl Section {

@@ -272,6 +272,10 @@ impl Simulation {
         match rayon::scope(|_| step(clock, backend)) {
             Ok(r) => {
                 self.record(&r);
+                let (steps, time) = (self.clock.steps(), self.clock.time());
+                if let Err(reason) = crate::population::after_step(self.backend.as_mut(), steps, time, r.dt) {
+                    return Err(self.fail(reason));
+                }
                 Ok(r)
             }
             Err(h) => {
@@ -355,6 +359,16 @@ impl Simulation {
         sim.halted = serde_json::from_str(&parts.halt).map_err(|e| bad(format!("halt: {e}")))?;
         sim.clock.restore(&parts.clock);
         snapshot::check_sections(sim.backend.model(), &parts.sections)?;
+        if sim.backend.model().population.is_some() {
+            // Checked: as many particles as ids, and the next id after them.
+            let find = |name: &str| parts.sections.iter().find(|s| s.name == name).map(|s| s.column.clone());
+            if let (Some(ids), Some(crate::attrs::Column::U32(next))) =
+                (find("id"), find(crate::population::NEXT_ID.name))
+            {
+                sim.backend.set_particle_count(ids.len());
+                sim.backend.model_mut().population.as_mut().expect("checked above").next_id = next[0];
+            }
+        }
         for s in parts.sections {
             sim.backend.upload(&s.name, s.column);
         }

@@ -155,6 +155,34 @@ fn read_v1(r: &mut Reader<'_>) -> Result<Parts, SnapshotError> {
 pub fn check_sections(model: &Model, sections: &[Section]) -> Result<(), SnapshotError> {
     let bad = |m: String| Err(SnapshotError::Malformed(m));
     let wanted: Vec<_> = model.layout.specs().filter(|s| s.role == Role::State).collect();
+    let saved_ids = sections.iter().find_map(|s| match (s.name.as_str(), &s.column) {
+        ("id", Column::U32(ids)) => Some(ids),
+        _ => None,
+    });
+    // Where particles are born and die, the saved scene holds as many as its ids
+    // (within its capacity), each below its next id.
+    let particles = match (&model.population, saved_ids) {
+        (Some(p), Some(ids)) => {
+            let next = sections.iter().find_map(|s| match (s.name.as_str(), &s.column) {
+                ("next_id", Column::U32(v)) => v.first().copied(),
+                _ => None,
+            });
+            let Some(next) = next else { return bad("no section for the scene's next particle id".into()) };
+            if ids.len() > p.capacity {
+                return bad(format!("{} particles, the scene holds at most {}", ids.len(), p.capacity));
+            }
+            let mut sorted = ids.clone();
+            sorted.sort_unstable();
+            if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+                return bad(format!("particle id {} twice", w[0]));
+            }
+            if sorted.last().is_some_and(|&last| last >= next) {
+                return bad(format!("particle id {} not below the next id {next}", sorted[sorted.len() - 1]));
+            }
+            ids.len()
+        }
+        _ => model.particle_count(),
+    };
     for spec in &wanted {
         let Some(s) = sections.iter().find(|s| s.name == spec.name) else {
             if spec.added_later {
@@ -162,7 +190,7 @@ pub fn check_sections(model: &Model, sections: &[Section]) -> Result<(), Snapsho
             }
             return bad(format!("no section for attribute {} ({})", spec.name, spec.module));
         };
-        let n = model.layout.count(spec.space);
+        let n = if spec.space == crate::attrs::PARTICLES { particles } else { model.layout.count(spec.space) };
         if s.column.elem() != spec.elem || s.column.len() != n {
             return bad(format!(
                 "section {}: {} values of {:?}, the scene has {n} of {:?}",
@@ -176,7 +204,7 @@ pub fn check_sections(model: &Model, sections: &[Section]) -> Result<(), Snapsho
     if let Some(s) = sections.iter().find(|s| !wanted.iter().any(|w| w.name == s.name)) {
         return bad(format!("section {} belongs to no state attribute of this scene", s.name));
     }
-    if let Some(Section { column: Column::U32(ids), .. }) = sections.iter().find(|s| s.name == "id") {
+    if let (None, Some(ids)) = (&model.population, saved_ids) {
         let mut seen = vec![false; ids.len()];
         for &i in ids {
             if i as usize >= ids.len() || std::mem::replace(&mut seen[i as usize], true) {

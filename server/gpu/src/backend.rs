@@ -146,7 +146,9 @@ impl GpuBackend {
             p.permute.dispatch(e, bind, n * words);
             e.encoder.copy_buffer_to_buffer(scratch, 0, b.get(name), 0, 4 * (n * words) as u64);
         }
-        p.slots.dispatch(e, &c.slots, n);
+        if let Some(slots) = &c.slots {
+            p.slots.dispatch(e, slots, n);
+        }
     }
 
     /// Records plan pass `i` with its own kernel, or with `fused` its fused kernel
@@ -186,6 +188,26 @@ impl GpuBackend {
         self.slot += 1;
         self.gpu.queue.write_buffer(&self.buffers.steps[slot], 0, bytemuck::bytes_of(&step));
         slot
+    }
+
+    /// Takes `n` live particles (births and deaths, a restore): the count in the
+    /// model, the scene constants, the permutations' and the passes' thread counts.
+    fn resized(&mut self, n: u32) {
+        self.flush();
+        self.n = n;
+        self.model.set_particle_count(n as usize);
+        let (gpu, b) = (&self.gpu, &self.buffers);
+        gpu.queue.write_buffer(b.get("params"), 0, bytemuck::bytes_of(&Params::new(&self.model, &self.grid)));
+        for (stride, buffer) in &b.strides {
+            gpu.queue.write_buffer(buffer, 0, bytemuck::bytes_of(&Words { n, stride: *stride, ..Words::default() }));
+        }
+        for p in &mut self.passes {
+            let space =
+                p.kernel.as_ref().and(crate::pass::find(p.spec.name, &self.model)).map_or(PARTICLES, |k| k.space);
+            if space == PARTICLES {
+                p.threads = n;
+            }
+        }
     }
 
     /// Elements of `space`.
@@ -331,6 +353,11 @@ impl Stages for GpuBackend {
     }
 }
 
+/// The declaration of attribute `name` of `model` (one it has).
+fn layout_spec(model: &Model, name: &str) -> &'static floe_engine::attrs::AttrSpec {
+    model.layout.spec(name).unwrap_or_else(|| panic!("no attribute {name}"))
+}
+
 impl Backend for GpuBackend {
     fn name(&self) -> &'static str {
         "gpu"
@@ -406,7 +433,9 @@ impl Backend for GpuBackend {
         b.retain(|name| layout.spec(name).is_some());
         for spec in layout.specs() {
             if b.find(spec.name).is_none() && !PACKED.iter().any(|(a, _)| *a == spec.name) {
-                b.add(&gpu.device, spec, layout.count(spec.space) as u64);
+                let room =
+                    if spec.space == PARTICLES { self.model.particle_capacity() } else { layout.count(spec.space) };
+                b.add(&gpu.device, spec, room as u64);
             }
         }
         self.reductions.clear();
@@ -444,6 +473,74 @@ impl Backend for GpuBackend {
         self.ran.clone()
     }
 
+    /// Counts the particles marked (a sum reduction, 4 bytes back); where there are
+    /// some, copies the particles' state back, keeps the others in order and uploads
+    /// it (a copy of the particle state, only in a step that removed particles).
+    fn compact(&mut self) {
+        let marked = self.reduce(&Reduction { attr: floe_engine::population::REMOVE.name, op: ReduceOp::Sum });
+        if !marked.is_ok_and(|m| m > 0.0) {
+            return;
+        }
+        let layout = &self.model.layout;
+        let mut names: Vec<&'static str> = layout
+            .specs()
+            .filter(|s| s.space == PARTICLES && s.role == floe_engine::attrs::Role::State && s.name != "material")
+            .map(|s| s.name)
+            .collect();
+        // The material after the positions, whose w it rides in.
+        names.extend(layout.spec("material").map(|s| s.name));
+        let remove = self.download(&[floe_engine::population::REMOVE.name]).remove(0);
+        let Column::F32(remove) = remove else { unreachable!("remove is declared f32") };
+        let keep: Vec<bool> = remove.iter().map(|&r| r == 0.0).collect();
+        let columns = self.download(&names);
+        let n = keep.iter().filter(|&&k| k).count();
+        self.resized(n as u32);
+        let zero = vec![0u8; 4 * remove.len()];
+        self.gpu.queue.write_buffer(self.buffers.get(floe_engine::population::REMOVE.name), 0, &zero);
+        for (name, column) in names.into_iter().zip(columns) {
+            let mut attrs = floe_engine::attrs::Attrs::new(vec![(layout_spec(&self.model, name), column)]);
+            attrs.retain(PARTICLES, &keep);
+            let (_, kept) = attrs.into_columns().remove(0);
+            self.upload(name, kept);
+        }
+    }
+
+    /// Writes the births after the live particles: their positions (with their
+    /// material in w), velocities and ids, every other attribute of theirs zero.
+    fn emit(&mut self, births: &floe_engine::population::Births, first_id: u32) {
+        self.flush();
+        let (n, k) = (self.n as u64, births.len());
+        let specs: Vec<&'static floe_engine::attrs::AttrSpec> = self
+            .model
+            .layout
+            .specs()
+            .filter(|s| s.space == PARTICLES && !PACKED.iter().any(|(a, _)| *a == s.name))
+            .collect();
+        for spec in specs {
+            let column = match spec.name {
+                "x" => {
+                    let mut words = gpu_words(&Column::Vec3(births.x.clone()));
+                    if self.model.layout.spec("material").is_some() {
+                        for (j, &m) in births.material.iter().enumerate() {
+                            words[4 * j + 3] = (m as f32).to_bits();
+                        }
+                    }
+                    words
+                }
+                "v" => gpu_words(&Column::Vec3(births.v.clone())),
+                "id" => (first_id..first_id + k as u32).collect(),
+                _ => gpu_words(&Column::zeros(spec.elem, k)),
+            };
+            let at = 4 * spec.elem.gpu_words() as u64 * n;
+            self.gpu.queue.write_buffer(self.buffers.get(spec.name), at, bytemuck::cast_slice(&column));
+        }
+        self.resized((n as usize + k) as u32);
+    }
+
+    fn set_particle_count(&mut self, n: usize) {
+        self.resized(n as u32);
+    }
+
     fn kernel_times(&self) -> Vec<(&'static str, f64, u64)> {
         self.timer.as_ref().map(|t| t.totals().to_vec()).unwrap_or_default()
     }
@@ -453,15 +550,15 @@ impl Backend for GpuBackend {
     }
 
     fn read_on_grid(&self, set: &SetSpec, channels: &[&str], grid: &PositionGrid) -> Particles {
-        if set.space != PARTICLES {
+        let Some(quantize) = self.core.quantize.as_ref().filter(|_| set.space == PARTICLES) else {
             return self.read_set(set, channels);
-        }
+        };
         let b = &self.buffers;
         self.gpu.queue.write_buffer(b.get("quant_grid"), 0, bytemuck::bytes_of(&QuantGrid::from(grid)));
         let encoder =
             self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("quantize") });
         let mut e = Recorder { encoder, timer: None };
-        self.gpu.programs.quantize.dispatch(&mut e, &self.core.quantize, self.n.div_ceil(2));
+        self.gpu.programs.quantize.dispatch(&mut e, quantize, self.n.div_ceil(2));
         self.gpu.queue.submit([e.encoder.finish()]);
         let got = self.download_words(&[(b.get("codes"), 0, 12 * (self.n as u64).div_ceil(2))]);
         let codes: &[u16] = bytemuck::cast_slice(&got[0]);

@@ -97,7 +97,8 @@ impl Buffers {
     /// when the scene exceeds the device's limits, naming what does not fit.
     pub fn new(gpu: &GpuContext, model: &mut Model, grid: &Grid) -> Result<Self, BuildError> {
         let device = &gpu.device;
-        let n = model.particle_count() as u64;
+        // Room for every particle the scene may hold (births write into it).
+        let n = model.particle_capacity() as u64;
         let cells = grid.cell_count() as u64;
         let too_big = |what: &str, bytes: u64| {
             BuildError::Backend(format!(
@@ -129,6 +130,9 @@ impl Buffers {
                 continue;
             }
             let mut words = gpu_words(column);
+            if spec.space == floe_engine::attrs::PARTICLES {
+                words.resize(n as usize * spec.elem.gpu_words(), 0);
+            }
             if spec.name == "x"
                 && let Some(m) = &material
             {
@@ -200,8 +204,8 @@ impl Buffers {
         for (spec, _) in &attrs {
             let s = spec.elem.gpu_words() as u32;
             if !strides.iter().any(|(t, _)| *t == s) {
-                let words = Words { n: n as u32, stride: s, ..Words::default() };
-                strides.push((s, init(device, "permutation", &[words], U::UNIFORM)));
+                let words = Words { n: model.particle_count() as u32, stride: s, ..Words::default() };
+                strides.push((s, init(device, "permutation", &[words], U::UNIFORM | U::COPY_DST)));
             }
         }
         Ok(Self {

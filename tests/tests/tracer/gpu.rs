@@ -31,6 +31,7 @@ pub static MODULE: GpuModule = GpuModule {
         &MEMBER_SUM,
         &COLUMNS,
         &RAISE_GROUND,
+        &EXPIRE,
     ],
     uniforms: &[("tracer", uniform)],
 };
@@ -98,6 +99,15 @@ static RAISE_GROUND: GpuPass = GpuPass {
     when: always,
 };
 
+static EXPIRE: GpuPass = GpuPass {
+    name: "tracer.expire",
+    source: kernel!("tracer.wgsl", "expire.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "tracer"), (R, "age"), (W, "remove")],
+    space: PARTICLES,
+    when: always,
+};
+
 static GROUP_X: GpuPass =
     floe_gpu::map_pass!(gather "tracer.group_x", map "tracer_groups", words 4, from "x" into "tracer_groups_x");
 static GROUP_SUM: GpuPass = floe_gpu::map_pass!(segment_sum "tracer.group_sum", map "tracer_groups", segments "groups", words 4, from "tracer_groups_x" into "group_x_sum");
@@ -117,7 +127,7 @@ fn uniform(model: &Model) -> Option<Vec<u8>> {
         f(g.origin[0]),
         f(g.origin[1]),
         f(g.origin[2]),
-        0,
+        f(c.lifetime),
         f(g.size[0]),
         f(g.size[1]),
         f(g.size[2]),

@@ -13,7 +13,8 @@
 //! - `probes`, a second particle set of four points on the domain's diagonal, with
 //!   `probe_age` (s): the mean age of the particles, written by `tracer.probe` after
 //!   each step.
-//! - `tracer_groups`, an index map: sixteen groups of particles, each particle in
+//! - `tracer_groups`, an index map (in scenes whose particles are never born nor
+//!   die): sixteen groups of particles, each particle in
 //!   two (`id % 8` and `8 + (id / 8) % 8`). After each step `group_x_sum` is each
 //!   group's sum of its live members' positions (m) and `group_sums` each
 //!   particle's sum of its groups' sums: a gather, a segmented sum, a spread and a
@@ -31,6 +32,10 @@
 //! - `tracer.raise_ground`, in scenes with a terrain: the core's `ground_height` rises
 //!   at `RISE` (m/s) everywhere, a ground that grows under the particles.
 //!
+//! - Births and deaths, where the scene has a `tracer` section: `births` particles
+//!   born after every step at the first of the scene's initial positions, at rest;
+//!   particles older than `lifetime` (s) removed (`tracer.expire` marks them).
+//!
 //! Its GPU half (`gpu.rs`) is registered as the module is, from outside floe-gpu.
 
 use floe_engine::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
@@ -42,9 +47,14 @@ use floe_engine::maps::cpu::{Gather, MemberSum, SegmentSum, Spread};
 use floe_engine::math::{Mat3, Quat, Vec3};
 use floe_engine::model::{BuildError, ModelBuilder};
 use floe_engine::module::ModuleDef;
+use floe_engine::module::Section;
 use floe_engine::plan::{PassSpec, Stage};
+use floe_engine::population::{Births, Emitter};
 use floe_engine::scene::Scene;
+use floe_engine::scene::sections::SectionDef;
 use floe_engine::scheme::{Iterate, Op, ReduceOp, Reduction};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 pub mod gpu;
 
@@ -53,9 +63,9 @@ pub static MODULE: ModuleDef = ModuleDef {
     id: "tracer",
     about: "Particle ages and probes (a module of the tests).",
     requires: &["fluid"],
-    section: None,
-    validate: |_, _| {},
-    count: |_| vec![(PROBES, 4)],
+    section: Some(Section { def: SectionDef::of::<TracerSpec>("tracer"), missing: None }),
+    validate,
+    count: |scene| vec![(PROBES, 4), (PARTICLES, u64::from(spec(scene).room()))],
     materials: |_| 0,
     claims: |_| Vec::new(),
     particles: |_, _| Ok(()),
@@ -74,6 +84,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("tracer.floor_depth", &FloorDepth),
         ("tracer.columns", &Columns),
         ("tracer.raise_ground", &RaiseGround),
+        ("tracer.expire", &Expire),
     ],
     presets: &[],
     dt_limit: |_| None,
@@ -82,6 +93,40 @@ pub static MODULE: ModuleDef = ModuleDef {
     stability: &[],
     bench: &[],
 };
+
+/// The tracer's scene section (optional): births and deaths.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TracerSpec {
+    /// Particles born after every step, at rest at the first of the scene's initial
+    /// positions (0: none).
+    #[serde(default)]
+    pub births: u32,
+    /// Particles older than this (s) are removed after each step (absent: none).
+    #[serde(default)]
+    pub lifetime: Option<f32>,
+    /// Room for this many particles beyond the initial ones (default: ten steps' births).
+    #[serde(default)]
+    pub reserve: Option<u32>,
+}
+
+impl TracerSpec {
+    /// Room reserved for particles beyond the initial ones.
+    fn room(&self) -> u32 {
+        if self.births > 0 { self.reserve.unwrap_or(10 * self.births) } else { 0 }
+    }
+}
+
+fn spec(scene: &Scene) -> TracerSpec {
+    scene.section("tracer").unwrap_or_default()
+}
+
+fn validate(scene: &Scene, c: &mut floe_engine::scene::validate::Checker) {
+    let s = spec(scene);
+    if let Some(l) = s.lifetime {
+        c.within("tracer.lifetime", l, 0.0, 1e3);
+    }
+}
 
 /// The probes' space.
 const PROBES: &str = "probes";
@@ -213,6 +258,22 @@ static RAISE_GROUND: PassSpec = PassSpec {
     tolerance: 0.0,
 };
 
+static EXPIRE: PassSpec = PassSpec {
+    name: "tracer.expire",
+    module: "tracer",
+    stage: Stage::PostStep,
+    reads: &["age"],
+    writes: &[],
+    accumulates: &["remove"],
+    tolerance: 0.0,
+};
+
+/// The births of every step: at rest at the first initial positions.
+fn emit(model: &floe_engine::model::Model, _: u64, _: f64, _: f32) -> Births {
+    let at = &model.consts::<TracerConsts>().births;
+    Births { x: at.clone(), v: vec![Vec3::ZERO; at.len()], material: vec![0; at.len()] }
+}
+
 /// Colours of the floor solve (its sweeps).
 pub const COLOURS: u32 = 4;
 
@@ -268,12 +329,16 @@ pub const FLOOR_SOLVE: Iterate = Iterate {
 };
 
 /// The tracer's constants.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct TracerConsts {
     /// Height of the floor (m): the lowest initial particle's.
     pub floor: f32,
     /// The columns' grid.
     pub columns: floe_proto::GridInfo,
+    /// Where particles are born, each step (m).
+    pub births: Vec<Vec3>,
+    /// Particles older than this (s) are removed (infinite: none).
+    pub lifetime: f32,
 }
 
 fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
@@ -289,24 +354,46 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.pass(&SPIN_PASS);
     b.pass(&PROBE_PASS);
     b.set(SetSpec { name: "probes", space: PROBES, position: "probe_x", id: None, grid: None });
-    let n = b.count(PARTICLES) as u32;
-    let mut lists = vec![Vec::new(); GROUP_COUNT];
-    for id in 0..n {
-        for g in groups_of(id) {
-            lists[g].push(id);
+    let s = spec(b.scene);
+    // The groups address particles by id, which a scene whose particles are born and
+    // die cannot (see floe_engine::population).
+    if s.births == 0 && s.lifetime.is_none() {
+        let n = b.count(PARTICLES) as u32;
+        let mut lists = vec![Vec::new(); GROUP_COUNT];
+        for id in 0..n {
+            for g in groups_of(id) {
+                lists[g].push(id);
+            }
+        }
+        b.map(&GROUPS, &lists);
+        for spec in [&GROUP_X, &GROUP_X_SUM, &GROUP_SUM_SPREAD, &GROUP_SUMS] {
+            b.zeros(spec);
+        }
+        for pass in [&GROUP_X_PASS, &GROUP_SUM_PASS, &GROUP_SPREAD_PASS, &MEMBER_SUM_PASS] {
+            b.pass(pass);
         }
     }
-    b.map(&GROUPS, &lists);
-    for spec in [&GROUP_X, &GROUP_X_SUM, &GROUP_SUM_SPREAD, &GROUP_SUMS, &DEPTH] {
-        b.zeros(spec);
+    b.zeros(&DEPTH);
+    b.pass(&FLOOR_PROJECT);
+    b.pass(&FLOOR_DEPTH);
+    let Some(Column::Vec3(initial)) = b.column("x") else { unreachable!("the core allocates positions first") };
+    let floor = initial.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+    if s.births as usize > initial.len() {
+        return Err(BuildError::Backend(format!(
+            "tracer.births: at most the {} initial positions, got {}",
+            initial.len(),
+            s.births
+        )));
     }
-    for pass in [&GROUP_X_PASS, &GROUP_SUM_PASS, &GROUP_SPREAD_PASS, &MEMBER_SUM_PASS, &FLOOR_PROJECT, &FLOOR_DEPTH] {
-        b.pass(pass);
+    let births = initial[..s.births as usize].to_vec();
+    if !births.is_empty() {
+        b.reserve(s.room() as usize);
+        b.emitter(Emitter { name: "tracer.births", emit });
     }
-    let floor = match b.column("x") {
-        Some(Column::Vec3(x)) => x.iter().map(|p| p.y).fold(f32::INFINITY, f32::min),
-        _ => unreachable!("the core allocates positions first"),
-    };
+    if s.lifetime.is_some() {
+        b.removal();
+        b.pass(&EXPIRE);
+    }
     let d = b.domain();
     let columns = floe_proto::GridInfo {
         origin: d.min.to_array(),
@@ -330,7 +417,8 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     if b.count(floe_engine::terrain::GROUND_SPACE) > 0 {
         b.pass(&RAISE_GROUND);
     }
-    b.set_consts(TracerConsts { floor, columns });
+    let lifetime = s.lifetime.unwrap_or(f32::INFINITY);
+    b.set_consts(TracerConsts { floor, columns, births, lifetime });
     b.position_solve(FLOOR_SOLVE);
     b.channel(ChannelSpec {
         name: "age",
@@ -467,5 +555,21 @@ impl CpuPass for RaiseGround {
         let rise = RISE * cx.dt;
         let h = cx.attrs.handle::<f32>("ground_height");
         cx.attrs.get_mut(h).iter_mut().for_each(|g| *g += rise);
+    }
+}
+
+/// Marks the particles older than the lifetime for removal.
+#[derive(Debug)]
+struct Expire;
+
+impl CpuPass for Expire {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let lifetime = cx.model.consts::<TracerConsts>().lifetime;
+        let r = cx.attrs.handle::<f32>("remove");
+        let mut remove = cx.attrs.take(r);
+        for (r, &age) in remove.iter_mut().zip(cx.attrs.get(cx.attrs.handle::<f32>("age"))) {
+            *r += if age > lifetime { 1.0 } else { 0.0 };
+        }
+        cx.attrs.put(r, remove);
     }
 }

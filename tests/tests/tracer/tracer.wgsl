@@ -8,7 +8,8 @@ struct Tracer {
     rise: f32,
     // The columns' grid: origin and size (m), cells per axis.
     origin: vec3<f32>,
-    _pad1: u32,
+    // Particles older than this (s) are removed (infinite: none).
+    lifetime: f32,
     size: vec3<f32>,
     _pad2: u32,
     dims: vec3<u32>,

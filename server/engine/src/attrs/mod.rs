@@ -196,6 +196,19 @@ impl Column {
         self.len() == 0
     }
 
+    /// Elements it has room for without reallocating.
+    pub fn capacity(&self) -> usize {
+        match self {
+            Column::F32(v) => v.capacity(),
+            Column::U32(v) => v.capacity(),
+            Column::Vec3(v) => v.capacity(),
+            Column::Vec4(v) => v.capacity(),
+            Column::Sym3(v) => v.capacity(),
+            Column::Mat3(v) => v.capacity(),
+            Column::Quat(v) => v.capacity(),
+        }
+    }
+
     /// The values as 32-bit words, element by element (f32 by their bits).
     pub fn words(&self) -> Vec<u32> {
         match self {
@@ -247,6 +260,42 @@ impl Column {
             Column::Sym3(v) => v.iter().position(|x| x.iter().any(|c| !c.is_finite())),
             Column::Mat3(v) => v.iter().position(|x| !x.is_finite()),
             Column::Quat(v) => v.iter().position(|x| !x.is_finite()),
+        }
+    }
+
+    /// Keeps the elements where `keep` is true, in order.
+    fn retain(&mut self, keep: &[bool]) {
+        fn go<T>(v: &mut Vec<T>, keep: &[bool]) {
+            let mut k = keep.iter();
+            v.retain(|_| *k.next().expect("one flag per element"));
+        }
+        match self {
+            Column::F32(v) => go(v, keep),
+            Column::U32(v) => go(v, keep),
+            Column::Vec3(v) => go(v, keep),
+            Column::Vec4(v) => go(v, keep),
+            Column::Sym3(v) => go(v, keep),
+            Column::Mat3(v) => go(v, keep),
+            Column::Quat(v) => go(v, keep),
+        }
+    }
+
+    /// Resizes to `n` elements, appending zeros (identity rotations), and reserves room
+    /// for `capacity` in all.
+    fn resize(&mut self, n: usize, capacity: usize) {
+        fn go<T: Clone>(v: &mut Vec<T>, n: usize, capacity: usize, zero: T) {
+            v.reserve_exact(capacity.saturating_sub(v.len()));
+            v.shrink_to(capacity);
+            v.resize(n, zero);
+        }
+        match self {
+            Column::F32(v) => go(v, n, capacity, 0.0),
+            Column::U32(v) => go(v, n, capacity, 0),
+            Column::Vec3(v) => go(v, n, capacity, Vec3::ZERO),
+            Column::Vec4(v) => go(v, n, capacity, [0.0; 4]),
+            Column::Sym3(v) => go(v, n, capacity, [0.0; 6]),
+            Column::Mat3(v) => go(v, n, capacity, Mat3::ZERO),
+            Column::Quat(v) => go(v, n, capacity, Quat::IDENTITY),
         }
     }
 
@@ -455,14 +504,35 @@ impl Attrs {
         }
     }
 
-    /// What each column takes.
+    /// Keeps the elements of `space` where `keep` is true (one flag each), in order,
+    /// in every column of the space.
+    pub fn retain(&mut self, space: &str, keep: &[bool]) {
+        for (spec, column) in self.specs.iter().zip(&mut self.columns) {
+            if spec.space == space {
+                column.retain(keep);
+            }
+        }
+    }
+
+    /// Resizes every column of `space` to `n` elements (appending zeros, identity
+    /// rotations), with room for `capacity` in all.
+    pub fn resize(&mut self, space: &str, n: usize, capacity: usize) {
+        for (spec, column) in self.specs.iter().zip(&mut self.columns) {
+            if spec.space == space {
+                column.resize(n, capacity);
+            }
+        }
+    }
+
+    /// What each column takes (the room it holds: a column that grows within its
+    /// reserved capacity takes no more).
     pub fn allocations(&self) -> Vec<Allocation> {
         self.iter()
             .map(|(s, c)| Allocation {
                 name: s.name,
                 module: s.module,
                 space: s.space,
-                bytes: (c.len() * s.elem.cpu_bytes()) as u64,
+                bytes: (c.capacity() * s.elem.cpu_bytes()) as u64,
             })
             .collect()
     }

@@ -56,7 +56,8 @@ pub static PASSES: &[(&str, &dyn CpuPass)] =
     &[("core.sort", &Sort), ("core.density", &Density::<true>), ("core.neighbours", &Density::<false>)];
 
 /// Counting sort by cell (stable: sorting sorted particles changes nothing); every
-/// state attribute of the particle space follows, and `slot_of` is rebuilt.
+/// state attribute of the particle space follows, and `slot_of` is rebuilt (where
+/// the scene has it: not where particles are born and die).
 #[derive(Debug)]
 struct Sort;
 
@@ -65,7 +66,8 @@ impl CpuPass for Sort {
         let x = cx.attrs.handle::<Vec3>("x");
         cx.grid.sort(cx.attrs.get(x), &mut cx.sort.cells, &mut cx.sort.order);
         cx.attrs.permute(crate::attrs::PARTICLES, &cx.sort.order);
-        let (ids, slot) = (cx.attrs.handle::<u32>("id"), cx.attrs.handle::<u32>("slot_of"));
+        let Some(slot) = cx.attrs.find::<u32>("slot_of") else { return };
+        let ids = cx.attrs.handle::<u32>("id");
         let mut slot_of = cx.attrs.take(slot);
         for (k, &id) in cx.attrs.get(ids).iter().enumerate() {
             slot_of[id as usize] = k as u32;

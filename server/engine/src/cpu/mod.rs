@@ -102,7 +102,10 @@ pub struct CpuBackend {
 impl CpuBackend {
     /// Takes ownership of a model's initial state.
     pub fn new(mut model: Model) -> Self {
-        let attrs = Attrs::new(model.layout.take_columns());
+        let mut attrs = Attrs::new(model.layout.take_columns());
+        // Room for every particle the scene may hold, so births allocate nothing.
+        let (n, capacity) = (model.particle_count(), model.particle_capacity());
+        attrs.resize(crate::attrs::PARTICLES, n, capacity);
         let grid = Grid::new(model.domain, model.kernel.support(), model.periodic.axes);
         let passes = Self::resolve(&model);
         Self {
@@ -260,6 +263,8 @@ impl Backend for CpuBackend {
                 })
                 .collect();
             self.attrs = Attrs::new(columns);
+            let (n, capacity) = (self.model.particle_count(), self.model.particle_capacity());
+            self.attrs.resize(crate::attrs::PARTICLES, n, capacity);
         }
         self.passes = Self::resolve(&self.model);
     }
@@ -268,8 +273,39 @@ impl Backend for CpuBackend {
         &mut self.model
     }
 
+    /// Each column's room (the particle attributes' holds the scene's capacity).
     fn allocations(&self) -> Vec<Allocation> {
         self.attrs.allocations()
+    }
+
+    fn compact(&mut self) {
+        let remove = self.attrs.get(self.attrs.handle::<Real>(crate::population::REMOVE.name));
+        if remove.iter().all(|&r| r == 0.0) {
+            return;
+        }
+        let keep: Vec<bool> = remove.iter().map(|&r| r == 0.0).collect();
+        self.attrs.retain(crate::attrs::PARTICLES, &keep);
+        self.model.set_particle_count(keep.iter().filter(|&&k| k).count());
+    }
+
+    fn emit(&mut self, births: &crate::population::Births, first_id: u32) {
+        let n = self.model.particle_count();
+        let total = n + births.len();
+        self.set_particle_count(total);
+        let a = &mut self.attrs;
+        let (x, v, id) =
+            (a.handle::<crate::math::Vec3>("x"), a.handle::<crate::math::Vec3>("v"), a.handle::<u32>("id"));
+        a.get_mut(x)[n..].copy_from_slice(&births.x);
+        a.get_mut(v)[n..].copy_from_slice(&births.v);
+        a.get_mut(id)[n..].iter_mut().zip(first_id..).for_each(|(i, next)| *i = next);
+        if let Some(m) = a.find::<u32>("material") {
+            a.get_mut(m)[n..].copy_from_slice(&births.material);
+        }
+    }
+
+    fn set_particle_count(&mut self, n: usize) {
+        self.attrs.resize(crate::attrs::PARTICLES, n, self.model.particle_capacity());
+        self.model.set_particle_count(n);
     }
 
     fn passes_run(&self) -> Vec<&'static str> {

@@ -41,6 +41,10 @@ pub struct ModelBuilder<'s> {
     position_solves: Vec<crate::scheme::Iterate>,
     maps: Vec<&'static crate::maps::MapSpec>,
     domain: Option<Aabb>,
+    /// Births and deaths: room reserved, emitters, whether passes remove particles.
+    reserved: usize,
+    emitters: Vec<crate::population::Emitter>,
+    removal: bool,
     channels: Vec<ChannelSpec>,
     sets: Vec<SetSpec>,
     bounds: Vec<Bound>,
@@ -71,6 +75,9 @@ impl<'s> ModelBuilder<'s> {
             position_solves: Vec::new(),
             maps: Vec::new(),
             domain: None,
+            reserved: 0,
+            emitters: Vec::new(),
+            removal: false,
             channels: Vec::new(),
             bounds: Vec::new(),
             sets: vec![crate::channels::PARTICLE_SET],
@@ -237,6 +244,26 @@ impl<'s> ModelBuilder<'s> {
         self.maps.push(map);
     }
 
+    /// Reserves room for `extra` particles beyond those the scene starts with (see
+    /// [`crate::population`]).
+    pub fn reserve(&mut self, extra: usize) {
+        self.reserved += extra;
+    }
+
+    /// Adds an emitter of particles, run after every step (see [`crate::population`]).
+    pub fn emitter(&mut self, emitter: crate::population::Emitter) {
+        self.emitters.push(emitter);
+    }
+
+    /// Declares that passes mark particles to remove in the core's `remove`
+    /// attribute (allocated here), which the core removes after every step.
+    pub fn removal(&mut self) {
+        if !self.removal {
+            self.removal = true;
+            self.zeros(&crate::population::REMOVE);
+        }
+    }
+
     /// Offers a channel.
     pub fn channel(&mut self, spec: ChannelSpec) {
         self.channels.push(spec);
@@ -310,6 +337,7 @@ impl<'s> ModelBuilder<'s> {
             d,
             layers.max().unwrap_or(1),
         );
+        let population = self.population(n)?;
         let names: Vec<&str> = self.layout.specs().map(|s| s.name).collect();
         let plan = Plan::build(std::mem::take(&mut self.passes), &names)?;
         let sound_speed = self.sound_speed;
@@ -336,11 +364,39 @@ impl<'s> ModelBuilder<'s> {
             velocity_solves: self.velocity_solves,
             position_solves: self.position_solves,
             maps: self.maps,
+            population,
             channels: self.channels,
             bounds: self.bounds,
             sets: self.sets,
             consts: self.consts,
         })
+    }
+
+    /// A scene whose particles are born or die, of `n` particles at first: its
+    /// counters, the sort without `slot_of` (ids grow without bound), and no index
+    /// map over its particles.
+    fn population(&mut self, n: usize) -> Result<Option<crate::population::Population>, BuildError> {
+        use crate::population::{COUNTERS, NEXT_ID, Population, SORT};
+        if self.emitters.is_empty() && !self.removal {
+            return Ok(None);
+        }
+        if let Some(m) = self.maps.iter().find(|m| m.sorted()) {
+            return Err(BuildError::Backend(format!(
+                "index map {} addresses particles by id through slot_of, which a scene whose particles are born or die has not",
+                m.name
+            )));
+        }
+        self.layout.attrs.retain(|(s, _)| s.name != core_attrs::SLOT.name);
+        self.replace_pass(SORT.name, &SORT);
+        self.space(COUNTERS, 1);
+        self.attr(&NEXT_ID, Column::U32(vec![n as u32]));
+        let capacity = n + self.reserved;
+        Ok(Some(Population {
+            capacity,
+            emitters: std::mem::take(&mut self.emitters),
+            removal: self.removal,
+            next_id: n as u32,
+        }))
     }
 
     /// The core's spaces, attributes, passes and channels.

@@ -217,6 +217,8 @@ pub struct Model {
     pub position_solves: Vec<crate::scheme::Iterate>,
     /// The index maps ([`crate::maps`]).
     pub maps: Vec<&'static crate::maps::MapSpec>,
+    /// Births and deaths, in a scene that has them ([`crate::population`]).
+    pub population: Option<crate::population::Population>,
     /// The channels frames and exports can carry.
     pub channels: Vec<ChannelSpec>,
     /// The particle sets frames can carry.
@@ -285,9 +287,21 @@ impl Model {
         self.plan = Plan::build(list, &names).expect("a toggled feature keeps the plan valid");
     }
 
-    /// Number of SPH particles.
+    /// Number of SPH particles (live ones, in a scene whose particles are born and die).
     pub fn particle_count(&self) -> usize {
         self.layout.count(PARTICLES)
+    }
+
+    /// Particles the scene can hold at once: its count, or its population's capacity.
+    pub fn particle_capacity(&self) -> usize {
+        self.population.as_ref().map_or(self.particle_count(), |p| p.capacity)
+    }
+
+    /// Sets the live count of the particle space (births and deaths, a restore).
+    pub fn set_particle_count(&mut self, n: usize) {
+        if let Some(s) = self.layout.spaces.iter_mut().find(|(s, _)| *s == PARTICLES) {
+            s.1 = n;
+        }
     }
 
     /// Whether the scene has module `id`.

@@ -217,7 +217,11 @@ fn check_modules(c: &mut Checker, scene: &Scene) {
         let Some(section) = def.section else { continue };
         let listed = scene.modules.iter().any(|m| m == def.id);
         match (listed, scene.sections.has(section.key())) {
-            (true, false) => c.fail(section.key(), section.missing.into()),
+            (true, false) => {
+                if let Some(missing) = section.missing {
+                    c.fail(section.key(), missing.into());
+                }
+            }
             (false, true) => {
                 c.fail("modules", format!("must list {:?}, since the scene has its section {}", def.id, section.key()))
             }

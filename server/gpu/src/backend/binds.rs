@@ -36,11 +36,13 @@ pub(super) struct CoreBinds {
     /// Per state attribute of the particle space: its name, words per element and
     /// the permutation's bind group (into the scratch buffer).
     pub(super) permutes: Vec<(&'static str, u32, BindGroup)>,
-    pub(super) slots: BindGroup,
+    /// The slot of each id (none in a scene whose particles are born and die).
+    pub(super) slots: Option<BindGroup>,
     pub(super) measure: BindGroup,
     /// One per step slot (kick and drift share a layout).
     pub(super) integrate: Vec<BindGroup>,
-    pub(super) quantize: BindGroup,
+    /// Positions quantised in id order through `slot_of` (none without it).
+    pub(super) quantize: Option<BindGroup>,
 }
 
 /// Binds the core's kernels to a scene's buffers.
@@ -61,7 +63,7 @@ pub(super) fn core_binds(gpu: &GpuContext, b: &Buffers, grid: &Grid) -> CoreBind
         grid: p.grid_count.bind(d, &[b.get("params"), b.get("x"), b.get("cell_rank"), b.get("starts"), b.get("order")]),
         scan: p.scan.plan(d, b.get("starts"), grid.cell_count() as u32 + 1),
         permutes,
-        slots: p.slots.bind(d, &[stride(1), b.get("order"), b.get("id"), b.get("slot_of")]),
+        slots: b.find("slot_of").map(|s| p.slots.bind(d, &[stride(1), b.get("order"), b.get("id"), s])),
         measure: p
             .measure_partials
             .bind(d, &[b.get("params"), b.get("x"), b.get("v"), b.get("a"), b.get("rho"), b.get("partials")]),
@@ -78,9 +80,9 @@ pub(super) fn core_binds(gpu: &GpuContext, b: &Buffers, grid: &Grid) -> CoreBind
                 p.kick.bind(d, &[b.get("params"), s, x, v, a, b.get("constraints"), ground, transport])
             })
             .collect(),
-        quantize: p
-            .quantize
-            .bind(d, &[b.get("params"), b.get("quant_grid"), b.get("x"), b.get("slot_of"), b.get("codes")]),
+        quantize: b
+            .find("slot_of")
+            .map(|s| p.quantize.bind(d, &[b.get("params"), b.get("quant_grid"), b.get("x"), s, b.get("codes")])),
     }
 }
 

@@ -39,7 +39,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     requires: &[],
     section: Some(Section {
         def: SectionDef::of::<Vec<spec::Fluid>>(SECTION),
-        missing: "at least one fluid is required",
+        missing: Some("at least one fluid is required"),
     }),
     validate,
     count,

@@ -45,7 +45,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     requires: &["fluid"],
     section: Some(Section {
         def: SectionDef::of::<spec::Heat>(SECTION),
-        missing: "required by the module \"heat\" (each fluid's thermal properties)",
+        missing: Some("required by the module \"heat\" (each fluid's thermal properties)"),
     }),
     validate,
     count: |_| Vec::new(),

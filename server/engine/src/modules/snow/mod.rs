@@ -42,7 +42,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     requires: &["fluid"],
     section: Some(Section {
         def: SectionDef::of::<spec::Snow>(SECTION),
-        missing: "required by the module \"snow\" (each fluid's rheology)",
+        missing: Some("required by the module \"snow\" (each fluid's rheology)"),
     }),
     validate,
     count: |_| Vec::new(),
