@@ -312,5 +312,6 @@ pub fn particles(frame: Frame, scene: Option<&SceneInfo>) -> Particles {
         positions: frame.positions,
         channels: frame.channels.into_iter().map(|(kind, values)| (name(kind), values)).collect(),
         grid: frame.grid,
+        ids: frame.ids,
     }
 }

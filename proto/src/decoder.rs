@@ -35,6 +35,8 @@ struct Base {
     channels: Vec<ChannelCodes>,
     /// Position codes of the frame this one predicted from, if it was a delta frame.
     before: Option<Vec<Vec<u16>>>,
+    /// The particles' ids, where the frame carried them.
+    ids: Option<Vec<u32>>,
 }
 
 /// Decodes a stream of frames from one encoder.
@@ -92,7 +94,8 @@ impl Decoder {
         };
         let mut r = Reader::new(frame, "channel payloads");
         r.skip(header.encoded_len())?;
-        let mut out = Frame { header: header.clone(), positions: Vec::new(), grid: None, channels: Vec::new() };
+        let mut out =
+            Frame { header: header.clone(), positions: Vec::new(), grid: None, channels: Vec::new(), ids: None };
         let mut kept = Vec::new();
         for (i, info) in header.channels.iter().enumerate() {
             let payload = r.take(info.payload_len as usize)?;
@@ -117,6 +120,8 @@ impl Decoder {
                     ))));
                 }
                 out.grid = Some(grid);
+            } else if kind == ChannelKind::IDS {
+                out.ids = Some(read_ids(&mut p, n).map_err(in_channel)?);
             } else if info.predictor == Predictor::Morton {
                 out.positions =
                     unordered::read_positions(&mut p, n, &quantizers, &mut self.keys).map_err(in_channel)?;
@@ -157,6 +162,16 @@ impl Decoder {
                 return Err(in_channel(DecodeError::malformed(format!("{} bytes left over", p.remaining()))));
             }
         }
+        // A delta frame's particles are its base frame's.
+        if let Some(b) = base
+            && b.ids != out.ids
+        {
+            self.spare_codes.extend(kept.into_iter().flat_map(|ch| ch.codes));
+            return Err(DecodeError::malformed(format!(
+                "delta frame {} carries other particle ids than its base frame {}",
+                header.sequence, header.base_sequence
+            )));
+        }
         if header.mode == Mode::IdentityOrdered {
             let delta = base.is_some();
             let before = match (delta, self.base.take()) {
@@ -174,11 +189,29 @@ impl Decoder {
                     None
                 }
             };
-            self.base = Some(Base { scene_id: header.scene_id, sequence: header.sequence, channels: kept, before });
+            let ids = out.ids.clone();
+            self.base =
+                Some(Base { scene_id: header.scene_id, sequence: header.sequence, channels: kept, before, ids });
         }
         self.last_sequence = Some(header.sequence);
         Ok(out)
     }
+}
+
+/// Reads the ids channel's payload of `n` particles ([`Predictor::Gaps`]): ascending ids
+/// of at most 32 bits.
+fn read_ids(r: &mut Reader<'_>, n: usize) -> Result<Vec<u32>, DecodeError> {
+    let mut gaps: Vec<u64> = Vec::new();
+    crate::stream::read(r, n, 32, &mut gaps)?;
+    let mut ids = Vec::with_capacity(n);
+    let mut next = 0u64;
+    for (k, gap) in gaps.into_iter().enumerate() {
+        let id = next + gap;
+        let id = u32::try_from(id).map_err(|_| DecodeError::malformed(format!("id {k} is {id}, beyond 32 bits")))?;
+        ids.push(id);
+        next = u64::from(id) + 1;
+    }
+    Ok(ids)
 }
 
 /// Reads and checks the header of the frame at the start of `bytes` without decoding its
@@ -233,6 +266,14 @@ fn check(h: &Header) -> Result<(), DecodeError> {
     if h.mode == Mode::Grid && h.version < 4 {
         return bad(format!("grid frames need format version 4, not {}", h.version));
     }
+    if let Some(i) = h.channels.iter().position(|c| c.kind() == ChannelKind::IDS)
+        && (h.version < 5 || h.mode != Mode::IdentityOrdered || i + 1 != h.channels.len())
+    {
+        return bad(format!(
+            "channel {i}: ids come last, in identity-ordered frames of version 5 (this one: {:?}, version {})",
+            h.mode, h.version
+        ));
+    }
     if !delta && h.base_sequence != h.sequence {
         return bad(format!("keyframe {} names base frame {}", h.sequence, h.base_sequence));
     }
@@ -262,6 +303,7 @@ fn check(h: &Header) -> Result<(), DecodeError> {
             ));
         }
         let allowed: &[Predictor] = match (h.mode, kind, delta) {
+            (_, ChannelKind::IDS, _) => &[Predictor::Gaps],
             (Mode::Grid, ChannelKind::GRID, _) => &[Predictor::None],
             (Mode::Grid, _, _) => &[Predictor::None, Predictor::Previous],
             (Mode::Unordered, ChannelKind::POSITION, _) => &[Predictor::Morton],

@@ -107,6 +107,8 @@ impl EncoderConfig {
 struct Base {
     sequence: u64,
     channels: Vec<ChannelCodes>,
+    /// The particles' ids, where the frame carried them: a delta frame needs the same.
+    ids: Option<Vec<u32>>,
     /// Position codes of the frame this one predicted from, if it was a delta frame
     /// (a decoder then holds them too), for [`Predictor::Linear`].
     before: Option<Vec<Vec<u16>>>,
@@ -184,7 +186,12 @@ impl Encoder {
         }
         let c = &self.config;
         let base = match self.base.take() {
-            Some(b) if !self.force_keyframe && self.since_keyframe < c.keyframe_interval && b.particles() == n => {
+            Some(b)
+                if !self.force_keyframe
+                    && self.since_keyframe < c.keyframe_interval
+                    && b.particles() == n
+                    && b.ids.as_deref() == input.ids =>
+            {
                 Some(b)
             }
             Some(b) => {
@@ -214,8 +221,11 @@ impl Encoder {
             channels: Vec::with_capacity(channels.len()),
         };
         let grid_entry = input.grid.map_or(0, |_| 8 + 12 * 3);
-        let header_len =
-            FIXED_HEADER_LEN + grid_entry + channels.iter().map(|ch| 8 + 12 * ch.codes.len()).sum::<usize>();
+        let ids_entry = input.ids.map_or(0, |_| 8 + 12);
+        let header_len = FIXED_HEADER_LEN
+            + grid_entry
+            + ids_entry
+            + channels.iter().map(|ch| 8 + 12 * ch.codes.len()).sum::<usize>();
         out.resize(header_len, 0);
         if let Some(grid) = input.grid {
             header.channels.push(write_grid(out, &grid));
@@ -273,6 +283,9 @@ impl Encoder {
                 ranges: ch.ranges(),
             });
         }
+        if let Some(ids) = input.ids {
+            header.channels.push(write_ids(out, ids)?);
+        }
         header.frame_len = u32::try_from(out.len()).map_err(|_| EncodeError::FrameTooLarge)?;
         let mut head = Vec::with_capacity(header_len);
         header.write(&mut head);
@@ -289,12 +302,37 @@ impl Encoder {
                     self.spare_codes.extend(old.flat_map(|ch| ch.codes).chain(b.before.into_iter().flatten()));
                     positions
                 });
-                self.base = Some(Base { sequence, channels, before });
+                self.base = Some(Base { sequence, channels, before, ids: input.ids.map(<[u32]>::to_vec) });
             }
             Mode::Unordered | Mode::Grid => self.spare_codes.extend(channels.into_iter().flat_map(|ch| ch.codes)),
         }
         Ok(())
     }
+}
+
+/// Appends the ids channel's payload (the gaps of ascending `ids`, [`Predictor::Gaps`])
+/// and returns its table entry.
+fn write_ids(out: &mut Vec<u8>, ids: &[u32]) -> Result<ChannelInfo, EncodeError> {
+    let at = out.len();
+    let mut prev: Option<u32> = None;
+    let gaps: Vec<u64> = ids
+        .iter()
+        .map(|&id| {
+            let gap = prev.map_or(u64::from(id), |p| u64::from(id - p - 1));
+            prev = Some(id);
+            gap
+        })
+        .collect();
+    crate::stream::write(out, &gaps);
+    let (first, last) = (ids.first().copied().unwrap_or(0), ids.last().copied().unwrap_or(0));
+    Ok(ChannelInfo {
+        tag: ChannelKind::IDS.tag(),
+        components: 1,
+        bits: 16,
+        predictor: Predictor::Gaps,
+        payload_len: u32::try_from(out.len() - at).map_err(|_| EncodeError::FrameTooLarge)?,
+        ranges: vec![ComponentRange { min: first as f32, max: last as f32, max_error: 0.0 }],
+    })
 }
 
 /// Appends the grid channel's payload (the cell counts) and returns its table entry.
@@ -337,7 +375,18 @@ fn check_input(input: &FrameInput<'_>, mode: Mode) -> Result<usize, EncodeError>
     if u32::try_from(n).is_err() {
         return Err(EncodeError::TooManyParticles { count: n });
     }
-    if 1 + input.channels.len() > crate::header::MAX_CHANNELS {
+    if let Some(ids) = input.ids {
+        if mode != Mode::IdentityOrdered {
+            return bad("only identity-ordered frames carry ids".into());
+        }
+        if ids.len() != n {
+            return bad(format!("{} ids for {n} particles", ids.len()));
+        }
+        if let Some(w) = ids.windows(2).find(|w| w[0] >= w[1]) {
+            return bad(format!("ids must ascend: {} then {}", w[0], w[1]));
+        }
+    }
+    if 1 + input.channels.len() + usize::from(input.ids.is_some()) > crate::header::MAX_CHANNELS {
         return bad(format!(
             "{} channels, at most {} besides the first",
             input.channels.len(),
@@ -349,7 +398,7 @@ fn check_input(input: &FrameInput<'_>, mode: Mode) -> Result<usize, EncodeError>
             return bad(format!("{kind} is given twice"));
         }
         let (exact, components) = match (kind.def(), values) {
-            (Some(d), _) if kind == ChannelKind::POSITION || kind == ChannelKind::GRID => {
+            (Some(d), _) if kind == ChannelKind::POSITION || kind == ChannelKind::GRID || kind == ChannelKind::IDS => {
                 return bad(format!("{} is not a channel to give", d.name));
             }
             (Some(d), _) => (d.exact, d.components),

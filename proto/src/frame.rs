@@ -177,6 +177,9 @@ pub struct FrameInput<'a> {
     pub set: u8,
     /// Other channels, each at most once.
     pub channels: Vec<(ChannelKind, ValuesRef<'a>)>,
+    /// The particles' stable ids, ascending, for an identity-ordered frame of a set whose
+    /// particles are born and die (their ids are then not `0 .. n`).
+    pub ids: Option<&'a [u32]>,
 }
 
 impl<'a> FrameInput<'a> {
@@ -205,6 +208,9 @@ pub struct Frame {
     pub grid: Option<GridInfo>,
     /// The other channels, in the frame's order.
     pub channels: Vec<(ChannelKind, Values)>,
+    /// The particles' stable ids, ascending, where the frame carries them (identity-ordered
+    /// frames of a set whose particles are born and die); particle `i` is then `ids[i]`.
+    pub ids: Option<Vec<u32>>,
 }
 
 impl Frame {

@@ -49,8 +49,9 @@ use crate::reader::Reader;
 /// Identifies a Floe frame: the first four bytes.
 pub const MAGIC: [u8; 4] = *b"FLOF";
 /// The format version this crate writes. Version 4 added the particle set byte, grid frames
-/// and per-scene channel tags; version 3 frames (set 0, particle modes only) still decode.
-pub const VERSION: u16 = 4;
+/// and per-scene channel tags; version 5 the `ids` channel of identity-ordered frames whose
+/// particles are born and die; version 3 and 4 frames still decode.
+pub const VERSION: u16 = 5;
 /// The oldest format version this crate reads.
 pub const MIN_VERSION: u16 = 3;
 /// Bytes of the fixed header, before the channel table.
@@ -115,6 +116,9 @@ pub enum Predictor {
     /// these residuals are smaller than [`Predictor::Base`]'s (0.6 bytes/particle less on the
     /// dam break).
     Linear = 4,
+    /// The `ids` channel (version 5): ascending u32 values stored as gaps, the first value
+    /// and then each minus the one before it minus one, in one stream of at most 32 bits.
+    Gaps = 5,
 }
 
 impl Predictor {
@@ -125,6 +129,7 @@ impl Predictor {
             2 => Some(Predictor::Base),
             3 => Some(Predictor::Morton),
             4 => Some(Predictor::Linear),
+            5 => Some(Predictor::Gaps),
             _ => None,
         }
     }
@@ -299,7 +304,7 @@ fn read_channel(r: &mut Reader<'_>, index: usize) -> Result<ChannelInfo, DecodeE
     for k in 0..components {
         let range = ComponentRange { min: r.f32()?, max: r.f32()?, max_error: r.f32()? };
         let form = match ChannelKind(tag) {
-            ChannelKind::GRID => RangeForm::Extent,
+            ChannelKind::GRID | ChannelKind::IDS => RangeForm::Extent,
             k if k.exact() => RangeForm::ExactU8,
             _ => RangeForm::Quantised,
         };

@@ -19,6 +19,9 @@ pub struct Particles {
     pub channels: Vec<(String, Values)>,
     /// The cells, when the set is a grid.
     pub grid: Option<GridInfo>,
+    /// The particles' stable ids, ascending, where they are not `0 .. n` (a set whose
+    /// particles are born and die): particle `i` is `ids[i]`.
+    pub ids: Option<Vec<u32>>,
 }
 
 impl Particles {
@@ -39,6 +42,7 @@ impl Particles {
             positions: self.positions.iter().step_by(k).copied().collect(),
             channels: self.channels.iter().map(|(n, v)| (n.clone(), v.every(k))).collect(),
             grid: None,
+            ids: self.ids.as_ref().map(|ids| ids.iter().step_by(k).copied().collect()),
         }
     }
 }

@@ -60,7 +60,7 @@ async fn rest_mirrors_the_control_calls() {
     assert_eq!(v["state"], "paused");
     assert_eq!(v["channels"][0]["name"], "velocity");
     assert_eq!(v["channels"][2]["unit"], "Pa");
-    assert_eq!(v["sets"][0], serde_json::json!({"name": "particles", "count": 1000, "index": 0}));
+    assert_eq!(v["sets"][0], serde_json::json!({"name": "particles", "count": 1000, "index": 0, "grid": false}));
     assert_eq!(
         v["materials"],
         serde_json::json!([{"name": "water", "kind": "fluid", "rest_density": 1000.0, "look": "water"}])

@@ -613,8 +613,9 @@ fn removed_particles_go_and_the_others_keep_their_order() {
 }
 
 /// Through the service: a scene whose particles are born and die counts its
-/// capacity against the limits, streams its live particles in unordered frames and
-/// refuses identity-ordered ones, naming why.
+/// capacity against the limits and streams its live particles, identity-ordered
+/// frames naming their ids (each step replaces every particle: ids from 1,000 on, 500
+/// a step).
 #[tokio::test]
 async fn a_scene_whose_particles_are_born_and_die_streams_its_live_particles() {
     floe_engine::module::register(&tracer::MODULE);
@@ -629,8 +630,15 @@ async fn a_scene_whose_particles_are_born_and_die_streams_its_live_particles() {
     let mut frames = floe.frames(info.scene_id, request).await.unwrap();
     let frame = frames.next().await.unwrap().unwrap();
     assert_eq!((frame.header.step, frame.positions.len()), (3, 500));
-    let e = floe.frames(info.scene_id, FrameRequest::default()).await.unwrap_err();
-    assert_eq!(common::code(&e), tonic::Code::InvalidArgument, "{e}");
-    assert!(e.to_string().contains("born and die"), "{e}");
+    let mut identity = floe.frames(info.scene_id, FrameRequest::default()).await.unwrap();
+    let frame = identity.next().await.unwrap().unwrap();
+    assert_eq!((frame.header.mode, frame.header.step), (floe_proto::Mode::IdentityOrdered, 3));
+    let p = identity.particles(frame);
+    assert_eq!(p.ids, Some((2000..2500).collect::<Vec<u32>>()), "the third step's births");
+    assert_eq!(p.positions.len(), 500);
+    floe.step(info.scene_id, 1).await.unwrap();
+    let frame = identity.next().await.unwrap().unwrap();
+    assert!(frame.header.keyframe, "other particles: a keyframe");
+    assert_eq!(identity.particles(frame).ids, Some((2500..3000).collect::<Vec<u32>>()));
     server.shutdown().await;
 }

@@ -9,10 +9,16 @@ import {
 } from '../js/codec/index.js';
 
 const DATA = new URL('../../proto/testdata/', import.meta.url);
-const CURRENT = ['unordered_positions', 'unordered_channels', 'identity_keyframe', 'identity_delta', 'identity_linear', 'grid_field'];
-// Format version 3 frames, decoded to show old recordings still read.
+const CURRENT = [
+  'unordered_positions', 'unordered_channels', 'identity_keyframe', 'identity_delta', 'identity_linear', 'grid_field',
+  'identity_ids', 'identity_ids_delta',
+];
+// Format version 3 and 4 frames, decoded to show old recordings still read.
 const V3 = ['unordered_positions', 'unordered_channels', 'identity_keyframe', 'identity_delta', 'identity_linear'].map((n) => `v3/${n}`);
-const NAMES = [...CURRENT, ...V3];
+const V4 = [
+  'unordered_positions', 'unordered_channels', 'identity_keyframe', 'identity_delta', 'identity_linear', 'grid_field',
+].map((n) => `v4/${n}`);
+const NAMES = [...CURRENT, ...V4, ...V3];
 const bin = (name) => new Uint8Array(readFileSync(new URL(`${name}.bin`, DATA)));
 // u64 fields as strings before parsing, so values past 2^53 would compare exactly too.
 const sidecarText = (name) =>
@@ -52,6 +58,7 @@ function sidecarShape(frame) {
   out.positions = perParticle(frame.positions, 3);
   out.channels = Object.fromEntries(frame.channels.map((ch) => [ch.name, perParticle(ch.values, ch.components)]));
   if (frame.grid) out.grid = frame.grid;
+  if (frame.ids) out.ids = Array.from(frame.ids);
   return out;
 }
 

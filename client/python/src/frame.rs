@@ -72,5 +72,10 @@ pub fn to_python<'py>(py: Python<'py>, frame: Frame) -> PyResult<Bound<'py, PyTu
         };
         list.append((tag, name, unit, array, PyTuple::new(py, max_error)?))?;
     }
+    // The particles' ids, where the frame names them (a set whose particles are born and die).
+    if let Some(ids) = frame.ids {
+        let (tag, name, unit, _) = describe(ChannelKind::IDS);
+        list.append((tag, name, unit, ids.into_pyarray(py).into_any(), PyTuple::new(py, [0.0f32])?))?;
+    }
     PyTuple::new(py, [header.into_any(), list.into_any()])
 }

@@ -48,6 +48,7 @@ mod tests {
                 ("material".into(), Values::Exact(vec![2])),
             ],
             grid: None,
+            ids: None,
         };
         let mut buf = Vec::new();
         write_csv(&mut buf, &p).unwrap();

@@ -68,6 +68,7 @@ mod tests {
                 ("material".into(), Values::Exact(vec![0, 1])),
             ],
             grid: None,
+            ids: None,
         };
         let mut buf = Vec::new();
         write_vtk(&mut buf, &p, 0.25).unwrap();

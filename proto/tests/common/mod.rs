@@ -54,6 +54,8 @@ pub struct Particles {
     pub materials: Option<Vec<u8>>,
     /// A per-scene channel: its tag, components and values.
     pub extra: Option<(ChannelKind, u8, Vec<f32>)>,
+    /// Stable ids, ascending (a set whose particles are born and die).
+    pub ids: Option<Vec<u32>>,
 }
 
 impl Particles {
@@ -77,7 +79,7 @@ impl Particles {
         if let Some((kind, components, v)) = &self.extra {
             channels.push((*kind, ValuesRef::Float { components: *components, data: v }));
         }
-        FrameInput { positions: &self.positions, grid: self.grid, set: self.set, channels }
+        FrameInput { positions: &self.positions, grid: self.grid, set: self.set, channels, ids: self.ids.as_deref() }
     }
 
     /// `n` particles inside `bounds`, with each other channel present with probability `p`.

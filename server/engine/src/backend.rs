@@ -142,6 +142,7 @@ pub fn read<B: Backend + ?Sized>(
     // The slot of each particle in id order: the inverse of the ids where they are
     // 0 .. n (a scene whose particles are never born nor die), else the slots sorted
     // by id.
+    let mut sparse = false;
     let by_id: Option<Vec<usize>> = ids.map(|ids| {
         let n = ids.len();
         let mut by = vec![usize::MAX; n];
@@ -151,6 +152,7 @@ pub fn read<B: Backend + ?Sized>(
                 None => {
                     let mut sorted: Vec<usize> = (0..n).collect();
                     sorted.sort_unstable_by_key(|&k| ids[k]);
+                    sparse = true;
                     return sorted;
                 }
             }
@@ -209,5 +211,10 @@ pub fn read<B: Backend + ?Sized>(
             (s.name.to_string(), values)
         })
         .collect();
-    Particles { set: set.name.to_string(), positions, channels, grid: set.grid }
+    // Ids that are not 0 .. n travel with the particles (in id order).
+    let live = match (ids, &by_id) {
+        (Some(ids), Some(by_id)) if sparse => Some(by_id.iter().map(|&k| ids[k]).collect()),
+        _ => None,
+    };
+    Particles { set: set.name.to_string(), positions, channels, grid: set.grid, ids: live }
 }

@@ -201,6 +201,8 @@ impl Grid {
 pub fn permute<T: Copy + Send + Sync>(data: &mut Vec<T>, scratch: &mut Vec<T>, order: &[u32]) {
     use rayon::prelude::*;
     scratch.clear();
+    // The room `data` holds goes with its values (a scene's reserved capacity).
+    scratch.reserve_exact(data.capacity());
     scratch.par_extend(order.par_iter().with_min_len(4096).map(|&i| data[i as usize]));
     std::mem::swap(data, scratch);
 }

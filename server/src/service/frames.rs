@@ -66,7 +66,9 @@ fn input<'a>(shared: &Shared, p: &'a Particles, o: &FrameOptions) -> FrameInput<
             Some((kind, p.channel(name)?.as_ref()))
         })
         .collect();
-    FrameInput { positions: &p.positions, grid: p.grid, set: o.set, channels }
+    // Identity-ordered frames name their particles where the ids are not 0 .. n.
+    let ids = p.ids.as_deref().filter(|_| o.mode == floe_proto::Mode::IdentityOrdered);
+    FrameInput { positions: &p.positions, grid: p.grid, set: o.set, channels, ids }
 }
 
 /// Encodes published state `s` with `o`'s set, channels and decimation (`s` holds

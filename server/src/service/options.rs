@@ -93,13 +93,6 @@ impl FrameRequest {
         if !(1..=MAX_DECIMATION).contains(&decimation) {
             return bad(format!("decimation: must be 1 to {MAX_DECIMATION}, got {decimation}"));
         }
-        if mode == Mode::IdentityOrdered && scene.population {
-            return bad(
-                "mode: this scene's particles are born and die; identity-ordered frames of such a scene are not \
-                 defined yet: ask for \"unordered\""
-                    .into(),
-            );
-        }
         // A grid is sent whole, as grid frames (its cells keep their order, so either
         // mode asked gets them).
         let mode = match (scene.sets[set].grid, decimation) {

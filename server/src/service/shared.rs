@@ -91,9 +91,6 @@ pub struct Shared {
     /// Particles it may hold at once (its capacity, where particles are born and die):
     /// what the server's limits and quotas count.
     pub particles: usize,
-    /// Whether its particles are born and die (identity-ordered frames are not
-    /// offered for such a scene yet).
-    pub population: bool,
     /// The channels the scene offers, with the tags its frames carry them under.
     pub channels: Vec<SceneChannel>,
     /// The scene's particle sets; a frame's set byte is an index into this list.
@@ -150,7 +147,6 @@ impl Shared {
             owner,
             scene_json: Mutex::new(serde_json::to_string(sim.scene()).expect("scenes serialise")),
             particles: sim.model().particle_capacity(),
-            population: sim.model().population.is_some(),
             channels: scene_channels(sim.channels()),
             sets: sim
                 .sets()

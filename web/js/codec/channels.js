@@ -18,7 +18,9 @@ export const TABLE =
     { "name": "material", "tag": 5, "components": 1, "unit": "", "exact": true, "bits": 8,
       "about": "Index of the particle's material in the scene's material table, sent exactly (0 to 255)." },
     { "name": "grid", "tag": 6, "components": 3, "unit": "m", "exact": false, "bits": 16,
-      "about": "Grid frames only, always their first channel: the grid's extent per axis (range min = origin, max = origin + size) and its cell counts (payload: three u32)." }
+      "about": "Grid frames only, always their first channel: the grid's extent per axis (range min = origin, max = origin + size) and its cell counts (payload: three u32)." },
+    { "name": "ids", "tag": 7, "components": 1, "unit": "", "exact": false, "bits": 16,
+      "about": "Identity-ordered frames of a set whose particles are born and die (version 5), always their last channel: the live particles' stable ids, ascending, in the frame's particle order (range min = first id, max = last id; payload: the gaps predictor's stream)." }
   ]
 }
 ;

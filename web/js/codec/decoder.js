@@ -9,7 +9,7 @@ import { CHANNELS, ChannelKind, DEFAULT_LIMITS, Mode, readHeader } from './heade
 import { Predictor, readCodes, readGains } from './predict.js';
 import { dequantiseInto, sameQuantizer } from './quantize.js';
 import { Reader } from './reader.js';
-import { Scratch } from './stream.js';
+import { Scratch, readStream } from './stream.js';
 import { readMortonPositions } from './unordered.js';
 
 /**
@@ -29,6 +29,8 @@ import { readMortonPositions } from './unordered.js';
  * @property {{origin: number[], size: number[], dims: number[]}} [grid] a grid frame's grid (m,
  *   cells per axis; cells x fastest)
  * @property {Channel[]} channels the other channels, in the frame's order
+ * @property {Uint32Array} [ids] the particles' stable ids, ascending, where the frame carries
+ *   them (identity-ordered frames of a set whose particles are born and die, version 5)
  */
 
 /**
@@ -157,6 +159,12 @@ export class Decoder {
         out.grid = {
           origin: rg.map((x) => x.min), size: rg.map((x) => Math.fround(x.max - x.min)), dims,
         };
+      } else if (info.tag === ChannelKind.IDS) {
+        try {
+          out.ids = readIds(p, n, this.#scratch);
+        } catch (e) {
+          throw inChannel(e);
+        }
       } else if (info.predictorTag === Predictor.MORTON) {
         try {
           out.positions = readMortonPositions(p, n, info.ranges, info.bits, this.#scratch);
@@ -183,13 +191,42 @@ export class Decoder {
       }
       if (p.remaining() !== 0) throw inChannel(new MalformedError(`${p.remaining()} bytes left over`));
     });
+    // A delta frame's particles are its base frame's.
+    if (base !== null && !sameIds(base.ids, out.ids)) {
+      throw new MalformedError(
+        `delta frame ${header.sequence} carries other particle ids than its base frame ${header.baseSequence}`);
+    }
     if (identity) {
       const before = base !== null && base.channels.length > 0 ? base.channels[0].codes : null;
-      this.#base = { sceneId: header.sceneId, sequence: header.sequence, channels: kept, before };
+      this.#base = { sceneId: header.sceneId, sequence: header.sequence, channels: kept, before, ids: out.ids ?? null };
     }
     this.#lastSequence = header.sequence;
     return out;
   }
+}
+
+/**
+ * The ids channel's payload of `n` particles (predictor gaps, Rust `read_ids`): the first id,
+ * then each minus the one before it minus one, in one stream of at most 32 bits.
+ * @returns {Uint32Array} ascending ids
+ */
+function readIds(r, n, scratch) {
+  const gaps = readStream(r, n, 32, scratch);
+  const ids = new Uint32Array(n);
+  let next = 0;
+  for (let k = 0; k < n; k++) {
+    const id = next + gaps[k];
+    if (id > 0xffffffff) throw new MalformedError(`id ${k} is ${id}, beyond 32 bits`);
+    ids[k] = id;
+    next = id + 1;
+  }
+  return ids;
+}
+
+/** Whether two frames carry the same ids (or neither carries any). */
+function sameIds(a, b) {
+  if (a === null || a === undefined || b === null || b === undefined) return (a ?? null) === (b ?? null);
+  return a.length === b.length && a.every((x, k) => x === b[k]);
 }
 
 /**

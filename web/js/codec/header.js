@@ -22,7 +22,7 @@ import { Reader } from './reader.js';
 export const MAGIC = 'FLOF';
 const MAGIC_BYTES = [0x46, 0x4c, 0x4f, 0x46];
 /** The newest format version this decoder reads. */
-export const VERSION = 4;
+export const VERSION = 5;
 /** The oldest format version this decoder reads. */
 export const MIN_VERSION = 3;
 /** Bytes of the fixed header. */
@@ -35,6 +35,8 @@ export const MAX_COMPONENTS = 4;
 /** Mode tags. */
 export const Mode = Object.freeze({ UNORDERED: 0, IDENTITY_ORDERED: 1, GRID: 2 });
 const MODE_NAMES = ['unordered', 'identity_ordered', 'grid'];
+/** Rust `Debug` names of the modes, for messages. */
+const MODE_DEBUG = ['Unordered', 'IdentityOrdered', 'Grid'];
 
 /** The channel table's rows, by tag. */
 export const CHANNELS = Object.freeze(TABLE.channels.map((c) => Object.freeze({ ...c })));
@@ -159,12 +161,13 @@ function readChannel(r, index) {
     throw bad(`${components} components (1 to ${MAX_COMPONENTS} allowed)`);
   }
   if (bits < 1 || bits > 16) throw bad(`${bits} quantisation bits (1 to 16 allowed)`);
-  if (predictorTag > 4) throw bad(`unknown predictor ${predictorTag}`);
+  if (predictorTag > 5) throw bad(`unknown predictor ${predictorTag}`);
   const payloadLen = r.u32();
   const ranges = [];
   for (let k = 0; k < components; k++) {
     const range = { min: r.f32(), max: r.f32(), maxError: r.f32() };
-    const form = tag === ChannelKind.GRID ? RangeForm.EXTENT : CHANNELS[tag]?.exact ? RangeForm.EXACT_U8 : RangeForm.QUANTISED;
+    const extent = tag === ChannelKind.GRID || tag === ChannelKind.IDS;
+    const form = extent ? RangeForm.EXTENT : CHANNELS[tag]?.exact ? RangeForm.EXACT_U8 : RangeForm.QUANTISED;
     const what = checkRange(range, bits, form);
     if (what !== null) throw bad(`component ${k}: ${what}`);
     ranges.push(range);
@@ -177,6 +180,7 @@ function readChannel(r, index) {
 
 /** Predictors allowed by mode, kind and keyframe flag (Rust `check`). */
 function allowed(modeTag, tag, delta) {
+  if (tag === ChannelKind.IDS) return [Predictor.GAPS];
   if (modeTag === Mode.GRID) return tag === ChannelKind.GRID ? [Predictor.NONE] : [Predictor.NONE, Predictor.PREVIOUS];
   const isPosition = tag === ChannelKind.POSITION;
   if (modeTag === Mode.UNORDERED) return isPosition ? [Predictor.MORTON] : [Predictor.NONE, Predictor.PREVIOUS];
@@ -192,6 +196,10 @@ function check(h) {
   }
   if (h.modeTag === Mode.GRID && h.version < 4) {
     throw new MalformedError(`grid frames need format version 4, not ${h.version}`);
+  }
+  const ids = h.channels.findIndex((c) => c.tag === ChannelKind.IDS);
+  if (ids >= 0 && (h.version < 5 || h.modeTag !== Mode.IDENTITY_ORDERED || ids + 1 !== h.channels.length)) {
+    throw new MalformedError(`channel ${ids}: ids come last, in identity-ordered frames of version 5 (this one: ${MODE_DEBUG[h.modeTag]}, version ${h.version})`);
   }
   if (!delta && h.baseSequence !== h.sequence) {
     throw new MalformedError(`keyframe ${h.sequence} names base frame ${h.baseSequence}`);

@@ -20,13 +20,13 @@ import { MalformedError } from './errors.js';
 import { readStream } from './stream.js';
 
 /** Predictor tags, as in the channel table. */
-export const Predictor = Object.freeze({ NONE: 0, PREVIOUS: 1, BASE: 2, MORTON: 3, LINEAR: 4 });
+export const Predictor = Object.freeze({ NONE: 0, PREVIOUS: 1, BASE: 2, MORTON: 3, LINEAR: 4, GAPS: 5 });
 
 /** Predictor names by tag, as in the golden sidecars (`predictor` field). */
-export const PREDICTOR_NAMES = Object.freeze(['none', 'previous', 'base', 'morton', 'linear']);
+export const PREDICTOR_NAMES = Object.freeze(['none', 'previous', 'base', 'morton', 'linear', 'gaps']);
 
 /** Rust `Debug` names by tag, for messages. */
-export const PREDICTOR_DEBUG_NAMES = ['None', 'Previous', 'Base', 'Morton', 'Linear'];
+export const PREDICTOR_DEBUG_NAMES = ['None', 'Previous', 'Base', 'Morton', 'Linear', 'Gaps'];
 
 /** Fraction bits of the `LINEAR` gains: an i16 in units of 2^-12. */
 const GAIN_BITS = 12;
