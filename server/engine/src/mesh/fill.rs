@@ -61,7 +61,7 @@ pub fn inside_lattice(mesh: &TriMesh, lattice: Aabb, spacing: Real) -> Vec<Vec3>
 }
 
 /// Where the row `(y, z)` along x crosses triangle `t`, if it does.
-fn crossing(mesh: &TriMesh, t: u32, y: f64, z: f64) -> Option<f64> {
+pub(super) fn crossing(mesh: &TriMesh, t: u32, y: f64, z: f64) -> Option<f64> {
     let [a, b, c] = mesh.triangles[t as usize].map(|i| mesh.vertices[i as usize].as_dvec3());
     // Barycentric coordinates of (y, z) in the triangle's projection onto the y-z plane.
     let det = (b.y - a.y) * (c.z - a.z) - (c.y - a.y) * (b.z - a.z);

@@ -1,6 +1,6 @@
 //! Bodies from triangle meshes: OBJ and STL (ASCII or binary), read by the crates
 //! of the field (`tobj`, `stl_io`), checked to be closed and outward-facing, and
-//! filled with particles on the lattice the blocks use.
+//! filled with particles on the lattice the blocks use or by Poisson-disk sampling.
 //!
 //! A scene names a mesh as an asset of the server's `--assets` directory (a plain
 //! file name, read into the scene at creation so the scene never depends on the
@@ -13,9 +13,11 @@
 //!
 //! - [`parse`]: the formats into a welded [`TriMesh`].
 //! - [`fill`]: the particles inside, by crossings of lattice rows with the mesh.
+//! - [`poisson`]: or Poisson-disk sampled inside (Bridson 2007), `fill = "poisson"`.
 
 pub mod fill;
 pub mod parse;
+pub mod poisson;
 
 use crate::math::{Aabb, Real, Vec3};
 use crate::scene::validate::Checker;
@@ -44,6 +46,30 @@ pub struct MeshSource {
     /// The name errors give the file (the asset's name, kept when it is read in).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
+    /// How the mesh is filled: `lattice` (default, the block's lattice points inside)
+    /// or `poisson` (Poisson-disk sampled, Bridson 2007: about as many particles, in no
+    /// rows; see [`poisson`]).
+    #[serde(default, skip_serializing_if = "MeshFill::is_lattice")]
+    pub fill: MeshFill,
+}
+
+/// How a mesh is filled with particles.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum MeshFill {
+    /// The lattice points inside, as a block's.
+    #[default]
+    Lattice,
+    /// Poisson-disk samples inside, no two closer than
+    /// [`poisson::RADIUS_PER_SPACING`] spacings.
+    Poisson,
+}
+
+impl MeshFill {
+    /// Whether it is the default (scene files may leave it out).
+    pub fn is_lattice(&self) -> bool {
+        *self == MeshFill::Lattice
+    }
 }
 
 impl MeshSource {
@@ -255,6 +281,15 @@ impl TriMesh {
     /// `lattice` (the lattice [`crate::sampling::fill_box`] puts in that box).
     pub fn fill(&self, lattice: Aabb, spacing: Real) -> Vec<Vec3> {
         fill::inside_lattice(self, lattice, spacing)
+    }
+
+    /// Particle centres inside the mesh as `how` places them for `spacing` (the
+    /// Poisson-disk samples from a fixed seed: a scene always gets the same ones).
+    pub fn fill_with(&self, how: MeshFill, lattice: Aabb, spacing: Real) -> Vec<Vec3> {
+        match how {
+            MeshFill::Lattice => self.fill(lattice, spacing),
+            MeshFill::Poisson => poisson::inside(self, spacing * poisson::RADIUS_PER_SPACING, 2007),
+        }
     }
 }
 

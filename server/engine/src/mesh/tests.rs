@@ -65,6 +65,7 @@ fn source(name: &str, bytes: &[u8]) -> MeshSource {
         asset: None,
         data_base64: Some(base64::engine::general_purpose::STANDARD.encode(bytes)),
         file: Some(name.into()),
+        fill: MeshFill::Lattice,
     }
 }
 
@@ -142,7 +143,9 @@ fn bad_meshes_are_refused_naming_the_file_and_the_fault() {
     let huge = vec![b' '; MAX_MESH_BYTES + 1];
     let e = err("huge.stl", &huge);
     assert_eq!(e, "huge.stl: 16777217 bytes, more than the limit of 16777216 (16 MiB)");
-    let e = MeshSource { asset: Some("a.obj".into()), data_base64: None, file: None }.load().unwrap_err();
+    let e = MeshSource { asset: Some("a.obj".into()), data_base64: None, file: None, fill: MeshFill::Lattice }
+        .load()
+        .unwrap_err();
     assert!(e.contains("scenes naming an asset load with an assets directory"), "{e}");
 }
 
@@ -174,6 +177,17 @@ fn a_fluid_block_may_be_a_mesh_inline_or_an_asset() {
     let n = sim.particle_count() as f64;
     assert!((n - want).abs() < 0.03 * want, "{n} particles, volume / spacing^3 = {want:.0}");
     sim.step().unwrap();
+    // Poisson-disk filled: about as many particles, and the scene steps.
+    let poisson = scene_with(serde_json::json!({
+        "data_base64": base64::engine::general_purpose::STANDARD.encode(&text),
+        "fill": "poisson"
+    }))
+    .unwrap();
+    let mut sim = crate::Simulation::new_cpu(poisson).unwrap();
+    let p = sim.particle_count() as f64;
+    assert!((p - want).abs() < 0.05 * want, "poisson: {p} particles, volume / spacing^3 = {want:.0}");
+    assert_ne!(p, n, "not the lattice's points");
+    sim.step().unwrap();
 
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("ring.obj"), &text).unwrap();
@@ -201,4 +215,34 @@ fn a_fluid_block_may_be_a_mesh_inline_or_an_asset() {
     assert!(e.contains("must name an .obj or .stl file"), "{e}");
     let e = scene_with(serde_json::json!({"data_base64": "bm90IGEgbWVzaA=="})).unwrap_err().to_string();
     assert!(e.contains("fluids[0].blocks[0].mesh: inline mesh: "), "{e}");
+}
+
+/// Poisson-disk filling: every point inside the tube, none two closer than the
+/// radius, the same points for the same seed, and about volume / spacing^3 of them.
+#[test]
+fn poisson_disk_filling_keeps_its_radius_and_the_lattice_count() {
+    let t = torus(96, 48);
+    let volume = t.volume();
+    for spacing in [0.05f32, 0.04, 0.03] {
+        let r = spacing * super::poisson::RADIUS_PER_SPACING;
+        let points = super::poisson::inside(&t, r, 7);
+        let want = volume / (spacing as f64).powi(3);
+        let off = (points.len() as f64 - want) / want;
+        eprintln!("spacing {spacing}: {} points, {want:.0} wanted ({:+.2} %)", points.len(), 100.0 * off);
+        assert!(off.abs() < 0.02, "spacing {spacing}: {} points, volume / spacing^3 = {want:.0}", points.len());
+        for p in &points {
+            let ring = (p.x * p.x + p.z * p.z).sqrt() - 1.0;
+            // Within the polyhedron's distance from the analytic torus (its inner facets
+            // lie up to 0.6 (1 - cos(pi / 96)) = 3.2e-4 m nearer the axis).
+            assert!(ring * ring + p.y * p.y < 0.401 * 0.401, "{p} outside the tube");
+        }
+        let mut sorted = points.clone();
+        sorted.sort_by(|a, b| a.x.total_cmp(&b.x));
+        for (i, p) in sorted.iter().enumerate() {
+            for q in sorted[i + 1..].iter().take_while(|q| q.x - p.x < r) {
+                assert!((*q - *p).length() >= r * 0.9999, "{p} and {q} closer than {r}");
+            }
+        }
+        assert_eq!(super::poisson::inside(&t, r, 7), points, "the same seed gives the same points");
+    }
 }

@@ -222,7 +222,7 @@ fn particles(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
                 None => fill_box(block.min, block.max, d),
                 Some(m) => {
                     let mesh = m.load().map_err(|e| BuildError::Mesh(format!("{path}.mesh: {e}")))?;
-                    mesh.fitted(bounds).fill(bounds, d)
+                    mesh.fitted(bounds).fill_with(m.fill, bounds, d)
                 }
             };
             if pts.is_empty() {
