@@ -642,3 +642,107 @@ async fn a_scene_whose_particles_are_born_and_die_streams_its_live_particles() {
     assert_eq!(identity.particles(frame).ids, Some((2500..3000).collect::<Vec<u32>>()));
     server.shutdown().await;
 }
+
+/// The materials of `sim`'s particles.
+fn materials(sim: &Simulation) -> Vec<u32> {
+    match sim.backend().download(&["material"]).remove(0) {
+        Column::U32(m) => m,
+        other => panic!("materials: {other:?}"),
+    }
+}
+
+/// The particles' mean density by summation (kg/m^3).
+fn mean_density(sim: &Simulation) -> f64 {
+    let p = sim.read(&["density"]);
+    let rho = p.channel("density").and_then(Values::as_scalars).unwrap();
+    rho.iter().map(|&r| f64::from(r)).sum::<f64>() / rho.len() as f64
+}
+
+/// The tracer's phase change: after the first step every particle is older than
+/// the phase age and changes into `aged` (rest density 0.9 of water's) keeping its
+/// mass; the density solve then pushes the particles apart towards the new rest
+/// density (a change this sudden everywhere throws them into spray: the mean falls
+/// to 0.71 of water's in 20 steps, 0.65 in 200), where the same scene without the
+/// change stays at water's; a snapshot holds the materials.
+#[test]
+fn a_particle_changes_phase_keeping_its_mass_and_the_solver_follows() {
+    floe_engine::module::register(&tracer::MODULE);
+    floe_gpu::pass::register(&tracer::gpu::MODULE);
+    let mut phased = traced();
+    phased.push("tracer={\"phase_age\":0.0}".into());
+    for (backend, make) in factories() {
+        let mut sim = Simulation::new(from_preset("dam_break", &phased).unwrap(), &make).unwrap();
+        let mut plain = Simulation::new(from_preset("dam_break", &traced()).unwrap(), &make).unwrap();
+        let table = sim.model().materials.clone();
+        let aged = table.iter().position(|m| m.name == tracer::AGED).unwrap() as u32;
+        assert_eq!(table.get(aged as usize).mass, table.get(0).mass, "{backend}: a phase keeps the mass");
+        assert_eq!(table.get(aged as usize).rest_density, tracer::PHASE_DENSITY * table.get(0).rest_density);
+        let n = sim.particle_count();
+        assert!(materials(&sim).iter().all(|&m| m == 0), "{backend}: all water at first");
+        sim.step().unwrap();
+        plain.step().unwrap();
+        assert!(materials(&sim).iter().all(|&m| m == aged), "{backend}: all aged after one step");
+        assert_eq!(sim.particle_count(), n);
+        let saved = sim.snapshot();
+        for _ in 0..20 {
+            sim.step().unwrap();
+            plain.step().unwrap();
+        }
+        let (rho, rho_plain) = (mean_density(&sim), mean_density(&plain));
+        eprintln!("{backend}: mean density {rho:.1} with the phase, {rho_plain:.1} without");
+        let rho0 = f64::from(table.get(0).rest_density);
+        assert!(rho < 0.95 * rho0 && rho_plain > 0.97 * rho0, "{backend}: {rho} and {rho_plain}");
+        // The snapshot holds the materials: restored, it steps on as the original.
+        let mut back = Simulation::restore_on(&saved, &make).unwrap();
+        assert!(materials(&back).iter().all(|&m| m == aged), "{backend}: restored materials");
+        let mut again = Simulation::new(from_preset("dam_break", &phased).unwrap(), &make).unwrap();
+        again.step().unwrap();
+        for _ in 0..5 {
+            back.step().unwrap();
+            again.step().unwrap();
+        }
+        assert_eq!(back.backend().state(), again.backend().state(), "{backend}: restored steps on");
+    }
+}
+
+/// A closed unit cube, as an OBJ file.
+const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n";
+
+/// The tracer's body from a mesh asset: read from the assets directory into the
+/// scene, born whole after every step inside its box (lifetime 0: every older
+/// particle goes); an open mesh is refused naming the field and the file.
+#[test]
+fn a_body_from_a_mesh_asset_is_born_whole() {
+    floe_engine::module::register(&tracer::MODULE);
+    floe_gpu::pass::register(&tracer::gpu::MODULE);
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("cube.obj"), CUBE_OBJ).unwrap();
+    // The cube without its last triangle: open.
+    let open = CUBE_OBJ.trim_end().rsplit_once('\n').unwrap().0;
+    std::fs::write(dir.path().join("open.obj"), open).unwrap();
+    let scene = |asset: &str| {
+        let mut o = traced();
+        o.push(format!(
+            "tracer={{\"lifetime\":0,\"body\":{{\"mesh\":{{\"asset\":\"{asset}\"}},\"min\":[1.4,0.5,0.025],\"max\":[1.6,0.7,0.225]}}}}"
+        ));
+        let mut scene = from_preset("dam_break", &o).unwrap();
+        floe_engine::mesh::read_assets(&mut scene, Some(dir.path())).map(|()| scene)
+    };
+    let errors = scene("open.obj").unwrap_err();
+    assert!(errors.iter().any(|e| e.contains("tracer.body.mesh") && e.contains("open.obj")), "{errors:?}");
+    for (backend, make) in factories() {
+        let mut sim = Simulation::new(scene("cube.obj").unwrap(), &make).unwrap();
+        let body = sim.model().consts::<tracer::TracerConsts>().births.clone();
+        // A 0.2 m cube at 0.05 m: 4^3 or 5^3 lattice points, depending on its faces.
+        assert!((64..=125).contains(&body.len()), "{backend}: {} particles in the body", body.len());
+        for step in 1..=3 {
+            sim.step().unwrap();
+            assert_eq!(sim.particle_count(), body.len(), "{backend} step {step}");
+            assert_eq!(vec3s(sim.backend(), "x"), body, "{backend} step {step}: the body just born");
+        }
+        let (lo, hi) = (floe_engine::math::Vec3::new(1.4, 0.5, 0.025), floe_engine::math::Vec3::new(1.6, 0.7, 0.225));
+        let inside = |p: &floe_engine::math::Vec3| p.cmpge(lo - 1e-6).all() && p.cmple(hi + 1e-6).all();
+        assert!(body.iter().all(inside), "{backend}: the body lies in its box");
+    }
+}

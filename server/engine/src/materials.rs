@@ -13,6 +13,20 @@
 //! with `delta = rho / m`. For equal masses both reduce to the single-material
 //! formulas, with the same arithmetic (`crate::cpu` shows how), so a one-material
 //! scene computes exactly what it did before materials existed.
+//!
+//! **Phases.** A particle may change material while the scene runs (ice melting
+//! into water, water freezing): a module declares the material it changes into as
+//! a *phase* of the one it changes from ([`crate::model::ModelBuilder::phase`]) and
+//! writes the particle's `material` attribute from a pass (on the GPU, the w of its
+//! position). The rule that keeps this sound: the phases of one substance share one
+//! particle mass (the first phase's, `rho0 / sum_j W` at the particle spacing), so
+//! a particle keeps its mass when it changes, and mass is conserved exactly. A phase
+//! of another rest density then holds its particles at another number density
+//! (water from ice, `m = rho_ice / sum W`, packs 1000/917 times as densely as ice
+//! to reach `rho_water`: melting contracts). Everything else follows the particle's
+//! material on the next evaluation: its rest density, its equation of state, and
+//! each module's per-material settings, which a phase takes from the material it is
+//! declared *like* ([`Material::settings`], [`per_material`]).
 
 use crate::math::Real;
 use schemars::JsonSchema;
@@ -87,8 +101,21 @@ pub struct Material {
     /// Particle mass (kg): `rho0 / sum_j W(x_ij)` over a full cubic lattice of the
     /// particle spacing, so summation gives exactly `rho0` in the initial interior.
     /// (`rho0 spacing^3` would not: poly6 at support 2 spacings sums ~10 % high on a
-    /// lattice, and the Tait equation turns that into an explosion.)
+    /// lattice, and the Tait equation turns that into an explosion.) A phase has
+    /// the mass of the material it is a phase of.
     pub mass: Real,
+    /// Where its settings stand in the modules' per-material lists (a fluid's
+    /// viscosity, `heat.fluids`): the materials with settings of their own are
+    /// numbered in order (without phases, this is the material's index); a phase
+    /// takes the number of the material it was declared like.
+    pub settings: usize,
+}
+
+/// A module's per-material values for every material of the table, from `own`, its
+/// values for the materials with settings of their own (in their order): a phase
+/// takes those of the material it is like.
+pub fn per_material<T: Clone>(materials: &[Material], own: &[T]) -> Vec<T> {
+    materials.iter().map(|m| own[m.settings].clone()).collect()
 }
 
 /// The materials of a scene, indexed by the `material` attribute.

@@ -32,6 +32,7 @@ pub static MODULE: GpuModule = GpuModule {
         &COLUMNS,
         &RAISE_GROUND,
         &EXPIRE,
+        &PHASE,
     ],
     uniforms: &[("tracer", uniform)],
 };
@@ -108,6 +109,15 @@ static EXPIRE: GpuPass = GpuPass {
     when: always,
 };
 
+static PHASE: GpuPass = GpuPass {
+    name: "tracer.phase",
+    source: kernel!("tracer.wgsl", "phase.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "tracer"), (R, "age"), (W, "x")],
+    space: PARTICLES,
+    when: always,
+};
+
 static GROUP_X: GpuPass =
     floe_gpu::map_pass!(gather "tracer.group_x", map "tracer_groups", words 4, from "x" into "tracer_groups_x");
 static GROUP_SUM: GpuPass = floe_gpu::map_pass!(segment_sum "tracer.group_sum", map "tracer_groups", segments "groups", words 4, from "tracer_groups_x" into "group_x_sum");
@@ -131,11 +141,11 @@ fn uniform(model: &Model) -> Option<Vec<u8>> {
         f(g.size[0]),
         f(g.size[1]),
         f(g.size[2]),
-        0,
+        f(c.phase_age),
         g.dims[0],
         g.dims[1],
         g.dims[2],
-        0,
+        c.aged,
     ];
     Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())
 }

@@ -33,8 +33,13 @@
 //!   at `RISE` (m/s) everywhere, a ground that grows under the particles.
 //!
 //! - Births and deaths, where the scene has a `tracer` section: `births` particles
-//!   born after every step at the first of the scene's initial positions, at rest;
+//!   born after every step at the first of the scene's initial positions, at rest,
+//!   or a `body` from a mesh (an asset or inline) born whole after every step;
 //!   particles older than `lifetime` (s) removed (`tracer.expire` marks them).
+//! - A phase change, where the section has a `phase_age`: the tracer declares
+//!   `aged`, a phase of the first fluid with [`PHASE_DENSITY`] times its rest
+//!   density, and particles older than `phase_age` (s) change into it
+//!   (`tracer.phase` writes their material).
 //!
 //! Its GPU half (`gpu.rs`) is registered as the module is, from outside floe-gpu.
 
@@ -65,10 +70,10 @@ pub static MODULE: ModuleDef = ModuleDef {
     requires: &["fluid"],
     section: Some(Section { def: SectionDef::of::<TracerSpec>("tracer"), missing: None }),
     validate,
-    count: |scene| vec![(PROBES, 4), (PARTICLES, u64::from(spec(scene).room()))],
+    count: |scene| vec![(PROBES, 4), (PARTICLES, u64::from(spec(scene).room(scene.particle_spacing)))],
     materials: |_| 0,
     claims: |_| Vec::new(),
-    particles: |_, _| Ok(()),
+    particles,
     build,
     retune: |_, _| {},
     tunables: &[],
@@ -85,6 +90,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("tracer.columns", &Columns),
         ("tracer.raise_ground", &RaiseGround),
         ("tracer.expire", &Expire),
+        ("tracer.phase", &Phase),
     ],
     presets: &[],
     dt_limit: |_| None,
@@ -108,12 +114,39 @@ pub struct TracerSpec {
     /// Room for this many particles beyond the initial ones (default: ten steps' births).
     #[serde(default)]
     pub reserve: Option<u32>,
+    /// A body born whole after every step, at rest, in place of `births` (absent: none).
+    #[serde(default)]
+    pub body: Option<Body>,
+    /// Particles older than this (s) change into the phase `aged` (absent: none).
+    #[serde(default)]
+    pub phase_age: Option<f32>,
+}
+
+/// A body of particles filling a mesh.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Body {
+    /// The mesh (an asset of the server's `--assets` directory, or inline).
+    pub mesh: floe_engine::mesh::MeshSource,
+    /// The box the mesh is fitted into (m).
+    pub min: [f32; 3],
+    /// Its far corner (m).
+    pub max: [f32; 3],
 }
 
 impl TracerSpec {
+    /// Particles born after every step, at most (a body's lattice box bounds its fill).
+    fn per_step(&self, spacing: f32) -> u32 {
+        match &self.body {
+            Some(b) => floe_engine::sampling::box_count(b.min, b.max, spacing).min(u64::from(u32::MAX)) as u32,
+            None => self.births,
+        }
+    }
+
     /// Room reserved for particles beyond the initial ones.
-    fn room(&self) -> u32 {
-        if self.births > 0 { self.reserve.unwrap_or(10 * self.births) } else { 0 }
+    fn room(&self, spacing: f32) -> u32 {
+        let per_step = self.per_step(spacing);
+        if per_step > 0 { self.reserve.unwrap_or(10 * per_step) } else { 0 }
     }
 }
 
@@ -126,6 +159,28 @@ fn validate(scene: &Scene, c: &mut floe_engine::scene::validate::Checker) {
     if let Some(l) = s.lifetime {
         c.within("tracer.lifetime", l, 0.0, 1e3);
     }
+    if let Some(a) = s.phase_age {
+        c.within("tracer.phase_age", a, 0.0, 1e3);
+    }
+    if let Some(b) = &s.body {
+        c.ordered_box("tracer.body", b.min, b.max);
+        floe_engine::mesh::validate(c, "tracer.body.mesh", &b.mesh);
+    }
+}
+
+/// The rest density of the phase `aged`, relative to the first fluid's.
+pub const PHASE_DENSITY: f32 = 0.9;
+
+/// The phase's name.
+pub const AGED: &str = "aged";
+
+/// Declares the phase `aged` where the scene has a phase age.
+fn particles(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    if spec(scene).phase_age.is_some() {
+        let rho0 = b.materials()[0].rest_density;
+        b.phase(0, 0, AGED, PHASE_DENSITY * rho0);
+    }
+    Ok(())
 }
 
 /// The probes' space.
@@ -268,6 +323,16 @@ static EXPIRE: PassSpec = PassSpec {
     tolerance: 0.0,
 };
 
+static PHASE: PassSpec = PassSpec {
+    name: "tracer.phase",
+    module: "tracer",
+    stage: Stage::PostStep,
+    reads: &["age"],
+    writes: &["material"],
+    accumulates: &[],
+    tolerance: 0.0,
+};
+
 /// The births of every step: at rest at the first initial positions.
 fn emit(model: &floe_engine::model::Model, _: u64, _: f64, _: f32) -> Births {
     let at = &model.consts::<TracerConsts>().births;
@@ -339,6 +404,10 @@ pub struct TracerConsts {
     pub births: Vec<Vec3>,
     /// Particles older than this (s) are removed (infinite: none).
     pub lifetime: f32,
+    /// Particles older than this (s) change into the phase `aged` (infinite: none).
+    pub phase_age: f32,
+    /// The material index of the phase `aged` (0 where there is none).
+    pub aged: u32,
 }
 
 fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
@@ -357,7 +426,7 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let s = spec(b.scene);
     // The groups address particles by id, which a scene whose particles are born and
     // die cannot (see floe_engine::population).
-    if s.births == 0 && s.lifetime.is_none() {
+    if s.per_step(b.scene.particle_spacing) == 0 && s.lifetime.is_none() {
         let n = b.count(PARTICLES) as u32;
         let mut lists = vec![Vec::new(); GROUP_COUNT];
         for id in 0..n {
@@ -385,9 +454,16 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
             s.births
         )));
     }
-    let births = initial[..s.births as usize].to_vec();
+    let births = match &s.body {
+        Some(body) => {
+            let bounds = floe_engine::math::Aabb::new(body.min.into(), body.max.into());
+            let mesh = body.mesh.load().map_err(|e| BuildError::Mesh(format!("tracer.body.mesh: {e}")))?;
+            mesh.fitted(bounds).fill_with(body.mesh.fill, bounds, b.scene.particle_spacing)
+        }
+        None => initial[..s.births as usize].to_vec(),
+    };
     if !births.is_empty() {
-        b.reserve(s.room() as usize);
+        b.reserve(s.room(b.scene.particle_spacing) as usize);
         b.emitter(Emitter { name: "tracer.births", emit });
     }
     if s.lifetime.is_some() {
@@ -418,7 +494,12 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         b.pass(&RAISE_GROUND);
     }
     let lifetime = s.lifetime.unwrap_or(f32::INFINITY);
-    b.set_consts(TracerConsts { floor, columns, births, lifetime });
+    let aged = b.materials().iter().position(|m| m.name == AGED).map_or(0, |i| i as u32);
+    if s.phase_age.is_some() {
+        b.pass(&PHASE);
+    }
+    let phase_age = s.phase_age.unwrap_or(f32::INFINITY);
+    b.set_consts(TracerConsts { floor, columns, births, lifetime, phase_age, aged });
     b.position_solve(FLOOR_SOLVE);
     b.channel(ChannelSpec {
         name: "age",
@@ -571,5 +652,24 @@ impl CpuPass for Expire {
             *r += if age > lifetime { 1.0 } else { 0.0 };
         }
         cx.attrs.put(r, remove);
+    }
+}
+
+/// Particles older than the phase age change into the phase `aged`.
+#[derive(Debug)]
+struct Phase;
+
+impl CpuPass for Phase {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let c = cx.model.consts::<TracerConsts>();
+        let (phase_age, aged) = (c.phase_age, c.aged);
+        let m = cx.attrs.handle::<u32>("material");
+        let mut material = cx.attrs.take(m);
+        for (m, &age) in material.iter_mut().zip(cx.attrs.get(cx.attrs.handle::<f32>("age"))) {
+            if age > phase_age {
+                *m = aged;
+            }
+        }
+        cx.attrs.put(m, material);
     }
 }

@@ -11,9 +11,11 @@ struct Tracer {
     // Particles older than this (s) are removed (infinite: none).
     lifetime: f32,
     size: vec3<f32>,
-    _pad2: u32,
+    // Particles older than this (s) change into the phase `aged` (infinite: none).
+    phase_age: f32,
     dims: vec3<u32>,
-    _pad3: u32,
+    // The material index of the phase `aged`.
+    aged: u32,
 }
 
 @group(0) @binding(1) var<uniform> tracer: Tracer;

@@ -95,7 +95,23 @@ impl<'s> ModelBuilder<'s> {
         look: crate::materials::Look,
     ) -> u32 {
         let mass = rest_density / lattice_sum(&self.kernel, self.spacing, None);
-        self.materials.push(Material { name: name.into(), kind, rest_density, eos, look, mass });
+        // The own materials are numbered in order; phases repeat a number.
+        let settings = self.materials.iter().map(|m| m.settings + 1).max().unwrap_or(0);
+        self.materials.push(Material { name: name.into(), kind, rest_density, eos, look, mass, settings });
+        (self.materials.len() - 1) as u32
+    }
+
+    /// Adds a phase of material `of`, named `name`, of rest density `rest_density`
+    /// (kg/m^3): a material its particles may change into at run time and back (see
+    /// [`crate::materials`]). It has `of`'s particle mass, so a particle keeps its
+    /// mass when it changes, and everything else of material `like` (kind, equation
+    /// of state, look, the modules' per-material settings). Modules declare phases
+    /// with their particles (`ModuleDef::particles`), so every module's build sees
+    /// the whole table. Panics if `of` or `like` is not a material.
+    pub fn phase(&mut self, of: u32, like: u32, name: &str, rest_density: Real) -> u32 {
+        let (of, like) = (&self.materials[of as usize], &self.materials[like as usize]);
+        let phase = Material { name: name.into(), rest_density, mass: of.mass, ..like.clone() };
+        self.materials.push(phase);
         (self.materials.len() - 1) as u32
     }
 

@@ -19,7 +19,7 @@ pub mod xsph;
 
 use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
 use crate::kernel::Kernel;
-use crate::materials::{Material, MaterialKind};
+use crate::materials::{Material, MaterialKind, per_material};
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::module::{ModuleDef, Section};
@@ -131,11 +131,14 @@ impl FluidConsts {
     /// ([`crate::materials::EquationOfState::sound_speed`]).
     fn new(scene: &Scene, materials: &[Material], c: Real, kernel: &Kernel, spacing: Real) -> Self {
         let n = materials.len();
-        let viscosity: Vec<ViscosityModel> = fluids(scene)
+        // Each fluid's from its own material, then one per material (a phase takes
+        // its fluid's).
+        let own: Vec<ViscosityModel> = fluids(scene)
             .iter()
             .zip(materials)
             .map(|(f, m)| ViscosityModel::new(f.viscosity, m.rest_density, f.eos.sound_speed(c), kernel, spacing))
             .collect();
+        let viscosity = per_material(materials, &own);
         let mut pair_viscosity = Vec::with_capacity(n * n);
         let mut mass_ratio = Vec::with_capacity(n * n);
         for a in 0..n {
@@ -144,7 +147,8 @@ impl FluidConsts {
                 mass_ratio.push(materials[a].mass / materials[b].mass);
             }
         }
-        Self { viscosity, pair_viscosity, xsph: fluids(scene).iter().map(|f| f.xsph).collect(), mass_ratio }
+        let xsph: Vec<Real> = fluids(scene).iter().map(|f| f.xsph).collect();
+        Self { viscosity, pair_viscosity, xsph: per_material(materials, &xsph), mass_ratio }
     }
 
     /// Whether any material uses XSPH.

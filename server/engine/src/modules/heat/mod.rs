@@ -26,6 +26,7 @@ use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use crate::channels::{ChannelSpec, Source};
 use crate::guard::Bound;
 use crate::kernel::Kernel;
+use crate::materials::{Material, per_material};
 use crate::math::{Aabb, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::module::{BenchCase, BenchKind, ModuleDef, Section};
@@ -207,10 +208,15 @@ impl HeatInput {
 }
 
 impl HeatConsts {
-    fn new(scene: &Scene, kernel: &Kernel, role: Option<QuantityRole>) -> Self {
+    /// The constants of `scene`'s heat section, one per material of `materials` (a
+    /// phase takes the entry of the material it is like).
+    fn new(scene: &Scene, materials: &[Material], kernel: &Kernel, role: Option<QuantityRole>) -> Self {
         let heat = section(scene);
         let spacing = scene.particle_spacing;
-        let conductivity: Vec<Real> = heat.fluids.iter().map(|f| f.conductivity).collect();
+        let each = |f: fn(&spec::ThermalFluid) -> Real| {
+            per_material(materials, &heat.fluids.iter().map(f).collect::<Vec<_>>())
+        };
+        let conductivity = each(|f| f.conductivity);
         let n = conductivity.len();
         let scale = kernel.pair_lattice_scale(spacing);
         let mut pair_conductivity = Vec::with_capacity(n * n);
@@ -222,8 +228,8 @@ impl HeatConsts {
         let aabb = |min: [f32; 3], max: [f32; 3]| Aabb::new(min.into(), max.into());
         Self {
             conductivity,
-            capacity: heat.fluids.iter().map(|f| f.heat_capacity).collect(),
-            expansion: heat.fluids.iter().map(|f| f.expansion).collect(),
+            capacity: each(|f| f.heat_capacity),
+            expansion: each(|f| f.expansion),
             pair_conductivity,
             reference: heat.reference_temperature,
             gravity: heat.buoyancy_gravity.unwrap_or(scene.gravity).into(),
@@ -238,11 +244,14 @@ impl HeatConsts {
                     power: f.flux * spacing * spacing,
                 }))
                 .collect(),
-            viscosity: heat
-                .fluids
-                .iter()
-                .map(|f| TemperatureLaw::new(f.viscosity.as_ref(), heat.max_viscosity, heat.reference_temperature))
-                .collect(),
+            viscosity: per_material(
+                materials,
+                &heat
+                    .fluids
+                    .iter()
+                    .map(|f| TemperatureLaw::new(f.viscosity.as_ref(), heat.max_viscosity, heat.reference_temperature))
+                    .collect::<Vec<_>>(),
+            ),
             shifts_rheology: role == Some(QuantityRole::Scales),
             range: heat.range,
         }
@@ -381,7 +390,7 @@ fn initial_temperatures(heat: &spec::Heat, b: &ModelBuilder) -> Vec<Real> {
     x.iter()
         .enumerate()
         .map(|(i, &p)| {
-            let own = heat.fluids[material.map_or(0, |m| m[i] as usize)].temperature;
+            let own = heat.fluids[b.materials()[material.map_or(0, |m| m[i] as usize)].settings].temperature;
             let region = heat.regions.iter().rev().find(|r| Aabb::new(r.min.into(), r.max.into()).contains(p));
             region.map_or(own, |r| r.temperature)
         })
@@ -410,7 +419,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.attr(&TEMPERATURE, Column::F32(t));
     b.zeros(&TEMPERATURE_CARRY);
     b.zeros(&HEAT_RATE);
-    let consts = HeatConsts::new(scene, &b.kernel, b.quantities.role(MODULE.id));
+    let consts = HeatConsts::new(scene, b.materials(), &b.kernel, b.quantities.role(MODULE.id));
     b.pass(&conduction::CONDUCTION);
     if consts.buoyant() {
         b.pass(&passes::BUOYANCY);
@@ -427,7 +436,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
 
 /// Conductivities and expansion may change; buoyancy's pass comes and goes with it.
 fn retune(scene: &Scene, model: &mut Model) {
-    let consts = HeatConsts::new(scene, &model.kernel, model.quantities.role(MODULE.id));
+    let consts = HeatConsts::new(scene, model.materials.as_slice(), &model.kernel, model.quantities.role(MODULE.id));
     let names: Vec<&str> = model.plan.passes().iter().map(|p| p.name).collect();
     if consts.buoyant() != names.contains(&passes::BUOYANCY.name) {
         let mut list: Vec<_> =

@@ -128,8 +128,9 @@ pub struct SnowConsts {
 }
 
 impl SnowConsts {
-    fn new(snow: &spec::Snow) -> Self {
-        Self { laws: snow.fluids.iter().map(|r| Law::new(r, snow.max_viscosity)).collect() }
+    fn new(snow: &spec::Snow, materials: &[crate::materials::Material]) -> Self {
+        let own: Vec<Law> = snow.fluids.iter().map(|r| Law::new(r, snow.max_viscosity)).collect();
+        Self { laws: crate::materials::per_material(materials, &own) }
     }
 
     /// Whether material `m` has a rheology (is snow, for the measures).
@@ -208,14 +209,14 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     // Another module's law may scale the rheology (the core allocates the factor).
     b.pass(if b.quantities.scaled() { &shear::SHEAR_SHIFTED } else { &shear::SHEAR });
     b.channel(SHEAR_RATE_CHANNEL);
-    let consts = SnowConsts::new(&snow);
+    let consts = SnowConsts::new(&snow, b.materials());
     b.set_consts(Front::new(b, &consts));
     b.set_consts(consts);
     Ok(())
 }
 
 fn retune(scene: &Scene, model: &mut Model) {
-    model.set_consts(SnowConsts::new(&section(scene)));
+    model.set_consts(SnowConsts::new(&section(scene), model.materials.as_slice()));
 }
 
 /// The explicit viscous limit `0.125 h^2 rho0 / mu_max` (Morris et al. 1997, eq. 20)
