@@ -19,7 +19,7 @@
 //! - [`attrs`], [`materials`], [`plan`], [`channels`]: the core's declarations: typed
 //!   attribute columns, the material table, the pass plan, the channels clients stream.
 //! - [`scheme`], [`module`]: what a pressure solver and a physics module are;
-//!   [`schemes`] (WCSPH, DFSPH) and [`modules`] (fluid, heat, snow): those shipped,
+//!   [`schemes`] (WCSPH, DFSPH) and [`modules`] (fluid, heat, snow, snowfall): those shipped,
 //!   listed in [`registry`], the only place that names them.
 //! - [`quantities`]: what modules share (the per-particle viscosity and its factor),
 //!   claimed by modules and resolved by the core; [`viscosity`]: that viscosity's

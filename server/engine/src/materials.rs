@@ -125,9 +125,10 @@ pub struct Materials {
 }
 
 impl Materials {
-    /// A table of `list` (at most 256 materials: frames send the index as a byte).
+    /// A table of `list` (at most 256 materials: frames send the index as a byte;
+    /// none in a scene without SPH particles, e.g. snowfall alone).
     pub fn new(list: Vec<Material>) -> Self {
-        assert!(!list.is_empty() && list.len() <= 256, "1 to 256 materials");
+        assert!(list.len() <= 256, "at most 256 materials");
         Self { list }
     }
 
@@ -146,9 +147,9 @@ impl Materials {
         self.list.len() == 1
     }
 
-    /// Never true: a table has at least one material.
+    /// Whether the scene has no materials (no SPH particles).
     pub fn is_empty(&self) -> bool {
-        false
+        self.list.is_empty()
     }
 
     /// Every material, in index order.

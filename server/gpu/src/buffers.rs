@@ -149,8 +149,10 @@ impl Buffers {
             attrs.push((*spec, buffer));
         }
         let walls = &model.wall_particles;
+        // Material 0's pseudo-masses (none in a scene without SPH particles).
+        let psi = |k: usize| walls.psi.first().map_or(0.0, |psi| psi[k]);
         let wall_data: Vec<[f32; 4]> =
-            walls.positions.iter().zip(&walls.psi[0]).map(|(p, &psi)| [p.x, p.y, p.z, psi]).collect();
+            walls.positions.iter().enumerate().map(|(k, p)| [p.x, p.y, p.z, psi(k)]).collect();
         // Particle run starts (counts before the scan), then the wall grid's fixed starts.
         let mut starts = vec![0u32; cells as usize + 1];
         starts.extend_from_slice(walls.grid.starts());
@@ -169,7 +171,7 @@ impl Buffers {
             ("sort_scratch", storage(device, "sort scratch", scratch, U::empty())),
             ("walls", init(device, "wall particles", &wall_data, U::STORAGE)),
             ("constraints", init(device, "wall constraints", &constraints, U::STORAGE)),
-            ("partials", storage(device, "measure partials", 32 * n.div_ceil(256), U::empty())),
+            ("partials", storage(device, "measure partials", 32 * n.div_ceil(256).max(1), U::empty())),
             ("reduce_partials", storage(device, "reduction partials", 4 * n.div_ceil(256), U::empty())),
             ("reduce_words", init(device, "reduction", &[Words::default()], U::UNIFORM | U::COPY_DST)),
             ("quant_grid", init(device, "frame position grid", &[QuantGrid::default()], U::UNIFORM | U::COPY_DST)),

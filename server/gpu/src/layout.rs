@@ -67,7 +67,8 @@ impl Params {
         let (w_norm, g_norm) = k.norms();
         let walls = &model.wall_particles.grid;
         let h = k.support();
-        let rho00 = model.materials.get(0).rest_density;
+        // (A scene without SPH particles has no material.)
+        let rho00 = model.materials.iter().next().map_or(1.0, |m| m.rest_density);
         let mut materials = [[0.0; 4]; MAX_MATERIALS];
         for (slot, m) in materials.iter_mut().zip(model.materials.iter()) {
             *slot = [m.rest_density, m.mass, 1.0 / (m.rest_density * m.rest_density), m.rest_density / rho00];

@@ -168,6 +168,12 @@ impl<'s> ModelBuilder<'s> {
         self.domain.expect("the domain is known when the scheme and the modules build")
     }
 
+    /// The height of the ground at `(x, z)` (m) where a terrain covers it (the first
+    /// such terrain's raster).
+    pub fn ground_at(&self, x: Real, z: Real) -> Option<Real> {
+        self.grids.iter().flatten().find(|g| g.covers(x, z)).map(|g| g.eval(x, z).0)
+    }
+
     /// The materials added so far.
     pub fn materials(&self) -> &[Material] {
         &self.materials

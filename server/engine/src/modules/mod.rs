@@ -6,3 +6,4 @@
 pub mod fluid;
 pub mod heat;
 pub mod snow;
+pub mod snowfall;

@@ -90,11 +90,17 @@ pub fn validate(scene: &Scene) -> Result<(), Vec<String>> {
         crate::quantities::check(scene, &mut c);
     }
     let counted = scene.particle_spacing.is_finite() && scene.particle_spacing > 0.0;
-    let particles = crate::module::counts(scene).iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
+    let counts = crate::module::counts(scene);
+    let particles = counts.iter().map(|(_, n)| *n).fold(0, u64::saturating_add);
     if counted && particles as f64 > MAX_PARTICLES {
+        let each: Vec<String> = counts.iter().map(|(space, n)| format!("{space} {n}")).collect();
         c.fail(
             "particle_spacing",
-            format!("the scene would create {particles} particles, more than the limit of {MAX_PARTICLES:.0e}; increase particle_spacing"),
+            format!(
+                "the scene would create {particles} particles and elements ({}), more than the limit of {MAX_PARTICLES:.0e}; \
+                 increase particle_spacing or shrink the largest",
+                each.join(", ")
+            ),
         );
     }
     for (i, b) in scene.boundaries.iter().enumerate() {
@@ -306,7 +312,7 @@ mod tests {
         assert_eq!(errors(&["fluids=[]"]), "fluids: at least one fluid is required");
         assert_eq!(
             errors(&["modules=[\"fluid\",\"lava\"]"]),
-            "modules[1]: unknown module \"lava\"; modules are fluid, heat, snow"
+            "modules[1]: unknown module \"lava\"; modules are fluid, heat, snow, snowfall"
         );
         assert_eq!(
             errors(&["fluids[0].eos={\"kind\":\"tait\",\"background\":-1}"]),

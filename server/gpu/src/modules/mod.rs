@@ -4,6 +4,7 @@ pub mod fluid;
 pub mod fused;
 pub mod heat;
 pub mod snow;
+pub mod snowfall;
 
 use crate::pass::{Fused, GpuPass, UniformSource};
 
@@ -20,6 +21,9 @@ pub static PASSES: &[&GpuPass] = &[
     &heat::VISCOSITY_SHIFT,
     &snow::SHEAR,
     &snow::SHEAR_SHIFTED,
+    &snowfall::EMIT,
+    &snowfall::FALL,
+    &snowfall::SURFACE,
 ];
 
 /// Kernels doing several modules' passes in one neighbour walk.
@@ -27,4 +31,4 @@ pub static FUSED: &[&Fused] = &[&fused::FORCES_AND_CONDUCTION];
 
 /// Every module's uniform.
 pub static UNIFORMS: &[(&str, UniformSource)] =
-    &[("fluid", fluid::uniform), ("heat", heat::uniform), ("snow", snow::uniform)];
+    &[("fluid", fluid::uniform), ("heat", heat::uniform), ("snow", snow::uniform), ("snowfall", snowfall::uniform)];

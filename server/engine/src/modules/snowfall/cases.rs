@@ -1,0 +1,126 @@
+//! The snowfall's validation cases (VALIDATION.md §9), on the preset `snow_roof`:
+//! flat ground under a roof 2 to 2.1 m up, x from 6 to 8 m, across the whole area.
+
+use super::presets::ROOF;
+use super::{Accounts, CELLS, GROUND_COUNT, SnowfallConsts};
+use crate::Simulation;
+use crate::attrs::Column;
+use crate::validation::cases::{Case, Measured, Variant};
+use crate::validation::run_probed;
+
+/// The cases, for the module registry.
+pub const CASES: &[Case] = &[
+    Case {
+        name: "snowfall_open",
+        module: "snowfall",
+        reference: "VALIDATION.md §9: emitted = airborne + landed + left exactly; deposition on open flat ground = the emitted flux within 1 %; no deposit under a roof without wind",
+        preset: "snow_roof",
+        primary_error: "open_flux_error",
+        spacings: (&[0.5, 0.25], &[0.5, 0.25, 0.125]),
+        checked_at: Some(0.25),
+        bounds: &[("accounting_error", 0.0), ("open_flux_error", 0.01), ("under_roof_flakes", 0.0)],
+        // With flutter: in still air without it every flake born in a step lands in
+        // the same step, and where the window starts cuts a step's flakes in or out.
+        variants: &[Variant { name: "flutter_1", overrides: &["snowfall.flutter=1"] }],
+        measure: open_case,
+    },
+    Case {
+        name: "snowfall_shelter",
+        module: "snowfall",
+        reference: "VALIDATION.md §9: with wind W and terminal speed v_t the bare patch behind a roof h up shifts downwind by h W / v_t (h = 2.05 m, the roof's mid-height) within one grid cell; emitted = airborne + landed + left exactly",
+        preset: "snow_roof",
+        primary_error: "shelter_shift_error_cells",
+        spacings: (&[0.5, 0.25], &[0.5, 0.25, 0.125]),
+        checked_at: Some(0.25),
+        bounds: &[("shelter_shift_error_cells", 1.0), ("accounting_error", 0.0)],
+        variants: &[
+            Variant { name: "wind_1", overrides: &["snowfall.wind=[1,0]"] },
+            Variant { name: "wind_2", overrides: &["snowfall.wind=[2,0]"] },
+        ],
+        measure: shelter_case,
+    },
+];
+
+/// When the open-ground flux is first read (s): every flake then lands on flakes
+/// born at least a second after the start. The window is two seconds.
+const WINDOW: (f64, f64) = (6.0, 8.0);
+
+/// The flakes that do not add up: `|emitted - airborne - landed - left|`.
+fn accounting_error(sim: &Simulation) -> f64 {
+    let a = Accounts::of(sim.backend());
+    (a.emitted as f64 - (a.airborne + a.on_ground + a.on_objects + a.left) as f64).abs()
+}
+
+/// The flakes on the ground in each cell, with the grid's consts.
+fn ground(sim: &Simulation) -> (Vec<u32>, SnowfallConsts) {
+    let Column::U32(n) = sim.backend().download(&[GROUND_COUNT.name]).remove(0) else { panic!("counts are u32") };
+    debug_assert_eq!(n.len(), sim.model().layout.count(CELLS));
+    (n, sim.model().consts::<SnowfallConsts>().clone())
+}
+
+/// The cells whose centres lie in `[x0, x1] x [z0, z1]` (m), with their total count.
+fn count_in(n: &[u32], c: &SnowfallConsts, x: [f32; 2], z: [f32; 2]) -> (u64, usize) {
+    let mut total = (0, 0);
+    for (k, &count) in n.iter().enumerate() {
+        let (i, j) = (k % c.nx as usize, k / c.nx as usize);
+        let cx = c.origin[0] + (i as f32 + 0.5) * c.cell;
+        let cz = c.origin[1] + (j as f32 + 0.5) * c.cell;
+        if cx >= x[0] && cx <= x[1] && cz >= z[0] && cz <= z[1] {
+            total = (total.0 + u64::from(count), total.1 + 1);
+        }
+    }
+    total
+}
+
+/// No wind: the deposit rate over open ground (x from 10.5 to 15.5 m, 0.5 m from
+/// the edges) over [`WINDOW`] against the emitted flux; the flakes under the roof
+/// (0.5 m in from its edges); the accounting at the end.
+fn open_case(sim: &mut Simulation, _spacing: f64) -> Measured {
+    let (open_x, open_z) = ([10.5, 15.5], [0.5, 3.5]);
+    let mut first = None;
+    let (wall, halted) = run_probed(sim, WINDOW.1, 0.5, |s| {
+        if first.is_none() && s.time() >= WINDOW.0 {
+            let (n, c) = ground(s);
+            let (count, cells) = count_in(&n, &c, open_x, open_z);
+            first = Some((s.time(), count, cells));
+        }
+    });
+    let (n, c) = ground(sim);
+    let (count, cells) = count_in(&n, &c, open_x, open_z);
+    let (t0, count0, _) = first.unwrap_or((0.0, 0, cells));
+    let area = cells as f64 * f64::from(c.cell * c.cell);
+    let emitted = f64::from(c.rate) / f64::from((c.area_max[0] - c.area_min[0]) * (c.area_max[1] - c.area_min[1]));
+    let flux = (count - count0) as f64 / (area * (sim.time() - t0));
+    let (_, [x0, x1], _) = ROOF;
+    let (under, _) = count_in(&n, &c, [x0 + 0.5, x1 - 0.5], [0.0, 4.0]);
+    let errors = vec![
+        ("accounting_error", accounting_error(sim)),
+        ("open_flux_error", (flux / emitted - 1.0).abs()),
+        ("under_roof_flakes", under as f64),
+    ];
+    (wall, halted, errors)
+}
+
+/// With wind along x: the bare columns of cells (no flake anywhere along z) past
+/// the bare strip upwind of where the first flakes land are the roof's shelter; the
+/// distance of their centre from the roof's centre, against `h W / v_t`, in cells.
+fn shelter_case(sim: &mut Simulation, _spacing: f64) -> Measured {
+    let (wall, halted) = run_probed(sim, WINDOW.1, WINDOW.1, |_| {});
+    let (n, c) = ground(sim);
+    let bare: Vec<bool> =
+        (0..c.nx as usize).map(|i| (0..c.nz as usize).all(|j| n[j * c.nx as usize + i] == 0)).collect();
+    // Skip the upwind strip no flake reaches, then the ground they reach.
+    let start = bare.iter().position(|&b| !b).unwrap_or(bare.len());
+    let shelter: Vec<usize> = (start..bare.len()).skip_while(|&i| !bare[i]).take_while(|&i| bare[i]).collect();
+    let (h, [x0, x1], _) = ROOF;
+    let shift = 0.5 * (c.wind[0] / c.terminal_speed) * (2.0 * h + 0.1);
+    let error = match (shelter.first(), shelter.last()) {
+        (Some(&a), Some(&b)) => {
+            let centre = c.origin[0] + 0.5 * (a + b + 1) as f32 * c.cell;
+            f64::from((centre - (0.5 * (x0 + x1) + shift)).abs() / c.cell)
+        }
+        _ => f64::INFINITY,
+    };
+    let errors = vec![("shelter_shift_error_cells", error), ("accounting_error", accounting_error(sim))];
+    (wall, halted, errors)
+}

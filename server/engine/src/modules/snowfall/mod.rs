@@ -1,0 +1,603 @@
+//! The snowfall module: flakes emitted over an area, drifting in the wind, landing
+//! on objects, on the ground and on the snow already there, and the snow cover
+//! they build, as in the snow thesis's snowfall half (its eqs. 2.5-2.6; see
+//! [`flakes`] for the motion and what Floe adds to it).
+//!
+//! - Flakes live in a space of their own (`flakes`), a ring of slots: flake number
+//!   `f` is born into slot `f mod capacity` and the capacity is sized so that no
+//!   flake is still airborne when its slot comes round again (a flake older than
+//!   [`SnowfallConsts::max_age`] has left). So births and landings need no
+//!   compaction on either backend, and the accounting is exact: emitted = airborne
+//!   + landed + left, in integers ([`flakes::tally`]).
+//! - The snow cover is a grid of square cells over the area (`snow_cells`): each
+//!   cell counts the flakes landed on the ground (`ground_count`) and on the tops of
+//!   objects (`top_count`); each flake is `depth_per_flake` metres of snow over a
+//!   cell, so depth grows with time, sheltered cells get none, and the next flakes
+//!   land on the snow (`snow_surface`, refreshed each step before they move).
+//! - Streams: the `flakes` set (positions, every slot: landed flakes stay where
+//!   they landed until their slot is reused) and the `snow_cover` grid with
+//!   `snow_depth` and `top_depth` (m).
+//!
+//! Not yet here (issue text of the module): the occlusion-map coverage of the
+//! thesis (eqs. 2.1-2.2), meshes as objects, release of the cover as avalanche
+//! snow, and a live intensity (the ring is sized from the built one).
+
+pub mod cases;
+pub mod flakes;
+pub mod presets;
+pub mod spec;
+
+use crate::attrs::{AttrSpec, Column, Elem, Role};
+use crate::channels::{ChannelSpec, SetSpec, Source};
+use crate::cpu::{CpuCx, CpuPass};
+use crate::math::{Real, Vec3};
+use crate::model::{BuildError, Model, ModelBuilder};
+use crate::module::{ModuleDef, Section};
+use crate::plan::{PassSpec, Stage};
+use crate::scene::Scene;
+use crate::scene::sections::SectionDef;
+use crate::scene::tunable::Tunable;
+use crate::scene::validate::Checker;
+use crate::simulation::Measure;
+use spec::Object;
+
+/// The module's definition.
+pub static MODULE: ModuleDef = ModuleDef {
+    id: "snowfall",
+    about: "Snowfall: flakes in the wind that land on the ground and on objects and build a snow cover.",
+    requires: &[],
+    section: Some(Section { def: SectionDef::of::<spec::Snowfall>(SECTION), missing: Some("is required") }),
+    validate,
+    count,
+    materials: |_| 0,
+    claims: |_| Vec::new(),
+    particles: |_, _| Ok(()),
+    build,
+    retune,
+    tunables: TUNABLES,
+    cpu: &[("snowfall.emit", &Emit), ("snowfall.fall", &Fall), ("snowfall.surface", &Surface)],
+    presets: presets::PRESETS,
+    dt_limit,
+    measures,
+    cases: cases::CASES,
+    stability: &[],
+    bench: &[],
+};
+
+/// The module's section of a scene.
+pub const SECTION: &str = "snowfall";
+
+/// The flakes' space and set.
+pub const FLAKES: &str = "flakes";
+/// The counters' space (four counters).
+pub const COUNTERS: &str = "snowfall";
+/// The snow grid's cells, and its set.
+pub const CELLS: &str = "snow_cells";
+/// The snow grid's set.
+pub const COVER: &str = "snow_cover";
+
+/// Objects a scene may hold (the GPU's uniform has room for this many).
+pub const MAX_OBJECTS: usize = 16;
+
+/// Cells the snow grid may have.
+pub const MAX_CELLS: u64 = 1 << 22;
+
+/// The scene's section (the registry builds the module only for scenes with one).
+pub fn section(scene: &Scene) -> spec::Snowfall {
+    scene.section(SECTION).expect("the registry builds snowfall only for scenes with its section")
+}
+
+/// The module's live settings.
+pub const TUNABLES: &[Tunable] = &[
+    Tunable {
+        path: "snowfall.wind",
+        unit: "m/s",
+        min: None,
+        max: None,
+        about: "Mean wind [x, z].",
+        module: "snowfall",
+    },
+    Tunable {
+        path: "snowfall.gusts",
+        unit: "",
+        min: Some(0.0),
+        max: Some(1.0),
+        about: "Relative amplitude of the gusts.",
+        module: "snowfall",
+    },
+    Tunable {
+        path: "snowfall.flutter",
+        unit: "m/s^2",
+        min: Some(0.0),
+        max: None,
+        about: "Amplitude of the flakes' random flutter.",
+        module: "snowfall",
+    },
+];
+
+const fn attr(name: &'static str, elem: Elem, unit: &'static str, role: Role, space: &'static str) -> AttrSpec {
+    AttrSpec { name, elem, unit, role, added_later: false, space, module: "snowfall", about: name }
+}
+
+/// Flake positions (m).
+pub static FLAKE_X: AttrSpec = attr("flake_x", Elem::Vec3, "m", Role::State, FLAKES);
+/// Flake velocities (m/s), and in w the flake's state ([`flakes::AIRBORNE`], ...; 0 a
+/// slot never used).
+pub static FLAKE_V: AttrSpec = attr("flake_v", Elem::Vec4, "m/s", Role::State, FLAKES);
+/// Flake ages (s).
+pub static FLAKE_AGE: AttrSpec = attr("flake_age", Elem::F32, "s", Role::State, FLAKES);
+/// The counters ([`flakes::tally`]).
+pub static TALLY: AttrSpec = attr("snowfall_tally", Elem::U32, "", Role::State, COUNTERS);
+/// The emission's carry and the clock ([`flakes::timer`]).
+pub static TIMER: AttrSpec = attr("snowfall_timer", Elem::F32, "", Role::State, COUNTERS);
+/// Flakes landed on the ground in each cell.
+pub static GROUND_COUNT: AttrSpec = attr("ground_count", Elem::U32, "", Role::State, CELLS);
+/// Flakes landed on objects' tops in each cell.
+pub static TOP_COUNT: AttrSpec = attr("top_count", Elem::U32, "", Role::State, CELLS);
+/// Height of the ground under each cell's centre (m): a terrain's, else the floor.
+pub static BED: AttrSpec = attr("snow_bed", Elem::F32, "m", Role::Constant, CELLS);
+/// Per cell: the ground's height, the snow depth on it and on objects' tops (m).
+pub static SURFACE: AttrSpec = attr("snow_surface", Elem::Vec4, "m", Role::Derived, CELLS);
+
+const fn post_step(
+    name: &'static str,
+    reads: &'static [&'static str],
+    writes: &'static [&'static str],
+    accumulates: &'static [&'static str],
+) -> PassSpec {
+    PassSpec { name, module: "snowfall", stage: Stage::PostStep, reads, writes, accumulates, tolerance: 0.0 }
+}
+
+/// The step's births: counts them, advancing the tally and the clock.
+pub static EMIT: PassSpec = post_step("snowfall.emit", &[], &["snowfall_timer"], &["snowfall_tally"]);
+/// Moves the flakes, lands them, and adds the born.
+pub static FALL: PassSpec = PassSpec {
+    tolerance: 1e-4,
+    ..post_step(
+        "snowfall.fall",
+        &["snowfall_timer", "snow_surface"],
+        &["flake_x", "flake_v", "flake_age"],
+        &["snowfall_tally", "ground_count", "top_count"],
+    )
+};
+/// The surface flakes land on, from the counts (before the flakes move).
+pub static SURFACE_PASS: PassSpec = PassSpec {
+    name: "snowfall.surface",
+    module: "snowfall",
+    stage: Stage::Kick,
+    reads: &["ground_count", "top_count", "snow_bed"],
+    writes: &["snow_surface"],
+    accumulates: &[],
+    tolerance: 1e-6,
+};
+
+/// The module's constants (the GPU's `snowfall` uniform holds the same).
+#[derive(Debug, Clone)]
+pub struct SnowfallConsts {
+    /// The area's corners `[x, z]` (m): the snow grid's.
+    pub area_min: [f32; 2],
+    /// Its upper corner.
+    pub area_max: [f32; 2],
+    /// Where flakes are born `[x, z]` (m): the area moved upwind by the distance the
+    /// mean wind carries a flake while it falls to the floor, `W (height - floor) / v_t`,
+    /// so that a steady wind brings the whole flux onto the area.
+    pub emit_min: [f32; 2],
+    /// Its upper corner.
+    pub emit_max: [f32; 2],
+    /// The floor (m): a flake at or below it outside the area has left.
+    pub floor: f32,
+    /// Emission height (m).
+    pub height: f32,
+    /// Flakes emitted per second over the whole area.
+    pub rate: f32,
+    /// Terminal speed (m/s).
+    pub terminal_speed: f32,
+    /// Drag's relaxation time `v_t / |g|` (s).
+    pub tau: f32,
+    /// Mean wind `[x, z]` (m/s).
+    pub wind: [f32; 2],
+    /// Relative amplitude of the gusts.
+    pub gusts: f32,
+    /// `2 pi / gust_period` (1/s).
+    pub gust_omega: f32,
+    /// Flutter amplitude (m/s^2).
+    pub flutter: f32,
+    /// A flake still airborne at this age (s) has left: `3 (height - floor) / v_t + 1`.
+    pub max_age: f32,
+    /// Snow depth one flake adds to a cell (m).
+    pub depth_per_flake: f32,
+    /// Slots in the ring of flakes.
+    pub capacity: u32,
+    /// The grid's corner `[x, z]` (m): the area's.
+    pub origin: [f32; 2],
+    /// Cell edge (m).
+    pub cell: f32,
+    /// Cells along x.
+    pub nx: u32,
+    /// Cells along z.
+    pub nz: u32,
+    /// The objects, two vec4 each: a box `(min, 0), (max, 0)`; a cylinder
+    /// `(cx, bottom, cz, 1), (radius, top, 0, 0)`.
+    pub objects: Vec<[[f32; 4]; 2]>,
+}
+
+impl SnowfallConsts {
+    fn new(scene: &Scene) -> Self {
+        let s = section(scene);
+        let g = Vec3::from(scene.gravity).length();
+        let (nx, nz) = cells(&s, scene.particle_spacing);
+        let area = (s.area.max[0] - s.area.min[0]) * (s.area.max[1] - s.area.min[1]);
+        let flux = s.intensity.flakes_per_m2_s();
+        let max_age = max_age(&s);
+        let cell = cell_of(&s, scene.particle_spacing);
+        let drift = s.wind.map(|w| -w * (s.height - s.floor) / s.terminal_speed);
+        Self {
+            area_min: s.area.min,
+            area_max: s.area.max,
+            emit_min: [s.area.min[0] + drift[0], s.area.min[1] + drift[1]],
+            emit_max: [s.area.max[0] + drift[0], s.area.max[1] + drift[1]],
+            floor: s.floor,
+            height: s.height,
+            rate: flux * area,
+            terminal_speed: s.terminal_speed,
+            tau: s.terminal_speed / g,
+            wind: s.wind,
+            gusts: s.gusts,
+            gust_omega: std::f32::consts::TAU / s.gust_period,
+            flutter: s.flutter,
+            max_age,
+            depth_per_flake: s.depth_per_hour / 3600.0 / flux,
+            capacity: capacity(&s, scene.particle_spacing) as u32,
+            origin: s.area.min,
+            cell,
+            nx,
+            nz,
+            objects: s.objects.iter().map(pack).collect(),
+        }
+    }
+
+    /// The snow grid as a grid set's geometry.
+    pub fn grid(&self) -> floe_proto::GridInfo {
+        floe_proto::GridInfo {
+            origin: [self.origin[0], 0.0, self.origin[1]],
+            size: [self.cell * self.nx as f32, 0.0, self.cell * self.nz as f32],
+            dims: [self.nx, 1, self.nz],
+        }
+    }
+}
+
+fn pack(o: &Object) -> [[f32; 4]; 2] {
+    match *o {
+        Object::Box { min, max } => [[min[0], min[1], min[2], 0.0], [max[0], max[1], max[2], 0.0]],
+        Object::Cylinder { centre, radius, bottom, top } => {
+            [[centre[0], bottom, centre[1], 1.0], [radius, top, 0.0, 0.0]]
+        }
+    }
+}
+
+fn cell_of(s: &spec::Snowfall, spacing: f32) -> f32 {
+    s.cell.unwrap_or(spacing)
+}
+
+/// Cells along x and z.
+fn cells(s: &spec::Snowfall, spacing: f32) -> (u32, u32) {
+    let cell = cell_of(s, spacing);
+    let n = |axis: usize| (((s.area.max[axis] - s.area.min[axis]) / cell).ceil() as u32).max(1);
+    (n(0), n(1))
+}
+
+fn max_age(s: &spec::Snowfall) -> f32 {
+    3.0 * (s.height - s.floor) / s.terminal_speed + 1.0
+}
+
+/// The longest step the module allows (s): a flake moves at most half a cell.
+fn step_limit(s: &spec::Snowfall, spacing: f32) -> f32 {
+    let wind = s.wind[0].hypot(s.wind[1]) * (1.0 + s.gusts);
+    let speed = wind + s.terminal_speed + s.flutter * s.terminal_speed / 9.81;
+    (0.5 * cell_of(s, spacing) / speed).min(0.5)
+}
+
+/// Slots the ring needs: every flake born while the oldest can still be airborne,
+/// and two steps' more.
+fn capacity(s: &spec::Snowfall, spacing: f32) -> u64 {
+    let area = f64::from((s.area.max[0] - s.area.min[0]) * (s.area.max[1] - s.area.min[1]));
+    let rate = f64::from(s.intensity.flakes_per_m2_s()) * area;
+    let span = f64::from(max_age(s)) + 2.0 * f64::from(step_limit(s, spacing));
+    (rate * span).ceil() as u64 + 2
+}
+
+fn validate(scene: &Scene, c: &mut Checker) {
+    let Some(s) = scene.section::<spec::Snowfall>(SECTION) else { return };
+    for axis in 0..2 {
+        let (lo, hi) = (s.area.min[axis], s.area.max[axis]);
+        let path = format!("snowfall.area.max[{axis}]");
+        if c.finite(&format!("snowfall.area.min[{axis}]"), lo) && c.finite(&path, hi) && hi <= lo {
+            c.fail(&path, format!("must exceed area.min[{axis}] = {lo}, got {hi}"));
+        }
+    }
+    c.finite("snowfall.floor", s.floor);
+    if c.finite("snowfall.height", s.height) && s.height <= s.floor {
+        c.fail("snowfall.height", format!("must lie above the floor ({} m), got {}", s.floor, s.height));
+    }
+    c.within("snowfall.intensity.flakes_per_m2_s", s.intensity.flakes_per_m2_s(), 1e-3, 1e6);
+    c.positive("snowfall.depth_per_hour", s.depth_per_hour);
+    c.within("snowfall.terminal_speed", s.terminal_speed, 0.01, 100.0);
+    c.vector("snowfall.wind", &s.wind);
+    c.within("snowfall.gusts", s.gusts, 0.0, 1.0);
+    c.positive("snowfall.gust_period", s.gust_period);
+    c.non_negative("snowfall.flutter", s.flutter);
+    if let Some(cell) = s.cell {
+        c.positive("snowfall.cell", cell);
+    }
+    if Vec3::from(scene.gravity).length() == 0.0 {
+        c.fail("gravity", "snowfall needs gravity (it sets the flakes' drag)".into());
+    }
+    if s.objects.len() > MAX_OBJECTS {
+        c.fail("snowfall.objects", format!("at most {MAX_OBJECTS} objects, got {}", s.objects.len()));
+    }
+    for (i, o) in s.objects.iter().enumerate() {
+        let p = format!("snowfall.objects[{i}]");
+        match *o {
+            Object::Box { min, max } => c.ordered_box(&p, min, max),
+            Object::Cylinder { centre, radius, bottom, top } => {
+                c.vector(&format!("{p}.centre"), &centre);
+                c.positive(&format!("{p}.radius"), radius);
+                if c.finite(&format!("{p}.bottom"), bottom) && c.finite(&format!("{p}.top"), top) && top <= bottom {
+                    c.fail(&format!("{p}.top"), format!("must exceed bottom = {bottom}, got {top}"));
+                }
+            }
+        }
+    }
+    let (nx, nz) = cells(&s, scene.particle_spacing);
+    if u64::from(nx) * u64::from(nz) > MAX_CELLS {
+        c.fail(
+            "snowfall.cell",
+            format!("the snow grid would have {nx} x {nz} cells, more than {MAX_CELLS}; make the cells larger"),
+        );
+    }
+}
+
+/// The ring of flakes, the four counters and the grid's cells.
+fn count(scene: &Scene) -> Vec<(&'static str, u64)> {
+    let s = section(scene);
+    let (nx, nz) = cells(&s, scene.particle_spacing);
+    vec![(FLAKES, capacity(&s, scene.particle_spacing)), (COUNTERS, 4), (CELLS, u64::from(nx) * u64::from(nz))]
+}
+
+fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    let s = section(scene);
+    let c = SnowfallConsts::new(scene);
+    let n = c.capacity as usize;
+    b.space(FLAKES, n);
+    b.zeros(&FLAKE_X);
+    b.zeros(&FLAKE_V);
+    b.zeros(&FLAKE_AGE);
+    b.space(COUNTERS, 4);
+    b.zeros(&TALLY);
+    b.zeros(&TIMER);
+    let cells = (c.nx * c.nz) as usize;
+    b.space(CELLS, cells);
+    let bed = (0..cells)
+        .map(|k| {
+            let (i, j) = (k % c.nx as usize, k / c.nx as usize);
+            let x = c.origin[0] + (i as f32 + 0.5) * c.cell;
+            let z = c.origin[1] + (j as f32 + 0.5) * c.cell;
+            b.ground_at(x, z).unwrap_or(s.floor)
+        })
+        .collect();
+    b.attr(&BED, Column::F32(bed));
+    b.zeros(&GROUND_COUNT);
+    b.zeros(&TOP_COUNT);
+    b.zeros(&SURFACE);
+    b.pass(&EMIT);
+    b.pass(&FALL);
+    b.pass(&SURFACE_PASS);
+    b.set(SetSpec { name: FLAKES, space: FLAKES, position: "flake_x", id: None, grid: None });
+    b.set(SetSpec::grid(COVER, CELLS, c.grid()));
+    b.channel(ChannelSpec {
+        name: "snow_depth",
+        unit: "m",
+        components: 1,
+        exact: false,
+        set: COVER,
+        module: "snowfall",
+        about: "Depth of the snow on the ground.",
+        source: Source::Derived { from: &["ground_count"], values: depths },
+    });
+    b.channel(ChannelSpec {
+        name: "top_depth",
+        unit: "m",
+        components: 1,
+        exact: false,
+        set: COVER,
+        module: "snowfall",
+        about: "Depth of the snow on objects' tops.",
+        source: Source::Derived { from: &["top_count"], values: depths },
+    });
+    b.set_consts(c);
+    Ok(())
+}
+
+/// Depth (m) from a count of flakes per cell.
+fn depths(model: &Model, columns: &[Column]) -> Vec<f32> {
+    let per = model.consts::<SnowfallConsts>().depth_per_flake;
+    let Column::U32(n) = &columns[0] else { panic!("counts are u32") };
+    n.iter().map(|&n| n as f32 * per).collect()
+}
+
+/// Wind, gusts and flutter may change (the ring keeps its size).
+fn retune(scene: &Scene, model: &mut Model) {
+    let capacity = model.consts::<SnowfallConsts>().capacity;
+    model.set_consts(SnowfallConsts { capacity, ..SnowfallConsts::new(scene) });
+}
+
+fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
+    let c = model.consts::<SnowfallConsts>();
+    let wind = c.wind[0].hypot(c.wind[1]) * (1.0 + c.gusts);
+    let speed = wind + c.terminal_speed + c.flutter * c.tau;
+    Some(("snowfall", (0.5 * c.cell / speed).min(0.5)))
+}
+
+/// The flakes' accounting: emitted, airborne, landed (on the ground and on
+/// objects) and left, which always add up.
+fn measures(sim: &crate::Simulation) -> Vec<Measure> {
+    let a = Accounts::of(sim.backend());
+    vec![
+        Measure::new("snowfall.emitted", a.emitted as f64, ""),
+        Measure::new("snowfall.airborne", a.airborne as f64, ""),
+        Measure::new("snowfall.landed", (a.on_ground + a.on_objects) as f64, ""),
+        Measure::new("snowfall.left", a.left as f64, ""),
+    ]
+}
+
+/// Where the flakes are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Accounts {
+    /// Emitted since the start.
+    pub emitted: u64,
+    /// In the air now.
+    pub airborne: u64,
+    /// Landed on the ground.
+    pub on_ground: u64,
+    /// Landed on objects.
+    pub on_objects: u64,
+    /// Left the area (or lived too long).
+    pub left: u64,
+}
+
+impl Accounts {
+    /// A backend's accounts, from its state.
+    pub fn of(b: &dyn crate::backend::Backend) -> Self {
+        let mut cols = b.download(&[TALLY.name, FLAKE_V.name, GROUND_COUNT.name, TOP_COUNT.name]).into_iter();
+        let mut next = || cols.next().expect("four columns");
+        let (Column::U32(tally), Column::Vec4(v), Column::U32(ground), Column::U32(top)) =
+            (next(), next(), next(), next())
+        else {
+            panic!("the snowfall's columns")
+        };
+        let sum = |n: &[u32]| n.iter().map(|&n| u64::from(n)).sum();
+        Self {
+            emitted: u64::from(tally[flakes::tally::EMITTED]),
+            airborne: v.iter().filter(|v| v[3] == flakes::AIRBORNE).count() as u64,
+            on_ground: sum(&ground),
+            on_objects: sum(&top),
+            left: u64::from(tally[flakes::tally::LEFT]),
+        }
+    }
+}
+
+/// Counts the step's births.
+#[derive(Debug)]
+struct Emit;
+
+impl CpuPass for Emit {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let c = cx.model.consts::<SnowfallConsts>();
+        let (t, m) = (cx.attrs.handle::<u32>(TALLY.name), cx.attrs.handle::<f32>(TIMER.name));
+        let (mut tally, mut timer) = (cx.attrs.take(t), cx.attrs.take(m));
+        flakes::emit(c, &mut tally, &mut timer, cx.dt);
+        cx.attrs.put(t, tally);
+        cx.attrs.put(m, timer);
+    }
+}
+
+/// Moves, lands and bears the flakes (in slot order, as the GPU's threads would
+/// in any order: each flake touches only its slot and whole counts).
+#[derive(Debug)]
+struct Fall;
+
+impl CpuPass for Fall {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let c = cx.model.consts::<SnowfallConsts>();
+        let dt = cx.dt;
+        let a = &mut *cx.attrs;
+        let (hx, hv, hage) =
+            (a.handle::<Vec3>(FLAKE_X.name), a.handle::<[f32; 4]>(FLAKE_V.name), a.handle::<f32>(FLAKE_AGE.name));
+        let (ht, hg, ho) =
+            (a.handle::<u32>(TALLY.name), a.handle::<u32>(GROUND_COUNT.name), a.handle::<u32>(TOP_COUNT.name));
+        let (mut x, mut v, mut age) = (a.take(hx), a.take(hv), a.take(hage));
+        let (mut tally, mut ground, mut top) = (a.take(ht), a.take(hg), a.take(ho));
+        let clock = a.get(a.handle::<f32>(TIMER.name))[flakes::timer::CLOCK];
+        let surface = a.get(a.handle::<[f32; 4]>(SURFACE.name));
+        let (first, born) = (tally[flakes::tally::FIRST], tally[flakes::tally::BORN]);
+        let n = c.capacity;
+        let w = flakes::wind(c, clock);
+        let target = Vec3::new(w[0], -c.terminal_speed, w[1]);
+        let decay = (-dt / c.tau).exp();
+        for i in 0..n {
+            let s = i as usize;
+            let d = (i + n - first % n) % n;
+            if d < born {
+                x[s] = flakes::birth(c, first.wrapping_add(d));
+                v[s] = [target.x, target.y, target.z, flakes::AIRBORNE];
+                age[s] = 0.0;
+                continue;
+            }
+            if v[s][3] != flakes::AIRBORNE {
+                continue;
+            }
+            age[s] += dt;
+            let r = flakes::flutter(c, x[s], age[s]);
+            let vel = target + (Vec3::new(v[s][0], v[s][1], v[s][2]) - target) * decay + r * dt;
+            let p = x[s] + vel * dt;
+            let mut state = flakes::AIRBORNE;
+            let mut at = p;
+            if !flakes::over(c.area_min, c.area_max, p) {
+                // Upwind of the area, on its way in, or gone.
+                if !flakes::over(c.emit_min, c.emit_max, p) || p.y <= c.floor || age[s] > c.max_age {
+                    state = flakes::LEFT;
+                    tally[flakes::tally::LEFT] += 1;
+                }
+            } else {
+                let k = flakes::cell(c, p.x, p.z);
+                let cover = surface[k];
+                if let Some(y) = flakes::object_top(c, x[s].y, p, cover[2]) {
+                    state = flakes::LANDED;
+                    at.y = y;
+                    top[k] += 1;
+                } else if p.y <= cover[0] + cover[1] {
+                    state = flakes::LANDED;
+                    at.y = cover[0] + cover[1];
+                    ground[k] += 1;
+                } else if age[s] > c.max_age {
+                    state = flakes::LEFT;
+                    tally[flakes::tally::LEFT] += 1;
+                }
+            }
+            x[s] = at;
+            v[s] = [vel.x, vel.y, vel.z, state];
+        }
+        let a = &mut *cx.attrs;
+        a.put(hx, x);
+        a.put(hv, v);
+        a.put(hage, age);
+        a.put(ht, tally);
+        a.put(hg, ground);
+        a.put(ho, top);
+    }
+}
+
+/// `snow_surface = (bed, ground_count d, top_count d, 0)`, `d` the depth per flake.
+#[derive(Debug)]
+struct Surface;
+
+impl CpuPass for Surface {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let per = cx.model.consts::<SnowfallConsts>().depth_per_flake;
+        let a = &mut *cx.attrs;
+        let h = a.handle::<[f32; 4]>(SURFACE.name);
+        let mut surface = a.take(h);
+        let (bed, ground, top) = (
+            a.get(a.handle::<f32>(BED.name)),
+            a.get(a.handle::<u32>(GROUND_COUNT.name)),
+            a.get(a.handle::<u32>(TOP_COUNT.name)),
+        );
+        for (k, s) in surface.iter_mut().enumerate() {
+            *s = [bed[k], ground[k] as f32 * per, top[k] as f32 * per, 0.0];
+        }
+        a.put(h, surface);
+    }
+}
+
+#[cfg(test)]
+mod tests;

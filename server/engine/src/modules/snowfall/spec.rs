@@ -1,0 +1,147 @@
+//! The snowfall module's scene section (`snowfall`).
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Snow falling over a rectangle of ground, and what it lands on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Snowfall {
+    /// The horizontal rectangle flakes are emitted over and the snow grid covers:
+    /// `min` and `max` as `[x, z]` (m). A flake that leaves it sideways has left.
+    pub area: Area,
+    /// Height flakes are emitted at (m).
+    pub height: f32,
+    /// Height of the ground where no terrain covers it (m; default 0).
+    #[serde(default)]
+    pub floor: f32,
+    /// How many flakes fall: `light`, `moderate`, `heavy`, `blizzard`
+    /// ([`Intensity::flakes_per_m2_s`]) or `{"flakes_per_m2_s": F}`. Live.
+    #[serde(default)]
+    pub intensity: Intensity,
+    /// Depth of snow the fall lays on open flat ground (m per hour; default 0.05, a
+    /// heavy snowfall). Each flake carries `depth_per_hour / 3600 / flakes_per_m2_s`
+    /// cubic metres of snow per square metre: a scene may lay snow faster than any
+    /// storm does (a time-lapse) without more flakes.
+    #[serde(default = "default_depth_per_hour")]
+    pub depth_per_hour: f32,
+    /// Speed a flake falls at in still air (m/s; default 1, dry snow's 0.5 to 1.5).
+    #[serde(default = "default_terminal_speed")]
+    pub terminal_speed: f32,
+    /// Mean wind `[x, z]` (m/s). Live.
+    #[serde(default)]
+    pub wind: [f32; 2],
+    /// Gusts: the wind is `wind (1 + gusts sin(2 pi t / gust_period))` (0 to 1). Live.
+    #[serde(default)]
+    pub gusts: f32,
+    /// Period of the gusts (s; default 5).
+    #[serde(default = "default_gust_period")]
+    pub gust_period: f32,
+    /// Flutter: each step a random acceleration, each component uniform in
+    /// `[-flutter, flutter]` (m/s^2; default 1). Live.
+    #[serde(default = "default_flutter")]
+    pub flutter: f32,
+    /// Edge of the snow grid's square cells (m; default the particle spacing).
+    #[serde(default)]
+    pub cell: Option<f32>,
+    /// Objects snow lands on: boxes (a roof, a house, a car) and cylinders (trees).
+    #[serde(default)]
+    pub objects: Vec<Object>,
+}
+
+/// A horizontal rectangle.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Area {
+    /// Lower corner `[x, z]` (m).
+    pub min: [f32; 2],
+    /// Upper corner `[x, z]` (m).
+    pub max: [f32; 2],
+}
+
+/// How many flakes fall per square metre and second.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", untagged)]
+pub enum Intensity {
+    /// A named intensity.
+    Named(Named),
+    /// Flakes per square metre per second.
+    Rate {
+        /// Flakes per m^2 per s.
+        flakes_per_m2_s: f32,
+    },
+}
+
+/// The named intensities.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Named {
+    /// 20 flakes per m^2 per s.
+    Light,
+    /// 50.
+    Moderate,
+    /// 100.
+    Heavy,
+    /// 200.
+    Blizzard,
+}
+
+impl Default for Intensity {
+    fn default() -> Self {
+        Intensity::Named(Named::Heavy)
+    }
+}
+
+impl Intensity {
+    /// Flakes per square metre per second. Each simulated flake stands for many
+    /// (its snow is `depth_per_hour`'s): the named rates are for the eye.
+    pub fn flakes_per_m2_s(self) -> f32 {
+        match self {
+            Intensity::Named(Named::Light) => 20.0,
+            Intensity::Named(Named::Moderate) => 50.0,
+            Intensity::Named(Named::Heavy) => 100.0,
+            Intensity::Named(Named::Blizzard) => 200.0,
+            Intensity::Rate { flakes_per_m2_s } => flakes_per_m2_s,
+        }
+    }
+}
+
+/// Something snow lands on.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Object {
+    /// An axis-aligned box (m): a roof on its own is a thin one off the ground.
+    Box {
+        /// Lower corner.
+        min: [f32; 3],
+        /// Upper corner.
+        max: [f32; 3],
+    },
+    /// An upright cylinder (m): a tree.
+    Cylinder {
+        /// Centre of its footprint `[x, z]`.
+        centre: [f32; 2],
+        /// Radius.
+        radius: f32,
+        /// Height of its bottom.
+        bottom: f32,
+        /// Height of its top.
+        top: f32,
+    },
+}
+
+fn default_depth_per_hour() -> f32 {
+    0.05
+}
+
+fn default_terminal_speed() -> f32 {
+    1.0
+}
+
+fn default_gust_period() -> f32 {
+    5.0
+}
+
+fn default_flutter() -> f32 {
+    1.0
+}

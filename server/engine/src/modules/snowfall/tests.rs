@@ -1,0 +1,63 @@
+use super::*;
+use crate::scene::load::from_preset;
+
+fn errors(overrides: &[&str]) -> String {
+    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    match from_preset("snow_roof", &o) {
+        Ok(_) => String::new(),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn bad_settings_are_named_by_path() {
+    assert!(errors(&["snowfall.area.max=[0,4]"]).contains("snowfall.area.max[0]: must exceed area.min[0] = 0, got 0"));
+    assert!(errors(&["snowfall.height=-1"]).contains("snowfall.height: must lie above the floor (0 m), got -1"));
+    assert!(errors(&["snowfall.terminal_speed=0"]).contains("snowfall.terminal_speed"));
+    assert!(errors(&["snowfall.wind=[1,NaN]"]).contains("snowfall.wind"), "{}", errors(&["snowfall.wind=[1,NaN]"]));
+    assert!(errors(&["snowfall.gusts=2"]).contains("snowfall.gusts"));
+    let cylinder = r#"snowfall.objects=[{"shape":"cylinder","centre":[1,1],"radius":-1,"bottom":1,"top":0}]"#;
+    let e = errors(&[cylinder]);
+    assert!(e.contains("snowfall.objects[0].radius") && e.contains("snowfall.objects[0].top"), "{e}");
+    let many = format!("snowfall.objects=[{}]", vec![r#"{"shape":"box","min":[0,0,0],"max":[1,1,1]}"#; 17].join(","));
+    assert!(errors(&[&many]).contains("at most 16 objects, got 17"));
+    assert!(errors(&["snowfall.cell=0.001"]).contains("snowfall.cell: the snow grid would have 16000 x 4000 cells"));
+    assert!(errors(&["snowfall.intensity=\"drizzle\""]).contains("snowfall.intensity"));
+}
+
+/// The valley under snow for 20 s on the CPU: every flake emitted is in the air,
+/// on the ground, on an object or gone, exactly, at every step; snow lies on the
+/// ground and on the objects; the ring never overwrites a flake in the air (it
+/// would vanish from the accounts).
+#[test]
+fn every_flake_is_accounted_for() {
+    let mut sim = crate::Simulation::new_cpu(from_preset("snowfall", &[]).unwrap()).unwrap();
+    while sim.time() < 20.0 {
+        sim.step().unwrap();
+        let a = Accounts::of(sim.backend());
+        assert_eq!(a.emitted, a.airborne + a.on_ground + a.on_objects + a.left, "t = {}: {a:?}", sim.time());
+    }
+    let a = Accounts::of(sim.backend());
+    assert!(a.on_ground > 10_000 && a.on_objects > 100 && a.left > 0, "{a:?}");
+    // The depth channel is the count of each cell times the depth of a flake.
+    let cover = *sim.model().sets.iter().find(|s| s.name == COVER).unwrap();
+    let p = sim.read_set(&cover, &["snow_depth"]);
+    let depth = p.channel("snow_depth").and_then(floe_proto::Values::as_scalars).unwrap();
+    let per = sim.model().consts::<SnowfallConsts>().depth_per_flake;
+    let total: f64 = depth.iter().map(|&d| f64::from(d)).sum();
+    assert!((total / (a.on_ground as f64 * f64::from(per)) - 1.0).abs() < 1e-4);
+}
+
+/// The snow grid is a grid set with positions from its cells; the flakes a set of
+/// their own.
+#[test]
+fn the_cover_and_the_flakes_are_sets() {
+    let model = Model::build(&from_preset("snow_roof", &[]).unwrap()).unwrap();
+    let sets: Vec<&str> = model.sets.iter().map(|s| s.name).collect();
+    assert!(sets.contains(&FLAKES) && sets.contains(&COVER), "{sets:?}");
+    let c = model.consts::<SnowfallConsts>();
+    assert_eq!((c.nx, c.nz), (64, 16));
+    assert_eq!(model.layout.count(CELLS), 64 * 16);
+    assert_eq!(model.layout.count(FLAKES), c.capacity as usize);
+    assert_eq!(model.particle_count(), 0);
+}

@@ -1,0 +1,47 @@
+//! Snowfall through the service: a scene of flakes and a snow cover, no SPH
+//! particles, streamed as the flakes' set and the cover's grid frames; an emission
+//! too heavy for the server's limits refused before anything is allocated.
+
+mod common;
+
+use floe_client::{Client, FrameRequest};
+use floe_proto::Values;
+
+#[tokio::test]
+async fn snow_streams_as_flakes_and_a_growing_cover() {
+    let server = common::TestServer::start().await;
+    let mut floe = Client::connect(&server.grpc_url()).await.unwrap();
+    let info = floe.create_preset("snow_roof", &["snowfall.flutter=1"]).await.unwrap();
+    let sets: Vec<(&str, bool)> = info.sets.iter().map(|s| (s.name.as_str(), s.grid)).collect();
+    assert_eq!(sets, [("particles", false), ("flakes", false), ("snow_cover", true)]);
+    let flakes = info.sets.iter().find(|s| s.name == "flakes").unwrap().count;
+    let mut depths = Vec::new();
+    for _ in 0..2 {
+        floe.step(info.scene_id, 40).await.unwrap();
+        let request =
+            FrameRequest { channels: vec!["snow_depth".into()], set: "snow_cover".into(), ..FrameRequest::default() };
+        let mut grid = floe.frames(info.scene_id, request).await.unwrap();
+        let frame = grid.next().await.unwrap().unwrap();
+        assert_eq!(frame.header.mode, floe_proto::Mode::Grid);
+        let cells = grid.particles(frame);
+        assert_eq!(cells.grid.expect("cells").dims, [64, 1, 16]);
+        let depth = cells.channel("snow_depth").and_then(Values::as_scalars).unwrap();
+        depths.push(depth.iter().sum::<f32>() / depth.len() as f32);
+    }
+    assert!(depths[0] > 0.0 && depths[1] > 1.5 * depths[0], "the cover grows: mean depths {depths:?} m");
+    // The flakes: every slot of the ring, positions in the area.
+    let request = FrameRequest { set: "flakes".into(), ..FrameRequest::default() };
+    let mut frames = floe.frames(info.scene_id, request).await.unwrap();
+    let frame = frames.next().await.unwrap().unwrap();
+    let p = frames.particles(frame);
+    assert_eq!(p.positions.len() as u64, flakes);
+    // The SPH set is empty and still streams.
+    let mut frames = floe.frames(info.scene_id, FrameRequest::default()).await.unwrap();
+    let frame = frames.next().await.unwrap().unwrap();
+    assert_eq!(frames.particles(frame).positions.len(), 0);
+    // A fall too heavy for the server's particle limit is refused, naming the flakes.
+    let e = floe.create_preset("snow_roof", &["snowfall.intensity={\"flakes_per_m2_s\":100000}"]).await.unwrap_err();
+    assert_ne!(common::code(&e), tonic::Code::Internal, "{e}");
+    assert!(e.to_string().contains("flakes"), "{e}");
+    server.shutdown().await;
+}
