@@ -47,7 +47,9 @@ async fn rest_mirrors_the_control_calls() {
                 "avalanche",
                 "power_law_channel",
                 "bingham_channel",
-                "cross_channel"
+                "cross_channel",
+                "snowfall",
+                "snow_roof"
             ])
         )
     );

@@ -133,6 +133,9 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     ("power_law_channel", &["particle_spacing=0.1"], 0x3b9b872526dd0493),
     ("bingham_channel", &["particle_spacing=0.1"], 0x35026c9cb52d54b6),
     ("cross_channel", &["particle_spacing=0.1"], 0x3ceb18dbc831a1f1),
+    // Recorded when the snowfall module was added.
+    ("snowfall", &["particle_spacing=0.5"], 0x01dbba8ad4c1958e),
+    ("snow_roof", &["particle_spacing=0.5"], 0xbaaa71d569cc89fa),
 ];
 
 /// State attributes the core added after the checksums were recorded, which no

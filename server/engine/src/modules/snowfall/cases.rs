@@ -39,6 +39,18 @@ pub const CASES: &[Case] = &[
         ],
         measure: shelter_case,
     },
+    Case {
+        name: "snowfall_coverage",
+        module: "snowfall",
+        reference: "VALIDATION.md §9, the snow thesis's eqs. 2.1-2.2: coverage 0 inside the objects standing on the ground (occluded from every direction), 1 on open flat ground, cos(inclination) on the open mountain side (the terrain's own normal)",
+        preset: "snowfall",
+        primary_error: "slope_coverage_error",
+        spacings: (&[0.5, 0.25], &[0.5, 0.25, 0.125]),
+        checked_at: Some(0.25),
+        bounds: &[("inside_coverage", 0.0), ("open_coverage_error", 0.0), ("slope_coverage_error", 0.01)],
+        variants: &[Variant { name: "cone_25", overrides: &[] }],
+        measure: coverage_case,
+    },
 ];
 
 /// When the open-ground flux is first read (s): every flake then lands on flakes
@@ -123,4 +135,49 @@ fn shelter_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     };
     let errors = vec![("shelter_shift_error_cells", error), ("accounting_error", accounting_error(sim))];
     (wall, halted, errors)
+}
+
+/// The coverage of the valley's cells, built (it depends on geometry alone):
+/// inside the house, the car and the trees; on the open floor between the house
+/// and the trees (x 15 to 19 m, z 0.5 to 3 m, farther from every object than the
+/// cone reaches under its top); on the open mountain side (x 2 to 8 m) against the
+/// cosine of the terrain's inclination from its raster's own normal.
+fn coverage_case(sim: &mut Simulation, _spacing: f64) -> Measured {
+    let c = sim.model().consts::<SnowfallConsts>().clone();
+    let Column::F32(cover) = sim.backend().download(&[super::COVERAGE.name]).remove(0) else { panic!("f32") };
+    let grid = sim
+        .scene()
+        .boundaries
+        .iter()
+        .find_map(|b| match b {
+            crate::scene::Boundary::Terrain(t) => crate::terrain::source::rasterise(t, sim.model().spacing).ok(),
+            _ => None,
+        })
+        .expect("the valley's terrain");
+    let objects = &super::section(sim.scene()).objects;
+    let (mut inside, mut open, mut slope, mut slope_cells) = (0.0f64, 0.0f64, 0.0f64, 0usize);
+    for (k, &f) in cover.iter().enumerate() {
+        let (i, j) = (k % c.nx as usize, k / c.nx as usize);
+        let x = c.origin[0] + (i as f32 + 0.5) * c.cell;
+        let z = c.origin[1] + (j as f32 + 0.5) * c.cell;
+        let within = |o: &super::spec::Object| match *o {
+            super::spec::Object::Box { min, max } => x > min[0] && x < max[0] && z > min[2] && z < max[2],
+            super::spec::Object::Cylinder { centre, radius, .. } => (x - centre[0]).hypot(z - centre[1]) < radius,
+        };
+        if objects.iter().any(within) {
+            inside = inside.max(f64::from(f));
+        } else if (15.0..=19.0).contains(&x) && (0.5..=3.0).contains(&z) {
+            open = open.max(f64::from((1.0 - f).abs()));
+        } else if (2.0..=8.0).contains(&x) {
+            let n = grid.eval(x, z).1;
+            slope += f64::from((f - n.y).abs() / n.y);
+            slope_cells += 1;
+        }
+    }
+    let errors = vec![
+        ("inside_coverage", inside),
+        ("open_coverage_error", open),
+        ("slope_coverage_error", slope / slope_cells.max(1) as f64),
+    ];
+    (0.0, None, errors)
 }

@@ -18,11 +18,14 @@
 //!   they landed until their slot is reused) and the `snow_cover` grid with
 //!   `snow_depth` and `top_depth` (m).
 //!
-//! Not yet here (issue text of the module): the occlusion-map coverage of the
-//! thesis (eqs. 2.1-2.2), meshes as objects, release of the cover as avalanche
-//! snow, and a live intensity (the ring is sized from the built one).
+//! - The thesis's coverage (eqs. 2.1-2.2, [`coverage`]): a grid channel of how
+//!   much of each cell's ground is exposed to the sky, computed once at build.
+//!
+//! Not yet here: meshes as objects, release of the cover as avalanche snow, and a
+//! live intensity (the ring is sized from the built one).
 
 pub mod cases;
+pub mod coverage;
 pub mod flakes;
 pub mod presets;
 pub mod spec;
@@ -136,6 +139,8 @@ pub static GROUND_COUNT: AttrSpec = attr("ground_count", Elem::U32, "", Role::St
 pub static TOP_COUNT: AttrSpec = attr("top_count", Elem::U32, "", Role::State, CELLS);
 /// Height of the ground under each cell's centre (m): a terrain's, else the floor.
 pub static BED: AttrSpec = attr("snow_bed", Elem::F32, "m", Role::Constant, CELLS);
+/// The thesis's coverage of each cell's ground (0 to 1, [`coverage`]).
+pub static COVERAGE: AttrSpec = attr("coverage", Elem::F32, "", Role::Constant, CELLS);
 /// Per cell: the ground's height, the snow depth on it and on objects' tops (m).
 pub static SURFACE: AttrSpec = attr("snow_surface", Elem::Vec4, "m", Role::Derived, CELLS);
 
@@ -329,6 +334,7 @@ fn validate(scene: &Scene, c: &mut Checker) {
     if let Some(cell) = s.cell {
         c.positive("snowfall.cell", cell);
     }
+    c.within("snowfall.coverage_cone", s.coverage_cone, 0.0, 80.0);
     if Vec3::from(scene.gravity).length() == 0.0 {
         c.fail("gravity", "snowfall needs gravity (it sets the flakes' drag)".into());
     }
@@ -359,7 +365,8 @@ fn validate(scene: &Scene, c: &mut Checker) {
 
 /// The ring of flakes, the four counters and the grid's cells.
 fn count(scene: &Scene) -> Vec<(&'static str, u64)> {
-    let s = section(scene);
+    // (Called while the scene is validated: a missing section is reported there.)
+    let Some(s) = scene.section::<spec::Snowfall>(SECTION) else { return Vec::new() };
     let (nx, nz) = cells(&s, scene.particle_spacing);
     vec![(FLAKES, capacity(&s, scene.particle_spacing)), (COUNTERS, 4), (CELLS, u64::from(nx) * u64::from(nz))]
 }
@@ -384,7 +391,8 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
             let z = c.origin[1] + (j as f32 + 0.5) * c.cell;
             b.ground_at(x, z).unwrap_or(s.floor)
         })
-        .collect();
+        .collect::<Vec<f32>>();
+    b.attr(&COVERAGE, Column::F32(coverage::coverage(&c, &bed, s.coverage_cone)));
     b.attr(&BED, Column::F32(bed));
     b.zeros(&GROUND_COUNT);
     b.zeros(&TOP_COUNT);
@@ -413,6 +421,16 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         module: "snowfall",
         about: "Depth of the snow on objects' tops.",
         source: Source::Derived { from: &["top_count"], values: depths },
+    });
+    b.channel(ChannelSpec {
+        name: "coverage",
+        unit: "",
+        components: 1,
+        exact: false,
+        set: COVER,
+        module: "snowfall",
+        about: "The snow thesis's coverage of the ground (eqs. 2.1-2.2): exposure to the sky times cos(inclination).",
+        source: Source::Attr("coverage"),
     });
     b.set_consts(c);
     Ok(())

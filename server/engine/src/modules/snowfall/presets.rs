@@ -77,6 +77,7 @@ pub fn snowfall() -> Scene {
         gust_period: 6.0,
         flutter: 1.0,
         cell: None,
+        coverage_cone: 25.0,
         objects: vec![
             Object::Box { min: [13.0, 0.0, 5.0], max: [17.0, 3.0, 10.0] },
             Object::Box { min: [20.0, 0.0, 11.0], max: [21.8, 1.4, 15.0] },
@@ -109,6 +110,7 @@ pub fn snow_roof() -> Scene {
         gust_period: 5.0,
         flutter: 0.0,
         cell: None,
+        coverage_cone: 25.0,
         objects: vec![Object::Box { min: [x0, h, -1.0], max: [x1, h + 0.1, 5.0] }],
     };
     let domain = BoxRegion { min: [0.0, -1.0, 0.0], max: [16.0, 5.0, 4.0] };

@@ -42,11 +42,15 @@ pub struct Snowfall {
     #[serde(default = "default_flutter")]
     pub flutter: f32,
     /// Edge of the snow grid's square cells (m; default the particle spacing).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cell: Option<f32>,
     /// Objects snow lands on: boxes (a roof, a house, a car) and cylinders (trees).
     #[serde(default)]
     pub objects: Vec<Object>,
+    /// Half-angle from the vertical of the directions the coverage samples
+    /// (degrees, 0 to 80; default 25; see `coverage`).
+    #[serde(default = "default_coverage_cone")]
+    pub coverage_cone: f32,
 }
 
 /// A horizontal rectangle.
@@ -144,4 +148,8 @@ fn default_gust_period() -> f32 {
 
 fn default_flutter() -> f32 {
     1.0
+}
+
+fn default_coverage_cone() -> f32 {
+    25.0
 }

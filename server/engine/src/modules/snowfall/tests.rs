@@ -61,3 +61,25 @@ fn the_cover_and_the_flakes_are_sets() {
     assert_eq!(model.layout.count(FLAKES), c.capacity as usize);
     assert_eq!(model.particle_count(), 0);
 }
+
+/// The coverage channel: 0 in the house, 1 on the open floor, about cos(30
+/// degrees) on the mountain side, and partial under the roof of `snow_roof`, where
+/// the sky shows past its edges from some sampled directions only.
+#[test]
+fn coverage_follows_exposure_and_inclination() {
+    let at = |model: &Model, x: f32, z: f32| {
+        let c = model.consts::<SnowfallConsts>();
+        let column = model.layout.attrs.iter().find(|(s, _)| s.name == COVERAGE.name).map(|(_, c)| c);
+        let Some(Column::F32(cover)) = column else { panic!("coverage") };
+        cover[flakes::cell(c, x, z)]
+    };
+    let valley = Model::build(&from_preset("snowfall", &[]).unwrap()).unwrap();
+    assert_eq!(at(&valley, 15.0, 7.0), 0.0, "inside the house");
+    assert_eq!(at(&valley, 17.0, 2.0), 1.0, "the open floor");
+    let slope = at(&valley, 5.0, 8.0);
+    assert!((slope - 30f32.to_radians().cos()).abs() < 0.03, "the mountain side: {slope}");
+    let roof = Model::build(&from_preset("snow_roof", &[]).unwrap()).unwrap();
+    let under: Vec<f32> = [6.1, 7.0, 7.9].iter().map(|&x| at(&roof, x, 2.0)).collect();
+    assert!(under.iter().all(|&f| f > 0.0 && f < 1.0) && under[1] < under[0], "under the roof: {under:?}");
+    assert_eq!(at(&roof, 12.0, 2.0), 1.0);
+}
