@@ -42,6 +42,7 @@ use crate::scene::sections::SectionDef;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
 use crate::simulation::Measure;
+use rayon::prelude::*;
 use spec::Object;
 
 /// The module's definition.
@@ -519,15 +520,84 @@ impl CpuPass for Emit {
     }
 }
 
-/// Moves, lands and bears the flakes (in slot order, as the GPU's threads would
-/// in any order: each flake touches only its slot and whole counts).
+/// Moves, lands and bears the flakes: chunks of slots in parallel, each flake
+/// touching only its slot, the landings then counted in slot order (whole counts,
+/// as the GPU's atomics: the same whatever the order).
 #[derive(Debug)]
 struct Fall;
+
+/// Slots a thread moves at a time.
+const CHUNK: usize = 1 << 14;
+
+/// What became of a flake this step.
+enum Fate {
+    /// Born, in the air, or landed before.
+    Nothing,
+    /// Left.
+    Left,
+    /// Landed on the ground of a cell.
+    Ground(usize),
+    /// Landed on an object's top over a cell.
+    Top(usize),
+}
+
+/// What a step needs to move a flake.
+struct Sky<'a> {
+    c: &'a SnowfallConsts,
+    dt: f32,
+    target: Vec3,
+    decay: f32,
+    first: u32,
+    born: u32,
+    surface: &'a [[f32; 4]],
+}
+
+impl Sky<'_> {
+    /// Flake slot `i` (`x`, `v`, `age` its values) through the step.
+    fn advance(&self, i: u32, x: &mut Vec3, v: &mut [f32; 4], age: &mut f32) -> Fate {
+        let (c, dt, n) = (self.c, self.dt, self.c.capacity);
+        let d = (i + n - self.first % n) % n;
+        if d < self.born {
+            *x = flakes::birth(c, self.first.wrapping_add(d));
+            *v = [self.target.x, self.target.y, self.target.z, flakes::AIRBORNE];
+            *age = 0.0;
+            return Fate::Nothing;
+        }
+        if v[3] != flakes::AIRBORNE {
+            return Fate::Nothing;
+        }
+        *age += dt;
+        let r = flakes::flutter(c, *x, *age);
+        let vel = self.target + (Vec3::new(v[0], v[1], v[2]) - self.target) * self.decay + r * dt;
+        let p = *x + vel * dt;
+        let (mut state, mut at, mut fate) = (flakes::AIRBORNE, p, Fate::Nothing);
+        if !flakes::over(c.area_min, c.area_max, p) {
+            // Upwind of the area, on its way in, or gone.
+            if !flakes::over(c.emit_min, c.emit_max, p) || p.y <= c.floor || *age > c.max_age {
+                (state, fate) = (flakes::LEFT, Fate::Left);
+            }
+        } else {
+            let k = flakes::cell(c, p.x, p.z);
+            let cover = self.surface[k];
+            if let Some(y) = flakes::object_top(c, x.y, p, cover[2]) {
+                (state, fate) = (flakes::LANDED, Fate::Top(k));
+                at.y = y;
+            } else if p.y <= cover[0] + cover[1] {
+                (state, fate) = (flakes::LANDED, Fate::Ground(k));
+                at.y = cover[0] + cover[1];
+            } else if *age > c.max_age {
+                (state, fate) = (flakes::LEFT, Fate::Left);
+            }
+        }
+        *x = at;
+        *v = [vel.x, vel.y, vel.z, state];
+        fate
+    }
+}
 
 impl CpuPass for Fall {
     fn run(&self, cx: &mut CpuCx<'_>) {
         let c = cx.model.consts::<SnowfallConsts>();
-        let dt = cx.dt;
         let a = &mut *cx.attrs;
         let (hx, hv, hage) =
             (a.handle::<Vec3>(FLAKE_X.name), a.handle::<[f32; 4]>(FLAKE_V.name), a.handle::<f32>(FLAKE_AGE.name));
@@ -536,54 +606,40 @@ impl CpuPass for Fall {
         let (mut x, mut v, mut age) = (a.take(hx), a.take(hv), a.take(hage));
         let (mut tally, mut ground, mut top) = (a.take(ht), a.take(hg), a.take(ho));
         let clock = a.get(a.handle::<f32>(TIMER.name))[flakes::timer::CLOCK];
-        let surface = a.get(a.handle::<[f32; 4]>(SURFACE.name));
-        let (first, born) = (tally[flakes::tally::FIRST], tally[flakes::tally::BORN]);
-        let n = c.capacity;
         let w = flakes::wind(c, clock);
-        let target = Vec3::new(w[0], -c.terminal_speed, w[1]);
-        let decay = (-dt / c.tau).exp();
-        for i in 0..n {
-            let s = i as usize;
-            let d = (i + n - first % n) % n;
-            if d < born {
-                x[s] = flakes::birth(c, first.wrapping_add(d));
-                v[s] = [target.x, target.y, target.z, flakes::AIRBORNE];
-                age[s] = 0.0;
-                continue;
-            }
-            if v[s][3] != flakes::AIRBORNE {
-                continue;
-            }
-            age[s] += dt;
-            let r = flakes::flutter(c, x[s], age[s]);
-            let vel = target + (Vec3::new(v[s][0], v[s][1], v[s][2]) - target) * decay + r * dt;
-            let p = x[s] + vel * dt;
-            let mut state = flakes::AIRBORNE;
-            let mut at = p;
-            if !flakes::over(c.area_min, c.area_max, p) {
-                // Upwind of the area, on its way in, or gone.
-                if !flakes::over(c.emit_min, c.emit_max, p) || p.y <= c.floor || age[s] > c.max_age {
-                    state = flakes::LEFT;
-                    tally[flakes::tally::LEFT] += 1;
+        let sky = Sky {
+            c,
+            dt: cx.dt,
+            target: Vec3::new(w[0], -c.terminal_speed, w[1]),
+            decay: (-cx.dt / c.tau).exp(),
+            first: tally[flakes::tally::FIRST],
+            born: tally[flakes::tally::BORN],
+            surface: a.get(a.handle::<[f32; 4]>(SURFACE.name)),
+        };
+        let fates: Vec<Vec<Fate>> = x
+            .par_chunks_mut(CHUNK)
+            .zip(v.par_chunks_mut(CHUNK))
+            .zip(age.par_chunks_mut(CHUNK))
+            .enumerate()
+            .map(|(chunk, ((x, v), age))| {
+                let base = (chunk * CHUNK) as u32;
+                let mut out = Vec::new();
+                for (s, ((x, v), age)) in x.iter_mut().zip(v.iter_mut()).zip(age.iter_mut()).enumerate() {
+                    match sky.advance(base + s as u32, x, v, age) {
+                        Fate::Nothing => {}
+                        fate => out.push(fate),
+                    }
                 }
-            } else {
-                let k = flakes::cell(c, p.x, p.z);
-                let cover = surface[k];
-                if let Some(y) = flakes::object_top(c, x[s].y, p, cover[2]) {
-                    state = flakes::LANDED;
-                    at.y = y;
-                    top[k] += 1;
-                } else if p.y <= cover[0] + cover[1] {
-                    state = flakes::LANDED;
-                    at.y = cover[0] + cover[1];
-                    ground[k] += 1;
-                } else if age[s] > c.max_age {
-                    state = flakes::LEFT;
-                    tally[flakes::tally::LEFT] += 1;
-                }
+                out
+            })
+            .collect();
+        for fate in fates.into_iter().flatten() {
+            match fate {
+                Fate::Left => tally[flakes::tally::LEFT] += 1,
+                Fate::Ground(k) => ground[k] += 1,
+                Fate::Top(k) => top[k] += 1,
+                Fate::Nothing => {}
             }
-            x[s] = at;
-            v[s] = [vel.x, vel.y, vel.z, state];
         }
         let a = &mut *cx.attrs;
         a.put(hx, x);
