@@ -106,6 +106,8 @@ fn sets(shared: &Shared) -> Vec<pb::ParticleSet> {
         count: s.count as u64,
         index: i as u32,
         grid: s.grid,
+        look: s.look.unwrap_or_default().into(),
+        surface: s.surface.unwrap_or_default().into(),
     };
     shared.sets.iter().enumerate().map(set).collect()
 }

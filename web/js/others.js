@@ -1,6 +1,9 @@
 // Draws the scene's other sets (sets.js): a grid as one tile per cell, coloured by its value
-// through the colour map (a flat grid, one cell high, at its floor; a deeper one layer by layer
-// at each cell's centre height), and a module's own particles as points in the solid look.
+// through the colour map (a flat grid, one cell high, at its floor or at its cells' surface
+// heights where the set names a surface channel; a deeper one layer by layer at each cell's
+// centre height), and a module's own particles as points in the solid look. A set in the snow
+// look is drawn white: its points, and its tiles blended from the ground's grey to white by value
+// (more snow, whiter; none, bare ground).
 
 import { programWith } from './gl.js';
 
@@ -34,14 +37,20 @@ export function ramp(t) {
 /** A tile's share of its cell (the rest is the gap between tiles). */
 const TILE = 0.9;
 
+/** The snow look's white, and the bare ground's grey a snow grid blends from. */
+const SNOW = [0.95, 0.97, 1.0], BARE = [0.35, 0.33, 0.3];
+
 /**
  * Triangles (positions and colours, three floats per vertex) of a grid's tiles: cell (i, j, k)
- * (x fastest) a square of `TILE` of its cell in x-z at height `origin.y` for a grid one cell
- * high, else at its centre's; coloured by `values` over their range.
+ * (x fastest) a square of `TILE` of its cell in x-z at height `heights[c]` where given, else
+ * `origin.y` for a grid one cell high, else at its centre's; coloured by `values` over their
+ * range through the colour map, or from bare grey to white in the snow look.
  * @param {{origin: number[], size: number[], dims: number[]}} grid
  * @param {Float32Array|null} values one per cell
+ * @param {Float32Array|null} [heights] one per cell (m)
+ * @param {string} [look] the set's look ('snow', or '' for the colour map)
  */
-export function gridTiles(grid, values) {
+export function gridTiles(grid, values, heights = null, look = '') {
   const { origin, size, dims } = grid;
   const cell = [0, 1, 2].map((a) => size[a] / dims[a]);
   const n = dims[0] * dims[1] * dims[2];
@@ -54,9 +63,12 @@ export function gridTiles(grid, values) {
       for (let i = 0; i < dims[0]; i++) {
         const c = i + dims[0] * (j + dims[1] * k);
         const x = origin[0] + (i + 0.5) * cell[0], z = origin[2] + (k + 0.5) * cell[2];
-        const y = dims[1] === 1 ? origin[1] : origin[1] + (j + 0.5) * cell[1];
+        const y = heights ? heights[c] : dims[1] === 1 ? origin[1] : origin[1] + (j + 0.5) * cell[1];
         const corners = [[-1, -1], [1, -1], [1, 1], [-1, -1], [1, 1], [-1, 1]];
-        const rgb = ramp(values && hi > lo ? (values[c] - lo) / (hi - lo) : 0.5);
+        const t = values && hi > lo ? (values[c] - lo) / (hi - lo) : 0.5;
+        const rgb = look === 'snow'
+          ? BARE.map((b, k) => b + (SNOW[k] - b) * (values && hi > 0 ? Math.min(1, Math.max(0, values[c]) / hi) : 0))
+          : ramp(t);
         corners.forEach(([sx, sz], v) => {
           positions.set([x + sx * half[0], y, z + sz * half[1]], c * 18 + v * 3);
           colours.set(rgb, c * 18 + v * 3);
@@ -86,9 +98,10 @@ export class Others {
       m.buffers.forEach((b) => gl.deleteBuffer(b));
     }
     this.meshes = sets.map((s) => {
+      const rgb = s.look === 'snow' ? SNOW : solid;
       const mesh = s.grid
-        ? { mode: gl.TRIANGLES, ...gridTiles(s.grid, s.values) }
-        : { mode: gl.POINTS, positions: s.positions, colours: new Float32Array(s.positions.length).map((_, i) => solid[i % 3]),
+        ? { mode: gl.TRIANGLES, ...gridTiles(s.grid, s.values, s.heights, s.look) }
+        : { mode: gl.POINTS, positions: s.positions, colours: new Float32Array(s.positions.length).map((_, i) => rgb[i % 3]),
           count: s.positions.length / 3 };
       const vao = gl.createVertexArray();
       gl.bindVertexArray(vao);

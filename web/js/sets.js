@@ -1,7 +1,8 @@
 // The scene's sets besides its SPH particles (`SceneInfo.sets`): a module's own particles (the
-// tracer's probes) and its grids (a field on regular cells, sent as grid frames). Each streams on
-// a WebSocket of its own with its set's first channel, decoded here on the page (they are small),
-// and is drawn by the renderer (others.js) with the scene's particles.
+// tracer's probes, snowflakes) and its grids (a field on regular cells, sent as grid frames).
+// Each streams on a WebSocket of its own with its set's first channel (and a grid's surface
+// channel, the cells' heights, where the set names one), decoded here on the page, and is drawn
+// by the renderer (others.js) with the scene's particles, in the set's look where it has one.
 
 import { Decoder } from './codec/index.js';
 
@@ -25,10 +26,16 @@ export class OtherSets {
     this.close();
     for (const set of scene.sets ?? []) {
       if (set.index === 0) continue;
-      const channel = (scene.channels ?? []).find((c) => c.set === set.name)?.name ?? '';
-      const socket = new WebSocket(url(set.name, channel), protocols);
+      const surface = set.surface || '';
+      const channel = (scene.channels ?? []).find((c) => c.set === set.name && c.name !== surface)?.name ?? '';
+      const socket = new WebSocket(url(set.name, [channel, surface].filter(Boolean).join(',')), protocols);
       socket.binaryType = 'arraybuffer';
-      const entry = { socket, decoder: new Decoder(), frame: null, grid: set.grid === true, channel };
+      // Frames name a module's channels by per-scene tags: the scene's info maps them.
+      const tag = (name) => (scene.channels ?? []).find((c) => c.set === set.name && c.name === name)?.tag ?? -1;
+      const entry = {
+        socket, decoder: new Decoder(), frame: null, grid: set.grid === true, channelTag: tag(channel),
+        surfaceTag: surface ? tag(surface) : -1, look: set.look || '',
+      };
       socket.onmessage = (e) => {
         if (typeof e.data === 'string') return;
         entry.frame = entry.decoder.decode(e.data);
@@ -46,14 +53,16 @@ export class OtherSets {
 
   /**
    * What to draw: per set with a frame, its name, whether it is a grid, its positions or grid,
-   * and its channel's values (one per particle or cell, vectors by magnitude).
+   * its channel's values (one per particle or cell, vectors by magnitude), a grid's cell heights
+   * (from its surface channel, else null) and its look ('' for none).
    */
   drawable() {
     const out = [];
-    for (const [name, { frame, grid }] of this.sets) {
+    for (const [name, { frame, grid, channelTag, surfaceTag, look }] of this.sets) {
       if (!frame) continue;
-      const c = frame.channels[0];
       const n = frame.header.particleCount;
+      const tagged = (tag) => frame.channels.find((c) => c.tag === tag) ?? null;
+      const c = tagged(channelTag) ?? frame.channels.find((k) => k.tag !== surfaceTag) ?? null;
       let values = null;
       if (c) {
         values = new Float32Array(n);
@@ -63,7 +72,10 @@ export class OtherSets {
           values[i] = c.components === 1 ? c.values[i] : Math.sqrt(s);
         }
       }
-      out.push({ name, grid: grid ? frame.grid : null, positions: frame.positions, values, step: frame.header.step });
+      const heights = surfaceTag >= 0 ? tagged(surfaceTag)?.values ?? null : null;
+      out.push({
+        name, grid: grid ? frame.grid : null, positions: frame.positions, values, heights, look, step: frame.header.step,
+      });
     }
     return out;
   }

@@ -66,13 +66,23 @@ pub struct SetSpec {
     pub id: Option<&'static str>,
     /// The cells, for a grid (its frames are grid frames; `position` is unused).
     pub grid: Option<floe_proto::GridInfo>,
+    /// How viewers draw it (`None`: as a module's points or a field's colour map).
+    pub look: Option<crate::materials::Look>,
+    /// For a grid: the channel holding each cell's surface height (m), where
+    /// viewers draw the cell (`None`: at the grid's floor).
+    pub surface: Option<&'static str>,
 }
 
 impl SetSpec {
     /// A grid set: the cells `grid` of space `space` (one element per cell, x
     /// fastest, then y, then z).
     pub fn grid(name: &'static str, space: &'static str, grid: floe_proto::GridInfo) -> Self {
-        Self { name, space, position: "", id: None, grid: Some(grid) }
+        Self { name, space, position: "", id: None, grid: Some(grid), look: None, surface: None }
+    }
+
+    /// A set of a module's own particles, positions in `position`, its slots fixed.
+    pub const fn points(name: &'static str, space: &'static str, position: &'static str) -> Self {
+        Self { name, space, position, id: None, grid: None, look: None, surface: None }
     }
 }
 
@@ -81,7 +91,7 @@ pub const PARTICLES: &str = "particles";
 
 /// The SPH particle set.
 pub const PARTICLE_SET: SetSpec =
-    SetSpec { name: PARTICLES, space: PARTICLES, position: "x", id: Some("id"), grid: None };
+    SetSpec { name: PARTICLES, space: PARTICLES, position: "x", id: Some("id"), grid: None, look: None, surface: None };
 
 /// Velocity (core: every particle set that moves has one).
 pub const VELOCITY: ChannelSpec = ChannelSpec {

@@ -202,6 +202,12 @@ pub struct SetView {
     pub index: usize,
     /// Whether it is a grid (its frames are grid frames, cells x fastest).
     pub grid: bool,
+    /// How viewers draw it (`snow`, ...; absent: as a module's points or a field's colours).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub look: Option<&'static str>,
+    /// For a grid: the channel of its cells' surface heights (m), where viewers draw them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface: Option<&'static str>,
 }
 
 /// A material of a scene.
@@ -277,7 +283,14 @@ impl SceneView {
                 .sets
                 .iter()
                 .enumerate()
-                .map(|(index, s)| SetView { name: s.name, count: s.count, index, grid: s.grid })
+                .map(|(index, s)| SetView {
+                    name: s.name,
+                    count: s.count,
+                    index,
+                    grid: s.grid,
+                    look: s.look,
+                    surface: s.surface,
+                })
                 .collect(),
             materials: shared
                 .materials

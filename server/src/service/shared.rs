@@ -151,7 +151,13 @@ impl Shared {
             sets: sim
                 .sets()
                 .into_iter()
-                .map(|(spec, count)| SceneSet { name: spec.name, count, grid: spec.grid.is_some() })
+                .map(|(spec, count)| SceneSet {
+                    name: spec.name,
+                    count,
+                    grid: spec.grid.is_some(),
+                    look: spec.look.map(|l| l.name()),
+                    surface: spec.surface,
+                })
                 .collect(),
             tunables: floe_engine::module::tunables(sim.scene()),
             materials: Arc::new(sim.model().materials.clone()),
@@ -295,6 +301,10 @@ pub struct SceneSet {
     pub count: usize,
     /// Whether it is a grid (its frames are grid frames).
     pub grid: bool,
+    /// How viewers draw it (a material look's name), if the module says.
+    pub look: Option<&'static str>,
+    /// For a grid: the channel of its cells' surface heights (m), if any.
+    pub surface: Option<&'static str>,
 }
 
 /// The wire tags of a scene's channels: the table's tag where `proto/channels.json`

@@ -422,7 +422,7 @@ fn build(_: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.pass(&AGE_PASS);
     b.pass(&SPIN_PASS);
     b.pass(&PROBE_PASS);
-    b.set(SetSpec { name: "probes", space: PROBES, position: "probe_x", id: None, grid: None });
+    b.set(SetSpec::points("probes", PROBES, "probe_x"));
     let s = spec(b.scene);
     // The groups address particles by id, which a scene whose particles are born and
     // die cannot (see floe_engine::population).

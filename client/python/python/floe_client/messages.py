@@ -49,6 +49,10 @@ class ParticleSet:
     index: int
     #: A grid: its frames are grid frames (``Frame.header.grid``, cells x fastest, no positions).
     grid: bool = False
+    #: How viewers draw it (a material look's name, e.g. ``"snow"``); empty when the module says nothing.
+    look: str = ""
+    #: For a grid: the channel holding each cell's surface height (m); empty when none.
+    surface: str = ""
 
 
 @dataclass(frozen=True)
@@ -111,7 +115,7 @@ class SceneInfo:
             channels=tuple(
                 ChannelInfo(c.name, c.tag, c.unit, c.components, c.set, c.exact, c.about, c.module) for c in m.channels
             ),
-            sets=tuple(ParticleSet(s.name, s.count, s.index, s.grid) for s in m.sets),
+            sets=tuple(ParticleSet(s.name, s.count, s.index, s.grid, s.look, s.surface) for s in m.sets),
             tunables=tuple(
                 Tunable(
                     t.path,

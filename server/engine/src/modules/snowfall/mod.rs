@@ -33,6 +33,7 @@ pub mod spec;
 use crate::attrs::{AttrSpec, Column, Elem, Role};
 use crate::channels::{ChannelSpec, SetSpec, Source};
 use crate::cpu::{CpuCx, CpuPass};
+use crate::materials::Look;
 use crate::math::{Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::module::{ModuleDef, Section};
@@ -401,8 +402,8 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.pass(&EMIT);
     b.pass(&FALL);
     b.pass(&SURFACE_PASS);
-    b.set(SetSpec { name: FLAKES, space: FLAKES, position: "flake_x", id: None, grid: None });
-    b.set(SetSpec::grid(COVER, CELLS, c.grid()));
+    b.set(SetSpec { look: Some(Look::Snow), ..SetSpec::points(FLAKES, FLAKES, "flake_x") });
+    b.set(SetSpec { look: Some(Look::Snow), surface: Some("snow_height"), ..SetSpec::grid(COVER, CELLS, c.grid()) });
     b.channel(ChannelSpec {
         name: "snow_depth",
         unit: "m",
@@ -412,6 +413,16 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         module: "snowfall",
         about: "Depth of the snow on the ground.",
         source: Source::Derived { from: &["ground_count"], values: depths },
+    });
+    b.channel(ChannelSpec {
+        name: "snow_height",
+        unit: "m",
+        components: 1,
+        exact: false,
+        set: COVER,
+        module: "snowfall",
+        about: "Height of the snow's surface on the ground (the ground's height plus the snow's depth).",
+        source: Source::Derived { from: &["snow_bed", "ground_count"], values: heights },
     });
     b.channel(ChannelSpec {
         name: "top_depth",
@@ -442,6 +453,13 @@ fn depths(model: &Model, columns: &[Column]) -> Vec<f32> {
     let per = model.consts::<SnowfallConsts>().depth_per_flake;
     let Column::U32(n) = &columns[0] else { panic!("counts are u32") };
     n.iter().map(|&n| n as f32 * per).collect()
+}
+
+/// The snow's surface (m) from the ground's heights and the counts.
+fn heights(model: &Model, columns: &[Column]) -> Vec<f32> {
+    let per = model.consts::<SnowfallConsts>().depth_per_flake;
+    let (Column::F32(bed), Column::U32(n)) = (&columns[0], &columns[1]) else { panic!("heights and counts") };
+    bed.iter().zip(n).map(|(&b, &n)| b + n as f32 * per).collect()
 }
 
 /// Wind, gusts and flutter may change (the ring keeps its size).
