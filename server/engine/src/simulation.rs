@@ -180,9 +180,9 @@ impl Simulation {
         self.backend.particle_count()
     }
 
-    /// Mass of a particle of material 0 (kg).
+    /// Mass of a particle of material 0 (kg; 0 in a scene without SPH particles).
     pub fn particle_mass(&self) -> f32 {
-        self.model().materials.get(0).mass
+        self.model().materials.iter().next().map_or(0.0, |m| m.mass)
     }
 
     /// The simulation domain (m).

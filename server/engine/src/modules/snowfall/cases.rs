@@ -7,6 +7,7 @@ use crate::Simulation;
 use crate::attrs::Column;
 use crate::validation::cases::{Case, Measured, Variant};
 use crate::validation::run_probed;
+use crate::validation::stability::{Expect, StabilityCase};
 
 /// The cases, for the module registry.
 pub const CASES: &[Case] = &[
@@ -50,6 +51,40 @@ pub const CASES: &[Case] = &[
         bounds: &[("inside_coverage", 0.0), ("open_coverage_error", 0.0), ("slope_coverage_error", 0.01)],
         variants: &[Variant { name: "cone_25", overrides: &[] }],
         measure: coverage_case,
+    },
+];
+
+/// The stability battery: flakes in a gale with violent gusts and flutter, flakes
+/// almost without drag, and a grid of two-centimetre cells. Each must run to its
+/// end with the flakes' accounts exact (the battery's check is that it finishes
+/// finite; the accounts are checked by the module's tests).
+pub const STABILITY: &[StabilityCase] = &[
+    StabilityCase {
+        name: "snowfall_gale",
+        what: "flakes in a 40 m/s gale gusting by 100 % with 100 m/s^2 flutter: the flakes' step limit shrinks dt to ~1 ms",
+        preset: "snow_roof",
+        spacing: (0.25, 0.125),
+        overrides: &["snowfall.wind=[40,0]", "snowfall.gusts=1", "snowfall.flutter=100"],
+        until: (0.5, 5.0),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "snowfall_no_drag",
+        what: "flakes with a 100 m/s terminal speed (drag time 10 s: free fall) from 4 m",
+        preset: "snow_roof",
+        spacing: (0.25, 0.125),
+        overrides: &["snowfall.terminal_speed=100"],
+        until: (1.0, 5.0),
+        expect: Expect::Finish,
+    },
+    StabilityCase {
+        name: "snowfall_fine_grid",
+        what: "a snow grid of 2 cm cells (800 x 200) under 2000 flakes per m^2 per s",
+        preset: "snow_roof",
+        spacing: (0.25, 0.125),
+        overrides: &["snowfall.cell=0.02", "snowfall.intensity={\"flakes_per_m2_s\":2000}"],
+        until: (0.5, 5.0),
+        expect: Expect::Finish,
     },
 ];
 

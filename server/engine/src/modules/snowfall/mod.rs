@@ -65,7 +65,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     dt_limit,
     measures,
     cases: cases::CASES,
-    stability: &[],
+    stability: cases::STABILITY,
     bench: &[],
 };
 
