@@ -168,3 +168,24 @@ export function canvasSummary(page) {
       colour: mean.map((m) => m / Math.max(fluid, 1)) };
   });
 }
+
+/**
+ * How many pixels the scene's other sets (grids, probes, flakes) colour: the canvas in the spheres
+ * view with them shown against with them hidden (`#other-sets`), which is left shown again.
+ * @returns {Promise<number>} pixels whose RGB differ by more than 30 in all
+ */
+export async function otherSetsPixels(page) {
+  await page.selectOption('#view-mode', 'spheres');
+  await page.waitForTimeout(1500);
+  const shown = await canvasPixels(page);
+  await page.click('#other-sets');
+  await page.waitForTimeout(1500);
+  const hidden = await canvasPixels(page);
+  let differ = 0;
+  for (let i = 0; i < shown.length; i += 4) {
+    if (Math.abs(shown[i] - hidden[i]) + Math.abs(shown[i + 1] - hidden[i + 1]) + Math.abs(shown[i + 2] - hidden[i + 2]) > 30) differ += 1;
+  }
+  await page.click('#other-sets');
+  await page.waitForTimeout(500);
+  return differ;
+}

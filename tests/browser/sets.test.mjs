@@ -7,7 +7,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { canvasPixels, createScene, launchBrowser, root, startServer, statAtLeast, watchProblems } from './harness.mjs';
+import { createScene, launchBrowser, otherSetsPixels, root, startServer, statAtLeast, watchProblems } from './harness.mjs';
 
 const traced = process.env.FLOE_TRACED_BIN ?? path.join(root, 'target/debug/examples/floe_traced');
 
@@ -38,20 +38,8 @@ test('the viewer draws a scene\'s probes and grid beside its particles', { timeo
     await page.click('#pause');
     assert.ok(await setStep(page, 'columns') > 20);
     // Drawn: hiding the other sets changes the picture.
-    await page.selectOption('#view-mode', 'spheres');
-    await page.waitForTimeout(1500);
-    const shown = await canvasPixels(page);
-    await page.click('#other-sets');
-    await page.waitForTimeout(1500);
-    const hidden = await canvasPixels(page);
-    assert.equal(shown.length, hidden.length);
-    let differ = 0;
-    for (let i = 0; i < shown.length; i += 4) {
-      if (Math.abs(shown[i] - hidden[i]) + Math.abs(shown[i + 1] - hidden[i + 1]) + Math.abs(shown[i + 2] - hidden[i + 2]) > 30) differ += 1;
-    }
+    const differ = await otherSetsPixels(page);
     assert.ok(differ > 500, `only ${differ} pixels show the grid and probes`);
-    await page.click('#other-sets');
-    await page.waitForTimeout(500);
     await page.screenshot({ path: path.join(root, 'target/viewer-sets.png') });
     assert.deepEqual(problems, []);
   } finally {

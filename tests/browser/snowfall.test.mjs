@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { canvasPixels, createScene, launchBrowser, root, startServer, watchProblems } from './harness.mjs';
+import { createScene, launchBrowser, otherSetsPixels, root, startServer, watchProblems } from './harness.mjs';
 
 test('the viewer draws falling flakes and the snow cover of a scene without particles', { timeout: 120_000 }, async () => {
   const { child, url } = await startServer();
@@ -23,19 +23,8 @@ test('the viewer draws falling flakes and the snow cover of a scene without part
     await page.waitForFunction(() => Number(/snow_cover\s+.* \(step (\d+)\)/.exec(document.querySelector('#stats').textContent)?.[1]) > 30,
       null, { timeout: 60_000 });
     await page.click('#pause');
-    await page.selectOption('#view-mode', 'spheres');
-    await page.waitForTimeout(1500);
-    const shown = await canvasPixels(page);
-    await page.click('#other-sets');
-    await page.waitForTimeout(1500);
-    const hidden = await canvasPixels(page);
-    let differ = 0;
-    for (let i = 0; i < shown.length; i += 4) {
-      if (Math.abs(shown[i] - hidden[i]) + Math.abs(shown[i + 1] - hidden[i + 1]) + Math.abs(shown[i + 2] - hidden[i + 2]) > 30) differ += 1;
-    }
+    const differ = await otherSetsPixels(page);
     assert.ok(differ > 500, `only ${differ} pixels show the flakes and the cover`);
-    await page.click('#other-sets');
-    await page.waitForTimeout(500);
     await page.screenshot({ path: path.join(root, 'target/viewer-snowfall.png') });
     assert.deepEqual(problems, []);
   } finally {
