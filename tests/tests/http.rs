@@ -49,6 +49,7 @@ async fn rest_mirrors_the_control_calls() {
                 "bingham_channel",
                 "cross_channel",
                 "snowfall",
+                "snowfall_then_avalanche",
                 "snow_roof"
             ])
         )

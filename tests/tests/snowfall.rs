@@ -48,3 +48,45 @@ async fn snow_streams_as_flakes_and_a_growing_cover() {
     assert!(e.to_string().contains("flakes"), "{e}");
     server.shutdown().await;
 }
+
+/// The release on request: snow falls on the mountain side (20 cm) with no time
+/// set; setting `snowfall.release.at` to 0 releases the cover after the next
+/// step, its mass reported as the particles'; a bad time is refused by path; a
+/// release that does not fit its room halts the scene and leaves the cover.
+#[tokio::test]
+async fn the_cover_is_released_on_request() {
+    let server = common::TestServer::start().await;
+    let mut floe = Client::connect(&server.grpc_url()).await.unwrap();
+    let o = ["particle_spacing=0.2", "snowfall.height=3.2", "snowfall.depth_per_hour=540"];
+    let with = |more: &'static str| [&o[..], &[more]].concat();
+    let info = floe.create_preset("snowfall_then_avalanche", &with("snowfall.release.at=null")).await.unwrap();
+    floe.step(info.scene_id, 60).await.unwrap();
+    let e = floe.set_parameters(info.scene_id, &["snowfall.release.at=-1"]).await.unwrap_err();
+    assert_eq!(common::code(&e), tonic::Code::InvalidArgument, "{e}");
+    assert!(e.to_string().contains("snowfall.release.at"), "{e}");
+    let ground = |stats: &floe_client::SceneStats, name: &str| {
+        stats.measures.iter().find(|m| m.name == name).map(|m| m.value).unwrap_or_else(|| panic!("{name}"))
+    };
+    let before = floe.stats(info.scene_id).await.unwrap();
+    assert_eq!(ground(&before, "snowfall.released_mass"), 0.0);
+    floe.set_parameters(info.scene_id, &["snowfall.release.at=0"]).await.unwrap();
+    floe.step(info.scene_id, 1).await.unwrap();
+    let mass = ground(&floe.stats(info.scene_id).await.unwrap(), "snowfall.released_mass");
+    let mut frames = floe.frames(info.scene_id, FrameRequest::default()).await.unwrap();
+    let frame = frames.next().await.unwrap().unwrap();
+    let particles = frames.particles(frame).positions.len();
+    assert!(particles > 100 && mass > 0.0, "{particles} particles, {mass} kg");
+    floe.step(info.scene_id, 5).await.unwrap();
+    let again = ground(&floe.stats(info.scene_id).await.unwrap(), "snowfall.released_mass");
+    assert_eq!(again, mass, "released once");
+
+    // Room for 10 particles only: the release halts the scene, naming the setting.
+    let small = floe.create_preset("snowfall_then_avalanche", &with("snowfall.release.particles=10")).await.unwrap();
+    floe.set_parameters(small.scene_id, &["snowfall.release.at=4"]).await.unwrap();
+    let halted = floe.step(small.scene_id, 200).await.unwrap();
+    assert!(halted.halt_reason.contains("raise snowfall.release.particles"), "{}", halted.halt_reason);
+    let stats = floe.stats(small.scene_id).await.unwrap();
+    assert_eq!(ground(&stats, "snowfall.released"), 0.0);
+    assert!(ground(&stats, "snowfall.ground_mass") > 0.0, "the cover stays");
+    server.shutdown().await;
+}

@@ -116,8 +116,9 @@ impl Clock {
         );
         let limits = Limits {
             h: 0.5 * model.kernel.support(),
-            // Without SPH particles (snowfall alone) sound sets no limit.
-            c: if model.materials.is_empty() { 0.0 } else { (model.scheme.signal_speed)(model) },
+            // Without SPH particles (snowfall alone, or before a fluid's first births)
+            // sound sets no limit.
+            c: if model.particle_count() == 0 { 0.0 } else { (model.scheme.signal_speed)(model) },
             v_max: m.max_speed2.0.sqrt(),
             a_max: m.max_accel2.sqrt(),
             module,

@@ -20,7 +20,6 @@
 use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
 use crate::backend::Backend;
 use crate::math::{Real, Vec3};
-use crate::model::Model;
 use crate::plan::{PassSpec, Stage};
 
 /// The space of the scene's counters (one element).
@@ -91,8 +90,11 @@ pub struct Emitter {
     /// Name, in messages.
     pub name: &'static str,
     /// The particles born after step `step` (1 for the first), which ended at `time`
-    /// (s) after a step of `dt` (s).
-    pub emit: fn(model: &Model, step: u64, time: f64, dt: Real) -> Births,
+    /// (s) after a step of `dt` (s). An emitter may read its module's state and
+    /// write it back (a snow cover turned into particles loses their snow); an error
+    /// says why the births cannot be (the scene halts with it) and must leave the
+    /// state as it was.
+    pub emit: fn(b: &mut dyn Backend, step: u64, time: f64, dt: Real) -> Result<Births, String>,
 }
 
 /// A scene's births and deaths.
@@ -117,7 +119,7 @@ pub fn after_step(b: &mut dyn Backend, step: u64, time: f64, dt: Real) -> Result
     }
     let mut next = p.next_id;
     for e in &p.emitters {
-        let births = (e.emit)(b.model(), step, time, dt);
+        let births = (e.emit)(b, step, time, dt)?;
         if births.is_empty() {
             continue;
         }

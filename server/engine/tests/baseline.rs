@@ -133,9 +133,17 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     ("power_law_channel", &["particle_spacing=0.1"], 0x3b9b872526dd0493),
     ("bingham_channel", &["particle_spacing=0.1"], 0x35026c9cb52d54b6),
     ("cross_channel", &["particle_spacing=0.1"], 0x3ceb18dbc831a1f1),
-    // Recorded when the snowfall module was added.
-    ("snowfall", &["particle_spacing=0.5"], 0x01dbba8ad4c1958e),
-    ("snow_roof", &["particle_spacing=0.5"], 0xbaaa71d569cc89fa),
+    // Recorded when a flake's depth was corrected to its snow over the cell's area
+    // (the surface later flakes land on rose 1 / cell^2 too slowly).
+    ("snowfall", &["particle_spacing=0.5"], 0x5a098153d03951ca),
+    ("snow_roof", &["particle_spacing=0.5"], 0xacf8a0b6d78595c1),
+    // The cover released after 5 s (a 3.2 m fall, 0.15 m of snow a second), then
+    // the avalanche's first steps.
+    (
+        "snowfall_then_avalanche",
+        &["particle_spacing=0.1", "snowfall.height=3.2", "snowfall.depth_per_hour=540", "snowfall.release.at=5"],
+        0x59eed517fc9457a9,
+    ),
 ];
 
 /// State attributes the core added after the checksums were recorded, which no

@@ -334,9 +334,9 @@ static PHASE: PassSpec = PassSpec {
 };
 
 /// The births of every step: at rest at the first initial positions.
-fn emit(model: &floe_engine::model::Model, _: u64, _: f64, _: f32) -> Births {
-    let at = &model.consts::<TracerConsts>().births;
-    Births { x: at.clone(), v: vec![Vec3::ZERO; at.len()], material: vec![0; at.len()] }
+fn emit(b: &mut dyn floe_engine::backend::Backend, _: u64, _: f64, _: f32) -> Result<Births, String> {
+    let at = &b.model().consts::<TracerConsts>().births;
+    Ok(Births { x: at.clone(), v: vec![Vec3::ZERO; at.len()], material: vec![0; at.len()] })
 }
 
 /// Colours of the floor solve (its sweeps).

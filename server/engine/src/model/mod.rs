@@ -54,6 +54,9 @@ pub enum BuildError {
     /// A terrain's heights cannot be read (e.g. an asset never read from the assets directory).
     #[error("{0}")]
     Terrain(String),
+    /// A setting cannot be used with the rest of the scene (named by its path).
+    #[error("{0}")]
+    Setting(String),
     /// The backend cannot hold or run the scene (e.g. it exceeds a GPU's limits).
     #[error("backend: {0}")]
     Backend(String),

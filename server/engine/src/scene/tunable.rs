@@ -107,11 +107,17 @@ fn copy_path(into: &mut Value, from: &Value, path: &[&str]) {
                 copy_path(x, y, rest);
             }
         }
-        (key, Value::Object(a), Value::Object(b)) => {
-            if let (Some(x), Some(y)) = (a.get_mut(key), b.get(key)) {
-                copy_path(x, y, rest);
+        (key, Value::Object(a), Value::Object(b)) => match (a.get_mut(key), b.get(key)) {
+            (Some(x), Some(y)) => copy_path(x, y, rest),
+            // The path ends at an optional field set or cleared (`snowfall.release.at`).
+            (Some(_), None) if rest.is_empty() => {
+                a.remove(key);
             }
-        }
+            (None, Some(y)) if rest.is_empty() => {
+                a.insert(key.to_string(), y.clone());
+            }
+            _ => {}
+        },
         _ => {}
     }
 }

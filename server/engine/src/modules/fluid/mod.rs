@@ -180,9 +180,6 @@ fn validate(scene: &Scene, c: &mut Checker) {
             Viscosity::Artificial { alpha } => c.within(&format!("{p}.viscosity.alpha"), alpha, 0.0, 1.0),
         }
         c.within(&format!("{p}.xsph"), f.xsph, 0.0, 1.0);
-        if f.blocks.is_empty() {
-            c.fail(&format!("{p}.blocks"), "must hold at least one block".into());
-        }
         for (j, b) in f.blocks.iter().enumerate() {
             let bp = format!("{p}.blocks[{j}]");
             c.ordered_box(&bp, b.min, b.max);

@@ -28,7 +28,9 @@ pub struct Fluid {
     /// How viewers draw it: "water" (the default), "snow", "ice" or "solid".
     #[serde(default, skip_serializing_if = "Look::is_water")]
     pub look: Look,
-    /// Boxes filled with particles on a cubic lattice of `particle_spacing`.
+    /// Boxes filled with particles on a cubic lattice of `particle_spacing`. None:
+    /// the fluid starts without particles and gets them while the scene runs (the
+    /// snow a snowfall's cover releases).
     pub blocks: Vec<FluidBlock>,
 }
 

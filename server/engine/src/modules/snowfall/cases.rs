@@ -14,12 +14,17 @@ pub const CASES: &[Case] = &[
     Case {
         name: "snowfall_open",
         module: "snowfall",
-        reference: "VALIDATION.md §9: emitted = airborne + landed + left exactly; deposition on open flat ground = the emitted flux within 1 %; no deposit under a roof without wind",
+        reference: "VALIDATION.md §9: emitted = airborne + landed + left exactly; deposition on open flat ground = the emitted flux within 1 %, and the depth there grows at depth_per_hour; no deposit under a roof without wind",
         preset: "snow_roof",
         primary_error: "open_flux_error",
         spacings: (&[0.5, 0.25], &[0.5, 0.25, 0.125]),
         checked_at: Some(0.25),
-        bounds: &[("accounting_error", 0.0), ("open_flux_error", 0.01), ("under_roof_flakes", 0.0)],
+        bounds: &[
+            ("accounting_error", 0.0),
+            ("open_flux_error", 0.01),
+            ("open_depth_rate_error", 0.01),
+            ("under_roof_flakes", 0.0),
+        ],
         // With flutter: in still air without it every flake born in a step lands in
         // the same step, and where the window starts cuts a step's flakes in or out.
         variants: &[Variant { name: "flutter_1", overrides: &["snowfall.flutter=1"] }],
@@ -51,6 +56,18 @@ pub const CASES: &[Case] = &[
         bounds: &[("inside_coverage", 0.0), ("open_coverage_error", 0.0), ("slope_coverage_error", 0.01)],
         variants: &[Variant { name: "cone_25", overrides: &[] }],
         measure: coverage_case,
+    },
+    Case {
+        name: "snowfall_release",
+        module: "snowfall",
+        reference: "VALIDATION.md §9, the release (issue: snowfall then avalanche): the snow that reached the ground is the cover left plus the released particles' mass, to 1e-6 relative; the steep cells keep less than a particle's snow; emitted = airborne + landed + left + released exactly",
+        preset: "snowfall_then_avalanche",
+        primary_error: "release_mass_error",
+        spacings: (&[0.1], &[0.1, 0.05]),
+        checked_at: Some(0.1),
+        bounds: &[("release_mass_error", 1e-6), ("steep_cells_over_a_particle", 0.0), ("accounting_error", 0.0)],
+        variants: &[Variant { name: "at_15", overrides: &["snowfall.release.at=15"] }],
+        measure: release_case,
     },
 ];
 
@@ -92,10 +109,33 @@ pub const STABILITY: &[StabilityCase] = &[
 /// born at least a second after the start. The window is two seconds.
 const WINDOW: (f64, f64) = (6.0, 8.0);
 
+/// Runs to just past the release; then, from the flakes' tally (not the release's
+/// own counter), the flakes that reached the ground against the cover left plus
+/// the particles' flakes, relative to the particles' mass.
+fn release_case(sim: &mut Simulation, _spacing: f64) -> Measured {
+    let r = sim.model().consts::<SnowfallConsts>().release.clone().expect("the preset releases");
+    let at = f64::from(r.at.expect("the variant sets the time"));
+    let (wall, halted) = run_probed(sim, at + 0.02, 1.0, |_| ());
+    let a = Accounts::of(sim.backend());
+    let reached = a.emitted - a.airborne - a.left - a.on_objects;
+    let particles = sim.particle_count() as u64;
+    let q = u64::from(r.flakes_per_particle);
+    let mass = particles as f64 * f64::from(sim.model().materials.get(r.material as usize).mass);
+    let missing = (a.on_ground + particles * q) as f64 - reached as f64;
+    let (n, _) = ground(sim);
+    let over = r.cells.iter().filter(|&&k| n[k as usize] >= r.flakes_per_particle).count();
+    let errors = vec![
+        ("release_mass_error", if particles == 0 { 1.0 } else { (missing * r.flake_mass()).abs() / mass }),
+        ("steep_cells_over_a_particle", over as f64),
+        ("accounting_error", accounting_error(sim)),
+    ];
+    (wall, halted, errors)
+}
+
 /// The flakes that do not add up: `|emitted - airborne - landed - left|`.
 fn accounting_error(sim: &Simulation) -> f64 {
     let a = Accounts::of(sim.backend());
-    (a.emitted as f64 - (a.airborne + a.on_ground + a.on_objects + a.left) as f64).abs()
+    (a.emitted as f64 - a.accounted() as f64).abs()
 }
 
 /// The flakes on the ground in each cell, with the grid's consts.
@@ -138,11 +178,16 @@ fn open_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let area = cells as f64 * f64::from(c.cell * c.cell);
     let emitted = f64::from(c.rate) / f64::from((c.area_max[0] - c.area_min[0]) * (c.area_max[1] - c.area_min[1]));
     let flux = (count - count0) as f64 / (area * (sim.time() - t0));
+    // The depth the cells gained, per hour, against the scene's setting.
+    let depth = (count - count0) as f64 * f64::from(c.depth_per_flake) / cells as f64;
+    let depth_per_hour = depth / (sim.time() - t0) * 3600.0;
+    let wanted = f64::from(super::section(sim.scene()).depth_per_hour);
     let (_, [x0, x1], _) = ROOF;
     let (under, _) = count_in(&n, &c, [x0 + 0.5, x1 - 0.5], [0.0, 4.0]);
     let errors = vec![
         ("accounting_error", accounting_error(sim)),
         ("open_flux_error", (flux / emitted - 1.0).abs()),
+        ("open_depth_rate_error", (depth_per_hour / wanted - 1.0).abs()),
         ("under_roof_flakes", under as f64),
     ];
     (wall, halted, errors)

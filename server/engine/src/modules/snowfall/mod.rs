@@ -21,14 +21,18 @@
 //! - The thesis's coverage (eqs. 2.1-2.2, [`coverage`]): a grid channel of how
 //!   much of each cell's ground is exposed to the sky, computed once at build.
 //!
-//! Not yet here: meshes as objects, release of the cover as avalanche snow, and a
-//! live intensity (the ring is sized from the built one).
+//! - The cover on the slopes may be released as particles of a fluid, mass
+//!   conserved ([`release`]): snowfall, then an avalanche.
+//!
+//! Not yet here: meshes as objects, and a live intensity (the ring is sized from
+//! the built one).
 
 pub mod cases;
 pub mod coverage;
 pub mod cpu;
 pub mod flakes;
 pub mod presets;
+pub mod release;
 pub mod spec;
 
 use crate::attrs::{AttrSpec, Column, Elem, Role};
@@ -115,6 +119,14 @@ pub const TUNABLES: &[Tunable] = &[
         min: Some(0.0),
         max: None,
         about: "Amplitude of the flakes' random flutter.",
+        module: "snowfall",
+    },
+    Tunable {
+        path: "snowfall.release.at",
+        unit: "s",
+        min: Some(0.0),
+        max: None,
+        about: "When the cover on the slopes is released (the scene's time or earlier: after the next step).",
         module: "snowfall",
     },
 ];
@@ -225,6 +237,8 @@ pub struct SnowfallConsts {
     /// The objects, two vec4 each: a box `(min, 0), (max, 0)`; a cylinder
     /// `(cx, bottom, cz, 1), (radius, top, 0, 0)`.
     pub objects: Vec<[[f32; 4]; 2]>,
+    /// The release of the cover, if the scene has one (set at build).
+    pub release: Option<release::ReleaseConsts>,
 }
 
 impl SnowfallConsts {
@@ -252,13 +266,14 @@ impl SnowfallConsts {
             gust_omega: std::f32::consts::TAU / s.gust_period,
             flutter: s.flutter,
             max_age,
-            depth_per_flake: s.depth_per_hour / 3600.0 / flux,
+            depth_per_flake: s.depth_per_hour / 3600.0 / flux / (cell * cell),
             capacity: capacity(&s, scene.particle_spacing) as u32,
             origin: s.area.min,
             cell,
             nx,
             nz,
             objects: s.objects.iter().map(pack).collect(),
+            release: None,
         }
     }
 
@@ -355,6 +370,15 @@ fn validate(scene: &Scene, c: &mut Checker) {
             }
         }
     }
+    if let Some(r) = &s.release {
+        if let Some(at) = r.at {
+            c.within("snowfall.release.at", at, 0.0, f32::MAX);
+        }
+        c.within("snowfall.release.min_slope", r.min_slope, 0.0, 90.0);
+        if r.particles == 0 {
+            c.fail("snowfall.release.particles", "must be at least 1".into());
+        }
+    }
     let (nx, nz) = cells(&s, scene.particle_spacing);
     if u64::from(nx) * u64::from(nz) > MAX_CELLS {
         c.fail(
@@ -369,12 +393,15 @@ fn count(scene: &Scene) -> Vec<(&'static str, u64)> {
     // (Called while the scene is validated: a missing section is reported there.)
     let Some(s) = scene.section::<spec::Snowfall>(SECTION) else { return Vec::new() };
     let (nx, nz) = cells(&s, scene.particle_spacing);
-    vec![(FLAKES, capacity(&s, scene.particle_spacing)), (COUNTERS, 4), (CELLS, u64::from(nx) * u64::from(nz))]
+    let mut out =
+        vec![(FLAKES, capacity(&s, scene.particle_spacing)), (COUNTERS, 4), (CELLS, u64::from(nx) * u64::from(nz))];
+    out.extend(s.release.iter().flat_map(release::count));
+    out
 }
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let s = section(scene);
-    let c = SnowfallConsts::new(scene);
+    let mut c = SnowfallConsts::new(scene);
     let n = c.capacity as usize;
     b.space(FLAKES, n);
     b.zeros(&FLAKE_X);
@@ -394,6 +421,9 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         })
         .collect::<Vec<f32>>();
     b.attr(&COVERAGE, Column::F32(coverage::coverage(&c, &bed, s.coverage_cone)));
+    if let Some(r) = &s.release {
+        c.release = Some(release::build(r, &c, &bed, b)?);
+    }
     b.attr(&BED, Column::F32(bed));
     b.zeros(&GROUND_COUNT);
     b.zeros(&TOP_COUNT);
@@ -461,10 +491,13 @@ fn heights(model: &Model, columns: &[Column]) -> Vec<f32> {
     bed.iter().zip(n).map(|(&b, &n)| b + n as f32 * per).collect()
 }
 
-/// Wind, gusts and flutter may change (the ring keeps its size).
+/// Wind, gusts, flutter and the release's time may change (the ring keeps its
+/// size, the release its cells).
 fn retune(scene: &Scene, model: &mut Model) {
-    let capacity = model.consts::<SnowfallConsts>().capacity;
-    model.set_consts(SnowfallConsts { capacity, ..SnowfallConsts::new(scene) });
+    let old = model.consts::<SnowfallConsts>();
+    let at = section(scene).release.and_then(|r| r.at);
+    let release = old.release.clone().map(|r| release::ReleaseConsts { at, ..r });
+    model.set_consts(SnowfallConsts { capacity: old.capacity, release, ..SnowfallConsts::new(scene) });
 }
 
 fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
@@ -475,15 +508,22 @@ fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
 }
 
 /// The flakes' accounting: emitted, airborne, landed (on the ground and on
-/// objects) and left, which always add up.
+/// objects), left and released, which always add up; with a release, the snow's
+/// mass released and still on the ground.
 fn measures(sim: &crate::Simulation) -> Vec<Measure> {
     let a = Accounts::of(sim.backend());
-    vec![
+    let mut out = vec![
         Measure::new("snowfall.emitted", a.emitted as f64, ""),
         Measure::new("snowfall.airborne", a.airborne as f64, ""),
         Measure::new("snowfall.landed", (a.on_ground + a.on_objects) as f64, ""),
         Measure::new("snowfall.left", a.left as f64, ""),
-    ]
+    ];
+    if let Some(r) = &sim.model().consts::<SnowfallConsts>().release {
+        out.push(Measure::new("snowfall.released", a.released as f64, ""));
+        out.push(Measure::new("snowfall.released_mass", a.released as f64 * r.flake_mass(), "kg"));
+        out.push(Measure::new("snowfall.ground_mass", a.on_ground as f64 * r.flake_mass(), "kg"));
+    }
+    out
 }
 
 /// Where the flakes are.
@@ -499,9 +539,17 @@ pub struct Accounts {
     pub on_objects: u64,
     /// Left the area (or lived too long).
     pub left: u64,
+    /// Released from the ground as particles ([`release`]).
+    pub released: u64,
 }
 
 impl Accounts {
+    /// Every flake emitted is in exactly one of these: airborne, landed (on the
+    /// ground or on objects), left or released.
+    pub fn accounted(&self) -> u64 {
+        self.airborne + self.on_ground + self.on_objects + self.left + self.released
+    }
+
     /// A backend's accounts, from its state.
     pub fn of(b: &dyn crate::backend::Backend) -> Self {
         let mut cols = b.download(&[TALLY.name, FLAKE_V.name, GROUND_COUNT.name, TOP_COUNT.name]).into_iter();
@@ -512,12 +560,20 @@ impl Accounts {
             panic!("the snowfall's columns")
         };
         let sum = |n: &[u32]| n.iter().map(|&n| u64::from(n)).sum();
+        let released = match b.model().consts::<SnowfallConsts>().release {
+            Some(_) => match &b.download(&[release::RELEASED.name])[..] {
+                [Column::U32(n)] => u64::from(n[0]),
+                _ => panic!("the released flakes"),
+            },
+            None => 0,
+        };
         Self {
             emitted: u64::from(tally[flakes::tally::EMITTED]),
             airborne: v.iter().filter(|v| v[3] == flakes::AIRBORNE).count() as u64,
             on_ground: sum(&ground),
             on_objects: sum(&top),
             left: u64::from(tally[flakes::tally::LEFT]),
+            released,
         }
     }
 }

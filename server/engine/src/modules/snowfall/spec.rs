@@ -51,6 +51,30 @@ pub struct Snowfall {
     /// (degrees, 0 to 80; default 25; see `coverage`).
     #[serde(default = "default_coverage_cone")]
     pub coverage_cone: f32,
+    /// The cover on the slopes released as particles of a fluid (with the `snow`
+    /// module, avalanche snow), its mass conserved. Absent: the cover stays.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub release: Option<Release>,
+}
+
+/// The release of the snow cover on the slopes (see the module's `release`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Release {
+    /// The fluid (its `name` in `fluids`) the cover becomes.
+    pub fluid: String,
+    /// Scene time of the release (s). Live: setting it to the scene's time, or
+    /// earlier, releases after the next step; each value releases once. Absent: no
+    /// release until it is set.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<f32>,
+    /// Ground at least this steep releases its cover (degrees, 0 to 90; default 20).
+    #[serde(default = "default_min_slope")]
+    pub min_slope: f32,
+    /// Particles the releases may create in all: room reserved when the scene is
+    /// created, counted by the server's particle limit (default 20,000).
+    #[serde(default = "default_release_particles")]
+    pub particles: u32,
 }
 
 /// A horizontal rectangle.
@@ -148,6 +172,14 @@ fn default_gust_period() -> f32 {
 
 fn default_flutter() -> f32 {
     1.0
+}
+
+fn default_min_slope() -> f32 {
+    20.0
+}
+
+fn default_release_particles() -> u32 {
+    20_000
 }
 
 fn default_coverage_cone() -> f32 {
