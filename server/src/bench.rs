@@ -6,7 +6,7 @@
 use crate::cli::BenchArgs;
 use anyhow::Context;
 use floe_engine::Simulation;
-use floe_engine::module::{BenchCase, BenchKind};
+use floe_engine::module::{BenchCase, BenchKind, BenchSize};
 use floe_engine::modules::fluid::presets::DAM_BREAK_A;
 use floe_engine::scene::load;
 use floe_engine::validation::dam_break;
@@ -55,9 +55,10 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     }
     let mut beside = args.overrides.clone();
     match case.map(|c| c.kind) {
-        Some(BenchKind::Run { preset, measures }) => {
+        Some(BenchKind::Run { preset, measures, size }) => {
             let seconds = args.until.context("--case of a preset needs --until SECONDS (simulated time)")?;
-            return run_preset(preset, measures, args.particles[0], &args.overrides, seconds, &backend, args.profile);
+            let run = PresetRun { preset, measures, size, count: args.particles[0], seconds, memory: args.memory };
+            return run_preset(&run, &args.overrides, &backend, args.profile);
         }
         Some(BenchKind::Beside(overrides)) => beside.extend(overrides.iter().map(|s| s.to_string())),
         None => {}
@@ -127,50 +128,67 @@ fn find_case(name: &str) -> anyhow::Result<BenchCase> {
     cases.iter().copied().find(|c| c.name == name).with_context(|| format!("no bench case {name}; there are {names:?}"))
 }
 
-/// A module's preset scaled to about `particles` (its particle count goes as the
-/// cube of the spacing), simulated for `seconds`; the table ends with `measures`.
-fn run_preset(
-    preset: &str,
-    measures: &[&str],
-    particles: usize,
-    overrides: &[String],
+/// A module's preset run: which, what to report, how big and how long.
+struct PresetRun {
+    preset: &'static str,
+    measures: &'static [&'static str],
+    size: BenchSize,
+    /// About how many particles (or elements of the sized space).
+    count: usize,
+    /// Simulated time (s).
     seconds: f64,
-    backend: &Selected,
-    profile: bool,
-) -> anyhow::Result<()> {
-    let reference = load::from_preset(preset, overrides)?;
-    let counted = Simulation::new_cpu(reference.clone())?.particle_count();
-    let spacing = reference.particle_spacing * (counted as f32 / particles as f32).cbrt();
-    let all: Vec<String> =
-        std::iter::once(format!("particle_spacing={spacing}")).chain(overrides.iter().cloned()).collect();
-    let mut sim = Simulation::new(load::from_preset(preset, &all)?, &*backend.factory)?;
+    /// Whether to report the peak resident memory per element.
+    memory: bool,
+}
+
+/// A module's preset sized to about `run.count` particles (their count goes as the
+/// cube of the spacing) or elements of its space, simulated for `run.seconds`; the
+/// table ends with `run.measures`.
+fn run_preset(run: &PresetRun, overrides: &[String], backend: &Selected, profile: bool) -> anyhow::Result<()> {
+    let (sizing, counted) = match run.size {
+        BenchSize::Particles => {
+            let reference = load::from_preset(run.preset, overrides)?;
+            let counted = Simulation::new_cpu(reference.clone())?.particle_count();
+            let spacing = reference.particle_spacing * (counted as f32 / run.count as f32).cbrt();
+            (vec![format!("particle_spacing={spacing}")], "particles")
+        }
+        BenchSize::Space(space, size) => (size(run.count), space),
+    };
+    let all: Vec<String> = sizing.iter().chain(overrides).cloned().collect();
+    let mut sim = Simulation::new(load::from_preset(run.preset, &all)?, &*backend.factory)?;
+    let count = |sim: &Simulation| match run.size {
+        BenchSize::Particles => sim.particle_count(),
+        BenchSize::Space(space, _) => sim.model().layout.count(space),
+    };
     let kernels_before = sim.kernel_times();
     let t0 = Instant::now();
-    while sim.time() < seconds {
+    while sim.time() < run.seconds {
         sim.step()?;
     }
     let wall = t0.elapsed().as_secs_f64();
     let steps = sim.steps();
     let reported = sim.measures();
-    let found: Vec<_> = measures.iter().map(|&name| (name, reported.iter().find(|m| m.name == name))).collect();
-    println!("{preset} on {}, spacing {spacing:.4} m", backend.description);
+    let found: Vec<_> = run.measures.iter().map(|&name| (name, reported.iter().find(|m| m.name == name))).collect();
+    let n = count(&sim);
+    println!("{} on {}, {}", run.preset, backend.description, sizing.join(", "));
     let heads: String = found.iter().map(|(name, m)| format!(" {name} {} |", m.map_or("", |m| &m.unit))).collect();
     println!(
-        "| particles | simulated s | steps | dt mean s | solver iterations/step | wall s | M particle-steps/s | real-time factor |{heads}"
+        "| {counted} | simulated s | steps | dt mean s | solver iterations/step | wall s | ms/step | M {counted}-steps/s | real-time factor | peak RSS bytes/{counted} |{heads}"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(found.len()));
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(found.len()));
     let values: String = found.iter().map(|(_, m)| format!(" {:.4} |", m.map_or(f64::NAN, |m| m.value))).collect();
+    let memory = peak_rss().filter(|_| run.memory).map_or("-".into(), |b| format!("{:.0}", b as f64 / n as f64));
     println!(
-        "| {} | {:.3} | {steps} | {:.2e} | {} | {wall:.2} | {:.3} | {:.4} |{values}",
-        sim.particle_count(),
+        "| {n} | {:.3} | {steps} | {:.2e} | {} | {wall:.2} | {:.2} | {:.3} | {:.4} | {memory} |{values}",
         sim.time(),
         sim.stats().dt_mean,
         per_step_iterations(&sim, iterations(&sim), steps),
-        sim.particle_count() as f64 * steps as f64 / wall / 1e6,
+        wall * 1e3 / steps.max(1) as f64,
+        n as f64 * steps as f64 / wall / 1e6,
         sim.time() / wall,
     );
     if profile {
-        let label = format!("{} particles ({preset})", sim.particle_count());
+        let label = format!("{n} {counted} ({})", run.preset);
         print_profile(&label, &per_step(&kernels_before, &sim.kernel_times(), steps), backend.name);
     }
     Ok(())

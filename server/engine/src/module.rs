@@ -52,14 +52,26 @@ pub enum BenchKind {
     /// The dam break with these overrides, timed beside the dam break alone at each
     /// size (what the module adds to a fluid step).
     Beside(&'static [&'static str]),
-    /// A preset scaled to about the first particle count and simulated for
+    /// A preset sized to about the first `--particles` count and simulated for
     /// `--until` seconds; the table reports these measures of the module at the end.
     Run {
         /// The preset.
         preset: &'static str,
         /// Measures to report ([`ModuleDef::measures`] names).
         measures: &'static [&'static str],
+        /// What the count counts, and how the preset is sized to it.
+        size: BenchSize,
     },
+}
+
+/// How a [`BenchKind::Run`] preset is sized.
+#[derive(Debug, Clone, Copy)]
+pub enum BenchSize {
+    /// Its SPH particles, by the particle spacing (their count goes as its cube).
+    Particles,
+    /// The elements of one of the module's spaces (the snowfall's flakes), by
+    /// the overrides the function gives for a count.
+    Space(&'static str, fn(usize) -> Vec<String>),
 }
 
 /// A module's section of a scene file: a key of the document the module owns,

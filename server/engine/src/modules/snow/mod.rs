@@ -24,7 +24,7 @@ use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use crate::channels::{ChannelSpec, Source};
 use crate::math::Real;
 use crate::model::{BuildError, Model, ModelBuilder};
-use crate::module::{BenchCase, BenchKind, ModuleDef, Section};
+use crate::module::{BenchCase, BenchKind, BenchSize, ModuleDef, Section};
 use crate::quantities::{Claim, Write};
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
@@ -64,6 +64,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         kind: BenchKind::Run {
             preset: "avalanche",
             measures: &["snow.explicit_dt_limit", "snow.front", "snow.runout"],
+            size: BenchSize::Particles,
         },
     }],
 };

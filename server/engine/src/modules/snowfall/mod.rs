@@ -24,8 +24,7 @@
 //! - The cover on the slopes may be released as particles of a fluid, mass
 //!   conserved ([`release`]): snowfall, then an avalanche.
 //!
-//! Not yet here: meshes as objects, and a live intensity (the ring is sized from
-//! the built one).
+//! Not yet here: meshes as objects.
 
 pub mod cases;
 pub mod coverage;
@@ -40,7 +39,7 @@ use crate::channels::{ChannelSpec, SetSpec, Source};
 use crate::materials::Look;
 use crate::math::{Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
-use crate::module::{ModuleDef, Section};
+use crate::module::{BenchCase, BenchKind, BenchSize, ModuleDef, Section};
 use crate::plan::{PassSpec, Stage};
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
@@ -69,8 +68,23 @@ pub static MODULE: ModuleDef = ModuleDef {
     measures,
     cases: cases::CASES,
     stability: cases::STABILITY,
-    bench: &[],
+    bench: &[BenchCase {
+        name: "snowfall",
+        about: "Flakes stepped per second: the snow_roof scene with an intensity that keeps about --particles flakes in the air (4 m of fall at 1 m/s over 64 m^2)",
+        kind: BenchKind::Run {
+            preset: "snow_roof",
+            measures: &["snowfall.airborne", "snowfall.landed", "snowfall.left"],
+            size: BenchSize::Space(FLAKES, airborne),
+        },
+    }],
 };
+
+/// `snow_roof`'s intensity for about `n` flakes in the air: a flake falls 4 m at
+/// 1 m/s over 64 m^2 of area, so `n / 256` per m^2 per s, with flutter.
+fn airborne(n: usize) -> Vec<String> {
+    let flux = n as f64 / 256.0;
+    vec![format!("snowfall.intensity={{\"flakes_per_m2_s\":{flux}}}"), "snowfall.flutter=1".into()]
+}
 
 /// The module's section of a scene.
 pub const SECTION: &str = "snowfall";
@@ -103,6 +117,14 @@ pub const TUNABLES: &[Tunable] = &[
         min: None,
         max: None,
         about: "Mean wind [x, z].",
+        module: "snowfall",
+    },
+    Tunable {
+        path: "snowfall.intensity",
+        unit: "",
+        min: None,
+        max: None,
+        about: "Flakes per m^2 per s (a name or {\"flakes_per_m2_s\": F}), up to max_intensity.",
         module: "snowfall",
     },
     Tunable {
@@ -266,7 +288,7 @@ impl SnowfallConsts {
             gust_omega: std::f32::consts::TAU / s.gust_period,
             flutter: s.flutter,
             max_age,
-            depth_per_flake: s.depth_per_hour / 3600.0 / flux / (cell * cell),
+            depth_per_flake: s.depth_per_hour / 3600.0 / s.max_flakes_per_m2_s() / (cell * cell),
             capacity: capacity(&s, scene.particle_spacing) as u32,
             origin: s.area.min,
             cell,
@@ -322,7 +344,7 @@ fn step_limit(s: &spec::Snowfall, spacing: f32) -> f32 {
 /// and two steps' more.
 fn capacity(s: &spec::Snowfall, spacing: f32) -> u64 {
     let area = f64::from((s.area.max[0] - s.area.min[0]) * (s.area.max[1] - s.area.min[1]));
-    let rate = f64::from(s.intensity.flakes_per_m2_s()) * area;
+    let rate = f64::from(s.max_flakes_per_m2_s()) * area;
     let span = f64::from(max_age(s)) + 2.0 * f64::from(step_limit(s, spacing));
     (rate * span).ceil() as u64 + 2
 }
@@ -341,6 +363,20 @@ fn validate(scene: &Scene, c: &mut Checker) {
         c.fail("snowfall.height", format!("must lie above the floor ({} m), got {}", s.floor, s.height));
     }
     c.within("snowfall.intensity.flakes_per_m2_s", s.intensity.flakes_per_m2_s(), 1e-3, 1e6);
+    let max = s.max_flakes_per_m2_s();
+    if s.max_intensity.is_some() {
+        c.within("snowfall.max_intensity.flakes_per_m2_s", max, 1e-3, 1e6);
+    }
+    if s.intensity.flakes_per_m2_s() > max {
+        c.fail(
+            "snowfall.intensity",
+            format!(
+                "{} flakes per m^2 per s is above max_intensity ({}): the ring of flakes is sized for that",
+                s.intensity.flakes_per_m2_s(),
+                max
+            ),
+        );
+    }
     c.positive("snowfall.depth_per_hour", s.depth_per_hour);
     c.within("snowfall.terminal_speed", s.terminal_speed, 0.01, 100.0);
     c.vector("snowfall.wind", &s.wind);
@@ -491,8 +527,9 @@ fn heights(model: &Model, columns: &[Column]) -> Vec<f32> {
     bed.iter().zip(n).map(|(&b, &n)| b + n as f32 * per).collect()
 }
 
-/// Wind, gusts, flutter and the release's time may change (the ring keeps its
-/// size, the release its cells).
+/// Intensity (up to the maximum the ring was sized for), wind, gusts, flutter
+/// and the release's time may change (the ring keeps its size, the release its
+/// cells).
 fn retune(scene: &Scene, model: &mut Model) {
     let old = model.consts::<SnowfallConsts>();
     let at = section(scene).release.and_then(|r| r.at);

@@ -16,13 +16,19 @@ pub struct Snowfall {
     #[serde(default)]
     pub floor: f32,
     /// How many flakes fall: `light`, `moderate`, `heavy`, `blizzard`
-    /// ([`Intensity::flakes_per_m2_s`]) or `{"flakes_per_m2_s": F}`. Live.
+    /// ([`Intensity::flakes_per_m2_s`]) or `{"flakes_per_m2_s": F}`. Live, up to
+    /// `max_intensity`.
     #[serde(default)]
     pub intensity: Intensity,
-    /// Depth of snow the fall lays on open flat ground (m per hour; default 0.05, a
-    /// heavy snowfall). Each flake carries `depth_per_hour / 3600 / flakes_per_m2_s`
-    /// cubic metres of snow per square metre: a scene may lay snow faster than any
-    /// storm does (a time-lapse) without more flakes.
+    /// The most the intensity may be set to while the scene runs (default the
+    /// intensity): the ring of flakes is sized for it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_intensity: Option<Intensity>,
+    /// Depth of snow the fall lays on open flat ground at `max_intensity` (m per
+    /// hour; default 0.05, a heavy snowfall). Each flake carries
+    /// `depth_per_hour / 3600 / max_intensity` cubic metres of snow: a scene may lay
+    /// snow faster than any storm does (a time-lapse) without more flakes, and a
+    /// lighter fall set while it runs lays proportionally less.
     #[serde(default = "default_depth_per_hour")]
     pub depth_per_hour: f32,
     /// Speed a flake falls at in still air (m/s; default 1, dry snow's 0.5 to 1.5).
@@ -117,6 +123,13 @@ pub enum Named {
 impl Default for Intensity {
     fn default() -> Self {
         Intensity::Named(Named::Heavy)
+    }
+}
+
+impl Snowfall {
+    /// The most flakes per m^2 per s the scene may be set to.
+    pub fn max_flakes_per_m2_s(&self) -> f32 {
+        self.max_intensity.unwrap_or(self.intensity).flakes_per_m2_s()
     }
 }
 

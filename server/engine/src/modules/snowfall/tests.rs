@@ -115,3 +115,33 @@ fn the_release_turns_the_cover_into_particles_mass_conserved() {
     }
     assert_eq!(sim.particle_count() as u64, n, "released once");
 }
+
+/// A live intensity: raised to its maximum while it snows, the emission doubles
+/// and the ring, the grid and a flake's snow stay as built; above the maximum it
+/// is refused by path.
+#[test]
+fn the_intensity_changes_while_it_snows_up_to_its_maximum() {
+    let o = ["snowfall.max_intensity={\"flakes_per_m2_s\":400}".to_string()];
+    let mut sim = crate::Simulation::new_cpu(from_preset("snow_roof", &o).unwrap()).unwrap();
+    let built = sim.model().consts::<SnowfallConsts>().clone();
+    let rate = |sim: &mut crate::Simulation| {
+        let (t0, e0) = (sim.time(), Accounts::of(sim.backend()).emitted);
+        while sim.time() < t0 + 1.0 {
+            sim.step().unwrap();
+        }
+        (Accounts::of(sim.backend()).emitted - e0) as f64 / (sim.time() - t0)
+    };
+    let light = rate(&mut sim);
+    sim.set_parameters(&["snowfall.intensity={\"flakes_per_m2_s\":400}".into()]).unwrap();
+    let heavy = rate(&mut sim);
+    assert!(
+        (light / (200.0 * 64.0) - 1.0).abs() < 1e-3 && (heavy / (400.0 * 64.0) - 1.0).abs() < 1e-3,
+        "{light} {heavy}"
+    );
+    let now = sim.model().consts::<SnowfallConsts>();
+    assert_eq!((now.capacity, now.depth_per_flake, now.nx), (built.capacity, built.depth_per_flake, built.nx));
+    let a = Accounts::of(sim.backend());
+    assert_eq!(a.emitted, a.accounted(), "{a:?}");
+    let e = sim.set_parameters(&["snowfall.intensity={\"flakes_per_m2_s\":800}".into()]).unwrap_err().to_string();
+    assert!(e.starts_with("snowfall.intensity: 800 flakes per m^2 per s is above max_intensity (400)"), "{e}");
+}
