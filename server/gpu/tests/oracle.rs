@@ -492,14 +492,20 @@ fn positions_quantised_on_the_gpu_match_the_cpu() {
     }
 }
 
-/// Whole steps of snow falling into the dam break's tank: the GPU emits the CPU's
-/// flakes, lands as many on the ground and on the objects within 1 %, and its
-/// accounting adds up exactly.
+/// Whole steps of snow falling into the dam break's tank, with a slab from an OBJ
+/// (a mesh object: columns over the cells) beside the box and the cylinder: the
+/// GPU emits the CPU's flakes, lands as many on the ground and on the objects
+/// within 1 %, some on the slab, and its accounting adds up exactly.
 #[test]
 fn snowfall_steps_like_the_cpu() {
-    use floe_engine::modules::snowfall::Accounts;
+    use floe_engine::attrs::Column;
+    use floe_engine::modules::snowfall::{Accounts, SnowfallConsts, flakes};
     let Some(gpu) = common::gpu("snowfall_steps_like_the_cpu") else { return };
-    let o = ["particle_spacing=0.05", "modules=[\"fluid\",\"snowfall\"]", SNOWFALL];
+    let slab = format!(
+        "\"objects\":[{{\"shape\":\"mesh\",\"min\":[0.6,0,0],\"max\":[0.9,0.015,0.25],\"mesh\":{{\"data_base64\":\"{SLAB}\"}}}},"
+    );
+    let snowfall = SNOWFALL.replace("\"objects\":[", &slab);
+    let o = ["particle_spacing=0.05", "modules=[\"fluid\",\"snowfall\"]", &snowfall];
     let (mut cpu, mut g) = pair(gpu, "dam_break", &o, 10);
     for _ in 0..60 {
         cpu.step().unwrap();
@@ -513,7 +519,13 @@ fn snowfall_steps_like_the_cpu() {
     for s in [a, b] {
         assert_eq!(s.emitted, s.accounted(), "{s:?}");
     }
+    let c = g.model().consts::<SnowfallConsts>().clone();
+    let Column::U32(top) = g.backend().download(&["top_count"]).remove(0) else { panic!("counts") };
+    assert!(top[flakes::cell(&c, 0.75, 0.125)] > 0, "flakes on the slab");
 }
+
+/// A slab 1 x 0.1 x 1 (OBJ, base64).
+const SLAB: &str = "diAwIDAgMAp2IDEgMCAwCnYgMSAwIDEKdiAwIDAgMQp2IDAgMC4xIDAKdiAxIDAuMSAwCnYgMSAwLjEgMQp2IDAgMC4xIDEKZiAxIDIgMwpmIDEgMyA0CmYgNSA3IDYKZiA1IDggNwpmIDEgNSA2CmYgMSA2IDIKZiA0IDMgNwpmIDQgNyA4CmYgMSA0IDgKZiAxIDggNQpmIDIgNiA3CmYgMiA3IDMK";
 
 /// The release on the mountain side at 20 cm, restored from the CPU's snapshot
 /// before it (4.5 s) on both backends: each releases at 5 s, its particles hold

@@ -241,7 +241,9 @@ fn coverage_case(sim: &mut Simulation, _spacing: f64) -> Measured {
         let x = c.origin[0] + (i as f32 + 0.5) * c.cell;
         let z = c.origin[1] + (j as f32 + 0.5) * c.cell;
         let within = |o: &super::spec::Object| match *o {
-            super::spec::Object::Box { min, max } => x > min[0] && x < max[0] && z > min[2] && z < max[2],
+            super::spec::Object::Box { min, max } | super::spec::Object::Mesh { min, max, .. } => {
+                x > min[0] && x < max[0] && z > min[2] && z < max[2]
+            }
             super::spec::Object::Cylinder { centre, radius, .. } => (x - centre[0]).hypot(z - centre[1]) < radius,
         };
         if objects.iter().any(within) {

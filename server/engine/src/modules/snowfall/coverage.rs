@@ -14,8 +14,9 @@
 //! no resolution of their own: a direction is occluded when the ray from the point
 //! (the ground at a cell's centre) along it meets an object (boxes and cylinders,
 //! intersected exactly, so a thin roof occludes and the sky past its edge does
-//! not) or passes under the ground (the grid's ground heights, marched in half-cell
-//! steps until the ray rises above the highest of them or leaves the grid).
+//! not), a mesh's column over a cell (see [`super::columns`]) or passes under the
+//! ground (the grid's ground heights, marched in half-cell steps until the ray
+//! rises above the highest of them or leaves the grid).
 //!
 //! Coverage and depth are two different quantities: depth (`snow_depth`) is the
 //! snow the flakes laid, which wind moves and which grows with time; coverage
@@ -40,41 +41,62 @@ pub fn directions(cone_degrees: f32) -> Vec<Vec3> {
     out
 }
 
-/// The coverage of each cell's ground.
-pub fn coverage(c: &SnowfallConsts, bed: &[f32], cone_degrees: f32) -> Vec<f32> {
-    let highest = bed.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+/// The coverage of each cell's ground, with the meshes' columns over the cells
+/// (`columns`: bottom and top, none where the top is below the bottom).
+pub fn coverage(c: &SnowfallConsts, bed: &[f32], columns: &[[f32; 4]], cone_degrees: f32) -> Vec<f32> {
+    let highest = bed.iter().chain(columns.iter().map(|c| &c[1])).copied().fold(f32::NEG_INFINITY, f32::max);
     let dirs = directions(cone_degrees);
+    let ground = Ground { c, bed, columns, highest };
     (0..bed.len())
         .map(|k| {
             let (x, z) = centre(c, k);
             let p = Vec3::new(x, bed[k], z);
-            let exposed = dirs.iter().filter(|d| !occluded(c, bed, highest, p, **d)).count();
+            let exposed = dirs.iter().filter(|d| !ground.occluded(p, **d)).count();
             exposed as f32 / dirs.len() as f32 * inclination(c, bed, k)
         })
         .collect()
 }
 
-/// Whether the ray from `p` along `d` (pointing up) meets an object or the ground.
-fn occluded(c: &SnowfallConsts, bed: &[f32], highest: f32, p: Vec3, d: Vec3) -> bool {
-    if c.objects.iter().any(|o| hits(o, p, d)) {
-        return true;
-    }
-    let across = d.x.hypot(d.z);
-    if across == 0.0 {
-        return false;
-    }
-    // Half a cell along the ground per step, from the first step on.
-    let step = 0.5 * c.cell / across;
-    let mut t = step;
-    loop {
-        let q = p + d * t;
-        if q.y > highest || !super::flakes::over(c.area_min, c.area_max, q) {
-            return false;
-        }
-        if bed[super::flakes::cell(c, q.x, q.z)] > q.y + 1e-4 {
+/// What rays meet besides the objects: the ground's heights and the meshes'
+/// columns over the cells.
+struct Ground<'a> {
+    c: &'a SnowfallConsts,
+    bed: &'a [f32],
+    columns: &'a [[f32; 4]],
+    /// The highest of both (m): a ray above it meets neither.
+    highest: f32,
+}
+
+impl Ground<'_> {
+    /// Whether the ray from `p` along `d` (pointing up) meets an object, a mesh's
+    /// column or the ground.
+    fn occluded(&self, p: Vec3, d: Vec3) -> bool {
+        let c = self.c;
+        if c.objects.iter().any(|o| hits(o, p, d)) {
             return true;
         }
-        t += step;
+        let across = d.x.hypot(d.z);
+        if across == 0.0 {
+            // Straight up: only a column over the point's own cell.
+            return self.columns[super::flakes::cell(c, p.x, p.z)][1] > p.y + 1e-4;
+        }
+        // Half a cell along the ground per step, from the first step on; a column
+        // is met where the heights the ray spans over the step (from `below` to
+        // the end's) overlap it, however steep the ray.
+        let step = 0.5 * c.cell / across;
+        let (mut t, mut below) = (step, p.y);
+        loop {
+            let q = p + d * t;
+            if below > self.highest || !super::flakes::over(c.area_min, c.area_max, q) {
+                return false;
+            }
+            let k = super::flakes::cell(c, q.x, q.z);
+            let [bottom, top, ..] = self.columns[k];
+            if self.bed[k] > q.y + 1e-4 || (q.y >= bottom && below <= top) {
+                return true;
+            }
+            (t, below) = (t + step, q.y);
+        }
     }
 }
 

@@ -51,6 +51,7 @@ struct Sky<'a> {
     first: u32,
     born: u32,
     surface: &'a [[f32; 4]],
+    columns: &'a [[f32; 4]],
 }
 
 impl Sky<'_> {
@@ -80,7 +81,9 @@ impl Sky<'_> {
         } else {
             let k = flakes::cell(c, p.x, p.z);
             let cover = self.surface[k];
-            if let Some(y) = flakes::object_top(c, x.y, p, cover[2]) {
+            let top = flakes::object_top(c, x.y, p, cover[2])
+                .or_else(|| flakes::column_top(self.columns[k], x.y, p.y, cover[2]));
+            if let Some(y) = top {
                 (state, fate) = (flakes::LANDED, Fate::Top(k));
                 at.y = y;
             } else if p.y <= cover[0] + cover[1] {
@@ -116,6 +119,7 @@ impl CpuPass for Fall {
             first: tally[flakes::tally::FIRST],
             born: tally[flakes::tally::BORN],
             surface: a.get(a.handle::<[f32; 4]>(SURFACE.name)),
+            columns: a.get(a.handle::<[f32; 4]>(super::columns::COLUMNS.name)),
         };
         let fates: Vec<Vec<Fate>> = x
             .par_chunks_mut(CHUNK)

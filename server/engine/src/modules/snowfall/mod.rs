@@ -24,9 +24,11 @@
 //! - The cover on the slopes may be released as particles of a fluid, mass
 //!   conserved ([`release`]): snowfall, then an avalanche.
 //!
-//! Not yet here: meshes as objects.
+//! - Objects: boxes and cylinders (exact), and meshes as columns over the
+//!   grid's cells ([`columns`]).
 
 pub mod cases;
+pub mod columns;
 pub mod coverage;
 pub mod cpu;
 pub mod flakes;
@@ -195,7 +197,7 @@ pub static FALL: PassSpec = PassSpec {
     tolerance: 1e-4,
     ..post_step(
         "snowfall.fall",
-        &["snowfall_timer", "snow_surface"],
+        &["snowfall_timer", "snow_surface", "snow_columns"],
         &["flake_x", "flake_v", "flake_age"],
         &["snowfall_tally", "ground_count", "top_count"],
     )
@@ -256,8 +258,9 @@ pub struct SnowfallConsts {
     pub nx: u32,
     /// Cells along z.
     pub nz: u32,
-    /// The objects, two vec4 each: a box `(min, 0), (max, 0)`; a cylinder
-    /// `(cx, bottom, cz, 1), (radius, top, 0, 0)`.
+    /// The boxes and cylinders, two vec4 each: a box `(min, 0), (max, 0)`; a
+    /// cylinder `(cx, bottom, cz, 1), (radius, top, 0, 0)`. (Meshes are columns
+    /// over the cells, [`columns`].)
     pub objects: Vec<[[f32; 4]; 2]>,
     /// The release of the cover, if the scene has one (set at build).
     pub release: Option<release::ReleaseConsts>,
@@ -294,7 +297,7 @@ impl SnowfallConsts {
             cell,
             nx,
             nz,
-            objects: s.objects.iter().map(pack).collect(),
+            objects: s.objects.iter().filter_map(pack).collect(),
             release: None,
         }
     }
@@ -309,12 +312,14 @@ impl SnowfallConsts {
     }
 }
 
-fn pack(o: &Object) -> [[f32; 4]; 2] {
+/// A box's or a cylinder's two vec4 (a mesh is none).
+fn pack(o: &Object) -> Option<[[f32; 4]; 2]> {
     match *o {
-        Object::Box { min, max } => [[min[0], min[1], min[2], 0.0], [max[0], max[1], max[2], 0.0]],
+        Object::Box { min, max } => Some([[min[0], min[1], min[2], 0.0], [max[0], max[1], max[2], 0.0]]),
         Object::Cylinder { centre, radius, bottom, top } => {
-            [[centre[0], bottom, centre[1], 1.0], [radius, top, 0.0, 0.0]]
+            Some([[centre[0], bottom, centre[1], 1.0], [radius, top, 0.0, 0.0]])
         }
+        Object::Mesh { .. } => None,
     }
 }
 
@@ -395,9 +400,13 @@ fn validate(scene: &Scene, c: &mut Checker) {
     }
     for (i, o) in s.objects.iter().enumerate() {
         let p = format!("snowfall.objects[{i}]");
-        match *o {
-            Object::Box { min, max } => c.ordered_box(&p, min, max),
-            Object::Cylinder { centre, radius, bottom, top } => {
+        match o {
+            Object::Box { min, max } => c.ordered_box(&p, *min, *max),
+            Object::Mesh { mesh, min, max } => {
+                c.ordered_box(&p, *min, *max);
+                crate::mesh::validate(c, &format!("{p}.mesh"), mesh);
+            }
+            &Object::Cylinder { centre, radius, bottom, top } => {
                 c.vector(&format!("{p}.centre"), &centre);
                 c.positive(&format!("{p}.radius"), radius);
                 if c.finite(&format!("{p}.bottom"), bottom) && c.finite(&format!("{p}.top"), top) && top <= bottom {
@@ -456,7 +465,16 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
             b.ground_at(x, z).unwrap_or(s.floor)
         })
         .collect::<Vec<f32>>();
-    b.attr(&COVERAGE, Column::F32(coverage::coverage(&c, &bed, s.coverage_cone)));
+    let mut meshes = Vec::new();
+    for (i, o) in s.objects.iter().enumerate() {
+        if let Object::Mesh { mesh, min, max } = o {
+            let loaded = mesh.load().map_err(|e| BuildError::Mesh(format!("snowfall.objects[{i}].mesh: {e}")))?;
+            meshes.push(loaded.fitted(crate::math::Aabb::new((*min).into(), (*max).into())));
+        }
+    }
+    let columns = columns::columns(&c, &meshes);
+    b.attr(&COVERAGE, Column::F32(coverage::coverage(&c, &bed, &columns, s.coverage_cone)));
+    b.attr(&columns::COLUMNS, Column::Vec4(columns));
     if let Some(r) = &s.release {
         c.release = Some(release::build(r, &c, &bed, b)?);
     }

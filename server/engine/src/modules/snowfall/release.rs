@@ -12,7 +12,8 @@
 //! (`q < 1`) is refused.
 //!
 //! **Where.** The cells of the ground (not objects' tops) whose slope, from the
-//! ground's heights under the cells' centres, is at least `min_slope`. A cell's
+//! ground's heights under the cells' centres (as the coverage's inclination), is
+//! at least `min_slope`. A cell's
 //! particles stand in columns `cell / round(cell / d)` apart, stacked from the
 //! ground up in layers as thick as their snow, at rest.
 //!
@@ -127,24 +128,11 @@ pub fn build(
     })
 }
 
-/// The cells whose ground is at least `min_slope` degrees steep (central
-/// differences of the heights, one-sided at the grid's edges).
+/// The cells whose ground is at least `min_slope` degrees steep (the
+/// inclination the coverage takes, [`super::coverage::inclination`]).
 fn steep(c: &SnowfallConsts, bed: &[f32], min_slope: f32) -> Vec<u32> {
-    let (nx, nz) = (c.nx as usize, c.nz as usize);
-    let at = |i: usize, k: usize| bed[k * nx + i];
-    let slope = |lo: f32, hi: f32, cells: usize| if cells == 0 { 0.0 } else { (hi - lo) / (cells as f32 * c.cell) };
-    let limit = min_slope.to_radians().tan();
-    (0..nx * nz)
-        .filter(|&cell| {
-            let (i, k) = (cell % nx, cell / nx);
-            let (i0, i1) = (i.saturating_sub(1), (i + 1).min(nx - 1));
-            let (k0, k1) = (k.saturating_sub(1), (k + 1).min(nz - 1));
-            let gx = slope(at(i0, k), at(i1, k), i1 - i0);
-            let gz = slope(at(i, k0), at(i, k1), k1 - k0);
-            gx.hypot(gz) >= limit
-        })
-        .map(|cell| cell as u32)
-        .collect()
+    let limit = min_slope.to_radians().cos();
+    (0..bed.len()).filter(|&k| super::coverage::inclination(c, bed, k) <= limit).map(|k| k as u32).collect()
 }
 
 /// The emitter: the cover's particles after the step that reaches `at`.

@@ -148,7 +148,7 @@ impl Intensity {
 }
 
 /// Something snow lands on.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Object {
     /// An axis-aligned box (m): a roof on its own is a thin one off the ground.
@@ -168,6 +168,17 @@ pub enum Object {
         bottom: f32,
         /// Height of its top.
         top: f32,
+    },
+    /// A closed mesh (OBJ or STL: an asset of the server's `--assets` or inline),
+    /// scaled uniformly and centred to fit the box `min`-`max` (m), as a fluid
+    /// block's mesh fits its box; as fine as the snow grid (a column per cell).
+    Mesh {
+        /// The mesh.
+        mesh: crate::mesh::MeshSource,
+        /// Lower corner of its box (m).
+        min: [f32; 3],
+        /// Upper corner.
+        max: [f32; 3],
     },
 }
 

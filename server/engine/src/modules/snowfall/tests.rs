@@ -23,6 +23,9 @@ fn bad_settings_are_named_by_path() {
     assert!(errors(&[&many]).contains("at most 16 objects, got 17"));
     assert!(errors(&["snowfall.cell=0.001"]).contains("snowfall.cell: the snow grid would have 16000 x 4000 cells"));
     assert!(errors(&["snowfall.intensity=\"drizzle\""]).contains("snowfall.intensity"));
+    let junk =
+        r#"snowfall.objects=[{"shape":"mesh","min":[1,0,1],"max":[2,1,2],"mesh":{"data_base64":"bm90IGEgbWVzaA=="}}]"#;
+    assert!(errors(&[junk]).contains("snowfall.objects[0].mesh"), "{}", errors(&[junk]));
 }
 
 /// The valley under snow for 20 s on the CPU: every flake emitted is in the air,
@@ -145,3 +148,36 @@ fn the_intensity_changes_while_it_snows_up_to_its_maximum() {
     let e = sim.set_parameters(&["snowfall.intensity={\"flakes_per_m2_s\":800}".into()]).unwrap_err().to_string();
     assert!(e.starts_with("snowfall.intensity: 800 flakes per m^2 per s is above max_intensity (400)"), "{e}");
 }
+
+/// A slab from an OBJ (1 x 0.1 x 1, fitted into a box 2 m wide: 2 x 0.2 x 2 m, 0.1
+/// to 0.3 m up) on `snow_roof`'s open ground: the flakes over it land on its top,
+/// none on the ground under it, and its cells' coverage is 0.
+#[test]
+fn a_mesh_is_an_object_flakes_land_on() {
+    let slab = r#"snowfall.objects=[{"shape":"mesh","min":[11,0,1],"max":[13,0.4,3],"mesh":{"data_base64":"SLAB"}}]"#;
+    let mut sim = crate::Simulation::new_cpu(from_preset("snow_roof", &[slab.replace("SLAB", SLAB)]).unwrap()).unwrap();
+    while sim.time() < 6.0 {
+        sim.step().unwrap();
+    }
+    let c = sim.model().consts::<SnowfallConsts>().clone();
+    let cols = sim.backend().download(&[GROUND_COUNT.name, TOP_COUNT.name, COVERAGE.name]);
+    let (Column::U32(ground), Column::U32(top), Column::F32(cover)) = (&cols[0], &cols[1], &cols[2]) else { panic!() };
+    let under: Vec<usize> =
+        [(11.4, 1.4), (12.0, 2.0), (12.6, 2.6)].iter().map(|&(x, z)| flakes::cell(&c, x, z)).collect();
+    for &k in &under {
+        assert!(
+            top[k] > 0 && ground[k] == 0 && cover[k] == 0.0,
+            "cell {k}: top {} ground {} coverage {}",
+            top[k],
+            ground[k],
+            cover[k]
+        );
+    }
+    let open = flakes::cell(&c, 15.0, 2.0);
+    assert!(ground[open] > 0 && top[open] == 0 && cover[open] == 1.0);
+    let a = Accounts::of(sim.backend());
+    assert_eq!(a.emitted, a.accounted(), "{a:?}");
+}
+
+/// A slab 1 x 0.1 x 1 (OBJ, base64).
+pub const SLAB: &str = "diAwIDAgMAp2IDEgMCAwCnYgMSAwIDEKdiAwIDAgMQp2IDAgMC4xIDAKdiAxIDAuMSAwCnYgMSAwLjEgMQp2IDAgMC4xIDEKZiAxIDIgMwpmIDEgMyA0CmYgNSA3IDYKZiA1IDggNwpmIDEgNSA2CmYgMSA2IDIKZiA0IDMgNwpmIDQgNyA4CmYgMSA0IDgKZiAxIDggNQpmIDIgNiA3CmYgMiA3IDMK";

@@ -11,6 +11,7 @@
 @group(0) @binding(8) var<storage, read> surface: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read_write> ground_count: array<atomic<u32>>;
 @group(0) @binding(10) var<storage, read_write> top_count: array<atomic<u32>>;
+@group(0) @binding(11) var<storage, read> columns: array<vec4<f32>>;
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -50,7 +51,10 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     } else {
         let k = cell_of(p.x, p.z);
         let cover = surface[k];
-        let top = object_top(x0.y, p, cover.z);
+        var top = object_top(x0.y, p, cover.z);
+        if (top == NO_TOP) {
+            top = column_top(columns[k], x0.y, p.y, cover.z);
+        }
         if (top != NO_TOP) {
             state = LANDED;
             at.y = top;

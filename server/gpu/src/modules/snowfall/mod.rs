@@ -38,6 +38,7 @@ pub static FALL: GpuPass = GpuPass {
         (R, "snow_surface"),
         (W, "ground_count"),
         (W, "top_count"),
+        (R, "snow_columns"),
     ],
     space: FLAKES,
     when: always,
