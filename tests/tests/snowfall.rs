@@ -16,7 +16,7 @@ async fn snow_streams_as_flakes_and_a_growing_cover() {
     assert_eq!(sets, [("particles", false), ("flakes", false), ("snow_cover", true)]);
     // Viewers draw both as snow, the cover at its surface's heights.
     let looks: Vec<(&str, &str)> = info.sets.iter().map(|s| (s.look.as_str(), s.surface.as_str())).collect();
-    assert_eq!(looks, [("", ""), ("snow", ""), ("snow", "snow_height")]);
+    assert_eq!(looks, [("", ""), ("snow", ""), ("snow", "cover_height")]);
     let flakes = info.sets.iter().find(|s| s.name == "flakes").unwrap().count;
     let mut depths = Vec::new();
     for _ in 0..2 {

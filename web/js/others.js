@@ -2,28 +2,44 @@
 // through the colour map (a flat grid, one cell high, at its floor or at its cells' surface
 // heights where the set names a surface channel; a deeper one layer by layer at each cell's
 // centre height), and a module's own particles as points in the solid look. A set in the snow
-// look is drawn white: its points, and its tiles blended from the ground's grey to white by value
-// (more snow, whiter; none, bare ground).
+// look is drawn white: its points as flakes (six-armed sprites, each of its own size, spinning
+// and tumbling, as the snow thesis's textured flakes), and its tiles blended from the ground's
+// grey to white by value (more snow, whiter; none, bare ground).
 
 import { programWith } from './gl.js';
 
 const VERT = `#version 300 es
 uniform mat4 u_proj, u_view;
-uniform float u_point;
+uniform float u_point, u_sprite, u_time;
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in vec3 a_colour;
 out vec3 v_colour;
+out float v_angle;
 void main() {
   v_colour = a_colour;
-  gl_PointSize = u_point;
+  // A flake's own size, spin and tumbling rate, from a hash of its index.
+  float h = fract(sin(float(gl_VertexID) * 12.9898) * 43758.5453);
+  gl_PointSize = u_point * (u_sprite > 0.5 ? 0.7 + 0.9 * h : 1.0);
+  v_angle = u_sprite > 0.5 ? h * 6.2832 + u_time * (0.5 + 2.0 * h) : 0.0;
   gl_Position = u_proj * u_view * vec4(a_pos, 1.0);
 }`;
 
 const FRAG = `#version 300 es
 precision highp float;
+uniform float u_sprite;
 in vec3 v_colour;
+in float v_angle;
 out vec4 colour;
 void main() {
+  if (u_sprite > 0.5) {
+    // A six-armed flake turned by its spin, squashed as it tumbles (seen edge-on).
+    vec2 p = gl_PointCoord * 2.0 - 1.0;
+    float c = cos(v_angle), s = sin(v_angle);
+    p = mat2(c, -s, s, c) * p;
+    p.y /= max(0.25, abs(cos(0.7 * v_angle)));
+    float arms = 0.3 + 0.7 * pow(abs(cos(3.0 * atan(p.y, p.x))), 6.0);
+    if (length(p) > arms) discard;
+  }
   colour = vec4(v_colour, 1.0);
 }`;
 
@@ -83,8 +99,8 @@ export function gridTiles(grid, values, heights = null, look = '') {
 export class Others {
   constructor(gl) {
     this.gl = gl;
-    this.program = programWith(gl, VERT, FRAG, ['u_proj', 'u_view', 'u_point']);
-    /** @type {{mode: number, count: number, vao: WebGLVertexArrayObject, buffers: WebGLBuffer[]}[]} */
+    this.program = programWith(gl, VERT, FRAG, ['u_proj', 'u_view', 'u_point', 'u_sprite', 'u_time']);
+    /** @type {{mode: number, count: number, sprite: boolean, vao: WebGLVertexArrayObject, buffers: WebGLBuffer[]}[]} */
     this.meshes = [];
     /** Whether they are drawn. */
     this.visible = true;
@@ -114,7 +130,7 @@ export class Others {
         return b;
       });
       gl.bindVertexArray(null);
-      return { mode: mesh.mode, count: mesh.count, vao, buffers };
+      return { mode: mesh.mode, count: mesh.count, sprite: !s.grid && s.look === 'snow', vao, buffers };
     });
   }
 
@@ -127,7 +143,9 @@ export class Others {
     gl.uniformMatrix4fv(u.u_proj, false, proj);
     gl.uniformMatrix4fv(u.u_view, false, view);
     gl.uniform1f(u.u_point, 6.0 * devicePixelRatio);
+    gl.uniform1f(u.u_time, performance.now() / 1000);
     for (const m of this.meshes) {
+      gl.uniform1f(u.u_sprite, m.sprite ? 1 : 0);
       gl.bindVertexArray(m.vao);
       gl.drawArrays(m.mode, 0, m.count);
     }

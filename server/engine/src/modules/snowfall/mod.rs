@@ -100,6 +100,9 @@ pub const CELLS: &str = "snow_cells";
 /// The snow grid's set.
 pub const COVER: &str = "snow_cover";
 
+/// [`OBJECT_TOP`] where no object stands over a cell's centre.
+pub const NO_OBJECT: f32 = f32::MIN;
+
 /// Objects a scene may hold (the GPU's uniform has room for this many).
 pub const MAX_OBJECTS: usize = 16;
 
@@ -176,6 +179,9 @@ pub static GROUND_COUNT: AttrSpec = attr("ground_count", Elem::U32, "", Role::St
 pub static TOP_COUNT: AttrSpec = attr("top_count", Elem::U32, "", Role::State, CELLS);
 /// Height of the ground under each cell's centre (m): a terrain's, else the floor.
 pub static BED: AttrSpec = attr("snow_bed", Elem::F32, "m", Role::Constant, CELLS);
+/// Height of the top of the object over each cell's centre (m; [`NO_OBJECT`]
+/// where there is none): where the viewer draws the snow on objects.
+pub static OBJECT_TOP: AttrSpec = attr("object_top", Elem::F32, "m", Role::Constant, CELLS);
 /// The thesis's coverage of each cell's ground (0 to 1, [`coverage`]).
 pub static COVERAGE: AttrSpec = attr("coverage", Elem::F32, "", Role::Constant, CELLS);
 /// Per cell: the ground's height, the snow depth on it and on objects' tops (m).
@@ -473,6 +479,16 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         }
     }
     let columns = columns::columns(&c, &meshes);
+    let tops = (0..cells)
+        .map(|k| {
+            let (i, j) = (k % c.nx as usize, k / c.nx as usize);
+            let x = c.origin[0] + (i as f32 + 0.5) * c.cell;
+            let z = c.origin[1] + (j as f32 + 0.5) * c.cell;
+            let boxes = flakes::object_top(&c, f32::MAX, Vec3::new(x, f32::MIN, z), 0.0);
+            boxes.unwrap_or(NO_OBJECT).max(columns[k][1])
+        })
+        .collect();
+    b.attr(&OBJECT_TOP, Column::F32(tops));
     b.attr(&COVERAGE, Column::F32(coverage::coverage(&c, &bed, &columns, s.coverage_cone)));
     b.attr(&columns::COLUMNS, Column::Vec4(columns));
     if let Some(r) = &s.release {
@@ -486,7 +502,32 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.pass(&FALL);
     b.pass(&SURFACE_PASS);
     b.set(SetSpec { look: Some(Look::Snow), ..SetSpec::points(FLAKES, FLAKES, "flake_x") });
-    b.set(SetSpec { look: Some(Look::Snow), surface: Some("snow_height"), ..SetSpec::grid(COVER, CELLS, c.grid()) });
+    b.set(SetSpec { look: Some(Look::Snow), surface: Some("cover_height"), ..SetSpec::grid(COVER, CELLS, c.grid()) });
+    // First the cover as viewers draw it: on an object's top where one stands over
+    // the cell's centre, else on the ground.
+    b.channel(ChannelSpec {
+        name: "cover_depth",
+        unit: "m",
+        components: 1,
+        exact: false,
+        set: COVER,
+        module: "snowfall",
+        about: "Depth of the snow on top: on the object over the cell's centre, else on the ground.",
+        source: Source::Derived { from: &["object_top", "top_count", "ground_count"], values: cover_depths },
+    });
+    b.channel(ChannelSpec {
+        name: "cover_height",
+        unit: "m",
+        components: 1,
+        exact: false,
+        set: COVER,
+        module: "snowfall",
+        about: "Height of the snow's surface on top: on the object over the cell's centre, else on the ground.",
+        source: Source::Derived {
+            from: &["object_top", "top_count", "snow_bed", "ground_count"],
+            values: cover_heights,
+        },
+    });
     b.channel(ChannelSpec {
         name: "snow_depth",
         unit: "m",
@@ -543,6 +584,28 @@ fn heights(model: &Model, columns: &[Column]) -> Vec<f32> {
     let per = model.consts::<SnowfallConsts>().depth_per_flake;
     let (Column::F32(bed), Column::U32(n)) = (&columns[0], &columns[1]) else { panic!("heights and counts") };
     bed.iter().zip(n).map(|(&b, &n)| b + n as f32 * per).collect()
+}
+
+/// The snow on top of each cell (m): an object's where one stands over it.
+fn cover_depths(model: &Model, columns: &[Column]) -> Vec<f32> {
+    let per = model.consts::<SnowfallConsts>().depth_per_flake;
+    let (Column::F32(object), Column::U32(top), Column::U32(ground)) = (&columns[0], &columns[1], &columns[2]) else {
+        panic!("object tops and counts")
+    };
+    (0..object.len()).map(|k| per * if object[k] > NO_OBJECT { top[k] } else { ground[k] } as f32).collect()
+}
+
+/// The height of the snow's surface on top of each cell (m).
+fn cover_heights(model: &Model, columns: &[Column]) -> Vec<f32> {
+    let per = model.consts::<SnowfallConsts>().depth_per_flake;
+    let (Column::F32(object), Column::U32(top), Column::F32(bed), Column::U32(ground)) =
+        (&columns[0], &columns[1], &columns[2], &columns[3])
+    else {
+        panic!("object tops, heights and counts")
+    };
+    (0..object.len())
+        .map(|k| if object[k] > NO_OBJECT { object[k] + per * top[k] as f32 } else { bed[k] + per * ground[k] as f32 })
+        .collect()
 }
 
 /// Intensity (up to the maximum the ring was sized for), wind, gusts, flutter

@@ -175,6 +175,16 @@ fn a_mesh_is_an_object_flakes_land_on() {
     }
     let open = flakes::cell(&c, 15.0, 2.0);
     assert!(ground[open] > 0 && top[open] == 0 && cover[open] == 1.0);
+    // Viewers draw the cover on the slab's top and on the open ground.
+    let set = *sim.model().sets.iter().find(|s| s.name == COVER).unwrap();
+    let p = sim.read_set(&set, &["cover_height", "cover_depth"]);
+    let [height, depth] =
+        ["cover_height", "cover_depth"].map(|n| p.channel(n).and_then(floe_proto::Values::as_scalars).unwrap());
+    let per = c.depth_per_flake;
+    for k in [under[1], open] {
+        let (on, base) = if k == open { (ground[k], 0.0) } else { (top[k], 0.3) };
+        assert!((depth[k] - on as f32 * per).abs() < 1e-6 && (height[k] - base - depth[k]).abs() < 1e-4, "cell {k}");
+    }
     let a = Accounts::of(sim.backend());
     assert_eq!(a.emitted, a.accounted(), "{a:?}");
 }
