@@ -8,20 +8,28 @@
 
 import { programWith } from './gl.js';
 
+/** A flake's size (m) as drawn: larger than a real one's, to be seen. */
+const FLAKE_SIZE = 0.15;
+
 const VERT = `#version 300 es
+#define FLAKE_SIZE ${FLAKE_SIZE.toFixed(3)}
 uniform mat4 u_proj, u_view;
-uniform float u_point, u_sprite, u_time;
+uniform float u_point, u_sprite, u_time, u_viewport;
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in vec3 a_colour;
 out vec3 v_colour;
 out float v_angle;
 void main() {
   v_colour = a_colour;
-  // A flake's own size, spin and tumbling rate, from a hash of its index.
+  // A flake's own size, spin and tumbling rate, from a hash of its index; its size on screen
+  // falls with its distance D as the snow thesis's sprites do (viewport height x size /
+  // sqrt(A + B D + C D^2), with A = B = 0, C = 1), within 2 to 32 pixels.
   float h = fract(sin(float(gl_VertexID) * 12.9898) * 43758.5453);
-  gl_PointSize = u_point * (u_sprite > 0.5 ? 0.7 + 0.9 * h : 1.0);
+  vec4 eye = u_view * vec4(a_pos, 1.0);
+  float flake = u_viewport * FLAKE_SIZE * (0.7 + 0.9 * h) / max(-eye.z, 1e-3);
+  gl_PointSize = u_sprite > 0.5 ? clamp(flake, 2.0, 32.0) : u_point;
   v_angle = u_sprite > 0.5 ? h * 6.2832 + u_time * (0.5 + 2.0 * h) : 0.0;
-  gl_Position = u_proj * u_view * vec4(a_pos, 1.0);
+  gl_Position = u_proj * eye;
 }`;
 
 const FRAG = `#version 300 es
@@ -99,7 +107,7 @@ export function gridTiles(grid, values, heights = null, look = '') {
 export class Others {
   constructor(gl) {
     this.gl = gl;
-    this.program = programWith(gl, VERT, FRAG, ['u_proj', 'u_view', 'u_point', 'u_sprite', 'u_time']);
+    this.program = programWith(gl, VERT, FRAG, ['u_proj', 'u_view', 'u_point', 'u_sprite', 'u_time', 'u_viewport']);
     /** @type {{mode: number, count: number, sprite: boolean, vao: WebGLVertexArrayObject, buffers: WebGLBuffer[]}[]} */
     this.meshes = [];
     /** Whether they are drawn. */
@@ -144,6 +152,7 @@ export class Others {
     gl.uniformMatrix4fv(u.u_view, false, view);
     gl.uniform1f(u.u_point, 6.0 * devicePixelRatio);
     gl.uniform1f(u.u_time, performance.now() / 1000);
+    gl.uniform1f(u.u_viewport, gl.drawingBufferHeight);
     for (const m of this.meshes) {
       gl.uniform1f(u.u_sprite, m.sprite ? 1 : 0);
       gl.bindVertexArray(m.vao);
