@@ -238,10 +238,11 @@ const VARIANTS: &[&[&str]] = &[
 ];
 
 /// Snow falling into the dam break's tank, low enough that flakes land within the
-/// oracle's 40 steps: on the floor, on a box and on a cylinder, in a gusting wind
-/// with flutter.
+/// oracle's 40 steps: on the floor, on a box and on a cylinder, in a gusting,
+/// turbulent wind with flutter.
 const SNOWFALL: &str = "snowfall={\"area\":{\"min\":[0,0],\"max\":[2,0.25]},\"height\":0.03,\"cell\":0.05,\
     \"flutter\":1,\"wind\":[0.5,0],\"gusts\":0.3,\"intensity\":{\"flakes_per_m2_s\":50000},\
+    \"turbulence\":{\"amplitude\":0.3,\"scale\":0.2,\"period\":0.5},\
     \"objects\":[{\"shape\":\"box\",\"min\":[1.2,0,0],\"max\":[1.5,0.02,0.25]},\
     {\"shape\":\"cylinder\",\"centre\":[1.8,0.1],\"radius\":0.05,\"bottom\":0,\"top\":0.025}]}";
 

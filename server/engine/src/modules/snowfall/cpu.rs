@@ -47,6 +47,7 @@ struct Sky<'a> {
     c: &'a SnowfallConsts,
     dt: f32,
     target: Vec3,
+    clock: f32,
     decay: f32,
     first: u32,
     born: u32,
@@ -70,7 +71,9 @@ impl Sky<'_> {
         }
         *age += dt;
         let r = flakes::flutter(c, *x, *age);
-        let vel = self.target + (Vec3::new(v[0], v[1], v[2]) - self.target) * self.decay + r * dt;
+        let [tx, tz] = flakes::turbulence(c, x.x, x.z, self.clock);
+        let target = self.target + Vec3::new(tx, 0.0, tz);
+        let vel = target + (Vec3::new(v[0], v[1], v[2]) - target) * self.decay + r * dt;
         let p = *x + vel * dt;
         let (mut state, mut at, mut fate) = (flakes::AIRBORNE, p, Fate::Nothing);
         if !flakes::over(c.area_min, c.area_max, p) {
@@ -115,6 +118,7 @@ impl CpuPass for Fall {
             c,
             dt: cx.dt,
             target: Vec3::new(w[0], -c.terminal_speed, w[1]),
+            clock,
             decay: (-cx.dt / c.tau).exp(),
             first: tally[flakes::tally::FIRST],
             born: tally[flakes::tally::BORN],

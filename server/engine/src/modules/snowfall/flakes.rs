@@ -74,6 +74,30 @@ pub fn wind(c: &SnowfallConsts, clock: f32) -> [f32; 2] {
     [c.wind[0] * gust, c.wind[1] * gust]
 }
 
+/// The turbulence at `(x, z)` (m) and `clock` (s): `[x, z]` (m/s) to add to the
+/// wind. Value noise: random values in [-1, 1] on the lattice of `scale` metres
+/// and `period` seconds (hashed from the lattice point's integer coordinates, so
+/// both backends draw the same), blended trilinearly with smoothstep weights.
+pub fn turbulence(c: &SnowfallConsts, x: f32, z: f32, clock: f32) -> [f32; 2] {
+    let [amplitude, per_metre, per_second] = c.turbulence;
+    if amplitude == 0.0 {
+        return [0.0, 0.0];
+    }
+    let p = [x * per_metre, z * per_metre, clock * per_second];
+    let lattice = p.map(f32::floor);
+    let s: Vec<f32> = (0..3).map(|a| p[a] - lattice[a]).map(|f| f * f * (3.0 - 2.0 * f)).collect();
+    let base = lattice.map(|l| l as i32 as u32);
+    let mut out = [0.0f32; 2];
+    for corner in 0..8u32 {
+        let o = [corner & 1, (corner >> 1) & 1, (corner >> 2) & 1];
+        let w = (0..3).map(|a| if o[a] == 1 { s[a] } else { 1.0 - s[a] }).product::<f32>();
+        let h = hash(base[0].wrapping_add(o[0]) ^ hash(base[1].wrapping_add(o[1]) ^ hash(base[2].wrapping_add(o[2]))));
+        out[0] += w * (2.0 * unit(h) - 1.0);
+        out[1] += w * (2.0 * unit(hash(h)) - 1.0);
+    }
+    out.map(|v| amplitude * v)
+}
+
 /// Where flake number `id` is born (m): the `id`th point of Roberts' R2 sequence
 /// over the area (`frac(id a1)`, `frac(id a2)`, `a` from the plastic number, in
 /// 32-bit fixed point so both backends compute it exactly), which covers the area

@@ -141,6 +141,14 @@ pub const TUNABLES: &[Tunable] = &[
         module: "snowfall",
     },
     Tunable {
+        path: "snowfall.turbulence",
+        unit: "",
+        min: None,
+        max: None,
+        about: "Wind from noise: {\"amplitude\": m/s, \"scale\": m, \"period\": s}, or null for none.",
+        module: "snowfall",
+    },
+    Tunable {
         path: "snowfall.flutter",
         unit: "m/s^2",
         min: Some(0.0),
@@ -250,6 +258,9 @@ pub struct SnowfallConsts {
     pub gust_omega: f32,
     /// Flutter amplitude (m/s^2).
     pub flutter: f32,
+    /// The turbulence: amplitude (m/s), `1 / scale` (1/m), `1 / period` (1/s);
+    /// all 0 without it ([`flakes::turbulence`]).
+    pub turbulence: [f32; 3],
     /// A flake still airborne at this age (s) has left: `3 (height - floor) / v_t + 1`.
     pub max_age: f32,
     /// Snow depth one flake adds to a cell (m).
@@ -296,6 +307,7 @@ impl SnowfallConsts {
             gusts: s.gusts,
             gust_omega: std::f32::consts::TAU / s.gust_period,
             flutter: s.flutter,
+            turbulence: s.turbulence.map_or([0.0; 3], |t| [t.amplitude, 1.0 / t.scale, 1.0 / t.period]),
             max_age,
             depth_per_flake: s.depth_per_hour / 3600.0 / s.max_flakes_per_m2_s() / (cell * cell),
             capacity: capacity(&s, scene.particle_spacing) as u32,
@@ -346,7 +358,8 @@ fn max_age(s: &spec::Snowfall) -> f32 {
 
 /// The longest step the module allows (s): a flake moves at most half a cell.
 fn step_limit(s: &spec::Snowfall, spacing: f32) -> f32 {
-    let wind = s.wind[0].hypot(s.wind[1]) * (1.0 + s.gusts);
+    let turbulence = s.turbulence.map_or(0.0, |t| t.amplitude * std::f32::consts::SQRT_2);
+    let wind = s.wind[0].hypot(s.wind[1]) * (1.0 + s.gusts) + turbulence;
     let speed = wind + s.terminal_speed + s.flutter * s.terminal_speed / 9.81;
     (0.5 * cell_of(s, spacing) / speed).min(0.5)
 }
@@ -394,6 +407,11 @@ fn validate(scene: &Scene, c: &mut Checker) {
     c.within("snowfall.gusts", s.gusts, 0.0, 1.0);
     c.positive("snowfall.gust_period", s.gust_period);
     c.non_negative("snowfall.flutter", s.flutter);
+    if let Some(t) = s.turbulence {
+        c.within("snowfall.turbulence.amplitude", t.amplitude, 0.0, 100.0);
+        c.positive("snowfall.turbulence.scale", t.scale);
+        c.positive("snowfall.turbulence.period", t.period);
+    }
     if let Some(cell) = s.cell {
         c.positive("snowfall.cell", cell);
     }
@@ -608,8 +626,8 @@ fn cover_heights(model: &Model, columns: &[Column]) -> Vec<f32> {
         .collect()
 }
 
-/// Intensity (up to the maximum the ring was sized for), wind, gusts, flutter
-/// and the release's time may change (the ring keeps its size, the release its
+/// Intensity (up to the maximum the ring was sized for), wind, gusts,
+/// turbulence, flutter and the release's time may change (the ring keeps its size, the release its
 /// cells).
 fn retune(scene: &Scene, model: &mut Model) {
     let old = model.consts::<SnowfallConsts>();
@@ -620,7 +638,7 @@ fn retune(scene: &Scene, model: &mut Model) {
 
 fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
     let c = model.consts::<SnowfallConsts>();
-    let wind = c.wind[0].hypot(c.wind[1]) * (1.0 + c.gusts);
+    let wind = c.wind[0].hypot(c.wind[1]) * (1.0 + c.gusts) + c.turbulence[0] * std::f32::consts::SQRT_2;
     let speed = wind + c.terminal_speed + c.flutter * c.tau;
     Some(("snowfall", (0.5 * c.cell / speed).min(0.5)))
 }

@@ -43,6 +43,10 @@ pub struct Snowfall {
     /// Period of the gusts (s; default 5).
     #[serde(default = "default_gust_period")]
     pub gust_period: f32,
+    /// A wind field from noise added to the mean wind: gusts that vary across the
+    /// area as well as in time. Absent: none. Live.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub turbulence: Option<Turbulence>,
     /// Flutter: each step a random acceleration, each component uniform in
     /// `[-flutter, flutter]` (m/s^2; default 1). Live.
     #[serde(default = "default_flutter")]
@@ -81,6 +85,30 @@ pub struct Release {
     /// created, counted by the server's particle limit (default 20,000).
     #[serde(default = "default_release_particles")]
     pub particles: u32,
+}
+
+/// Turbulence: smooth value noise in space and time (trilinear between random
+/// values on a lattice `scale` metres and `period` seconds apart, smoothstep
+/// weights), each horizontal component between `-amplitude` and `amplitude`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Turbulence {
+    /// Largest speed it adds to each horizontal component (m/s).
+    pub amplitude: f32,
+    /// Size of its eddies: the lattice's spacing (m; default 5).
+    #[serde(default = "default_turbulence_scale")]
+    pub scale: f32,
+    /// How long an eddy lasts: the lattice's spacing in time (s; default 4).
+    #[serde(default = "default_turbulence_period")]
+    pub period: f32,
+}
+
+fn default_turbulence_scale() -> f32 {
+    5.0
+}
+
+fn default_turbulence_period() -> f32 {
+    4.0
 }
 
 /// A horizontal rectangle.

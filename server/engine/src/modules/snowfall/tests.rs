@@ -191,3 +191,32 @@ fn a_mesh_is_an_object_flakes_land_on() {
 
 /// A slab 1 x 0.1 x 1 (OBJ, base64).
 pub const SLAB: &str = "diAwIDAgMAp2IDEgMCAwCnYgMSAwIDEKdiAwIDAgMQp2IDAgMC4xIDAKdiAxIDAuMSAwCnYgMSAwLjEgMQp2IDAgMC4xIDEKZiAxIDIgMwpmIDEgMyA0CmYgNSA3IDYKZiA1IDggNwpmIDEgNSA2CmYgMSA2IDIKZiA0IDMgNwpmIDQgNyA4CmYgMSA0IDgKZiAxIDggNQpmIDIgNiA3CmYgMiA3IDMK";
+
+/// Turbulence: bounded by its amplitude, smooth (points a hundredth of its scale
+/// apart differ by a few hundredths of it), about zero on average and different
+/// from place to place; a fall in it still accounts for every flake.
+#[test]
+fn turbulence_is_a_smooth_bounded_field() {
+    let o = ["snowfall.turbulence={\"amplitude\":2,\"scale\":1,\"period\":2}".to_string()];
+    let mut sim = crate::Simulation::new_cpu(from_preset("snow_roof", &o).unwrap()).unwrap();
+    let c = sim.model().consts::<SnowfallConsts>().clone();
+    let (mut sum, mut most, mut jump) = ([0.0f64; 2], 0.0f32, 0.0f32);
+    let n = 4000;
+    for k in 0..n {
+        let (x, z, t) = (k as f32 * 0.37 % 16.0, k as f32 * 0.53 % 4.0, k as f32 * 0.011);
+        let [a, b] = flakes::turbulence(&c, x, z, t);
+        let [a2, b2] = flakes::turbulence(&c, x + 0.01, z, t);
+        sum = [sum[0] + f64::from(a), sum[1] + f64::from(b)];
+        most = most.max(a.abs()).max(b.abs());
+        jump = jump.max((a2 - a).abs()).max((b2 - b).abs());
+    }
+    assert!(most <= 2.0 && most > 1.0, "largest component {most}");
+    assert!(jump < 0.1, "a hundredth of the scale changes it by {jump}");
+    assert!(sum.iter().all(|s| (s / n as f64).abs() < 0.2), "means {sum:?} / {n}");
+    while sim.time() < 6.0 {
+        sim.step().unwrap();
+    }
+    let a = Accounts::of(sim.backend());
+    assert_eq!(a.emitted, a.accounted(), "{a:?}");
+    assert!(a.on_ground > 0);
+}

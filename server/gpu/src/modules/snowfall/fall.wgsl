@@ -39,7 +39,9 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     flake_age[i] = age;
     let x0 = flake_x[i].xyz;
     let r = flutter(x0, age);
-    let vel = target_v + (flake_v[i].xyz - target_v) * decay + r * dt.x;
+    let gust = turbulence(x0.x, x0.z, timer[1]);
+    let air = target_v + vec3<f32>(gust.x, 0.0, gust.y);
+    let vel = air + (flake_v[i].xyz - air) * decay + r * dt.x;
     let p = x0 + vel * dt.x;
     var state = AIRBORNE;
     var at = p;

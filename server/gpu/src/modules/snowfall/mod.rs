@@ -72,6 +72,7 @@ struct SnowfallParams {
     more: [f32; 4],
     sizes: [u32; 4],
     grid: [f32; 4],
+    turbulence: [f32; 4],
     objects: [[f32; 4]; 2 * MAX_OBJECTS],
 }
 
@@ -89,6 +90,8 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     u.more = [c.gust_omega, c.flutter, c.max_age, c.depth_per_flake];
     u.sizes = [c.capacity, c.nx, c.nz, c.objects.len() as u32];
     u.grid = [c.origin[0], c.origin[1], c.cell, 0.0];
+    let [amplitude, per_metre, per_second] = c.turbulence;
+    u.turbulence = [amplitude, per_metre, per_second, 0.0];
     for (slot, o) in u.objects.chunks_exact_mut(2).zip(&c.objects) {
         slot.copy_from_slice(o);
     }

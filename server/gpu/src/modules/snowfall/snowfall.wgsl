@@ -16,6 +16,8 @@ struct Snowfall {
     sizes: vec4<u32>,
     // The grid's corner x and z (m), cell edge (m), unused.
     grid: vec4<f32>,
+    // Turbulence: amplitude (m/s), 1 / scale (1/m), 1 / period (1/s), unused.
+    turbulence: vec4<f32>,
     // Two per object: a box (min, 0), (max, 0); a cylinder (cx, bottom, cz, 1), (radius, top, 0, 0).
     objects: array<vec4<f32>, 32>,
 }
@@ -107,4 +109,26 @@ fn column_top(column: vec4<f32>, from_y: f32, y: f32, snow: f32) -> f32 {
         return top;
     }
     return NO_TOP;
+}
+
+// The turbulence at (x, z) and clock (floe-engine `flakes::turbulence`): value
+// noise on a lattice hashed from its integer coordinates, smoothstep-weighted.
+fn turbulence(x: f32, z: f32, clock: f32) -> vec2<f32> {
+    let t = snowfall.turbulence;
+    if (t.x == 0.0) {
+        return vec2<f32>(0.0);
+    }
+    let p = vec3<f32>(x * t.y, z * t.y, clock * t.z);
+    let lattice = floor(p);
+    let f = p - lattice;
+    let s = f * f * (3.0 - 2.0 * f);
+    let base = bitcast<vec3<u32>>(vec3<i32>(lattice));
+    var out = vec2<f32>(0.0);
+    for (var corner = 0u; corner < 8u; corner++) {
+        let o = vec3<u32>(corner & 1u, (corner >> 1u) & 1u, (corner >> 2u) & 1u);
+        let w = select(1.0 - s, s, o == vec3<u32>(1u));
+        let h = hash((base.x + o.x) ^ hash((base.y + o.y) ^ hash(base.z + o.z)));
+        out += w.x * w.y * w.z * vec2<f32>(2.0 * unit(h) - 1.0, 2.0 * unit(hash(h)) - 1.0);
+    }
+    return t.x * out;
 }
