@@ -108,6 +108,7 @@ fn sets(shared: &Shared) -> Vec<pb::ParticleSet> {
         grid: s.grid,
         look: s.look.unwrap_or_default().into(),
         surface: s.surface.unwrap_or_default().into(),
+        shade: s.shade.unwrap_or_default().into(),
     };
     shared.sets.iter().enumerate().map(set).collect()
 }

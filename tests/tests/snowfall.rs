@@ -14,9 +14,10 @@ async fn snow_streams_as_flakes_and_a_growing_cover() {
     let info = floe.create_preset("snow_roof", &["snowfall.flutter=1"]).await.unwrap();
     let sets: Vec<(&str, bool)> = info.sets.iter().map(|s| (s.name.as_str(), s.grid)).collect();
     assert_eq!(sets, [("particles", false), ("flakes", false), ("snow_cover", true)]);
-    // Viewers draw both as snow, the cover at its surface's heights.
-    let looks: Vec<(&str, &str)> = info.sets.iter().map(|s| (s.look.as_str(), s.surface.as_str())).collect();
-    assert_eq!(looks, [("", ""), ("snow", ""), ("snow", "cover_height")]);
+    // Viewers draw both as snow, the cover at its surface's heights, shaded by its coverage.
+    let looks: Vec<(&str, &str, &str)> =
+        info.sets.iter().map(|s| (s.look.as_str(), s.surface.as_str(), s.shade.as_str())).collect();
+    assert_eq!(looks, [("", "", ""), ("snow", "", ""), ("snow", "cover_height", "cover_coverage")]);
     let flakes = info.sets.iter().find(|s| s.name == "flakes").unwrap().count;
     let mut depths = Vec::new();
     for _ in 0..2 {

@@ -68,13 +68,15 @@ const SNOW = [0.95, 0.97, 1.0], BARE = [0.35, 0.33, 0.3];
  * Triangles (positions and colours, three floats per vertex) of a grid's tiles: cell (i, j, k)
  * (x fastest) a square of `TILE` of its cell in x-z at height `heights[c]` where given, else
  * `origin.y` for a grid one cell high, else at its centre's; coloured by `values` over their
- * range through the colour map, or from bare grey to white in the snow look.
+ * range through the colour map, or from bare grey to white in the snow look (the snow thesis's
+ * blend of snow over ground by coverage: white by the share of the deepest snow, times `shades`).
  * @param {{origin: number[], size: number[], dims: number[]}} grid
  * @param {Float32Array|null} values one per cell
  * @param {Float32Array|null} [heights] one per cell (m)
  * @param {string} [look] the set's look ('snow', or '' for the colour map)
+ * @param {Float32Array|null} [shades] one per cell, 0 to 1: how much of the look to draw
  */
-export function gridTiles(grid, values, heights = null, look = '') {
+export function gridTiles(grid, values, heights = null, look = '', shades = null) {
   const { origin, size, dims } = grid;
   const cell = [0, 1, 2].map((a) => size[a] / dims[a]);
   const n = dims[0] * dims[1] * dims[2];
@@ -90,9 +92,9 @@ export function gridTiles(grid, values, heights = null, look = '') {
         const y = heights ? heights[c] : dims[1] === 1 ? origin[1] : origin[1] + (j + 0.5) * cell[1];
         const corners = [[-1, -1], [1, -1], [1, 1], [-1, -1], [1, 1], [-1, 1]];
         const t = values && hi > lo ? (values[c] - lo) / (hi - lo) : 0.5;
-        const rgb = look === 'snow'
-          ? BARE.map((b, k) => b + (SNOW[k] - b) * (values && hi > 0 ? Math.min(1, Math.max(0, values[c]) / hi) : 0))
-          : ramp(t);
+        const depth = values && hi > 0 ? Math.min(1, Math.max(0, values[c]) / hi) : 0;
+        const white = depth * (shades ? Math.min(1, Math.max(0, shades[c])) : 1);
+        const rgb = look === 'snow' ? BARE.map((b, k) => b + (SNOW[k] - b) * white) : ramp(t);
         corners.forEach(([sx, sz], v) => {
           positions.set([x + sx * half[0], y, z + sz * half[1]], c * 18 + v * 3);
           colours.set(rgb, c * 18 + v * 3);
@@ -124,7 +126,7 @@ export class Others {
     this.meshes = sets.map((s) => {
       const rgb = s.look === 'snow' ? SNOW : solid;
       const mesh = s.grid
-        ? { mode: gl.TRIANGLES, ...gridTiles(s.grid, s.values, s.heights, s.look) }
+        ? { mode: gl.TRIANGLES, ...gridTiles(s.grid, s.values, s.heights, s.look, s.shades) }
         : { mode: gl.POINTS, positions: s.positions, colours: new Float32Array(s.positions.length).map((_, i) => rgb[i % 3]),
           count: s.positions.length / 3 };
       const vao = gl.createVertexArray();

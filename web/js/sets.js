@@ -26,15 +26,15 @@ export class OtherSets {
     this.close();
     for (const set of scene.sets ?? []) {
       if (set.index === 0) continue;
-      const surface = set.surface || '';
-      const channel = (scene.channels ?? []).find((c) => c.set === set.name && c.name !== surface)?.name ?? '';
-      const socket = new WebSocket(url(set.name, [channel, surface].filter(Boolean).join(',')), protocols);
+      const surface = set.surface || '', shade = set.shade || '';
+      const channel = (scene.channels ?? []).find((c) => c.set === set.name && c.name !== surface && c.name !== shade)?.name ?? '';
+      const socket = new WebSocket(url(set.name, [channel, surface, shade].filter(Boolean).join(',')), protocols);
       socket.binaryType = 'arraybuffer';
       // Frames name a module's channels by per-scene tags: the scene's info maps them.
       const tag = (name) => (scene.channels ?? []).find((c) => c.set === set.name && c.name === name)?.tag ?? -1;
       const entry = {
         socket, decoder: new Decoder(), frame: null, grid: set.grid === true, channelTag: tag(channel),
-        surfaceTag: surface ? tag(surface) : -1, look: set.look || '',
+        surfaceTag: surface ? tag(surface) : -1, shadeTag: shade ? tag(shade) : -1, look: set.look || '',
       };
       socket.onmessage = (e) => {
         if (typeof e.data === 'string') return;
@@ -54,15 +54,16 @@ export class OtherSets {
   /**
    * What to draw: per set with a frame, its name, whether it is a grid, its positions or grid,
    * its channel's values (one per particle or cell, vectors by magnitude), a grid's cell heights
-   * (from its surface channel, else null) and its look ('' for none).
+   * (from its surface channel, else null), its shades (0 to 1 per cell, from its shade channel,
+   * else null) and its look ('' for none).
    */
   drawable() {
     const out = [];
-    for (const [name, { frame, grid, channelTag, surfaceTag, look }] of this.sets) {
+    for (const [name, { frame, grid, channelTag, surfaceTag, shadeTag, look }] of this.sets) {
       if (!frame) continue;
       const n = frame.header.particleCount;
       const tagged = (tag) => frame.channels.find((c) => c.tag === tag) ?? null;
-      const c = tagged(channelTag) ?? frame.channels.find((k) => k.tag !== surfaceTag) ?? null;
+      const c = tagged(channelTag) ?? frame.channels.find((k) => k.tag !== surfaceTag && k.tag !== shadeTag) ?? null;
       let values = null;
       if (c) {
         values = new Float32Array(n);
@@ -73,8 +74,10 @@ export class OtherSets {
         }
       }
       const heights = surfaceTag >= 0 ? tagged(surfaceTag)?.values ?? null : null;
+      const shades = shadeTag >= 0 ? tagged(shadeTag)?.values ?? null : null;
       out.push({
-        name, grid: grid ? frame.grid : null, positions: frame.positions, values, heights, look, step: frame.header.step,
+        name, grid: grid ? frame.grid : null, positions: frame.positions, values, heights, shades, look,
+        step: frame.header.step,
       });
     }
     return out;

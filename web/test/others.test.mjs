@@ -26,3 +26,13 @@ test('a deeper grid draws each layer at its cells\' centre height', () => {
   assert.equal(positions[1], 0.5);
   assert.equal(positions[18 + 1], 1.5);
 });
+
+test('a snow grid whitens by depth times its shade (the coverage), at its surface heights', () => {
+  const grid = { origin: [0, 0, 0], size: [3, 1, 1], dims: [3, 1, 1] };
+  const depth = Float32Array.from([0, 2, 2]), heights = Float32Array.from([1, 2, 3]);
+  const { positions, colours } = gridTiles(grid, depth, heights, 'snow', Float32Array.from([1, 1, 0.5]));
+  assert.deepEqual([0, 1, 2].map((c) => positions[18 * c + 1]), [1, 2, 3]);
+  const red = [0, 1, 2].map((c) => colours[18 * c]);
+  // Bare ground's grey, full white, and halfway between where half the ground is covered.
+  assert.deepEqual(red.map((r) => +r.toFixed(3)), [0.35, 0.95, 0.65]);
+});

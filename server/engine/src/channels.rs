@@ -71,18 +71,21 @@ pub struct SetSpec {
     /// For a grid: the channel holding each cell's surface height (m), where
     /// viewers draw the cell (`None`: at the grid's floor).
     pub surface: Option<&'static str>,
+    /// For a grid in a look: the channel (0 to 1) by which viewers scale how much
+    /// of the look they draw over each cell (`None`: all of it).
+    pub shade: Option<&'static str>,
 }
 
 impl SetSpec {
     /// A grid set: the cells `grid` of space `space` (one element per cell, x
     /// fastest, then y, then z).
     pub fn grid(name: &'static str, space: &'static str, grid: floe_proto::GridInfo) -> Self {
-        Self { name, space, position: "", id: None, grid: Some(grid), look: None, surface: None }
+        Self { name, space, position: "", id: None, grid: Some(grid), look: None, surface: None, shade: None }
     }
 
     /// A set of a module's own particles, positions in `position`, its slots fixed.
     pub const fn points(name: &'static str, space: &'static str, position: &'static str) -> Self {
-        Self { name, space, position, id: None, grid: None, look: None, surface: None }
+        Self { name, space, position, id: None, grid: None, look: None, surface: None, shade: None }
     }
 }
 
@@ -90,8 +93,16 @@ impl SetSpec {
 pub const PARTICLES: &str = "particles";
 
 /// The SPH particle set.
-pub const PARTICLE_SET: SetSpec =
-    SetSpec { name: PARTICLES, space: PARTICLES, position: "x", id: Some("id"), grid: None, look: None, surface: None };
+pub const PARTICLE_SET: SetSpec = SetSpec {
+    name: PARTICLES,
+    space: PARTICLES,
+    position: "x",
+    id: Some("id"),
+    grid: None,
+    look: None,
+    surface: None,
+    shade: None,
+};
 
 /// Velocity (core: every particle set that moves has one).
 pub const VELOCITY: ChannelSpec = ChannelSpec {

@@ -208,6 +208,9 @@ pub struct SetView {
     /// For a grid: the channel of its cells' surface heights (m), where viewers draw them.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub surface: Option<&'static str>,
+    /// For a grid in a look: the channel (0 to 1) scaling how much of the look viewers draw.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shade: Option<&'static str>,
 }
 
 /// A material of a scene.
@@ -290,6 +293,7 @@ impl SceneView {
                     grid: s.grid,
                     look: s.look,
                     surface: s.surface,
+                    shade: s.shade,
                 })
                 .collect(),
             materials: shared

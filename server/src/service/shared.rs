@@ -157,6 +157,7 @@ impl Shared {
                     grid: spec.grid.is_some(),
                     look: spec.look.map(|l| l.name()),
                     surface: spec.surface,
+                    shade: spec.shade,
                 })
                 .collect(),
             tunables: floe_engine::module::tunables(sim.scene()),
@@ -305,6 +306,8 @@ pub struct SceneSet {
     pub look: Option<&'static str>,
     /// For a grid: the channel of its cells' surface heights (m), if any.
     pub surface: Option<&'static str>,
+    /// For a grid in a look: the channel (0 to 1) scaling how much of the look is drawn.
+    pub shade: Option<&'static str>,
 }
 
 /// The wire tags of a scene's channels: the table's tag where `proto/channels.json`

@@ -53,6 +53,8 @@ class ParticleSet:
     look: str = ""
     #: For a grid: the channel holding each cell's surface height (m); empty when none.
     surface: str = ""
+    #: For a grid in a look: the channel (0 to 1) scaling how much of the look viewers draw; empty when none.
+    shade: str = ""
 
 
 @dataclass(frozen=True)
@@ -115,7 +117,7 @@ class SceneInfo:
             channels=tuple(
                 ChannelInfo(c.name, c.tag, c.unit, c.components, c.set, c.exact, c.about, c.module) for c in m.channels
             ),
-            sets=tuple(ParticleSet(s.name, s.count, s.index, s.grid, s.look, s.surface) for s in m.sets),
+            sets=tuple(ParticleSet(s.name, s.count, s.index, s.grid, s.look, s.surface, s.shade) for s in m.sets),
             tunables=tuple(
                 Tunable(
                     t.path,

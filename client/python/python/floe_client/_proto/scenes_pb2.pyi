@@ -113,20 +113,22 @@ class ChannelDescription(_message.Message):
     def __init__(self, name: _Optional[str] = ..., tag: _Optional[int] = ..., unit: _Optional[str] = ..., components: _Optional[int] = ..., set: _Optional[str] = ..., exact: _Optional[bool] = ..., about: _Optional[str] = ..., module: _Optional[str] = ...) -> None: ...
 
 class ParticleSet(_message.Message):
-    __slots__ = ("name", "count", "index", "grid", "look", "surface")
+    __slots__ = ("name", "count", "index", "grid", "look", "surface", "shade")
     NAME_FIELD_NUMBER: _ClassVar[int]
     COUNT_FIELD_NUMBER: _ClassVar[int]
     INDEX_FIELD_NUMBER: _ClassVar[int]
     GRID_FIELD_NUMBER: _ClassVar[int]
     LOOK_FIELD_NUMBER: _ClassVar[int]
     SURFACE_FIELD_NUMBER: _ClassVar[int]
+    SHADE_FIELD_NUMBER: _ClassVar[int]
     name: str
     count: int
     index: int
     grid: bool
     look: str
     surface: str
-    def __init__(self, name: _Optional[str] = ..., count: _Optional[int] = ..., index: _Optional[int] = ..., grid: _Optional[bool] = ..., look: _Optional[str] = ..., surface: _Optional[str] = ...) -> None: ...
+    shade: str
+    def __init__(self, name: _Optional[str] = ..., count: _Optional[int] = ..., index: _Optional[int] = ..., grid: _Optional[bool] = ..., look: _Optional[str] = ..., surface: _Optional[str] = ..., shade: _Optional[str] = ...) -> None: ...
 
 class MaterialDescription(_message.Message):
     __slots__ = ("name", "kind", "rest_density", "look")

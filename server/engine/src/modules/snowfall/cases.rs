@@ -149,9 +149,7 @@ fn ground(sim: &Simulation) -> (Vec<u32>, SnowfallConsts) {
 fn count_in(n: &[u32], c: &SnowfallConsts, x: [f32; 2], z: [f32; 2]) -> (u64, usize) {
     let mut total = (0, 0);
     for (k, &count) in n.iter().enumerate() {
-        let (i, j) = (k % c.nx as usize, k / c.nx as usize);
-        let cx = c.origin[0] + (i as f32 + 0.5) * c.cell;
-        let cz = c.origin[1] + (j as f32 + 0.5) * c.cell;
+        let (cx, cz) = super::flakes::centre(c, k);
         if cx >= x[0] && cx <= x[1] && cz >= z[0] && cz <= z[1] {
             total = (total.0 + u64::from(count), total.1 + 1);
         }
@@ -237,9 +235,7 @@ fn coverage_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let objects = &super::section(sim.scene()).objects;
     let (mut inside, mut open, mut slope, mut slope_cells) = (0.0f64, 0.0f64, 0.0f64, 0usize);
     for (k, &f) in cover.iter().enumerate() {
-        let (i, j) = (k % c.nx as usize, k / c.nx as usize);
-        let x = c.origin[0] + (i as f32 + 0.5) * c.cell;
-        let z = c.origin[1] + (j as f32 + 0.5) * c.cell;
+        let (x, z) = super::flakes::centre(&c, k);
         let within = |o: &super::spec::Object| match *o {
             super::spec::Object::Box { min, max } | super::spec::Object::Mesh { min, max, .. } => {
                 x > min[0] && x < max[0] && z > min[2] && z < max[2]

@@ -41,10 +41,10 @@ pub fn columns(c: &SnowfallConsts, meshes: &[TriMesh]) -> Vec<[f32; 4]> {
             };
             for k in range(lo.z, hi.z, c.origin[1], c.nz) {
                 for i in range(lo.x, hi.x, c.origin[0], c.nx) {
-                    let x = c.origin[0] + (i as f32 + 0.5) * c.cell;
-                    let z = c.origin[1] + (k as f32 + 0.5) * c.cell;
+                    let cell = (k * c.nx + i) as usize;
+                    let (x, z) = super::flakes::centre(c, cell);
                     if let Some(y) = crossing(a, b, d, x, z) {
-                        let column = &mut out[(k * c.nx + i) as usize];
+                        let column = &mut out[cell];
                         column[0] = column[0].min(y);
                         column[1] = column[1].max(y);
                     }

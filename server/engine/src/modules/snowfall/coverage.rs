@@ -25,6 +25,7 @@
 //! once, when the scene is built.
 
 use super::SnowfallConsts;
+use super::flakes::centre;
 use crate::math::Vec3;
 
 /// The sampled directions: the vertical, and rings of eight at half the cone's
@@ -44,17 +45,32 @@ pub fn directions(cone_degrees: f32) -> Vec<Vec3> {
 /// The coverage of each cell's ground, with the meshes' columns over the cells
 /// (`columns`: bottom and top, none where the top is below the bottom).
 pub fn coverage(c: &SnowfallConsts, bed: &[f32], columns: &[[f32; 4]], cone_degrees: f32) -> Vec<f32> {
-    let highest = bed.iter().chain(columns.iter().map(|c| &c[1])).copied().fold(f32::NEG_INFINITY, f32::max);
+    let ground = Ground::new(c, bed, columns);
     let dirs = directions(cone_degrees);
-    let ground = Ground { c, bed, columns, highest };
-    (0..bed.len())
-        .map(|k| {
-            let (x, z) = centre(c, k);
-            let p = Vec3::new(x, bed[k], z);
-            let exposed = dirs.iter().filter(|d| !ground.occluded(p, **d)).count();
-            exposed as f32 / dirs.len() as f32 * inclination(c, bed, k)
-        })
-        .collect()
+    let at = |k: usize, y: f32| {
+        let (x, z) = centre(c, k);
+        Vec3::new(x, y, z)
+    };
+    (0..bed.len()).map(|k| ground.exposure(at(k, bed[k]), &dirs) * inclination(c, bed, k)).collect()
+}
+
+/// The coverage of the top of the object over each cell's centre (`tops`, m;
+/// [`super::NO_OBJECT`] where none: 0 there): the tops are flat, so it is their
+/// exposure alone.
+pub fn top_coverage(
+    c: &SnowfallConsts,
+    bed: &[f32],
+    columns: &[[f32; 4]],
+    tops: &[f32],
+    cone_degrees: f32,
+) -> Vec<f32> {
+    let ground = Ground::new(c, bed, columns);
+    let dirs = directions(cone_degrees);
+    let on = |k: usize| {
+        let (x, z) = centre(c, k);
+        Vec3::new(x, tops[k] + 1e-4, z)
+    };
+    (0..bed.len()).map(|k| if tops[k] > super::NO_OBJECT { ground.exposure(on(k), &dirs) } else { 0.0 }).collect()
 }
 
 /// What rays meet besides the objects: the ground's heights and the meshes'
@@ -67,7 +83,17 @@ struct Ground<'a> {
     highest: f32,
 }
 
-impl Ground<'_> {
+impl<'a> Ground<'a> {
+    fn new(c: &'a SnowfallConsts, bed: &'a [f32], columns: &'a [[f32; 4]]) -> Self {
+        let highest = bed.iter().chain(columns.iter().map(|c| &c[1])).copied().fold(f32::NEG_INFINITY, f32::max);
+        Self { c, bed, columns, highest }
+    }
+
+    /// The share of directions `dirs` from which `p` sees the sky.
+    fn exposure(&self, p: Vec3, dirs: &[Vec3]) -> f32 {
+        dirs.iter().filter(|d| !self.occluded(p, **d)).count() as f32 / dirs.len() as f32
+    }
+
     /// Whether the ray from `p` along `d` (pointing up) meets an object, a mesh's
     /// column or the ground.
     fn occluded(&self, p: Vec3, d: Vec3) -> bool {
@@ -157,9 +183,4 @@ pub fn inclination(c: &SnowfallConsts, bed: &[f32], k: usize) -> f32 {
     let dx = slope(j * nx + xl, j * nx + xh, xh - xl);
     let dz = slope(zl * nx + i, zh * nx + i, zh - zl);
     Vec3::new(-dx, 1.0, -dz).normalize().y
-}
-
-fn centre(c: &SnowfallConsts, k: usize) -> (f32, f32) {
-    let (i, j) = (k % c.nx as usize, k / c.nx as usize);
-    (c.origin[0] + (i as f32 + 0.5) * c.cell, c.origin[1] + (j as f32 + 0.5) * c.cell)
 }

@@ -125,6 +125,12 @@ pub fn flutter(c: &SnowfallConsts, x: Vec3, age: f32) -> Vec3 {
     Vec3::new(r(h0), r(h1), r(h2))
 }
 
+/// The centre `(x, z)` (m) of cell `k`.
+pub fn centre(c: &SnowfallConsts, k: usize) -> (f32, f32) {
+    let (i, j) = (k % c.nx as usize, k / c.nx as usize);
+    (c.origin[0] + (i as f32 + 0.5) * c.cell, c.origin[1] + (j as f32 + 0.5) * c.cell)
+}
+
 /// The cell of the snow grid over `(x, z)`, clamped to the grid.
 pub fn cell(c: &SnowfallConsts, x: f32, z: f32) -> usize {
     let i = ((x - c.origin[0]) / c.cell).floor().clamp(0.0, (c.nx - 1) as f32) as usize;

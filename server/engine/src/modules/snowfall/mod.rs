@@ -192,6 +192,8 @@ pub static BED: AttrSpec = attr("snow_bed", Elem::F32, "m", Role::Constant, CELL
 pub static OBJECT_TOP: AttrSpec = attr("object_top", Elem::F32, "m", Role::Constant, CELLS);
 /// The thesis's coverage of each cell's ground (0 to 1, [`coverage`]).
 pub static COVERAGE: AttrSpec = attr("coverage", Elem::F32, "", Role::Constant, CELLS);
+/// The coverage of the top of the object over each cell (0 to 1; 0 where none).
+pub static TOP_COVERAGE: AttrSpec = attr("top_coverage", Elem::F32, "", Role::Constant, CELLS);
 /// Per cell: the ground's height, the snow depth on it and on objects' tops (m).
 pub static SURFACE: AttrSpec = attr("snow_surface", Elem::Vec4, "m", Role::Derived, CELLS);
 
@@ -483,9 +485,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.space(CELLS, cells);
     let bed = (0..cells)
         .map(|k| {
-            let (i, j) = (k % c.nx as usize, k / c.nx as usize);
-            let x = c.origin[0] + (i as f32 + 0.5) * c.cell;
-            let z = c.origin[1] + (j as f32 + 0.5) * c.cell;
+            let (x, z) = flakes::centre(&c, k);
             b.ground_at(x, z).unwrap_or(s.floor)
         })
         .collect::<Vec<f32>>();
@@ -497,17 +497,16 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         }
     }
     let columns = columns::columns(&c, &meshes);
-    let tops = (0..cells)
+    let tops: Vec<f32> = (0..cells)
         .map(|k| {
-            let (i, j) = (k % c.nx as usize, k / c.nx as usize);
-            let x = c.origin[0] + (i as f32 + 0.5) * c.cell;
-            let z = c.origin[1] + (j as f32 + 0.5) * c.cell;
+            let (x, z) = flakes::centre(&c, k);
             let boxes = flakes::object_top(&c, f32::MAX, Vec3::new(x, f32::MIN, z), 0.0);
             boxes.unwrap_or(NO_OBJECT).max(columns[k][1])
         })
         .collect();
-    b.attr(&OBJECT_TOP, Column::F32(tops));
     b.attr(&COVERAGE, Column::F32(coverage::coverage(&c, &bed, &columns, s.coverage_cone)));
+    b.attr(&TOP_COVERAGE, Column::F32(coverage::top_coverage(&c, &bed, &columns, &tops, s.coverage_cone)));
+    b.attr(&OBJECT_TOP, Column::F32(tops));
     b.attr(&columns::COLUMNS, Column::Vec4(columns));
     if let Some(r) = &s.release {
         c.release = Some(release::build(r, &c, &bed, b)?);
@@ -520,7 +519,12 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.pass(&FALL);
     b.pass(&SURFACE_PASS);
     b.set(SetSpec { look: Some(Look::Snow), ..SetSpec::points(FLAKES, FLAKES, "flake_x") });
-    b.set(SetSpec { look: Some(Look::Snow), surface: Some("cover_height"), ..SetSpec::grid(COVER, CELLS, c.grid()) });
+    b.set(SetSpec {
+        look: Some(Look::Snow),
+        surface: Some("cover_height"),
+        shade: Some("cover_coverage"),
+        ..SetSpec::grid(COVER, CELLS, c.grid())
+    });
     // First the cover as viewers draw it: on an object's top where one stands over
     // the cell's centre, else on the ground.
     b.channel(ChannelSpec {
@@ -586,6 +590,16 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         about: "The snow thesis's coverage of the ground (eqs. 2.1-2.2): exposure to the sky times cos(inclination).",
         source: Source::Attr("coverage"),
     });
+    b.channel(ChannelSpec {
+        name: "cover_coverage",
+        unit: "",
+        components: 1,
+        exact: false,
+        set: COVER,
+        module: "snowfall",
+        about: "The coverage of the surface viewers draw the cover on: the object's top over the cell's centre, else the ground.",
+        source: Source::Derived { from: &["object_top", "top_coverage", "coverage"], values: cover_coverages },
+    });
     b.set_consts(c);
     Ok(())
 }
@@ -611,6 +625,14 @@ fn cover_depths(model: &Model, columns: &[Column]) -> Vec<f32> {
         panic!("object tops and counts")
     };
     (0..object.len()).map(|k| per * if object[k] > NO_OBJECT { top[k] } else { ground[k] } as f32).collect()
+}
+
+/// The coverage of the surface on top of each cell: an object's where one stands over it.
+fn cover_coverages(_: &Model, columns: &[Column]) -> Vec<f32> {
+    let (Column::F32(object), Column::F32(top), Column::F32(ground)) = (&columns[0], &columns[1], &columns[2]) else {
+        panic!("object tops and coverages")
+    };
+    (0..object.len()).map(|k| if object[k] > NO_OBJECT { top[k] } else { ground[k] }).collect()
 }
 
 /// The height of the snow's surface on top of each cell (m).

@@ -70,12 +70,15 @@ fn the_cover_and_the_flakes_are_sets() {
 /// the sky shows past its edges from some sampled directions only.
 #[test]
 fn coverage_follows_exposure_and_inclination() {
-    let at = |model: &Model, x: f32, z: f32| {
-        let c = model.consts::<SnowfallConsts>();
-        let column = model.layout.attrs.iter().find(|(s, _)| s.name == COVERAGE.name).map(|(_, c)| c);
-        let Some(Column::F32(cover)) = column else { panic!("coverage") };
-        cover[flakes::cell(c, x, z)]
+    let of = |attr: &'static str| {
+        move |model: &Model, x: f32, z: f32| {
+            let c = model.consts::<SnowfallConsts>();
+            let column = model.layout.attrs.iter().find(|(s, _)| s.name == attr).map(|(_, c)| c);
+            let Some(Column::F32(cover)) = column else { panic!("{attr}") };
+            cover[flakes::cell(c, x, z)]
+        }
     };
+    let at = of(COVERAGE.name);
     let valley = Model::build(&from_preset("snowfall", &[]).unwrap()).unwrap();
     assert_eq!(at(&valley, 15.0, 7.0), 0.0, "inside the house");
     assert_eq!(at(&valley, 17.0, 2.0), 1.0, "the open floor");
@@ -85,6 +88,9 @@ fn coverage_follows_exposure_and_inclination() {
     let under: Vec<f32> = [6.1, 7.0, 7.9].iter().map(|&x| at(&roof, x, 2.0)).collect();
     assert!(under.iter().all(|&f| f > 0.0 && f < 1.0) && under[1] < under[0], "under the roof: {under:?}");
     assert_eq!(at(&roof, 12.0, 2.0), 1.0);
+    // The roof's own top sees the whole sky; open ground has no top.
+    let top = of(TOP_COVERAGE.name);
+    assert_eq!((top(&roof, 7.0, 2.0), top(&roof, 12.0, 2.0)), (1.0, 0.0));
 }
 
 /// The release on the CPU (the mountain side at 10 cm, released at 15 s): the snow
