@@ -50,7 +50,8 @@ async fn rest_mirrors_the_control_calls() {
                 "cross_channel",
                 "snowfall",
                 "snowfall_then_avalanche",
-                "snow_roof"
+                "snow_roof",
+                "elastic_drop"
             ])
         )
     );

@@ -9,8 +9,13 @@ use crate::{modules, schemes};
 
 /// The modules, in the order their passes are declared within a stage (ties only:
 /// passes are ordered by what they read and write).
-pub static MODULES: &[&ModuleDef] =
-    &[&modules::fluid::MODULE, &modules::heat::MODULE, &modules::snow::MODULE, &modules::snowfall::MODULE];
+pub static MODULES: &[&ModuleDef] = &[
+    &modules::fluid::MODULE,
+    &modules::heat::MODULE,
+    &modules::snow::MODULE,
+    &modules::snowfall::MODULE,
+    &modules::solid::MODULE,
+];
 
 /// The schemes; the first is a scene's scheme when it names none.
 pub static SCHEMES: &[&SchemeDef] = &[&schemes::wcsph::SCHEME, &schemes::dfsph::SCHEME];

@@ -144,6 +144,8 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
         &["particle_spacing=0.1", "snowfall.height=3.2", "snowfall.depth_per_hour=540", "snowfall.release.at=5"],
         0x59eed517fc9457a9,
     ),
+    // Recorded when the solid module was added.
+    ("elastic_drop", &["particle_spacing=0.04"], 0xa46ebdc365ffb3ce),
 ];
 
 /// State attributes the core added after the checksums were recorded, which no

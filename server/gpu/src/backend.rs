@@ -459,10 +459,15 @@ impl Backend for GpuBackend {
             space: if name == "walls" { WALLS } else { PARTICLES },
             bytes,
         });
-        // A uniform is named after its module or scheme, or `module.what` for a second one.
+        // A uniform is named after its module or scheme, or `module.what` for a second
+        // one, or after an index map (its counts), which names its module.
+        let module_of = |name: &'static str| match self.model.maps.iter().find(|m| m.name == name) {
+            Some(map) => map.member.module,
+            None => name.split('.').next().unwrap_or(name),
+        };
         let uniforms = self.buffers.uniforms().iter().map(|(name, buffer)| Allocation {
             name,
-            module: name.split('.').next().unwrap_or(name),
+            module: module_of(name),
             space: "uniform",
             bytes: buffer.size(),
         });

@@ -558,6 +558,38 @@ fn snowfall_release_steps_like_the_cpu() {
     assert!(counts[0] > 100 && counts[0].abs_diff(counts[1]) as f64 <= 0.02 * counts[0] as f64, "{counts:?}");
 }
 
+/// The jelly of `elastic_drop` (4 cm: 125 particles) after 20 steps, with each
+/// rotation method: every pass of the shape matching against the CPU's, then 20
+/// whole steps on both, whose positions agree within a micrometre.
+#[test]
+fn solid_passes_and_steps_match_the_cpu() {
+    let Some(gpu) = common::gpu("solid_passes_and_steps_match_the_cpu") else { return };
+    for o in [&["particle_spacing=0.04"][..], &["particle_spacing=0.04", "solid.rotation=\"eigen\""]] {
+        let (cpu, _) = pair(gpu, "elastic_drop", o, 20);
+        let passes: Vec<&'static PassSpec> =
+            cpu.model().plan.passes().iter().copied().filter(|p| p.module == "solid").collect();
+        assert_eq!(passes.len(), 8);
+        for pass in passes {
+            let (mut c, mut g) = pair(gpu, "elastic_drop", o, 20);
+            check_pass(&mut c, &mut g, pass, &format!("{o:?}"));
+        }
+        let (mut c, mut g) = pair(gpu, "elastic_drop", o, 20);
+        for _ in 0..20 {
+            c.step().unwrap();
+            g.step().unwrap();
+        }
+        let by_id = |sim: &Simulation| {
+            let cols = sim.backend().download(&["x", "id"]);
+            let (Column::Vec3(x), Column::U32(id)) = (&cols[0], &cols[1]) else { panic!("positions and ids") };
+            let mut out = vec![floe_engine::math::Vec3::ZERO; x.len()];
+            x.iter().zip(id).for_each(|(p, &i)| out[i as usize] = *p);
+            out
+        };
+        let worst = by_id(&c).iter().zip(by_id(&g)).map(|(a, b)| a.distance(b)).fold(0.0f32, f32::max);
+        assert!(worst < 1e-6, "{o:?}: positions {worst} m apart after 20 steps");
+    }
+}
+
 /// Whole steps with heat, dt changing from step to step (the integration reads the
 /// stage's dt from the core uniform `dt`): the slab's temperatures after 30 steps agree with
 /// the CPU's, and both follow the erf solution.

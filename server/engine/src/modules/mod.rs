@@ -7,3 +7,4 @@ pub mod fluid;
 pub mod heat;
 pub mod snow;
 pub mod snowfall;
+pub mod solid;

@@ -253,7 +253,7 @@ mod tests {
         assert!(json["solver"]["dfsph"]["max_iterations"].is_number(), "a scheme's settings with their defaults");
         let e = from_preset("convection", &["lava={\"t\":1}".into()]).unwrap_err().to_string();
         assert!(e.starts_with("lava: unknown field; the fields here are name, modules,"), "{e}");
-        assert!(e.ends_with("and the sections fluids, heat, snow, snowfall"), "{e}");
+        assert!(e.ends_with("and the sections fluids, heat, snow, snowfall, solid"), "{e}");
         let e = from_preset("convection", &["solver.isph={}".into()]).unwrap_err().to_string();
         assert!(e.starts_with("solver.isph: unknown field;") && e.contains("the sections delta_sph"), "{e}");
         let e = from_preset("convection", &["heat.fluids[0].conductivity=\"x\"".into()]).unwrap_err().to_string();

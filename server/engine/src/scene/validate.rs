@@ -312,7 +312,7 @@ mod tests {
         assert_eq!(errors(&["fluids=[]"]), "fluids: at least one fluid is required");
         assert_eq!(
             errors(&["modules=[\"fluid\",\"lava\"]"]),
-            "modules[1]: unknown module \"lava\"; modules are fluid, heat, snow, snowfall"
+            "modules[1]: unknown module \"lava\"; modules are fluid, heat, snow, snowfall, solid"
         );
         assert_eq!(
             errors(&["fluids[0].eos={\"kind\":\"tait\",\"background\":-1}"]),

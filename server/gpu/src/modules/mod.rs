@@ -5,6 +5,7 @@ pub mod fused;
 pub mod heat;
 pub mod snow;
 pub mod snowfall;
+pub mod solid;
 
 use crate::pass::{Fused, GpuPass, UniformSource};
 
@@ -24,11 +25,24 @@ pub static PASSES: &[&GpuPass] = &[
     &snowfall::EMIT,
     &snowfall::FALL,
     &snowfall::SURFACE,
+    &solid::GATHER,
+    &solid::CENTRE_SUM,
+    &solid::MOMENT,
+    &solid::MOMENT_SUM,
+    &solid::ROTATE,
+    &solid::GOAL,
+    &solid::GOAL_SUM,
+    &solid::PROJECT,
 ];
 
 /// Kernels doing several modules' passes in one neighbour walk.
 pub static FUSED: &[&Fused] = &[&fused::FORCES_AND_CONDUCTION];
 
 /// Every module's uniform.
-pub static UNIFORMS: &[(&str, UniformSource)] =
-    &[("fluid", fluid::uniform), ("heat", heat::uniform), ("snow", snow::uniform), ("snowfall", snowfall::uniform)];
+pub static UNIFORMS: &[(&str, UniformSource)] = &[
+    ("fluid", fluid::uniform),
+    ("heat", heat::uniform),
+    ("snow", snow::uniform),
+    ("snowfall", snowfall::uniform),
+    ("solid", solid::uniform),
+];

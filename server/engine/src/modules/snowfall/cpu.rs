@@ -52,7 +52,6 @@ struct Sky<'a> {
     first: u32,
     born: u32,
     surface: &'a [[f32; 4]],
-    columns: &'a [[f32; 4]],
 }
 
 impl Sky<'_> {
@@ -84,14 +83,14 @@ impl Sky<'_> {
         } else {
             let k = flakes::cell(c, p.x, p.z);
             let cover = self.surface[k];
-            let top = flakes::object_top(c, x.y, p, cover[2])
-                .or_else(|| flakes::column_top(self.columns[k], x.y, p.y, cover[2]));
+            let top = flakes::object_top(c, x.y, p, cover[1])
+                .or_else(|| flakes::column_top([cover[2], cover[3]], x.y, p.y, cover[1]));
             if let Some(y) = top {
                 (state, fate) = (flakes::LANDED, Fate::Top(k));
                 at.y = y;
-            } else if p.y <= cover[0] + cover[1] {
+            } else if p.y <= cover[0] {
                 (state, fate) = (flakes::LANDED, Fate::Ground(k));
-                at.y = cover[0] + cover[1];
+                at.y = cover[0];
             } else if *age > c.max_age {
                 (state, fate) = (flakes::LEFT, Fate::Left);
             }
@@ -123,7 +122,6 @@ impl CpuPass for Fall {
             first: tally[flakes::tally::FIRST],
             born: tally[flakes::tally::BORN],
             surface: a.get(a.handle::<[f32; 4]>(SURFACE.name)),
-            columns: a.get(a.handle::<[f32; 4]>(super::columns::COLUMNS.name)),
         };
         let fates: Vec<Vec<Fate>> = x
             .par_chunks_mut(CHUNK)
@@ -160,7 +158,8 @@ impl CpuPass for Fall {
     }
 }
 
-/// `snow_surface = (bed, ground_count d, top_count d, 0)`, `d` the depth per flake.
+/// `snow_surface = (bed + ground_count d, top_count d, column bottom, column top)`,
+/// `d` the depth per flake.
 #[derive(Debug)]
 pub struct Surface;
 
@@ -170,13 +169,14 @@ impl CpuPass for Surface {
         let a = &mut *cx.attrs;
         let h = a.handle::<[f32; 4]>(SURFACE.name);
         let mut surface = a.take(h);
-        let (bed, ground, top) = (
+        let (bed, ground, top, columns) = (
             a.get(a.handle::<f32>(BED.name)),
             a.get(a.handle::<u32>(GROUND_COUNT.name)),
             a.get(a.handle::<u32>(TOP_COUNT.name)),
+            a.get(a.handle::<[f32; 4]>(super::columns::COLUMNS.name)),
         );
         for (k, s) in surface.iter_mut().enumerate() {
-            *s = [bed[k], ground[k] as f32 * per, top[k] as f32 * per, 0.0];
+            *s = [bed[k] + ground[k] as f32 * per, top[k] as f32 * per, columns[k][0], columns[k][1]];
         }
         a.put(h, surface);
     }

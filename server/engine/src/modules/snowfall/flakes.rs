@@ -161,7 +161,7 @@ pub fn object_top(c: &SnowfallConsts, from: f32, x: Vec3, snow: f32) -> Option<f
 /// The top (m), its snow `snow` (m) included, of a mesh's column over the cell
 /// (`column`: bottom, top; [`super::columns`]) if a flake that moved from height
 /// `from` to `y` landed on it, by [`object_top`]'s rule.
-pub fn column_top(column: [f32; 4], from: f32, y: f32, snow: f32) -> Option<f32> {
+pub fn column_top(column: [f32; 2], from: f32, y: f32, snow: f32) -> Option<f32> {
     let top = column[1] + snow;
     let inside = y >= column[0] && y <= top;
     let crossed = from > top && y <= top;

@@ -194,7 +194,9 @@ pub static OBJECT_TOP: AttrSpec = attr("object_top", Elem::F32, "m", Role::Const
 pub static COVERAGE: AttrSpec = attr("coverage", Elem::F32, "", Role::Constant, CELLS);
 /// The coverage of the top of the object over each cell (0 to 1; 0 where none).
 pub static TOP_COVERAGE: AttrSpec = attr("top_coverage", Elem::F32, "", Role::Constant, CELLS);
-/// Per cell: the ground's height, the snow depth on it and on objects' tops (m).
+/// Per cell: the height of the snow's surface on the ground, the snow's depth on
+/// objects' tops, and the bottom and top of the meshes' column (m): what a flake
+/// lands on, in one element.
 pub static SURFACE: AttrSpec = attr("snow_surface", Elem::Vec4, "m", Role::Derived, CELLS);
 
 const fn post_step(
@@ -213,7 +215,7 @@ pub static FALL: PassSpec = PassSpec {
     tolerance: 1e-4,
     ..post_step(
         "snowfall.fall",
-        &["snowfall_timer", "snow_surface", "snow_columns"],
+        &["snowfall_timer", "snow_surface"],
         &["flake_x", "flake_v", "flake_age"],
         &["snowfall_tally", "ground_count", "top_count"],
     )
@@ -223,7 +225,7 @@ pub static SURFACE_PASS: PassSpec = PassSpec {
     name: "snowfall.surface",
     module: "snowfall",
     stage: Stage::Kick,
-    reads: &["ground_count", "top_count", "snow_bed"],
+    reads: &["ground_count", "top_count", "snow_bed", "snow_columns"],
     writes: &["snow_surface"],
     accumulates: &[],
     tolerance: 1e-6,

@@ -11,7 +11,6 @@
 @group(0) @binding(8) var<storage, read> surface: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read_write> ground_count: array<atomic<u32>>;
 @group(0) @binding(10) var<storage, read_write> top_count: array<atomic<u32>>;
-@group(0) @binding(11) var<storage, read> columns: array<vec4<f32>>;
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -53,17 +52,17 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     } else {
         let k = cell_of(p.x, p.z);
         let cover = surface[k];
-        var top = object_top(x0.y, p, cover.z);
+        var top = object_top(x0.y, p, cover.y);
         if (top == NO_TOP) {
-            top = column_top(columns[k], x0.y, p.y, cover.z);
+            top = column_top(cover.zw, x0.y, p.y, cover.y);
         }
         if (top != NO_TOP) {
             state = LANDED;
             at.y = top;
             atomicAdd(&top_count[k], 1u);
-        } else if (p.y <= cover.x + cover.y) {
+        } else if (p.y <= cover.x) {
             state = LANDED;
-            at.y = cover.x + cover.y;
+            at.y = cover.x;
             atomicAdd(&ground_count[k], 1u);
         } else if (age > snowfall.more.z) {
             state = LEFT;

@@ -101,7 +101,7 @@ fn object_top(from_y: f32, p: vec3<f32>, snow: f32) -> f32 {
 
 // The top, snow included, of a mesh's column over the cell (bottom, top) if the
 // flake landed on it (floe-engine `flakes::column_top`), else NO_TOP.
-fn column_top(column: vec4<f32>, from_y: f32, y: f32, snow: f32) -> f32 {
+fn column_top(column: vec2<f32>, from_y: f32, y: f32, snow: f32) -> f32 {
     let top = column.y + snow;
     let inside = y >= column.x && y <= top;
     let crossed = from_y > top && y <= top;

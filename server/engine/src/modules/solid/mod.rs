@@ -1,0 +1,309 @@
+//! The solid module: elastic bodies by shape matching (Mueller et al. 2005, as the
+//! first thesis behind Floe, its eqs. 2.10-2.24 and 2.31). A body is a fluid of
+//! the scene (its blocks: boxes or meshes) whose particles are at once SPH fluid
+//! (pressure from the scheme, so bodies touch walls, terrain, each other and other
+//! fluids through it) and members of overlapping clusters that pull them back to
+//! their rest shape:
+//!
+//! - **Clusters** ([`clusters`]): one per particle, its neighbours of the same
+//!   material within `cluster_radius` particle spacings at rest (eq. 2.10), stored
+//!   as a core index map (`solid_clusters`) with each membership's rest offset.
+//! - **A solve after each drift** (a core position solve, `solid.shape`), each
+//!   iteration: the members' positions gathered and summed per cluster (its centre,
+//!   eq. 2.12), the moment `A = sum (x - c)(x0 - c0)^T` (eq. 2.14) summed, its
+//!   rotation by polar decomposition ([`polar`]), each membership's goal
+//!   `g = R (x0 - c0) + c` (eq. 2.19), and each particle moved by `alpha` of the
+//!   way to the mean of its goals (Jacobi, eq. 2.31). The core turns what the solve
+//!   moved into velocity (`v += (x - x_predicted) / dt`, the thesis's
+//!   `v += alpha (g - x) / dt`). Iterations and the residual (the largest way, m)
+//!   are reported with the other solves.
+//!
+//! Masses are equal within a body (one material), so the centres are plain means.
+//! Particles are addressed by id through the map, so a scene with elastic bodies
+//! cannot also have births or deaths (the map needs `slot_of`).
+//!
+//! Not yet here: the GPU half, oriented particles, the Gauss-Seidel, hybrid and
+//! weighted solvers, the orientation channel and the viewer's ellipsoids, the
+//! validation cases of VALIDATION.md section 8.
+
+pub mod clusters;
+pub mod cpu;
+pub mod polar;
+pub mod presets;
+pub mod spec;
+
+use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
+use crate::maps::MapSpec;
+use crate::maps::cpu::{Gather, MemberSum, SegmentSum};
+use crate::math::{Mat3, Quat, Real, Vec3};
+use crate::model::{BuildError, Model, ModelBuilder};
+use crate::module::{ModuleDef, Section};
+use crate::plan::PassSpec;
+use crate::scene::Scene;
+use crate::scene::sections::SectionDef;
+use crate::scene::tunable::Tunable;
+use crate::scene::validate::Checker;
+use crate::scheme::{Iterate, Op, ReduceOp, Reduction};
+
+/// The module's definition.
+pub static MODULE: ModuleDef = ModuleDef {
+    id: "solid",
+    about: "Elastic solids: fluids whose particles are held to their rest shape by overlapping shape-matching clusters.",
+    requires: &["fluid"],
+    section: Some(Section { def: SectionDef::of::<spec::Solid>(SECTION), missing: Some("is required") }),
+    validate,
+    count,
+    materials: |_| 0,
+    claims: |_| Vec::new(),
+    particles: |_, _| Ok(()),
+    build,
+    retune,
+    tunables: TUNABLES,
+    cpu: &[
+        ("solid.gather", &Gather::<Vec3>::new(&CLUSTERS, "x", "solid_clusters_x")),
+        ("solid.centre_sum", &SegmentSum::<Vec3>::new(&CLUSTERS, "solid_clusters_x", "cluster_x_sum")),
+        ("solid.moment", &cpu::Moment),
+        ("solid.moment_sum", &SegmentSum::<Mat3>::new(&CLUSTERS, "solid_clusters_moment", "cluster_moment")),
+        ("solid.rotate", &cpu::Rotate),
+        ("solid.goal", &cpu::Goal),
+        ("solid.goal_sum", &MemberSum::<Vec3>::new(&CLUSTERS, "solid_clusters_goal", "solid_goal_sum")),
+        ("solid.project", &cpu::Project),
+    ],
+    presets: presets::PRESETS,
+    dt_limit: |_| None,
+    measures: |_| Vec::new(),
+    cases: &[],
+    stability: &[],
+    bench: &[],
+};
+
+/// The module's section of a scene.
+pub const SECTION: &str = "solid";
+
+/// Iterations of the iterative rotation extraction per cluster solve.
+pub const POLAR_ITERATIONS: u32 = 8;
+
+/// The clusters: segments `solid_cluster`, one per particle of an elastic body.
+pub static CLUSTERS: MapSpec =
+    crate::index_map!("solid_clusters", segments: "solid_cluster", members: PARTICLES, module: "solid");
+
+const fn attr(name: &'static str, elem: Elem, unit: &'static str, role: Role, space: &'static str) -> AttrSpec {
+    AttrSpec { name, elem, unit, role, added_later: false, space, module: "solid", about: name }
+}
+
+/// Each membership's rest offset from its cluster's centre (m).
+pub static REST: AttrSpec = attr("solid_clusters_rest", Elem::Vec3, "m", Role::Constant, "solid_clusters");
+/// Each membership's member position (m).
+pub static MEMBER_X: AttrSpec = attr("solid_clusters_x", Elem::Vec3, "m", Role::Derived, "solid_clusters");
+/// Each membership's moment `(x - c) q^T` (m^2).
+pub static MEMBER_MOMENT: AttrSpec = attr("solid_clusters_moment", Elem::Mat3, "m^2", Role::Derived, "solid_clusters");
+/// Each membership's goal position (m).
+pub static MEMBER_GOAL: AttrSpec = attr("solid_clusters_goal", Elem::Vec3, "m", Role::Derived, "solid_clusters");
+/// Each cluster's sum of its members' positions (m).
+pub static CLUSTER_SUM: AttrSpec = attr("cluster_x_sum", Elem::Vec3, "m", Role::Derived, "solid_cluster");
+/// Each cluster's moment matrix `A_pq` (m^2).
+pub static CLUSTER_MOMENT: AttrSpec = attr("cluster_moment", Elem::Mat3, "m^2", Role::Derived, "solid_cluster");
+/// Each cluster's centre (m).
+pub static CENTRE: AttrSpec = attr("cluster_centre", Elem::Vec3, "m", Role::Derived, "solid_cluster");
+/// Each cluster's rotation from its rest shape (state: the next extraction starts from it).
+pub static ROTATION: AttrSpec = attr("cluster_rotation", Elem::Quat, "", Role::State, "solid_cluster");
+/// Each particle's sum of its clusters' goals (m).
+pub static GOAL_SUM: AttrSpec = attr("solid_goal_sum", Elem::Vec3, "m", Role::Derived, PARTICLES);
+/// Each particle's way to the mean of its goals before this iteration's move (m).
+pub static RESIDUAL: AttrSpec = attr("solid_residual", Elem::F32, "m", Role::Derived, PARTICLES);
+
+const fn solve(
+    name: &'static str,
+    reads: &'static [&'static str],
+    writes: &'static [&'static str],
+    accumulates: &'static [&'static str],
+) -> PassSpec {
+    PassSpec::solve("solid", name, reads, writes, accumulates)
+}
+
+static GATHER: PassSpec = solve("solid.gather", &["solid_clusters_member", "slot_of", "x"], &["solid_clusters_x"], &[]);
+static CENTRE_SUM: PassSpec = solve(
+    "solid.centre_sum",
+    &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_x"],
+    &["cluster_x_sum"],
+    &[],
+);
+static MOMENT: PassSpec = solve(
+    "solid.moment",
+    &["solid_clusters_x", "cluster_x_sum", "solid_clusters_segment", "solid_clusters_len", "solid_clusters_rest"],
+    &["solid_clusters_moment"],
+    &[],
+);
+static MOMENT_SUM: PassSpec = solve(
+    "solid.moment_sum",
+    &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_moment"],
+    &["cluster_moment"],
+    &[],
+);
+static ROTATE: PassSpec = solve(
+    "solid.rotate",
+    &["cluster_moment", "cluster_x_sum", "solid_clusters_len"],
+    &["cluster_centre"],
+    &["cluster_rotation"],
+);
+static GOAL: PassSpec = solve(
+    "solid.goal",
+    &["cluster_rotation", "cluster_centre", "solid_clusters_segment", "solid_clusters_rest"],
+    &["solid_clusters_goal"],
+    &[],
+);
+static GOAL_SUMS: PassSpec = solve(
+    "solid.goal_sum",
+    &[
+        "solid_clusters_first",
+        "solid_clusters_count",
+        "solid_clusters_order",
+        "solid_clusters_live",
+        "id",
+        "solid_clusters_goal",
+    ],
+    &["solid_goal_sum"],
+    &[],
+);
+static PROJECT: PassSpec =
+    solve("solid.project", &["solid_goal_sum", "id", "solid_clusters_count"], &["solid_residual"], &["x"]);
+
+/// The passes of one iteration, in order.
+const ITERATION: &[Op] = &[
+    Op::Pass("solid.gather"),
+    Op::Pass("solid.centre_sum"),
+    Op::Pass("solid.moment"),
+    Op::Pass("solid.moment_sum"),
+    Op::Pass("solid.rotate"),
+    Op::Pass("solid.goal"),
+    Op::Pass("solid.goal_sum"),
+    Op::Pass("solid.project"),
+];
+
+/// The module's live settings.
+pub const TUNABLES: &[Tunable] = &[Tunable {
+    path: "solid.stiffness",
+    unit: "",
+    min: Some(0.0),
+    max: Some(1.0),
+    about: "Shape matching's stiffness alpha: 0 none, 1 rigid within a step.",
+    module: "solid",
+}];
+
+/// The module's constants.
+#[derive(Debug, Clone)]
+pub struct SolidConsts {
+    /// alpha.
+    pub stiffness: Real,
+    /// How rotations are extracted.
+    pub rotation: spec::Rotation,
+}
+
+fn section(scene: &Scene) -> spec::Solid {
+    scene.section(SECTION).expect("the registry builds the solid module only for scenes with its section")
+}
+
+fn consts(scene: &Scene) -> SolidConsts {
+    let s = section(scene);
+    SolidConsts { stiffness: s.stiffness, rotation: s.rotation }
+}
+
+fn validate(scene: &Scene, c: &mut Checker) {
+    let Some(s) = scene.section::<spec::Solid>(SECTION) else { return };
+    if s.bodies.is_empty() {
+        c.fail("solid.bodies", "name at least one fluid".into());
+    }
+    for (i, b) in s.bodies.iter().enumerate() {
+        c.vector(&format!("solid.bodies[{i}].angular_velocity"), &b.angular_velocity);
+    }
+    c.within("solid.cluster_radius", s.cluster_radius, 1.0, 4.0);
+    c.within("solid.stiffness", s.stiffness, 0.0, 1.0);
+    if !(1..=100).contains(&s.iterations) {
+        c.fail("solid.iterations", format!("must be between 1 and 100, got {}", s.iterations));
+    }
+}
+
+/// The clusters cannot be counted before the bodies are placed: a particle has
+/// at most the lattice points within the radius as members.
+fn count(_: &Scene) -> Vec<(&'static str, u64)> {
+    Vec::new()
+}
+
+fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    let s = section(scene);
+    let names: Vec<String> = b.materials().iter().map(|m| m.name.clone()).collect();
+    let mut elastic = Vec::new();
+    for (i, body) in s.bodies.iter().enumerate() {
+        let Some(m) = names.iter().position(|n| *n == body.fluid) else {
+            return Err(BuildError::Setting(format!(
+                "solid.bodies[{i}].fluid: no fluid named {:?} (the scene's: {names:?})",
+                body.fluid
+            )));
+        };
+        elastic.push((m as u32, body.angular_velocity));
+    }
+    let Some(Column::Vec3(x)) = b.column("x") else { unreachable!("the core allocates positions first") };
+    let x = x.clone();
+    // (A scene of one material has no material attribute: every particle is of the first.)
+    let material = match b.column("material") {
+        Some(Column::U32(m)) => m.clone(),
+        _ => vec![0; x.len()],
+    };
+    let ids: Vec<u32> = (0..x.len() as u32).filter(|&i| elastic.iter().any(|e| e.0 == material[i as usize])).collect();
+    let radius = s.cluster_radius * scene.particle_spacing * 1.0001;
+    let found = clusters::build(&ids, &x, &material, radius);
+    if let Some(k) = found.lists.iter().position(|l| l.len() < 2) {
+        return Err(BuildError::Setting(format!(
+            "solid.cluster_radius: particle {} has no neighbour within {} spacings; make it larger",
+            ids[k], s.cluster_radius
+        )));
+    }
+    spin(b, &x, &material, &elastic);
+    b.map(&CLUSTERS, &found.lists);
+    b.attr(&REST, Column::Vec3(found.rest));
+    for spec in [&MEMBER_X, &MEMBER_MOMENT, &MEMBER_GOAL, &CLUSTER_SUM, &CLUSTER_MOMENT, &CENTRE, &GOAL_SUM, &RESIDUAL]
+    {
+        b.zeros(spec);
+    }
+    let clusters = found.lists.len();
+    b.attr(&ROTATION, Column::Quat(vec![Quat::IDENTITY; clusters]));
+    for pass in [&GATHER, &CENTRE_SUM, &MOMENT, &MOMENT_SUM, &ROTATE, &GOAL, &GOAL_SUMS, &PROJECT] {
+        b.pass(pass);
+    }
+    b.position_solve(Iterate {
+        name: "solid.shape",
+        start: &[],
+        iteration: ITERATION,
+        residual: Reduction { attr: "solid_residual", op: ReduceOp::Max },
+        // A fixed number of iterations, as the thesis's solvers run.
+        tolerance: f64::INFINITY,
+        min: s.iterations,
+        max: s.iterations,
+        check_every: s.iterations,
+        sweeps: 1,
+    });
+    b.set_consts(consts(scene));
+    Ok(())
+}
+
+/// Adds each body's angular velocity about its centre to its particles' velocities.
+fn spin(b: &mut ModelBuilder, x: &[Vec3], material: &[u32], elastic: &[(u32, [f32; 3])]) {
+    let Some(Column::Vec3(v)) = b.column("v") else { unreachable!("the core allocates velocities first") };
+    let mut v = v.clone();
+    for &(m, omega) in elastic.iter().filter(|e| e.1 != [0.0; 3]) {
+        let mine: Vec<usize> = (0..x.len()).filter(|&i| material[i] == m).collect();
+        let centre = mine.iter().map(|&i| x[i]).sum::<Vec3>() / mine.len().max(1) as f32;
+        for &i in &mine {
+            v[i] += Vec3::from(omega).cross(x[i] - centre);
+        }
+    }
+    b.redeclare(&crate::model::core_attrs::V, Column::Vec3(v));
+}
+
+/// The stiffness may change.
+fn retune(scene: &Scene, model: &mut Model) {
+    model.set_consts(consts(scene));
+}
+
+#[cfg(test)]
+mod tests;
