@@ -22,10 +22,13 @@
 //! Particles are addressed by id through the map, so a scene with elastic bodies
 //! cannot also have births or deaths (the map needs `slot_of`).
 //!
-//! Not yet here: the GPU half, oriented particles, the Gauss-Seidel, hybrid and
-//! weighted solvers, the orientation channel and the viewer's ellipsoids, the
-//! validation cases of VALIDATION.md section 8.
+//! Validation ([`cases`]): VALIDATION.md section 8's rest shape.
+//!
+//! Not yet here: oriented particles, the Gauss-Seidel, hybrid and weighted
+//! solvers, the orientation channel and the viewer's ellipsoids, the other cases
+//! of VALIDATION.md section 8.
 
+pub mod cases;
 pub mod clusters;
 pub mod cpu;
 pub mod polar;
@@ -72,7 +75,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     presets: presets::PRESETS,
     dt_limit: |_| None,
     measures: |_| Vec::new(),
-    cases: &[],
+    cases: cases::CASES,
     stability: &[],
     bench: &[],
 };

@@ -1,29 +1,6 @@
 use super::*;
 use crate::scene::load::from_preset;
-
-/// The largest distance (m) of a particle from the best rigid motion of its rest
-/// positions `x0` onto `x` (the whole body's shape matching).
-fn shape_error(x0: &[Vec3], x: &[Vec3]) -> f32 {
-    let n = x.len() as f32;
-    let (c0, c) = (x0.iter().sum::<Vec3>() / n, x.iter().sum::<Vec3>() / n);
-    let a = x0.iter().zip(x).fold(Mat3::ZERO, |a, (&p0, &p)| {
-        let (q, r) = (p0 - c0, p - c);
-        a + Mat3::from_cols(r * q.x, r * q.y, r * q.z)
-    });
-    let rot = polar::eigen(a);
-    x0.iter().zip(x).map(|(&p0, &p)| (rot * (p0 - c0) + c - p).length()).fold(0.0, f32::max)
-}
-
-/// Positions by id.
-fn by_id(sim: &crate::Simulation) -> Vec<Vec3> {
-    let cols = sim.backend().download(&["x", "id"]);
-    let (Column::Vec3(x), Column::U32(id)) = (&cols[0], &cols[1]) else { panic!("positions and ids") };
-    let mut out = vec![Vec3::ZERO; x.len()];
-    for (p, &i) in x.iter().zip(id) {
-        out[i as usize] = *p;
-    }
-    out
-}
+use cases::{by_id, shape_error};
 
 fn drop(overrides: &[&str]) -> crate::Simulation {
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
