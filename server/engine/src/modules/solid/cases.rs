@@ -6,6 +6,7 @@ use crate::Simulation;
 use crate::attrs::Column;
 use crate::math::{Mat3, Vec3};
 use crate::validation::cases::{Case, Measured, Variant};
+use crate::validation::stability::{Expect, StabilityCase};
 
 /// The cases, for the module registry.
 pub const CASES: &[Case] = &[Case {
@@ -21,6 +22,38 @@ pub const CASES: &[Case] = &[Case {
     variants: &[Variant { name: "no_gravity", overrides: &["gravity=[0,0,0]"] }],
     measure: rest_case,
 }];
+
+/// The stability battery (VALIDATION.md's stiff and extreme cases for solids):
+/// each must finish, or halt naming why.
+pub const STABILITY: &[StabilityCase] = &[
+    StabilityCase {
+        name: "solid_rigid_many_iterations",
+        what: "alpha = 1 with 50 cluster iterations a step: a rigid jelly dropped on the floor",
+        preset: "elastic_drop",
+        spacing: (0.04, 0.02),
+        overrides: &["solid.stiffness=1", "solid.iterations=50"],
+        until: (0.4, 1.0),
+        expect: Expect::FinishOrHalt,
+    },
+    StabilityCase {
+        name: "solid_small_clusters",
+        what: "clusters of a particle and its 6 face neighbours (radius 1 spacing), alpha = 1",
+        preset: "elastic_drop",
+        spacing: (0.04, 0.02),
+        overrides: &["solid.cluster_radius=1", "solid.stiffness=1"],
+        until: (0.4, 1.0),
+        expect: Expect::FinishOrHalt,
+    },
+    StabilityCase {
+        name: "solid_impact_20",
+        what: "the jelly thrown at the floor at 20 m/s",
+        preset: "elastic_drop",
+        spacing: (0.04, 0.02),
+        overrides: &["fluids[0].blocks[0].velocity=[0,-20,0]", "solver.expected_max_speed=20"],
+        until: (0.1, 0.3),
+        expect: Expect::FinishOrHalt,
+    },
+];
 
 /// Positions by particle id.
 pub fn by_id(sim: &Simulation) -> Vec<Vec3> {

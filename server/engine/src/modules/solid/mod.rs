@@ -40,7 +40,7 @@ use crate::maps::MapSpec;
 use crate::maps::cpu::{Gather, MemberSum, SegmentSum};
 use crate::math::{Mat3, Quat, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
-use crate::module::{ModuleDef, Section};
+use crate::module::{BenchCase, BenchKind, BenchSize, ModuleDef, Section};
 use crate::plan::PassSpec;
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
@@ -76,8 +76,12 @@ pub static MODULE: ModuleDef = ModuleDef {
     dt_limit: |_| None,
     measures: |_| Vec::new(),
     cases: cases::CASES,
-    stability: &[],
-    bench: &[],
+    stability: cases::STABILITY,
+    bench: &[BenchCase {
+        name: "solid",
+        about: "The elastic_drop jelly scaled to --particles, simulated for --until seconds: the shape matching's cost per step by pass",
+        kind: BenchKind::Run { preset: "elastic_drop", measures: &[], size: BenchSize::Particles },
+    }],
 };
 
 /// The module's section of a scene.
