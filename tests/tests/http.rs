@@ -51,7 +51,8 @@ async fn rest_mirrors_the_control_calls() {
                 "snowfall",
                 "snowfall_then_avalanche",
                 "snow_roof",
-                "elastic_drop"
+                "elastic_drop",
+                "floating_blocks"
             ])
         )
     );

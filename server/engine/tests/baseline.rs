@@ -146,6 +146,7 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     ),
     // Recorded when the solid module was added.
     ("elastic_drop", &["particle_spacing=0.04"], 0xa46ebdc365ffb3ce),
+    ("floating_blocks", &["particle_spacing=0.04"], 0xa9f84fb80e63e89a),
 ];
 
 /// State attributes the core added after the checksums were recorded, which no

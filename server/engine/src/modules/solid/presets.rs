@@ -5,11 +5,18 @@ use crate::scene::{Boundary, Face, Scene, Solver};
 use serde_json::json;
 
 /// The presets, for the module registry.
-pub const PRESETS: &[Preset] = &[Preset {
-    name: "elastic_drop",
-    about: "A jelly cube 20 cm wide dropped on the floor from 0.3 m: it bounces, wobbles and settles, keeping its shape.",
-    scene: elastic_drop,
-}];
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "elastic_drop",
+        about: "A jelly cube 20 cm wide dropped on the floor from 0.3 m: it bounces, wobbles and settles, keeping its shape.",
+        scene: elastic_drop,
+    },
+    Preset {
+        name: "floating_blocks",
+        about: "Two elastic blocks, one half as dense as water and one twice, dropped into a tank of water: one floats, one sinks.",
+        scene: floating_blocks,
+    },
+];
 
 /// Side of the jelly cube (m) and the height of its bottom at the start (m).
 pub const DROP: (f32, f32) = (0.2, 0.3);
@@ -43,4 +50,37 @@ pub fn elastic_drop() -> Scene {
         }]),
     )
     .with("solid", json!({ "bodies": [{ "fluid": "jelly" }], "stiffness": 0.5, "iterations": 3 }))
+}
+
+/// A tank 0.6 m square with water 0.3 m deep, and two elastic cubes 12 cm wide
+/// dropped from 0.1 m above it: `light` (500 kg/m^3) floats half out of the water,
+/// `heavy` (2000 kg/m^3) sinks to the floor. About 14,000 particles at 2 cm.
+pub fn floating_blocks() -> Scene {
+    let cube = |x: f32| json!([{ "min": [x, 0.4, 0.24], "max": [x + 0.12, 0.52, 0.36] }]);
+    let body = |name: &str, density: f32, x: f32| {
+        json!({ "name": name, "rest_density": density, "look": "ice",
+                "viscosity": { "model": "artificial", "alpha": 0.05 }, "blocks": cube(x) })
+    };
+    Scene {
+        name: "floating_blocks".into(),
+        modules: vec!["fluid".into(), super::MODULE.id.into()],
+        particle_spacing: 0.02,
+        gravity: [0.0, -9.81, 0.0],
+        boundaries: vec![Boundary::Box { min: [0.0; 3], max: [0.6, 0.8, 0.6], open: vec![Face::PlusY], layers: 2 }],
+        domain: None,
+        periodic: Vec::new(),
+        solver: Solver { expected_max_speed: Some((2.0f32 * 9.81 * 0.5).sqrt()), ..Solver::default() },
+        guard: Default::default(),
+        sections: Default::default(),
+    }
+    .with(
+        "fluids",
+        json!([
+            { "name": "water", "rest_density": 1000.0, "viscosity": { "model": "artificial", "alpha": 0.02 },
+              "blocks": [{ "min": [0.0, 0.0, 0.0], "max": [0.6, 0.3, 0.6] }] },
+            body("light", 500.0, 0.1),
+            body("heavy", 2000.0, 0.38),
+        ]),
+    )
+    .with("solid", json!({ "bodies": [{ "fluid": "light" }, { "fluid": "heavy" }], "stiffness": 0.5, "iterations": 3 }))
 }

@@ -60,3 +60,36 @@ fn a_dropped_jelly_keeps_its_shape_where_water_splashes() {
     assert!(w > 1.5 * start, "the water spread only from {start} to {w} m");
     assert!(lowest > 0.0 && lowest < 0.04, "the jelly's lowest particle came down to {lowest} m");
 }
+
+/// `floating_blocks` at 4 cm for 1.5 s: the block half as dense as water floats
+/// at the surface, the one twice as dense sinks to the floor, each keeping its
+/// shape.
+#[test]
+fn a_light_block_floats_and_a_heavy_one_sinks() {
+    let o = ["particle_spacing=0.04".to_string()];
+    let mut sim = crate::Simulation::new_cpu(from_preset("floating_blocks", &o).unwrap()).unwrap();
+    let materials = |sim: &crate::Simulation| {
+        let cols = sim.backend().download(&["material", "id"]);
+        let (Column::U32(m), Column::U32(id)) = (&cols[0], &cols[1]) else { panic!("materials") };
+        let mut out = vec![0; m.len()];
+        m.iter().zip(id).for_each(|(&m, &i)| out[i as usize] = m);
+        out
+    };
+    let material = materials(&sim);
+    let x0 = by_id(&sim);
+    while sim.time() < 1.5 {
+        sim.step().unwrap();
+    }
+    let x = by_id(&sim);
+    let body =
+        |m: u32, of: &[Vec3]| of.iter().zip(&material).filter(|&(_, &k)| k == m).map(|(p, _)| *p).collect::<Vec<_>>();
+    let centre = |p: &[Vec3]| p.iter().sum::<Vec3>().y / p.len() as f32;
+    let (light, heavy) = (body(1, &x), body(2, &x));
+    let (yl, yh) = (centre(&light), centre(&heavy));
+    assert!(yl > 0.25 && yl < 0.4, "the light block's centre at {yl} m (water 0.3 m deep)");
+    assert!(yh < 0.12, "the heavy block's centre at {yh} m (0.06 m resting on the floor)");
+    for (m, p) in [(1, &light), (2, &heavy)] {
+        let e = shape_error(&body(m, &x0), p);
+        assert!(e < 0.02, "body {m} deformed by {e} m");
+    }
+}
