@@ -122,8 +122,8 @@ fn every_gpu_kernel_binds_what_its_pass_declares() {
             }
         }
     }
-    // The core's passes around a position solve, which no preset has: on a dam break
-    // given the attribute they keep the predicted positions in.
+    // The core's passes around a position solve, whatever the presets hold: on a dam
+    // break given the attribute they keep the predicted positions in.
     let (_, mut model) = scenes().remove(0);
     let p = &floe_engine::position_solve::X_PREDICTED;
     model.layout.attrs.push((p, floe_engine::attrs::Column::zeros(p.elem, model.particle_count())));
