@@ -27,8 +27,10 @@
 //! - Objects: boxes and cylinders (exact), and meshes as columns over the
 //!   grid's cells ([`columns`]).
 
+pub mod accounts;
 pub mod cases;
 pub mod columns;
+pub mod cover;
 pub mod coverage;
 pub mod cpu;
 pub mod flakes;
@@ -37,7 +39,7 @@ pub mod release;
 pub mod spec;
 
 use crate::attrs::{AttrSpec, Column, Elem, Role};
-use crate::channels::{ChannelSpec, SetSpec, Source};
+use crate::channels::SetSpec;
 use crate::materials::Look;
 use crate::math::{Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
@@ -47,7 +49,7 @@ use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
-use crate::simulation::Measure;
+pub use accounts::Accounts;
 use spec::Object;
 
 /// The module's definition.
@@ -67,7 +69,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     cpu: &[("snowfall.emit", &cpu::Emit), ("snowfall.fall", &cpu::Fall), ("snowfall.surface", &cpu::Surface)],
     presets: presets::PRESETS,
     dt_limit,
-    measures,
+    measures: accounts::measures,
     cases: cases::CASES,
     stability: cases::STABILITY,
     bench: &[BenchCase {
@@ -314,7 +316,7 @@ impl SnowfallConsts {
             turbulence: s.turbulence.map_or([0.0; 3], |t| [t.amplitude, 1.0 / t.scale, 1.0 / t.period]),
             max_age,
             depth_per_flake: s.depth_per_hour / 3600.0 / s.max_flakes_per_m2_s() / (cell * cell),
-            capacity: capacity(&s, scene.particle_spacing) as u32,
+            capacity: capacity(&s, scene.particle_spacing, g) as u32,
             origin: s.area.min,
             cell,
             nx,
@@ -360,20 +362,26 @@ fn max_age(s: &spec::Snowfall) -> f32 {
     3.0 * (s.height - s.floor) / s.terminal_speed + 1.0
 }
 
+/// The fastest a flake moves (m/s): the wind at its gusts' peak plus the
+/// turbulence's largest, the fall, and what the flutter adds within a drag time
+/// `tau` (s).
+fn fastest(wind: [f32; 2], gusts: f32, turbulence: f32, terminal_speed: f32, flutter: f32, tau: f32) -> f32 {
+    wind[0].hypot(wind[1]) * (1.0 + gusts) + turbulence * std::f32::consts::SQRT_2 + terminal_speed + flutter * tau
+}
+
 /// The longest step the module allows (s): a flake moves at most half a cell.
-fn step_limit(s: &spec::Snowfall, spacing: f32) -> f32 {
-    let turbulence = s.turbulence.map_or(0.0, |t| t.amplitude * std::f32::consts::SQRT_2);
-    let wind = s.wind[0].hypot(s.wind[1]) * (1.0 + s.gusts) + turbulence;
-    let speed = wind + s.terminal_speed + s.flutter * s.terminal_speed / 9.81;
-    (0.5 * cell_of(s, spacing) / speed).min(0.5)
+fn step_limit(cell: f32, fastest: f32) -> f32 {
+    (0.5 * cell / fastest).min(0.5)
 }
 
 /// Slots the ring needs: every flake born while the oldest can still be airborne,
-/// and two steps' more.
-fn capacity(s: &spec::Snowfall, spacing: f32) -> u64 {
+/// and two steps' more, under gravity `g` (m/s^2).
+fn capacity(s: &spec::Snowfall, spacing: f32, g: f32) -> u64 {
     let area = f64::from((s.area.max[0] - s.area.min[0]) * (s.area.max[1] - s.area.min[1]));
     let rate = f64::from(s.max_flakes_per_m2_s()) * area;
-    let span = f64::from(max_age(s)) + 2.0 * f64::from(step_limit(s, spacing));
+    let turbulence = s.turbulence.map_or(0.0, |t| t.amplitude);
+    let speed = fastest(s.wind, s.gusts, turbulence, s.terminal_speed, s.flutter, s.terminal_speed / g);
+    let span = f64::from(max_age(s)) + 2.0 * f64::from(step_limit(cell_of(s, spacing), speed));
     (rate * span).ceil() as u64 + 2
 }
 
@@ -466,8 +474,9 @@ fn count(scene: &Scene) -> Vec<(&'static str, u64)> {
     // (Called while the scene is validated: a missing section is reported there.)
     let Some(s) = scene.section::<spec::Snowfall>(SECTION) else { return Vec::new() };
     let (nx, nz) = cells(&s, scene.particle_spacing);
+    let g = Vec3::from(scene.gravity).length();
     let mut out =
-        vec![(FLAKES, capacity(&s, scene.particle_spacing)), (COUNTERS, 4), (CELLS, u64::from(nx) * u64::from(nz))];
+        vec![(FLAKES, capacity(&s, scene.particle_spacing, g)), (COUNTERS, 4), (CELLS, u64::from(nx) * u64::from(nz))];
     out.extend(s.release.iter().flat_map(release::count));
     out
 }
@@ -521,133 +530,9 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.pass(&FALL);
     b.pass(&SURFACE_PASS);
     b.set(SetSpec { look: Some(Look::Snow), ..SetSpec::points(FLAKES, FLAKES, "flake_x") });
-    b.set(SetSpec {
-        look: Some(Look::Snow),
-        surface: Some("cover_height"),
-        shade: Some("cover_coverage"),
-        ..SetSpec::grid(COVER, CELLS, c.grid())
-    });
-    // First the cover as viewers draw it: on an object's top where one stands over
-    // the cell's centre, else on the ground.
-    b.channel(ChannelSpec {
-        name: "cover_depth",
-        unit: "m",
-        components: 1,
-        exact: false,
-        set: COVER,
-        module: "snowfall",
-        about: "Depth of the snow on top: on the object over the cell's centre, else on the ground.",
-        source: Source::Derived { from: &["object_top", "top_count", "ground_count"], values: cover_depths },
-    });
-    b.channel(ChannelSpec {
-        name: "cover_height",
-        unit: "m",
-        components: 1,
-        exact: false,
-        set: COVER,
-        module: "snowfall",
-        about: "Height of the snow's surface on top: on the object over the cell's centre, else on the ground.",
-        source: Source::Derived {
-            from: &["object_top", "top_count", "snow_bed", "ground_count"],
-            values: cover_heights,
-        },
-    });
-    b.channel(ChannelSpec {
-        name: "snow_depth",
-        unit: "m",
-        components: 1,
-        exact: false,
-        set: COVER,
-        module: "snowfall",
-        about: "Depth of the snow on the ground.",
-        source: Source::Derived { from: &["ground_count"], values: depths },
-    });
-    b.channel(ChannelSpec {
-        name: "snow_height",
-        unit: "m",
-        components: 1,
-        exact: false,
-        set: COVER,
-        module: "snowfall",
-        about: "Height of the snow's surface on the ground (the ground's height plus the snow's depth).",
-        source: Source::Derived { from: &["snow_bed", "ground_count"], values: heights },
-    });
-    b.channel(ChannelSpec {
-        name: "top_depth",
-        unit: "m",
-        components: 1,
-        exact: false,
-        set: COVER,
-        module: "snowfall",
-        about: "Depth of the snow on objects' tops.",
-        source: Source::Derived { from: &["top_count"], values: depths },
-    });
-    b.channel(ChannelSpec {
-        name: "coverage",
-        unit: "",
-        components: 1,
-        exact: false,
-        set: COVER,
-        module: "snowfall",
-        about: "The snow thesis's coverage of the ground (eqs. 2.1-2.2): exposure to the sky times cos(inclination).",
-        source: Source::Attr("coverage"),
-    });
-    b.channel(ChannelSpec {
-        name: "cover_coverage",
-        unit: "",
-        components: 1,
-        exact: false,
-        set: COVER,
-        module: "snowfall",
-        about: "The coverage of the surface viewers draw the cover on: the object's top over the cell's centre, else the ground.",
-        source: Source::Derived { from: &["object_top", "top_coverage", "coverage"], values: cover_coverages },
-    });
+    cover::declare(b, c.grid());
     b.set_consts(c);
     Ok(())
-}
-
-/// Depth (m) from a count of flakes per cell.
-fn depths(model: &Model, columns: &[Column]) -> Vec<f32> {
-    let per = model.consts::<SnowfallConsts>().depth_per_flake;
-    let Column::U32(n) = &columns[0] else { panic!("counts are u32") };
-    n.iter().map(|&n| n as f32 * per).collect()
-}
-
-/// The snow's surface (m) from the ground's heights and the counts.
-fn heights(model: &Model, columns: &[Column]) -> Vec<f32> {
-    let per = model.consts::<SnowfallConsts>().depth_per_flake;
-    let (Column::F32(bed), Column::U32(n)) = (&columns[0], &columns[1]) else { panic!("heights and counts") };
-    bed.iter().zip(n).map(|(&b, &n)| b + n as f32 * per).collect()
-}
-
-/// The snow on top of each cell (m): an object's where one stands over it.
-fn cover_depths(model: &Model, columns: &[Column]) -> Vec<f32> {
-    let per = model.consts::<SnowfallConsts>().depth_per_flake;
-    let (Column::F32(object), Column::U32(top), Column::U32(ground)) = (&columns[0], &columns[1], &columns[2]) else {
-        panic!("object tops and counts")
-    };
-    (0..object.len()).map(|k| per * if object[k] > NO_OBJECT { top[k] } else { ground[k] } as f32).collect()
-}
-
-/// The coverage of the surface on top of each cell: an object's where one stands over it.
-fn cover_coverages(_: &Model, columns: &[Column]) -> Vec<f32> {
-    let (Column::F32(object), Column::F32(top), Column::F32(ground)) = (&columns[0], &columns[1], &columns[2]) else {
-        panic!("object tops and coverages")
-    };
-    (0..object.len()).map(|k| if object[k] > NO_OBJECT { top[k] } else { ground[k] }).collect()
-}
-
-/// The height of the snow's surface on top of each cell (m).
-fn cover_heights(model: &Model, columns: &[Column]) -> Vec<f32> {
-    let per = model.consts::<SnowfallConsts>().depth_per_flake;
-    let (Column::F32(object), Column::U32(top), Column::F32(bed), Column::U32(ground)) =
-        (&columns[0], &columns[1], &columns[2], &columns[3])
-    else {
-        panic!("object tops, heights and counts")
-    };
-    (0..object.len())
-        .map(|k| if object[k] > NO_OBJECT { object[k] + per * top[k] as f32 } else { bed[k] + per * ground[k] as f32 })
-        .collect()
 }
 
 /// Intensity (up to the maximum the ring was sized for), wind, gusts,
@@ -662,80 +547,8 @@ fn retune(scene: &Scene, model: &mut Model) {
 
 fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
     let c = model.consts::<SnowfallConsts>();
-    let wind = c.wind[0].hypot(c.wind[1]) * (1.0 + c.gusts) + c.turbulence[0] * std::f32::consts::SQRT_2;
-    let speed = wind + c.terminal_speed + c.flutter * c.tau;
-    Some(("snowfall", (0.5 * c.cell / speed).min(0.5)))
-}
-
-/// The flakes' accounting: emitted, airborne, landed (on the ground and on
-/// objects), left and released, which always add up; with a release, the snow's
-/// mass released and still on the ground.
-fn measures(sim: &crate::Simulation) -> Vec<Measure> {
-    let a = Accounts::of(sim.backend());
-    let mut out = vec![
-        Measure::new("snowfall.emitted", a.emitted as f64, ""),
-        Measure::new("snowfall.airborne", a.airborne as f64, ""),
-        Measure::new("snowfall.landed", (a.on_ground + a.on_objects) as f64, ""),
-        Measure::new("snowfall.left", a.left as f64, ""),
-    ];
-    if let Some(r) = &sim.model().consts::<SnowfallConsts>().release {
-        out.push(Measure::new("snowfall.released", a.released as f64, ""));
-        out.push(Measure::new("snowfall.released_mass", a.released as f64 * r.flake_mass(), "kg"));
-        out.push(Measure::new("snowfall.ground_mass", a.on_ground as f64 * r.flake_mass(), "kg"));
-    }
-    out
-}
-
-/// Where the flakes are.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Accounts {
-    /// Emitted since the start.
-    pub emitted: u64,
-    /// In the air now.
-    pub airborne: u64,
-    /// Landed on the ground.
-    pub on_ground: u64,
-    /// Landed on objects.
-    pub on_objects: u64,
-    /// Left the area (or lived too long).
-    pub left: u64,
-    /// Released from the ground as particles ([`release`]).
-    pub released: u64,
-}
-
-impl Accounts {
-    /// Every flake emitted is in exactly one of these: airborne, landed (on the
-    /// ground or on objects), left or released.
-    pub fn accounted(&self) -> u64 {
-        self.airborne + self.on_ground + self.on_objects + self.left + self.released
-    }
-
-    /// A backend's accounts, from its state.
-    pub fn of(b: &dyn crate::backend::Backend) -> Self {
-        let mut cols = b.download(&[TALLY.name, FLAKE_V.name, GROUND_COUNT.name, TOP_COUNT.name]).into_iter();
-        let mut next = || cols.next().expect("four columns");
-        let (Column::U32(tally), Column::Vec4(v), Column::U32(ground), Column::U32(top)) =
-            (next(), next(), next(), next())
-        else {
-            panic!("the snowfall's columns")
-        };
-        let sum = |n: &[u32]| n.iter().map(|&n| u64::from(n)).sum();
-        let released = match b.model().consts::<SnowfallConsts>().release {
-            Some(_) => match &b.download(&[release::RELEASED.name])[..] {
-                [Column::U32(n)] => u64::from(n[0]),
-                _ => panic!("the released flakes"),
-            },
-            None => 0,
-        };
-        Self {
-            emitted: u64::from(tally[flakes::tally::EMITTED]),
-            airborne: v.iter().filter(|v| v[3] == flakes::AIRBORNE).count() as u64,
-            on_ground: sum(&ground),
-            on_objects: sum(&top),
-            left: u64::from(tally[flakes::tally::LEFT]),
-            released,
-        }
-    }
+    let speed = fastest(c.wind, c.gusts, c.turbulence[0], c.terminal_speed, c.flutter, c.tau);
+    Some(("snowfall", step_limit(c.cell, speed)))
 }
 
 #[cfg(test)]
