@@ -169,6 +169,9 @@ pub struct Iterate {
     /// passes seeing the sweep index `0 .. sweeps` ([`Stages::sweep`]; e.g. one
     /// sweep per colour of a coloured Gauss-Seidel iteration). 1 for most solves.
     pub sweeps: u32,
+    /// The most sweeps a live change may set (at least `sweeps`): what a GPU's
+    /// sweep indices are allocated for.
+    pub max_sweeps: u32,
 }
 
 impl Iterate {

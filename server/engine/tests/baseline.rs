@@ -145,8 +145,8 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
         0x59eed517fc9457a9,
     ),
     // Recorded when the solid module was added.
-    ("elastic_drop", &["particle_spacing=0.04"], 0xa46ebdc365ffb3ce),
-    ("floating_blocks", &["particle_spacing=0.04"], 0xa9f84fb80e63e89a),
+    ("elastic_drop", &["particle_spacing=0.04"], 0xb07387955097c90d),
+    ("floating_blocks", &["particle_spacing=0.04"], 0xe30c22a5fa60de79),
 ];
 
 /// State attributes the core added after the checksums were recorded, which no

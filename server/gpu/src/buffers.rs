@@ -195,7 +195,13 @@ impl Buffers {
         }
         // The sweep index of swept solves: copied from `sweep_values` into the
         // `sweep` uniform between dispatches.
-        let sweeps = model.velocity_solves.iter().chain(&model.position_solves).map(|s| s.sweeps).max().unwrap_or(0);
+        let sweeps = model
+            .velocity_solves
+            .iter()
+            .chain(&model.position_solves)
+            .map(|s| s.sweeps.max(s.max_sweeps))
+            .max()
+            .unwrap_or(0);
         let mut core = core;
         if sweeps > 1 {
             let values: Vec<u32> = (0..sweeps).collect();

@@ -559,16 +559,23 @@ fn snowfall_release_steps_like_the_cpu() {
 }
 
 /// The jelly of `elastic_drop` (4 cm: 125 particles) after 20 steps, with each
-/// rotation method: every pass of the shape matching against the CPU's, then 20
-/// whole steps on both, whose positions agree within a micrometre.
+/// rotation method and each cluster solver (the coloured ones reading the sweep):
+/// every pass of the shape matching against the CPU's, then 20 whole steps on
+/// both, whose positions agree within a micrometre, and again after both change
+/// to the hybrid solver while running.
 #[test]
 fn solid_passes_and_steps_match_the_cpu() {
     let Some(gpu) = common::gpu("solid_passes_and_steps_match_the_cpu") else { return };
-    for o in [&["particle_spacing=0.04"][..], &["particle_spacing=0.04", "solid.rotation=\"eigen\""]] {
+    for o in [
+        &["particle_spacing=0.04"][..],
+        &["particle_spacing=0.04", "solid.rotation=\"iterative\"", "solid.solver=\"weighted_jacobi\""],
+        &["particle_spacing=0.04", "solid.solver=\"gauss_seidel\""],
+        &["particle_spacing=0.04", "solid.solver=\"hybrid\"", "solid.colours=3"],
+    ] {
         let (cpu, _) = pair(gpu, "elastic_drop", o, 20);
         let passes: Vec<&'static PassSpec> =
             cpu.model().plan.passes().iter().copied().filter(|p| p.module == "solid").collect();
-        assert_eq!(passes.len(), 8);
+        assert_eq!(passes.len(), 9);
         for pass in passes {
             let (mut c, mut g) = pair(gpu, "elastic_drop", o, 20);
             check_pass(&mut c, &mut g, pass, &format!("{o:?}"));
@@ -587,6 +594,16 @@ fn solid_passes_and_steps_match_the_cpu() {
         };
         let worst = by_id(&c).iter().zip(by_id(&g)).map(|(a, b)| a.distance(b)).fold(0.0f32, f32::max);
         assert!(worst < 1e-6, "{o:?}: positions {worst} m apart after 20 steps");
+        // Live: both switch solver and iterations and go on stepping alike.
+        let live: Vec<String> = ["solid.solver=\"hybrid\"", "solid.iterations=2"].map(String::from).to_vec();
+        for sim in [&mut c, &mut g] {
+            sim.set_parameters(&live).unwrap();
+            for _ in 0..5 {
+                sim.step().unwrap();
+            }
+        }
+        let worst = by_id(&c).iter().zip(by_id(&g)).map(|(a, b)| a.distance(b)).fold(0.0f32, f32::max);
+        assert!(worst < 1e-6, "{o:?}: positions {worst} m apart after a live change to hybrid");
     }
 }
 

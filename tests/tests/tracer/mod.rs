@@ -391,6 +391,7 @@ pub const FLOOR_SOLVE: Iterate = Iterate {
     max: 8,
     check_every: 1,
     sweeps: COLOURS,
+    max_sweeps: COLOURS,
 };
 
 /// The tracer's constants.

@@ -163,6 +163,7 @@ pub fn solve(tolerance: f32, max: u32) -> Iterate {
         max,
         check_every: 1,
         sweeps: 1,
+        max_sweeps: 1,
     }
 }
 

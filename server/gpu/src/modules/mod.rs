@@ -30,8 +30,9 @@ pub static PASSES: &[&GpuPass] = &[
     &solid::MOMENT,
     &solid::MOMENT_SUM,
     &solid::ROTATE,
-    &solid::GOAL,
-    &solid::GOAL_SUM,
+    &solid::WAY,
+    &solid::WAY_SUM,
+    &solid::WEIGHT_SUM,
     &solid::PROJECT,
 ];
 

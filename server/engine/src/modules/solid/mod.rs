@@ -9,24 +9,32 @@
 //!   material within `cluster_radius` particle spacings at rest (eq. 2.10), stored
 //!   as a core index map (`solid_clusters`) with each membership's rest offset.
 //! - **A solve after each drift** (a core position solve, `solid.shape`), each
-//!   iteration: the members' positions gathered and summed per cluster (its centre,
-//!   eq. 2.12), the moment `A = sum (x - c)(x0 - c0)^T` (eq. 2.14) summed, its
-//!   rotation by polar decomposition ([`polar`]), each membership's goal
-//!   `g = R (x0 - c0) + c` (eq. 2.19), and each particle moved by `alpha` of the
-//!   way to the mean of its goals (Jacobi, eq. 2.31). The core turns what the solve
-//!   moved into velocity (`v += (x - x_predicted) / dt`, the thesis's
-//!   `v += alpha (g - x) / dt`). Iterations and the residual (the largest way, m)
-//!   are reported with the other solves.
+//!   iteration: the members' positions gathered relative to the cluster's own
+//!   particle and summed per cluster (its centre, eq. 2.12), the moment
+//!   `A = sum (x - c)(x0 - c0)^T` (eq. 2.14) summed, its rotation by polar
+//!   decomposition ([`polar`]), each membership's way to its goal
+//!   `g - x = R (x0 - c0) + c - x` (eq. 2.19) and weight, and each particle moved
+//!   by `alpha` of the weighted mean of its ways: Jacobi (eq. 2.31), weighted
+//!   Jacobi (eqs. 2.33-2.35), or in coloured sweeps Gauss-Seidel (eq. 2.32) and
+//!   hybrid ([`spec::ClusterSolver`]). The core turns what the solve moved into
+//!   velocity (`v += (x - x_predicted) / dt`, the thesis's `v += alpha (g - x) / dt`).
+//!   Iterations and the residual (the largest way, m) are reported with the other
+//!   solves.
+//!
+//! Positions relative to a cluster's own particle keep the ways exact to the
+//! rounding of a cluster's size rather than of the absolute positions: a way of
+//! 1e-7 m summed from goals in absolute coordinates near 1 m is lost to rounding,
+//! and with it the momentum the matching conserves.
 //!
 //! Masses are equal within a body (one material), so the centres are plain means.
 //! Particles are addressed by id through the map, so a scene with elastic bodies
 //! cannot also have births or deaths (the map needs `slot_of`).
 //!
-//! Validation ([`cases`]): VALIDATION.md section 8's rest shape.
+//! Validation ([`cases`]): VALIDATION.md section 8's rest shape and free rigid
+//! motion.
 //!
-//! Not yet here: oriented particles, the Gauss-Seidel, hybrid and weighted
-//! solvers, the orientation channel and the viewer's ellipsoids, the other cases
-//! of VALIDATION.md section 8.
+//! Not yet here: oriented particles, the orientation channel and the viewer's
+//! ellipsoids, the other cases of VALIDATION.md section 8.
 
 pub mod cases;
 pub mod clusters;
@@ -37,7 +45,7 @@ pub mod spec;
 
 use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
 use crate::maps::MapSpec;
-use crate::maps::cpu::{Gather, MemberSum, SegmentSum};
+use crate::maps::cpu::{MemberSum, SegmentSum};
 use crate::math::{Mat3, Quat, Real, Vec3};
 use crate::model::{BuildError, Model, ModelBuilder};
 use crate::module::{BenchCase, BenchKind, BenchSize, ModuleDef, Section};
@@ -63,13 +71,14 @@ pub static MODULE: ModuleDef = ModuleDef {
     retune,
     tunables: TUNABLES,
     cpu: &[
-        ("solid.gather", &Gather::<Vec3>::new(&CLUSTERS, "x", "solid_clusters_x")),
+        ("solid.gather", &cpu::GatherRelative),
         ("solid.centre_sum", &SegmentSum::<Vec3>::new(&CLUSTERS, "solid_clusters_x", "cluster_x_sum")),
         ("solid.moment", &cpu::Moment),
         ("solid.moment_sum", &SegmentSum::<Mat3>::new(&CLUSTERS, "solid_clusters_moment", "cluster_moment")),
         ("solid.rotate", &cpu::Rotate),
-        ("solid.goal", &cpu::Goal),
-        ("solid.goal_sum", &MemberSum::<Vec3>::new(&CLUSTERS, "solid_clusters_goal", "solid_goal_sum")),
+        ("solid.way", &cpu::Way),
+        ("solid.way_sum", &MemberSum::<Vec3>::new(&CLUSTERS, "solid_clusters_way", "solid_way_sum")),
+        ("solid.weight_sum", &MemberSum::<Real>::new(&CLUSTERS, "solid_clusters_weight", "solid_weight_sum")),
         ("solid.project", &cpu::Project),
     ],
     presets: presets::PRESETS,
@@ -100,23 +109,31 @@ const fn attr(name: &'static str, elem: Elem, unit: &'static str, role: Role, sp
 
 /// Each membership's rest offset from its cluster's centre (m).
 pub static REST: AttrSpec = attr("solid_clusters_rest", Elem::Vec3, "m", Role::Constant, "solid_clusters");
-/// Each membership's member position (m).
+/// Each cluster's own particle (id), the origin its positions are taken from.
+pub static OWNER: AttrSpec = attr("cluster_owner", Elem::U32, "", Role::Constant, "solid_cluster");
+/// Each cluster's colour: no two clusters of a colour share a particle.
+pub static COLOUR: AttrSpec = attr("cluster_colour", Elem::U32, "", Role::Constant, "solid_cluster");
+/// Each membership's member position relative to its cluster's own particle (m).
 pub static MEMBER_X: AttrSpec = attr("solid_clusters_x", Elem::Vec3, "m", Role::Derived, "solid_clusters");
 /// Each membership's moment `(x - c) q^T` (m^2).
 pub static MEMBER_MOMENT: AttrSpec = attr("solid_clusters_moment", Elem::Mat3, "m^2", Role::Derived, "solid_clusters");
-/// Each membership's goal position (m).
-pub static MEMBER_GOAL: AttrSpec = attr("solid_clusters_goal", Elem::Vec3, "m", Role::Derived, "solid_clusters");
-/// Each cluster's sum of its members' positions (m).
+/// Each membership's way to its goal, `g - x`, times its weight (m).
+pub static MEMBER_WAY: AttrSpec = attr("solid_clusters_way", Elem::Vec3, "m", Role::Derived, "solid_clusters");
+/// Each membership's weight in its member's move (0 for a cluster not swept now).
+pub static MEMBER_WEIGHT: AttrSpec = attr("solid_clusters_weight", Elem::F32, "", Role::Derived, "solid_clusters");
+/// Each cluster's sum of its members' relative positions (m).
 pub static CLUSTER_SUM: AttrSpec = attr("cluster_x_sum", Elem::Vec3, "m", Role::Derived, "solid_cluster");
 /// Each cluster's moment matrix `A_pq` (m^2).
 pub static CLUSTER_MOMENT: AttrSpec = attr("cluster_moment", Elem::Mat3, "m^2", Role::Derived, "solid_cluster");
-/// Each cluster's centre (m).
+/// Each cluster's centre relative to its own particle (m).
 pub static CENTRE: AttrSpec = attr("cluster_centre", Elem::Vec3, "m", Role::Derived, "solid_cluster");
 /// Each cluster's rotation from its rest shape (state: the next extraction starts from it).
 pub static ROTATION: AttrSpec = attr("cluster_rotation", Elem::Quat, "", Role::State, "solid_cluster");
-/// Each particle's sum of its clusters' goals (m).
-pub static GOAL_SUM: AttrSpec = attr("solid_goal_sum", Elem::Vec3, "m", Role::Derived, PARTICLES);
-/// Each particle's way to the mean of its goals before this iteration's move (m).
+/// Each particle's sum of its weighted ways (m).
+pub static WAY_SUM: AttrSpec = attr("solid_way_sum", Elem::Vec3, "m", Role::Derived, PARTICLES);
+/// Each particle's sum of its ways' weights.
+pub static WEIGHT_SUM: AttrSpec = attr("solid_weight_sum", Elem::F32, "", Role::Derived, PARTICLES);
+/// Each particle's largest way (its weighted mean) over this iteration's sweeps (m).
 pub static RESIDUAL: AttrSpec = attr("solid_residual", Elem::F32, "m", Role::Derived, PARTICLES);
 
 const fn solve(
@@ -128,7 +145,12 @@ const fn solve(
     PassSpec::solve("solid", name, reads, writes, accumulates)
 }
 
-static GATHER: PassSpec = solve("solid.gather", &["solid_clusters_member", "slot_of", "x"], &["solid_clusters_x"], &[]);
+static GATHER: PassSpec = solve(
+    "solid.gather",
+    &["solid_clusters_member", "slot_of", "x", "solid_clusters_segment", "cluster_owner", "cluster_colour"],
+    &[],
+    &["solid_clusters_x"],
+);
 static CENTRE_SUM: PassSpec = solve(
     "solid.centre_sum",
     &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_x"],
@@ -137,9 +159,16 @@ static CENTRE_SUM: PassSpec = solve(
 );
 static MOMENT: PassSpec = solve(
     "solid.moment",
-    &["solid_clusters_x", "cluster_x_sum", "solid_clusters_segment", "solid_clusters_len", "solid_clusters_rest"],
-    &["solid_clusters_moment"],
+    &[
+        "solid_clusters_x",
+        "cluster_x_sum",
+        "solid_clusters_segment",
+        "solid_clusters_len",
+        "solid_clusters_rest",
+        "cluster_colour",
+    ],
     &[],
+    &["solid_clusters_moment"],
 );
 static MOMENT_SUM: PassSpec = solve(
     "solid.moment_sum",
@@ -149,53 +178,111 @@ static MOMENT_SUM: PassSpec = solve(
 );
 static ROTATE: PassSpec = solve(
     "solid.rotate",
-    &["cluster_moment", "cluster_x_sum", "solid_clusters_len"],
+    &["cluster_moment", "cluster_x_sum", "solid_clusters_len", "cluster_colour"],
     &["cluster_centre"],
     &["cluster_rotation"],
 );
-static GOAL: PassSpec = solve(
-    "solid.goal",
-    &["cluster_rotation", "cluster_centre", "solid_clusters_segment", "solid_clusters_rest"],
-    &["solid_clusters_goal"],
-    &[],
-);
-static GOAL_SUMS: PassSpec = solve(
-    "solid.goal_sum",
+/// A way is the difference of two offsets of a cluster's size (cm) and may be
+/// a millionth of them: the GPU's agrees to the rounding of the offsets, a
+/// fraction of the way itself.
+static WAY: PassSpec = PassSpec {
+    tolerance: 0.25,
+    ..solve(
+        "solid.way",
+        &[
+            "cluster_rotation",
+            "cluster_centre",
+            "cluster_colour",
+            "solid_clusters_segment",
+            "solid_clusters_rest",
+            "solid_clusters_x",
+        ],
+        &["solid_clusters_way", "solid_clusters_weight"],
+        &[],
+    )
+};
+static WAY_SUM_PASS: PassSpec = solve(
+    "solid.way_sum",
     &[
         "solid_clusters_first",
         "solid_clusters_count",
         "solid_clusters_order",
         "solid_clusters_live",
         "id",
-        "solid_clusters_goal",
+        "solid_clusters_way",
     ],
-    &["solid_goal_sum"],
+    &["solid_way_sum"],
+    &[],
+);
+static WEIGHT_SUM_PASS: PassSpec = solve(
+    "solid.weight_sum",
+    &[
+        "solid_clusters_first",
+        "solid_clusters_count",
+        "solid_clusters_order",
+        "solid_clusters_live",
+        "id",
+        "solid_clusters_weight",
+    ],
+    &["solid_weight_sum"],
     &[],
 );
 static PROJECT: PassSpec =
-    solve("solid.project", &["solid_goal_sum", "id", "solid_clusters_count"], &["solid_residual"], &["x"]);
+    solve("solid.project", &["solid_way_sum", "solid_weight_sum"], &[], &["x", "solid_residual"]);
 
-/// The passes of one iteration, in order.
+/// The passes of one iteration's sweep, in order.
 const ITERATION: &[Op] = &[
     Op::Pass("solid.gather"),
     Op::Pass("solid.centre_sum"),
     Op::Pass("solid.moment"),
     Op::Pass("solid.moment_sum"),
     Op::Pass("solid.rotate"),
-    Op::Pass("solid.goal"),
-    Op::Pass("solid.goal_sum"),
+    Op::Pass("solid.way"),
+    Op::Pass("solid.way_sum"),
+    Op::Pass("solid.weight_sum"),
     Op::Pass("solid.project"),
 ];
 
 /// The module's live settings.
-pub const TUNABLES: &[Tunable] = &[Tunable {
-    path: "solid.stiffness",
-    unit: "",
-    min: Some(0.0),
-    max: Some(1.0),
-    about: "Shape matching's stiffness alpha: 0 none, 1 rigid within a step.",
-    module: "solid",
-}];
+pub const TUNABLES: &[Tunable] = &[
+    Tunable {
+        path: "solid.stiffness",
+        unit: "",
+        min: Some(0.0),
+        max: Some(1.0),
+        about: "Shape matching's stiffness alpha: 0 none, 1 rigid within a step.",
+        module: "solid",
+    },
+    Tunable {
+        path: "solid.iterations",
+        unit: "",
+        min: Some(1.0),
+        max: Some(MAX_ITERATIONS as f64),
+        about: "Iterations of the cluster solve per step.",
+        module: "solid",
+    },
+    Tunable {
+        path: "solid.solver",
+        unit: "",
+        min: None,
+        max: None,
+        about: "Cluster solver: jacobi, weighted_jacobi, gauss_seidel or hybrid.",
+        module: "solid",
+    },
+    Tunable {
+        path: "solid.rotation",
+        unit: "",
+        min: None,
+        max: None,
+        about: "Rotation extraction: iterative or eigen.",
+        module: "solid",
+    },
+];
+
+/// The most iterations a step may run.
+pub const MAX_ITERATIONS: u32 = 100;
+/// The most colours of the hybrid solver.
+pub const MAX_COLOURS: u32 = 64;
 
 /// The module's constants.
 #[derive(Debug, Clone)]
@@ -204,15 +291,65 @@ pub struct SolidConsts {
     pub stiffness: Real,
     /// How rotations are extracted.
     pub rotation: spec::Rotation,
+    /// How the goals move the particles.
+    pub solver: spec::ClusterSolver,
+    /// Colours the clusters are swept in: the conflict-free colouring's for
+    /// Gauss-Seidel, `colours` for hybrid (a cluster sweeps with its colour
+    /// modulo this), 1 for the Jacobi solvers.
+    pub sweeps: u32,
+    /// Colours of the conflict-free colouring (`cluster_colour`).
+    pub colours: u32,
+    /// The hybrid solver's colours.
+    pub hybrid_colours: u32,
+}
+
+impl SolidConsts {
+    /// Whether each sweep matches only the clusters of its colour.
+    pub fn coloured(&self) -> bool {
+        matches!(self.solver, spec::ClusterSolver::GaussSeidel | spec::ClusterSolver::Hybrid)
+    }
+
+    /// Whether the cluster of colour `colour` is matched in sweep `sweep`.
+    pub fn active(&self, colour: u32, sweep: u32) -> bool {
+        !self.coloured() || colour % self.sweeps == sweep
+    }
 }
 
 fn section(scene: &Scene) -> spec::Solid {
     scene.section(SECTION).expect("the registry builds the solid module only for scenes with its section")
 }
 
-fn consts(scene: &Scene) -> SolidConsts {
+fn consts(scene: &Scene, colours: u32) -> SolidConsts {
     let s = section(scene);
-    SolidConsts { stiffness: s.stiffness, rotation: s.rotation }
+    let sweeps = match s.solver {
+        spec::ClusterSolver::Jacobi | spec::ClusterSolver::WeightedJacobi => 1,
+        spec::ClusterSolver::GaussSeidel => colours,
+        spec::ClusterSolver::Hybrid => s.colours,
+    };
+    SolidConsts {
+        stiffness: s.stiffness,
+        rotation: s.rotation,
+        solver: s.solver,
+        sweeps,
+        colours,
+        hybrid_colours: s.colours,
+    }
+}
+
+/// The position solve: a fixed number of iterations, as the thesis's solvers run.
+fn shape_solve(iterations: u32, c: &SolidConsts) -> Iterate {
+    Iterate {
+        name: "solid.shape",
+        start: &[],
+        iteration: ITERATION,
+        residual: Reduction { attr: "solid_residual", op: ReduceOp::Max },
+        tolerance: f64::INFINITY,
+        min: iterations,
+        max: iterations,
+        check_every: iterations,
+        sweeps: c.sweeps,
+        max_sweeps: c.colours.max(c.hybrid_colours),
+    }
 }
 
 fn validate(scene: &Scene, c: &mut Checker) {
@@ -225,8 +362,11 @@ fn validate(scene: &Scene, c: &mut Checker) {
     }
     c.within("solid.cluster_radius", s.cluster_radius, 1.0, 4.0);
     c.within("solid.stiffness", s.stiffness, 0.0, 1.0);
-    if !(1..=100).contains(&s.iterations) {
-        c.fail("solid.iterations", format!("must be between 1 and 100, got {}", s.iterations));
+    if !(1..=MAX_ITERATIONS).contains(&s.iterations) {
+        c.fail("solid.iterations", format!("must be between 1 and {MAX_ITERATIONS}, got {}", s.iterations));
+    }
+    if !(2..=MAX_COLOURS).contains(&s.colours) {
+        c.fail("solid.colours", format!("must be between 2 and {MAX_COLOURS}, got {}", s.colours));
     }
 }
 
@@ -265,31 +405,34 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
             ids[k], s.cluster_radius
         )));
     }
+    let (colour, colours) = clusters::colours(&found.lists);
     spin(b, &x, &material, &elastic);
     b.map(&CLUSTERS, &found.lists);
     b.attr(&REST, Column::Vec3(found.rest));
-    for spec in [&MEMBER_X, &MEMBER_MOMENT, &MEMBER_GOAL, &CLUSTER_SUM, &CLUSTER_MOMENT, &CENTRE, &GOAL_SUM, &RESIDUAL]
-    {
+    b.attr(&OWNER, Column::U32(ids));
+    b.attr(&COLOUR, Column::U32(colour));
+    for spec in [
+        &MEMBER_X,
+        &MEMBER_MOMENT,
+        &MEMBER_WAY,
+        &MEMBER_WEIGHT,
+        &CLUSTER_SUM,
+        &CLUSTER_MOMENT,
+        &CENTRE,
+        &WAY_SUM,
+        &WEIGHT_SUM,
+        &RESIDUAL,
+    ] {
         b.zeros(spec);
     }
     let clusters = found.lists.len();
     b.attr(&ROTATION, Column::Quat(vec![Quat::IDENTITY; clusters]));
-    for pass in [&GATHER, &CENTRE_SUM, &MOMENT, &MOMENT_SUM, &ROTATE, &GOAL, &GOAL_SUMS, &PROJECT] {
+    for pass in [&GATHER, &CENTRE_SUM, &MOMENT, &MOMENT_SUM, &ROTATE, &WAY, &WAY_SUM_PASS, &WEIGHT_SUM_PASS, &PROJECT] {
         b.pass(pass);
     }
-    b.position_solve(Iterate {
-        name: "solid.shape",
-        start: &[],
-        iteration: ITERATION,
-        residual: Reduction { attr: "solid_residual", op: ReduceOp::Max },
-        // A fixed number of iterations, as the thesis's solvers run.
-        tolerance: f64::INFINITY,
-        min: s.iterations,
-        max: s.iterations,
-        check_every: s.iterations,
-        sweeps: 1,
-    });
-    b.set_consts(consts(scene));
+    let c = consts(scene, colours);
+    b.position_solve(shape_solve(s.iterations, &c));
+    b.set_consts(c);
     Ok(())
 }
 
@@ -307,9 +450,14 @@ fn spin(b: &mut ModelBuilder, x: &[Vec3], material: &[u32], elastic: &[(u32, [f3
     b.redeclare(&crate::model::core_attrs::V, Column::Vec3(v));
 }
 
-/// The stiffness may change.
+/// The stiffness, iterations, solver and rotation may change.
 fn retune(scene: &Scene, model: &mut Model) {
-    model.set_consts(consts(scene));
+    let c = consts(scene, model.consts::<SolidConsts>().colours);
+    let solve = shape_solve(section(scene).iterations, &c);
+    for s in model.position_solves.iter_mut().filter(|s| s.name == solve.name) {
+        *s = solve;
+    }
+    model.set_consts(c);
 }
 
 #[cfg(test)]

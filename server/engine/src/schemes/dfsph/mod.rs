@@ -237,6 +237,7 @@ pub fn divergence_solve(s: &DfsphSettings) -> Iterate {
         max: s.max_iterations,
         check_every: 1,
         sweeps: 1,
+        max_sweeps: 1,
     }
 }
 
@@ -252,6 +253,7 @@ pub fn density_solve(s: &DfsphSettings) -> Iterate {
         max: s.max_iterations,
         check_every: 1,
         sweeps: 1,
+        max_sweeps: 1,
     }
 }
 

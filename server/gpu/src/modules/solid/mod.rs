@@ -1,24 +1,48 @@
-//! The solid module on the GPU: the core's generic map kernels gather and sum over
-//! the clusters; four kernels of the module's own (a thread per membership, per
-//! cluster or per particle, no atomics) do the moments, the rotations, the goals and
-//! the Jacobi projection; the uniform `solid` holds [`SolidConsts`] and the counts.
+//! The solid module on the GPU: the core's generic map kernels sum over the
+//! clusters; five kernels of the module's own (a thread per membership, per
+//! cluster or per particle, no atomics) do the relative gather, the moments, the
+//! rotations, the ways and the projection; the uniform `solid` holds
+//! [`SolidConsts`] and the counts, the core's `sweep` uniform the colour swept.
 
 use crate::pass::{GpuPass, always};
 use crate::passes::particle_kernel;
 use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
-use floe_engine::modules::solid::{CLUSTERS, POLAR_ITERATIONS, SolidConsts, spec::Rotation};
+use floe_engine::modules::solid::{
+    CLUSTERS, POLAR_ITERATIONS, SolidConsts,
+    spec::{ClusterSolver, Rotation},
+};
 
-/// Member positions into memberships.
-pub static GATHER: GpuPass =
-    crate::map_pass!(gather "solid.gather", map "solid_clusters", words 4, from "x" into "solid_clusters_x");
-/// Each cluster's sum of positions.
+/// Each cluster's sum of relative positions.
 pub static CENTRE_SUM: GpuPass = crate::map_pass!(segment_sum "solid.centre_sum", map "solid_clusters", segments "solid_cluster", words 4, from "solid_clusters_x" into "cluster_x_sum");
 /// Each cluster's moment matrix.
 pub static MOMENT_SUM: GpuPass = crate::map_pass!(segment_sum "solid.moment_sum", map "solid_clusters", segments "solid_cluster", words 12, from "solid_clusters_moment" into "cluster_moment");
-/// Each particle's sum of its goals.
-pub static GOAL_SUM: GpuPass = crate::map_pass!(member_sum "solid.goal_sum", map "solid_clusters", members "particles", words 4, from "solid_clusters_goal" into "solid_goal_sum");
+/// Each particle's sum of its weighted ways.
+pub static WAY_SUM: GpuPass = crate::map_pass!(member_sum "solid.way_sum", map "solid_clusters", members "particles", words 4, from "solid_clusters_way" into "solid_way_sum");
+/// Each particle's sum of its ways' weights.
+pub static WEIGHT_SUM: GpuPass = crate::map_pass!(member_sum "solid.weight_sum", map "solid_clusters", members "particles", words 1, from "solid_clusters_weight" into "solid_weight_sum");
+
+/// Member positions relative to their cluster's own particle.
+pub static GATHER: GpuPass = GpuPass {
+    name: "solid.gather",
+    source: particle_kernel!("solid.wgsl", "gather.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (U, "sweep"),
+        (R, "solid_clusters_member"),
+        (R, "slot_of"),
+        (R, "x"),
+        (R, "solid_clusters_segment"),
+        (R, "cluster_owner"),
+        (R, "cluster_colour"),
+        (W, "solid_clusters_x"),
+    ],
+    space: "solid_clusters",
+    when: always,
+};
 
 /// Each membership's moment.
 pub static MOMENT: GpuPass = GpuPass {
@@ -28,11 +52,13 @@ pub static MOMENT: GpuPass = GpuPass {
     bindings: &[
         (U, "params"),
         (U, "solid"),
+        (U, "sweep"),
         (R, "solid_clusters_x"),
         (R, "cluster_x_sum"),
         (R, "solid_clusters_segment"),
         (R, "solid_clusters_len"),
         (R, "solid_clusters_rest"),
+        (R, "cluster_colour"),
         (W, "solid_clusters_moment"),
     ],
     space: "solid_clusters",
@@ -47,9 +73,11 @@ pub static ROTATE: GpuPass = GpuPass {
     bindings: &[
         (U, "params"),
         (U, "solid"),
+        (U, "sweep"),
         (R, "cluster_moment"),
         (R, "cluster_x_sum"),
         (R, "solid_clusters_len"),
+        (R, "cluster_colour"),
         (W, "cluster_centre"),
         (W, "cluster_rotation"),
     ],
@@ -57,25 +85,29 @@ pub static ROTATE: GpuPass = GpuPass {
     when: always,
 };
 
-/// Each membership's goal.
-pub static GOAL: GpuPass = GpuPass {
-    name: "solid.goal",
-    source: particle_kernel!("solid.wgsl", "goal.wgsl"),
+/// Each membership's weighted way to its goal and its weight.
+pub static WAY: GpuPass = GpuPass {
+    name: "solid.way",
+    source: particle_kernel!("solid.wgsl", "way.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
         (U, "solid"),
+        (U, "sweep"),
         (R, "cluster_rotation"),
         (R, "cluster_centre"),
+        (R, "cluster_colour"),
         (R, "solid_clusters_segment"),
         (R, "solid_clusters_rest"),
-        (W, "solid_clusters_goal"),
+        (R, "solid_clusters_x"),
+        (W, "solid_clusters_way"),
+        (W, "solid_clusters_weight"),
     ],
     space: "solid_clusters",
     when: always,
 };
 
-/// Each particle's move towards the mean of its goals.
+/// Each particle's move by the weighted mean of its ways.
 pub static PROJECT: GpuPass = GpuPass {
     name: "solid.project",
     source: particle_kernel!("solid.wgsl", "project.wgsl"),
@@ -83,11 +115,11 @@ pub static PROJECT: GpuPass = GpuPass {
     bindings: &[
         (U, "params"),
         (U, "solid"),
-        (R, "solid_goal_sum"),
-        (R, "id"),
-        (R, "solid_clusters_count"),
-        (W, "solid_residual"),
+        (U, "sweep"),
+        (R, "solid_way_sum"),
+        (R, "solid_weight_sum"),
         (W, "x"),
+        (W, "solid_residual"),
     ],
     space: PARTICLES,
     when: always,
@@ -100,6 +132,11 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         Rotation::Iterative => 0,
         Rotation::Eigen => 1,
     };
+    let solver = match c.solver {
+        ClusterSolver::Jacobi => 0,
+        ClusterSolver::WeightedJacobi => 1,
+        ClusterSolver::GaussSeidel | ClusterSolver::Hybrid => 2,
+    };
     let words = [
         c.stiffness.to_bits(),
         0,
@@ -109,6 +146,10 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         model.layout.count(CLUSTERS.name) as u32,
         method,
         POLAR_ITERATIONS,
+        solver,
+        c.sweeps,
+        0,
+        0,
     ];
     Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())
 }

@@ -1,11 +1,11 @@
-// Jacobi: a member moves by alpha of the way to the mean of its goals (floe-engine
-// `solid::cpu::Project`); the residual is that way's length.
+// A particle moves by alpha of the weighted mean of its ways; its residual is the
+// largest such mean over the iteration's sweeps (floe-engine `solid::cpu::Project`).
 
-@group(0) @binding(2) var<storage, read> goal_sum: array<vec4<f32>>;
-@group(0) @binding(3) var<storage, read> id: array<u32>;
-@group(0) @binding(4) var<storage, read> count: array<u32>;
-@group(0) @binding(5) var<storage, read_write> residual: array<f32>;
-@group(0) @binding(6) var<storage, read_write> pos: array<vec4<f32>>;
+@group(0) @binding(2) var<uniform> sweep: vec4<u32>;
+@group(0) @binding(3) var<storage, read> way: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read> weight: array<f32>;
+@group(0) @binding(5) var<storage, read_write> pos: array<vec4<f32>>;
+@group(0) @binding(6) var<storage, read_write> residual: array<f32>;
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -13,16 +13,14 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     if (i >= params.n) {
         return;
     }
-    let member = id[i];
-    var n = 0u;
-    if (member < arrayLength(&count)) {
-        n = count[member];
+    var r = residual[i];
+    if (sweep.x == 0u) {
+        r = 0.0;
     }
-    if (n == 0u) {
-        residual[i] = 0.0;
-        return;
+    if (weight[i] > 0.0) {
+        let mean = way[i].xyz / weight[i];
+        r = max(r, length(mean));
+        pos[i] = vec4<f32>(pos[i].xyz + mean * solid.settings.x, pos[i].w);
     }
-    let way = goal_sum[i].xyz / f32(n) - pos[i].xyz;
-    residual[i] = length(way);
-    pos[i] = vec4<f32>(pos[i].xyz + way * solid.settings.x, pos[i].w);
+    residual[i] = r;
 }

@@ -6,9 +6,20 @@ struct Solid {
     settings: vec4<f32>,
     // Clusters, memberships, rotation method (0 iterative, 1 eigen), iterations of the iterative one.
     sizes: vec4<u32>,
+    // Solver (SOLVER_*), the colours a cluster's colour is taken modulo, unused x2.
+    solver: vec4<u32>,
 }
 
 @group(0) @binding(1) var<uniform> solid: Solid;
+
+const SOLVER_JACOBI = 0u;
+const SOLVER_WEIGHTED = 1u;
+const SOLVER_COLOURED = 2u;
+
+// Whether a cluster of this colour is matched in this sweep (SolidConsts::active).
+fn matched(colour: u32, sweep: u32) -> bool {
+    return solid.solver.x != SOLVER_COLOURED || colour % solid.solver.y == sweep;
+}
 
 // Hamilton's product a b (glam's).
 fn quat_mul(a: vec4<f32>, b: vec4<f32>) -> vec4<f32> {

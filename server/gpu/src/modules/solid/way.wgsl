@@ -1,0 +1,33 @@
+// Per membership: the way to its goal, R q_k + c - x_k, times its weight
+// (floe-engine `solid::cpu::Way`).
+
+@group(0) @binding(2) var<uniform> sweep: vec4<u32>;
+@group(0) @binding(3) var<storage, read> rotation: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read> centre: array<vec4<f32>>;
+@group(0) @binding(5) var<storage, read> colour: array<u32>;
+@group(0) @binding(6) var<storage, read> segment: array<u32>;
+@group(0) @binding(7) var<storage, read> rest: array<vec4<f32>>;
+@group(0) @binding(8) var<storage, read> relative: array<vec4<f32>>;
+@group(0) @binding(9) var<storage, read_write> way: array<vec4<f32>>;
+@group(0) @binding(10) var<storage, read_write> weight: array<f32>;
+
+@compute @workgroup_size(WG)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let k = thread_index(gid, groups);
+    if (k >= solid.sizes.y) {
+        return;
+    }
+    let s = segment[k];
+    if (!matched(colour[s], sweep.x)) {
+        way[k] = vec4<f32>(0.0);
+        weight[k] = 0.0;
+        return;
+    }
+    let to_goal = quat_rotate(rotation[s], rest[k].xyz) - (relative[k].xyz - centre[s].xyz);
+    var w = 1.0;
+    if (solid.solver.x == SOLVER_WEIGHTED) {
+        w = length(to_goal);
+    }
+    way[k] = vec4<f32>(to_goal * w, 0.0);
+    weight[k] = w;
+}
