@@ -190,6 +190,12 @@ fn validate(scene: &Scene, c: &mut Checker) {
             }
             if let Some(mesh) = &b.mesh {
                 crate::mesh::validate(c, &format!("{bp}.mesh"), mesh);
+                if !b.shape.is_box() {
+                    c.fail(
+                        &format!("{bp}.shape"),
+                        "a block shaped by a mesh cannot also be a sphere or cylinder".into(),
+                    );
+                }
             }
         }
     }
@@ -203,8 +209,8 @@ fn validate(scene: &Scene, c: &mut Checker) {
 }
 
 /// How many particles the fluids' blocks hold, counted without placing them (an
-/// upper bound where a terrain buries part of a block or a mesh shapes it: those
-/// outside are dropped at build).
+/// upper bound where a terrain buries part of a block or a mesh or shape trims it:
+/// those outside are dropped at build).
 fn count(scene: &Scene) -> Vec<(&'static str, u64)> {
     let blocks = fluids(scene).into_iter().flat_map(|f| f.blocks);
     let n = blocks.map(|b| box_count(b.min, b.max, scene.particle_spacing)).fold(0u64, u64::saturating_add);
@@ -220,7 +226,11 @@ fn particles(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
             let path = format!("fluids[{i}].blocks[{j}]");
             let bounds = Aabb::new(block.min.into(), block.max.into());
             let pts = match &block.mesh {
-                None => fill_box(block.min, block.max, d),
+                None => {
+                    let mut pts = fill_box(block.min, block.max, d);
+                    pts.retain(|x| block.shape.holds(block.min, block.max, (*x).into()));
+                    pts
+                }
                 Some(m) => {
                     let mesh = m.load().map_err(|e| BuildError::Mesh(format!("{path}.mesh: {e}")))?;
                     mesh.fitted(bounds).fill_with(m.fill, bounds, d)
@@ -295,6 +305,7 @@ fn measures(sim: &crate::Simulation) -> Vec<crate::simulation::Measure> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::attrs::Column;
 
     #[test]
     fn the_counted_particles_are_those_a_simulation_builds() {
@@ -304,5 +315,40 @@ mod tests {
             let built = crate::Simulation::new_cpu(scene).unwrap().particle_count() as u64;
             assert_eq!(counted, built, "spacing {spacing}");
         }
+    }
+
+    /// A sphere holds about pi/6 of its cube's lattice points and a cylinder pi/4,
+    /// each within its shape; a mesh cannot also be given a shape.
+    #[test]
+    fn spheres_and_cylinders_hold_their_share_of_the_box() {
+        let built = |shape: &str| {
+            let o =
+                [format!("fluids[0].blocks=[{{\"min\":[0.1,0.1,0.1],\"max\":[0.5,0.5,0.5],\"shape\":\"{shape}\"}}]")];
+            let scene = crate::scene::load::from_preset("dam_break", &o).unwrap();
+            let sim = crate::Simulation::new_cpu(scene).unwrap();
+            let Column::Vec3(x) = &sim.backend().download(&["x"])[0] else { panic!("positions") };
+            x.clone()
+        };
+        let cube = built("box").len() as f64;
+        for (shape, share, axis) in
+            [("sphere", std::f64::consts::PI / 6.0, None), ("cylinder_y", std::f64::consts::PI / 4.0, Some(1))]
+        {
+            let x = built(shape);
+            let r = x.len() as f64 / cube;
+            assert!((r - share).abs() < 0.03, "{shape}: {r} of the box's points, against {share}");
+            for p in &x {
+                let mut d = *p - Vec3::splat(0.3);
+                if let Some(k) = axis {
+                    d[k] = 0.0;
+                }
+                assert!(d.length() <= 0.2 + 1e-4, "{shape}: a particle at {p} outside");
+            }
+        }
+        let o = [
+            "fluids[0].blocks[0].shape=\"sphere\"".to_string(),
+            "fluids[0].blocks[0].mesh={\"asset\":\"x.obj\"}".to_string(),
+        ];
+        let err = crate::scene::load::from_preset("dam_break", &o).map(|_| ()).unwrap_err().to_string();
+        assert!(err.contains("fluids[0].blocks[0].shape"), "{err}");
     }
 }

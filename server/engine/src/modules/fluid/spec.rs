@@ -41,7 +41,7 @@ fn default_rest_density() -> f32 {
     1000.0
 }
 
-/// A box of fluid particles.
+/// A box of fluid particles, or the sphere, cylinder or mesh it bounds.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FluidBlock {
@@ -49,6 +49,9 @@ pub struct FluidBlock {
     pub min: [f32; 3],
     /// Upper corner (m).
     pub max: [f32; 3],
+    /// The shape within the box the block holds (default: the whole box).
+    #[serde(default, skip_serializing_if = "BlockShape::is_box")]
+    pub shape: BlockShape,
     /// Initial velocity (m/s).
     #[serde(default)]
     pub velocity: [f32; 3],
@@ -64,7 +67,7 @@ pub struct FluidBlock {
 impl FluidBlock {
     /// A block at rest between `min` and `max`.
     pub fn at_rest(min: [f32; 3], max: [f32; 3]) -> Self {
-        Self { min, max, velocity: [0.0; 3], taylor_green: None, mesh: None }
+        Self { min, max, shape: BlockShape::Box, velocity: [0.0; 3], taylor_green: None, mesh: None }
     }
 
     /// The initial velocity (m/s) of a particle at `x` (m): `velocity` plus the
@@ -72,6 +75,44 @@ impl FluidBlock {
     pub fn velocity_at(&self, x: [f32; 3]) -> [f32; 3] {
         let [u, v] = self.taylor_green.map_or([0.0; 2], |tg| tg.velocity(x[0] - self.min[0], x[1] - self.min[1]));
         [self.velocity[0] + u, self.velocity[1] + v, self.velocity[2]]
+    }
+}
+
+/// The shape a block's box bounds: the lattice points of the box inside it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum BlockShape {
+    /// The whole box.
+    #[default]
+    Box,
+    /// The ellipsoid inscribed in the box (a ball in a cube).
+    Sphere,
+    /// The elliptic cylinder inscribed in the box along x.
+    CylinderX,
+    /// The elliptic cylinder inscribed in the box along y.
+    CylinderY,
+    /// The elliptic cylinder inscribed in the box along z.
+    CylinderZ,
+}
+
+impl BlockShape {
+    /// Whether it is the whole box.
+    pub fn is_box(&self) -> bool {
+        *self == BlockShape::Box
+    }
+
+    /// Whether the point `x` of the box `min`-`max` is inside the shape.
+    pub fn holds(self, min: [f32; 3], max: [f32; 3], x: [f32; 3]) -> bool {
+        // Each coordinate relative to the box's centre, in half-widths.
+        let u: [f32; 3] = std::array::from_fn(|k| (2.0 * x[k] - min[k] - max[k]) / (max[k] - min[k]));
+        let across = |skip: usize| (0..3).filter(|&k| k != skip).map(|k| u[k] * u[k]).sum::<f32>() <= 1.0;
+        match self {
+            BlockShape::Box => true,
+            BlockShape::Sphere => u.iter().map(|v| v * v).sum::<f32>() <= 1.0,
+            BlockShape::CylinderX => across(0),
+            BlockShape::CylinderY => across(1),
+            BlockShape::CylinderZ => across(2),
+        }
     }
 }
 

@@ -1,8 +1,9 @@
 //! The solid module: elastic bodies by shape matching (Mueller et al. 2005, as the
 //! first thesis behind Floe, its eqs. 2.10-2.24 and 2.31). A body is a fluid of
-//! the scene (its blocks: boxes or meshes) whose particles are at once SPH fluid
-//! (pressure from the scheme, so bodies touch walls, terrain, each other and other
-//! fluids through it) and members of overlapping clusters that pull them back to
+//! the scene (its blocks: boxes, spheres, cylinders or meshes) whose particles
+//! are at once SPH fluid (pressure from the scheme, so bodies touch walls,
+//! terrain, each other and other fluids through it) and members of overlapping
+//! clusters that pull them back to
 //! their rest shape:
 //!
 //! - **Clusters** ([`clusters`]): one per particle, its neighbours of the same
@@ -30,8 +31,8 @@
 //! Particles are addressed by id through the map, so a scene with elastic bodies
 //! cannot also have births or deaths (the map needs `slot_of`).
 //!
-//! Validation ([`cases`]): VALIDATION.md section 8's rest shape and free rigid
-//! motion.
+//! Validation ([`cases`]): VALIDATION.md section 8's rest shape, free rigid
+//! motion, drop volume and solver table.
 //!
 //! Not yet here: oriented particles, the orientation channel and the viewer's
 //! ellipsoids, the other cases of VALIDATION.md section 8.
