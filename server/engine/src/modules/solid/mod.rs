@@ -3,8 +3,7 @@
 //! the scene (its blocks: boxes, spheres, cylinders or meshes) whose particles
 //! are at once SPH fluid (pressure from the scheme, so bodies touch walls,
 //! terrain, each other and other fluids through it) and members of overlapping
-//! clusters that pull them back to
-//! their rest shape:
+//! clusters that pull them back to their rest shape:
 //!
 //! - **Clusters** ([`clusters`]): one per particle, its neighbours of the same
 //!   material within `cluster_radius` particle spacings at rest (eq. 2.10), stored
