@@ -559,7 +559,8 @@ fn snowfall_release_steps_like_the_cpu() {
 }
 
 /// The jelly of `elastic_drop` (4 cm: 125 particles) after 20 steps, with each
-/// rotation method and each cluster solver (the coloured ones reading the sweep):
+/// rotation method, each cluster solver (the coloured ones reading the sweep) and
+/// oriented particles with each blend:
 /// every pass of the shape matching against the CPU's, then 20 whole steps on
 /// both, whose positions agree within a micrometre, and again after both change
 /// to the hybrid solver while running.
@@ -571,11 +572,18 @@ fn solid_passes_and_steps_match_the_cpu() {
         &["particle_spacing=0.04", "solid.rotation=\"iterative\"", "solid.solver=\"weighted_jacobi\""],
         &["particle_spacing=0.04", "solid.solver=\"gauss_seidel\""],
         &["particle_spacing=0.04", "solid.solver=\"hybrid\"", "solid.colours=3"],
+        &["particle_spacing=0.04", "solid.oriented={}", "solid.bodies[0].angular_velocity=[0,3,1]"],
+        &[
+            "particle_spacing=0.04",
+            "solid.oriented={\"blend\":\"exp_map\",\"radii\":[1,0.5,0.25]}",
+            "solid.bodies[0].angular_velocity=[1,3,0]",
+        ],
     ] {
         let (cpu, _) = pair(gpu, "elastic_drop", o, 20);
         let passes: Vec<&'static PassSpec> =
             cpu.model().plan.passes().iter().copied().filter(|p| p.module == "solid").collect();
-        assert_eq!(passes.len(), 9);
+        let oriented = o.iter().any(|s| s.starts_with("solid.oriented"));
+        assert_eq!(passes.len(), if oriented { 14 } else { 9 });
         for pass in passes {
             let (mut c, mut g) = pair(gpu, "elastic_drop", o, 20);
             check_pass(&mut c, &mut g, pass, &format!("{o:?}"));

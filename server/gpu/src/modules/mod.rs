@@ -34,6 +34,11 @@ pub static PASSES: &[&GpuPass] = &[
     &solid::WAY_SUM,
     &solid::WEIGHT_SUM,
     &solid::PROJECT,
+    &solid::ORIENT_PREDICT,
+    &solid::ELLIPSOID,
+    &solid::ORIENT_TURN,
+    &solid::ORIENT_SUM,
+    &solid::ORIENT_UPDATE,
 ];
 
 /// Kernels doing several modules' passes in one neighbour walk.

@@ -2,10 +2,10 @@
 //! `elastic_drop`'s jelly cube (0.2 m): the rest shape, free rigid motion, drop
 //! volume and solver table so far.
 
-use super::{RESIDUAL, polar};
+use super::{RESIDUAL, orient, polar};
 use crate::Simulation;
 use crate::attrs::Column;
-use crate::math::{Mat3, Vec3};
+use crate::math::{Mat3, Quat, Vec3};
 use crate::validation::cases::{Case, Measured, Variant};
 use crate::validation::stability::{Expect, StabilityCase};
 
@@ -85,6 +85,24 @@ pub const CASES: &[Case] = &[
             Variant { name: "hybrid", overrides: &["gravity=[0,0,0]", "solid.stiffness=1", "solid.solver=\"hybrid\""] },
         ],
         measure: solver_case,
+    },
+    Case {
+        name: "solid_orientation",
+        module: "solid",
+        reference: "VALIDATION.md section 8, orientation: oriented particles (Mueller and Chentanez 2011) of the jelly spinning freely at 2 rad/s for 1 s, alpha = 1: the largest departure of a quaternion's length from 1, the largest angle between a particle's orientation and the body's rotation (its best rigid fit), and the largest angle between the QLERP and the ExpMap blends of the same clusters' rotations at the end (the reference asks 1e-6 and 1e-3 rad)",
+        preset: "elastic_drop",
+        primary_error: "blend_difference",
+        spacings: (&[0.04, 0.02], &[0.04, 0.02, 0.01]),
+        checked_at: Some(0.04),
+        bounds: &[("unit_length", 1e-6), ("orientation_error", 1e-2), ("blend_difference", 1e-3)],
+        variants: &[
+            Variant { name: "qlerp", overrides: &[SPINNING[0], SPINNING[1], SPINNING[2], "solid.oriented={}"] },
+            Variant {
+                name: "exp_map",
+                overrides: &[SPINNING[0], SPINNING[1], SPINNING[2], "solid.oriented={\"blend\":\"exp_map\"}"],
+            },
+        ],
+        measure: orientation_case,
     },
 ];
 
@@ -297,4 +315,74 @@ fn solver_case(sim: &mut Simulation, spacing: f64) -> Measured {
         }
     };
     (wall, None, vec![("residual", residual / spacing), ("iterations", f64::from(iterations))])
+}
+
+/// The angle (rad) of the rotation between two unit quaternions.
+fn angle_between(a: Quat, b: Quat) -> f64 {
+    let r = orient::short(a * b.conjugate());
+    2.0 * f64::from(Vec3::new(r.x, r.y, r.z).length()).atan2(f64::from(r.w))
+}
+
+/// 1 s of free spin with oriented particles, then the checks of VALIDATION.md's
+/// orientation case.
+fn orientation_case(sim: &mut Simulation, _spacing: f64) -> Measured {
+    let x0 = by_id(sim);
+    let mut wall = 0.0;
+    let mut unit = 0.0f64;
+    while sim.time() < 1.0 {
+        let t = std::time::Instant::now();
+        if let Err(h) = sim.step() {
+            return (wall, Some(h), Vec::new());
+        }
+        wall += t.elapsed().as_secs_f64();
+        let Column::Quat(q) = &sim.backend().download(&["solid_orientation"])[0] else { panic!("orientations") };
+        unit = q.iter().fold(unit, |u, q| u.max((f64::from(q.length()) - 1.0).abs()));
+    }
+    let x = by_id(sim);
+    let n = x.len() as f32;
+    let (c0, c) = (x0.iter().sum::<Vec3>() / n, x.iter().sum::<Vec3>() / n);
+    let a = x0.iter().zip(&x).fold(Mat3::ZERO, |a, (&p0, &p)| {
+        let (q, r) = (p0 - c0, p - c);
+        a + Mat3::from_cols(r * q.x, r * q.y, r * q.z)
+    });
+    let body = polar::eigen(a);
+    let names = [
+        "solid_orientation",
+        "solid_orientation_before",
+        "cluster_rotation",
+        "solid_clusters_segment",
+        "solid_clusters_member",
+        "slot_of",
+    ];
+    let cols = sim.backend().download(&names);
+    let (
+        Column::Quat(q),
+        Column::Quat(before),
+        Column::Quat(rotation),
+        Column::U32(segment),
+        Column::U32(member),
+        Column::U32(slot),
+    ) = (&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5])
+    else {
+        panic!("the oriented particles' attributes")
+    };
+    let orientation_error = q.iter().map(|q| angle_between(*q, body)).fold(0.0, f64::max);
+    // Both blends of each particle's clusters' rotations, from the same values.
+    let mut qlerp = vec![Quat::from_xyzw(0.0, 0.0, 0.0, 0.0); q.len()];
+    let mut logs = vec![(Vec3::ZERO, 0u32); q.len()];
+    for (k, &s) in segment.iter().enumerate() {
+        let i = slot[member[k] as usize] as usize;
+        let (r, b) = (rotation[s as usize], before[i]);
+        qlerp[i] += orient::signed(r, b);
+        logs[i] = (logs[i].0 + orient::log_turn(r, b), logs[i].1 + 1);
+    }
+    let blend_difference = (0..q.len())
+        .filter(|&i| logs[i].1 > 0)
+        .map(|i| angle_between(qlerp[i].normalize(), orient::exp(logs[i].0 / logs[i].1 as f32) * before[i]))
+        .fold(0.0, f64::max);
+    (
+        wall,
+        None,
+        vec![("unit_length", unit), ("orientation_error", orientation_error), ("blend_difference", blend_difference)],
+    )
 }

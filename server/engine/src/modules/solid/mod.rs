@@ -39,11 +39,13 @@
 pub mod cases;
 pub mod clusters;
 pub mod cpu;
+pub mod orient;
 pub mod polar;
 pub mod presets;
 pub mod spec;
 
 use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
+use crate::channels::{ChannelSpec, Source};
 use crate::maps::MapSpec;
 use crate::maps::cpu::{MemberSum, SegmentSum};
 use crate::math::{Mat3, Quat, Real, Vec3};
@@ -80,6 +82,11 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("solid.way_sum", &MemberSum::<Vec3>::new(&CLUSTERS, "solid_clusters_way", "solid_way_sum")),
         ("solid.weight_sum", &MemberSum::<Real>::new(&CLUSTERS, "solid_clusters_weight", "solid_weight_sum")),
         ("solid.project", &cpu::Project),
+        ("solid.orient_predict", &orient::Predict),
+        ("solid.ellipsoid", &orient::Ellipsoid),
+        ("solid.orient_turn", &orient::Turn),
+        ("solid.orient_sum", &MemberSum::<Quat>::new(&CLUSTERS, "solid_clusters_turn", "solid_turn_sum")),
+        ("solid.orient_update", &orient::Update),
     ],
     presets: presets::PRESETS,
     dt_limit: |_| None,
@@ -243,6 +250,44 @@ const ITERATION: &[Op] = &[
     Op::Pass("solid.project"),
 ];
 
+/// The same with oriented particles: the members' ellipsoids join the moments.
+const ITERATION_ORIENTED: &[Op] = &[
+    Op::Pass("solid.gather"),
+    Op::Pass("solid.centre_sum"),
+    Op::Pass("solid.moment"),
+    Op::Pass("solid.moment_sum"),
+    Op::Pass("solid.ellipsoid"),
+    Op::Pass("solid.rotate"),
+    Op::Pass("solid.way"),
+    Op::Pass("solid.way_sum"),
+    Op::Pass("solid.weight_sum"),
+    Op::Pass("solid.project"),
+];
+
+/// How far each particle is from its rest shape (a channel of the particle set).
+pub const DEFORMATION_CHANNEL: ChannelSpec = ChannelSpec {
+    name: "deformation",
+    unit: "m",
+    components: 1,
+    exact: false,
+    set: PARTICLES,
+    module: "solid",
+    about: "The way from an elastic particle to the mean of its clusters' goals in the step's last iteration: how far the body is from its rest shape there (0 for other particles).",
+    source: Source::Attr("solid_residual"),
+};
+
+/// Each oriented particle's orientation (a channel of the particle set).
+pub const ORIENTATION_CHANNEL: ChannelSpec = ChannelSpec {
+    name: "orientation",
+    unit: "",
+    components: 4,
+    exact: false,
+    set: PARTICLES,
+    module: "solid",
+    about: "An oriented particle's rotation from rest, a unit quaternion x, y, z, w (the identity for other particles).",
+    source: Source::Attr("solid_orientation"),
+};
+
 /// The module's live settings.
 pub const TUNABLES: &[Tunable] = &[
     Tunable {
@@ -301,6 +346,12 @@ pub struct SolidConsts {
     pub colours: u32,
     /// The hybrid solver's colours.
     pub hybrid_colours: u32,
+    /// Whether the particles are oriented ([`orient`]).
+    pub oriented: bool,
+    /// The oriented particles' ellipsoid moment `(a^2, b^2, c^2) / 5` (m^2).
+    pub ellipsoid: Vec3,
+    /// How orientations are blended.
+    pub blend: spec::Blend,
 }
 
 impl SolidConsts {
@@ -326,6 +377,7 @@ fn consts(scene: &Scene, colours: u32) -> SolidConsts {
         spec::ClusterSolver::GaussSeidel => colours,
         spec::ClusterSolver::Hybrid => s.colours,
     };
+    let radii = s.oriented.as_ref().map_or([0.0; 3], |o| o.radii);
     SolidConsts {
         stiffness: s.stiffness,
         rotation: s.rotation,
@@ -333,6 +385,9 @@ fn consts(scene: &Scene, colours: u32) -> SolidConsts {
         sweeps,
         colours,
         hybrid_colours: s.colours,
+        oriented: s.oriented.is_some(),
+        ellipsoid: (Vec3::from(radii) * scene.particle_spacing).powf(2.0) / 5.0,
+        blend: s.oriented.as_ref().map_or_else(Default::default, |o| o.blend),
     }
 }
 
@@ -340,8 +395,8 @@ fn consts(scene: &Scene, colours: u32) -> SolidConsts {
 fn shape_solve(iterations: u32, c: &SolidConsts) -> Iterate {
     Iterate {
         name: "solid.shape",
-        start: &[],
-        iteration: ITERATION,
+        start: if c.oriented { &[Op::Pass("solid.orient_predict")] } else { &[] },
+        iteration: if c.oriented { ITERATION_ORIENTED } else { ITERATION },
         residual: Reduction { attr: "solid_residual", op: ReduceOp::Max },
         tolerance: f64::INFINITY,
         min: iterations,
@@ -367,6 +422,11 @@ fn validate(scene: &Scene, c: &mut Checker) {
     }
     if !(2..=MAX_COLOURS).contains(&s.colours) {
         c.fail("solid.colours", format!("must be between 2 and {MAX_COLOURS}, got {}", s.colours));
+    }
+    if let Some(o) = &s.oriented {
+        for (k, r) in o.radii.iter().enumerate() {
+            c.within(&format!("solid.oriented.radii[{k}]"), *r, 0.0, 4.0);
+        }
     }
 }
 
@@ -431,9 +491,31 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         b.pass(pass);
     }
     let c = consts(scene, colours);
+    if c.oriented {
+        orient_particles(b, &material, &elastic);
+    }
     b.position_solve(shape_solve(s.iterations, &c));
+    b.channel(DEFORMATION_CHANNEL);
+    if c.oriented {
+        b.channel(ORIENTATION_CHANNEL);
+    }
     b.set_consts(c);
     Ok(())
+}
+
+/// Oriented particles: each at rest orientation, a body's spinning at its angular
+/// velocity; the prediction, the ellipsoids and the blend.
+fn orient_particles(b: &mut ModelBuilder, material: &[u32], elastic: &[(u32, [f32; 3])]) {
+    let spin =
+        material.iter().map(|m| elastic.iter().find(|e| e.0 == *m).map_or(Vec3::ZERO, |e| Vec3::from(e.1))).collect();
+    b.zeros(&orient::ORIENTATION);
+    b.attr(&orient::SPIN, Column::Vec3(spin));
+    for spec in [&orient::BEFORE, &orient::MEMBER_TURN, &orient::TURN_SUM] {
+        b.zeros(spec);
+    }
+    for pass in [&orient::PREDICT, &orient::ELLIPSOID, &orient::TURN, &orient::TURN_SUMS, &orient::UPDATE] {
+        b.pass(pass);
+    }
 }
 
 /// Adds each body's angular velocity about its centre to its particles' velocities.

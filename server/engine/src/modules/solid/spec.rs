@@ -32,6 +32,40 @@ pub struct Solid {
     /// Colours of the `hybrid` solver (2 to 64; default 2, red-black).
     #[serde(default = "default_colours")]
     pub colours: u32,
+    /// Oriented particles (Mueller and Chentanez 2011; the first thesis's eqs.
+    /// 2.25-2.30 and 2.36-2.38): each particle an ellipsoid with an orientation
+    /// and an angular velocity, whose own moment joins its clusters'. Off when
+    /// absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub oriented: Option<Oriented>,
+}
+
+/// The oriented particles' settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Oriented {
+    /// The ellipsoid's radii a, b, c along the particle's own axes, in particle
+    /// spacings (default 0.5 each: a ball as wide as the spacing; the thesis takes
+    /// a = b = c).
+    #[serde(default = "default_radii")]
+    pub radii: [f32; 3],
+    /// How a particle's orientation is blended from its clusters' rotations.
+    #[serde(default)]
+    pub blend: Blend,
+}
+
+/// Blending a particle's clusters' rotations into its orientation.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Blend {
+    /// The normalised sum of the rotations, each with the sign that puts it on the
+    /// particle's previous orientation's side (eqs. 2.36-2.37; Kavan et al.'s
+    /// QLERP).
+    #[default]
+    Qlerp,
+    /// `exp` of the mean of the rotations' logarithms (eq. 2.38; Grassia's
+    /// exponential map), the same signs.
+    ExpMap,
 }
 
 /// The cluster solver: how a particle's goals, one per cluster it belongs to,
@@ -101,4 +135,8 @@ fn default_iterations() -> u32 {
 
 fn default_colours() -> u32 {
     2
+}
+
+fn default_radii() -> [f32; 3] {
+    [0.5; 3]
 }

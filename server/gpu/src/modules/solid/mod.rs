@@ -1,7 +1,8 @@
 //! The solid module on the GPU: the core's generic map kernels sum over the
 //! clusters; five kernels of the module's own (a thread per membership, per
 //! cluster or per particle, no atomics) do the relative gather, the moments, the
-//! rotations, the ways and the projection; the uniform `solid` holds
+//! rotations, the ways and the projection, four more for oriented particles (the
+//! prediction, the ellipsoids, the turns and the blend); the uniform `solid` holds
 //! [`SolidConsts`] and the counts, the core's `sweep` uniform the colour swept.
 
 use crate::pass::{GpuPass, always};
@@ -11,7 +12,7 @@ use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
 use floe_engine::modules::solid::{
     CLUSTERS, POLAR_ITERATIONS, SolidConsts,
-    spec::{ClusterSolver, Rotation},
+    spec::{Blend, ClusterSolver, Rotation},
 };
 
 /// Each cluster's sum of relative positions.
@@ -125,6 +126,85 @@ pub static PROJECT: GpuPass = GpuPass {
     when: always,
 };
 
+/// Each particle's sum of turns (oriented particles).
+pub static ORIENT_SUM: GpuPass = crate::map_pass!(member_sum "solid.orient_sum", map "solid_clusters", members "particles", words 4, from "solid_clusters_turn" into "solid_turn_sum");
+
+/// The oriented particles' prediction.
+pub static ORIENT_PREDICT: GpuPass = GpuPass {
+    name: "solid.orient_predict",
+    source: particle_kernel!("solid.wgsl", "orient.wgsl", "orient_predict.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (U, "dt"),
+        (R, "solid_spin"),
+        (W, "solid_orientation_before"),
+        (W, "solid_orientation"),
+    ],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The members' ellipsoids into their clusters' moments.
+pub static ELLIPSOID: GpuPass = GpuPass {
+    name: "solid.ellipsoid",
+    source: particle_kernel!("solid.wgsl", "ellipsoid.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "solid_clusters_start"),
+        (R, "solid_clusters_len"),
+        (R, "solid_clusters_live"),
+        (R, "solid_clusters_member"),
+        (R, "slot_of"),
+        (R, "solid_orientation"),
+        (W, "cluster_moment"),
+    ],
+    space: "solid_cluster",
+    when: always,
+};
+
+/// Each membership's signed rotation or logarithm.
+pub static ORIENT_TURN: GpuPass = GpuPass {
+    name: "solid.orient_turn",
+    source: particle_kernel!("solid.wgsl", "orient.wgsl", "orient_turn.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "cluster_rotation"),
+        (R, "solid_clusters_segment"),
+        (R, "solid_clusters_member"),
+        (R, "slot_of"),
+        (R, "solid_orientation_before"),
+        (W, "solid_clusters_turn"),
+    ],
+    space: "solid_clusters",
+    when: always,
+};
+
+/// Each particle's blended orientation and angular velocity.
+pub static ORIENT_UPDATE: GpuPass = GpuPass {
+    name: "solid.orient_update",
+    source: particle_kernel!("solid.wgsl", "orient.wgsl", "orient_update.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (U, "dt"),
+        (R, "solid_turn_sum"),
+        (R, "solid_orientation_before"),
+        (R, "id"),
+        (R, "solid_clusters_count"),
+        (W, "solid_orientation"),
+        (W, "solid_spin"),
+    ],
+    space: PARTICLES,
+    when: always,
+};
+
 /// The uniform's bytes (`Solid` in solid.wgsl), when the scene has elastic bodies.
 pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     let c = model.has_module("solid").then(|| model.consts::<SolidConsts>())?;
@@ -137,18 +217,22 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         ClusterSolver::WeightedJacobi => 1,
         ClusterSolver::GaussSeidel | ClusterSolver::Hybrid => 2,
     };
+    let blend = match c.blend {
+        Blend::Qlerp => 0,
+        Blend::ExpMap => 1,
+    };
     let words = [
         c.stiffness.to_bits(),
-        0,
-        0,
-        0,
+        c.ellipsoid.x.to_bits(),
+        c.ellipsoid.y.to_bits(),
+        c.ellipsoid.z.to_bits(),
         model.layout.count(CLUSTERS.segments) as u32,
         model.layout.count(CLUSTERS.name) as u32,
         method,
         POLAR_ITERATIONS,
         solver,
         c.sweeps,
-        0,
+        blend,
         0,
     ];
     Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())

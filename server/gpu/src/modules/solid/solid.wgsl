@@ -2,11 +2,11 @@
 // decompositions of floe-engine `modules::solid::polar`, line for line.
 
 struct Solid {
-    // Stiffness alpha, unused x3.
+    // Stiffness alpha, then the oriented particles' ellipsoid moment (a^2, b^2, c^2) / 5 (m^2).
     settings: vec4<f32>,
     // Clusters, memberships, rotation method (0 iterative, 1 eigen), iterations of the iterative one.
     sizes: vec4<u32>,
-    // Solver (SOLVER_*), the colours a cluster's colour is taken modulo, unused x2.
+    // Solver (SOLVER_*), the colours a cluster's colour is taken modulo, blend (0 QLERP, 1 ExpMap), unused.
     solver: vec4<u32>,
 }
 
