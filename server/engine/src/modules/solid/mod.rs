@@ -428,6 +428,59 @@ fn validate(scene: &Scene, c: &mut Checker) {
             c.within(&format!("solid.oriented.radii[{k}]"), *r, 0.0, 4.0);
         }
     }
+    bodies_fit(scene, &s, c);
+}
+
+/// Each elastic body's block lies inside the scene's domain (or a box of walls,
+/// where the domain follows the particles) and overlaps no other body's block:
+/// particles of two bodies on one lattice point would be one cluster's members
+/// twice over.
+fn bodies_fit(scene: &Scene, s: &spec::Solid, c: &mut Checker) {
+    /// What this check reads of a fluid (the fluid module's section, read as
+    /// data: a module does not use another's types).
+    #[derive(serde::Deserialize)]
+    struct Extent {
+        min: [f32; 3],
+        max: [f32; 3],
+    }
+    #[derive(serde::Deserialize)]
+    struct Body {
+        name: String,
+        #[serde(default)]
+        blocks: Vec<Extent>,
+    }
+    let all: Vec<Body> = scene.section("fluids").unwrap_or_default();
+    let fluids: Vec<(usize, Body)> =
+        all.into_iter().enumerate().filter(|(_, f)| s.bodies.iter().any(|b| b.fluid == f.name)).collect();
+    let rooms: Vec<([f32; 3], [f32; 3])> = match &scene.domain {
+        Some(d) => vec![(d.min, d.max)],
+        None => scene
+            .boundaries
+            .iter()
+            .filter_map(|b| match b {
+                crate::scene::Boundary::Box { min, max, .. } => Some((*min, *max)),
+                _ => None,
+            })
+            .collect(),
+    };
+    let inside = |lo: [f32; 3], hi: [f32; 3], room: &([f32; 3], [f32; 3])| {
+        (0..3).all(|k| lo[k] >= room.0[k] && hi[k] <= room.1[k])
+    };
+    let mut blocks: Vec<(String, [f32; 3], [f32; 3])> = Vec::new();
+    for (i, f) in &fluids {
+        for (j, b) in f.blocks.iter().enumerate() {
+            let path = format!("fluids[{i}].blocks[{j}]");
+            if !rooms.is_empty() && !rooms.iter().any(|r| inside(b.min, b.max, r)) {
+                c.fail(&path, "an elastic body must lie inside the domain (or a box of walls)".into());
+            }
+            if let Some((other, _, _)) =
+                blocks.iter().find(|(_, lo, hi)| (0..3).all(|k| b.min[k] < hi[k] && lo[k] < b.max[k]))
+            {
+                c.fail(&path, format!("overlaps {other}: elastic bodies may touch but not overlap"));
+            }
+            blocks.push((path, b.min, b.max));
+        }
+    }
 }
 
 /// The clusters cannot be counted before the bodies are placed: a particle has

@@ -142,3 +142,22 @@ fn the_solver_changes_while_the_scene_runs() {
     assert!(err.contains("solid.solver") || err.contains("newton"), "{err}");
     sim.step().unwrap();
 }
+
+/// A body outside the walls, or overlapping another, is refused naming its block
+/// before anything is built; the presets pass.
+#[test]
+fn bodies_outside_the_walls_or_overlapping_are_refused() {
+    let refused = |o: &[&str]| {
+        let o: Vec<String> = o.iter().map(|s| s.to_string()).collect();
+        from_preset("elastic_drop", &o).map(|_| ()).unwrap_err().to_string()
+    };
+    let err = refused(&["fluids[0].blocks[0].min=[2,2,2]", "fluids[0].blocks[0].max=[2.2,2.2,2.2]"]);
+    assert!(err.contains("fluids[0].blocks[0]") && err.contains("inside"), "{err}");
+    let two =
+        r#"fluids[0].blocks=[{"min":[0.1,0.1,0.1],"max":[0.3,0.3,0.3]},{"min":[0.2,0.2,0.2],"max":[0.4,0.4,0.4]}]"#;
+    let err = refused(&[two]);
+    assert!(err.contains("fluids[0].blocks[1]") && err.contains("overlaps fluids[0].blocks[0]"), "{err}");
+    for preset in ["elastic_drop", "floating_blocks"] {
+        from_preset(preset, &[]).unwrap();
+    }
+}
