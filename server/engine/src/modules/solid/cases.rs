@@ -1,6 +1,6 @@
 //! The solid module's validation cases (VALIDATION.md section 8), on the preset
-//! `elastic_drop`'s jelly cube (0.2 m): the rest shape, free rigid motion, drop
-//! volume and solver table so far.
+//! `elastic_drop`'s jelly cube (0.2 m), or a bar of it: the rest shape, free
+//! rigid motion, drop volume, solver and stiffness tables, and orientation.
 
 use super::{RESIDUAL, orient, polar};
 use crate::Simulation;
@@ -104,7 +104,39 @@ pub const CASES: &[Case] = &[
         ],
         measure: orientation_case,
     },
+    Case {
+        name: "solid_stiffness",
+        module: "solid",
+        reference: "VALIDATION.md section 8, stiffness table: a bar 0.4 x 0.08 x 0.08 m stretched by 10 % along its length and released without gravity, for 2 s; the period (s) of its length's oscillation and the ratio of two successive peaks of its stretch (0 where it does not swing back: overdamped), for alpha 0.1, 0.5 and 1, a step capped at 2e-4 s, and each solver; the stretch left at the end relative to the initial one (checked: the bar comes back)",
+        preset: "elastic_drop",
+        primary_error: "stretch_left",
+        spacings: (&[0.02], &[0.02, 0.01]),
+        checked_at: Some(0.02),
+        bounds: &[("stretch_left", 0.05)],
+        variants: &[
+            Variant { name: "alpha_0.5", overrides: &[BAR[0], BAR[1], "solid.stiffness=0.5"] },
+            Variant { name: "alpha_0.1", overrides: &[BAR[0], BAR[1], "solid.stiffness=0.1"] },
+            Variant { name: "alpha_1", overrides: &[BAR[0], BAR[1], "solid.stiffness=1"] },
+            Variant { name: "alpha_0.5_dt_2e-4", overrides: &[BAR[0], BAR[1], "solid.stiffness=0.5", SMALL_STEP] },
+            Variant { name: "alpha_0.1_dt_2e-4", overrides: &[BAR[0], BAR[1], "solid.stiffness=0.1", SMALL_STEP] },
+            Variant {
+                name: "weighted_jacobi",
+                overrides: &[BAR[0], BAR[1], "solid.stiffness=0.1", "solid.solver=\"weighted_jacobi\""],
+            },
+            Variant {
+                name: "gauss_seidel",
+                overrides: &[BAR[0], BAR[1], "solid.stiffness=0.1", "solid.solver=\"gauss_seidel\""],
+            },
+            Variant { name: "hybrid", overrides: &[BAR[0], BAR[1], "solid.stiffness=0.1", "solid.solver=\"hybrid\""] },
+        ],
+        measure: stiffness_case,
+    },
 ];
+
+/// The stiffness table's bar: no gravity, 0.4 x 0.08 x 0.08 m in the box.
+const BAR: &[&str] = &["gravity=[0,0,0]", r#"fluids[0].blocks=[{"min":[0.1,0.3,0.26],"max":[0.5,0.38,0.34]}]"#];
+/// The stiffness table's smaller step.
+const SMALL_STEP: &str = r#"solver.time_step={"mode":"adaptive","max":0.0002}"#;
 
 /// The free rigid motion: no gravity, alpha 1, 2 rad/s about the vertical.
 const SPINNING: &[&str] = &["gravity=[0,0,0]", "solid.stiffness=1", "solid.bodies[0].angular_velocity=[0,2,0]"];
@@ -385,4 +417,44 @@ fn orientation_case(sim: &mut Simulation, _spacing: f64) -> Measured {
         None,
         vec![("unit_length", unit), ("orientation_error", orientation_error), ("blend_difference", blend_difference)],
     )
+}
+
+/// The bar's stretch: the RMS distance of its particles from its centre along x.
+fn stretch_of(sim: &Simulation) -> f64 {
+    let x = by_id(sim);
+    let c = x.iter().map(|p| f64::from(p.x)).sum::<f64>() / x.len() as f64;
+    (x.iter().map(|p| (f64::from(p.x) - c).powi(2)).sum::<f64>() / x.len() as f64).sqrt()
+}
+
+/// Stretches the bar by 10 % along x, releases it for 2 s, and measures its
+/// oscillation from the peaks of its stretch over the rest's.
+fn stiffness_case(sim: &mut Simulation, _spacing: f64) -> Measured {
+    let rest = stretch_of(sim);
+    let Column::Vec3(x) = &sim.backend().download(&["x"])[0] else { panic!("positions") };
+    let centre = x.iter().sum::<Vec3>() / x.len() as f32;
+    let stretched = x.iter().map(|p| *p + Vec3::X * (0.1 * (p.x - centre.x))).collect();
+    sim.backend_mut().upload("x", Column::Vec3(stretched));
+    let first = stretch_of(sim) - rest;
+    let mut wall = 0.0;
+    let mut trace: Vec<(f64, f64)> = vec![(0.0, first)];
+    while sim.time() < 2.0 {
+        let t = std::time::Instant::now();
+        if let Err(h) = sim.step() {
+            return (wall, Some(h), Vec::new());
+        }
+        wall += t.elapsed().as_secs_f64();
+        trace.push((sim.time(), stretch_of(sim) - rest));
+    }
+    // Peaks of the stretch (local maxima above a hundredth of the first).
+    let peaks: Vec<(f64, f64)> = trace
+        .windows(3)
+        .filter(|w| w[1].1 > w[0].1 && w[1].1 >= w[2].1 && w[1].1 > 0.01 * first)
+        .map(|w| w[1])
+        .collect();
+    let (period, decay) = match peaks.as_slice() {
+        [a, b, ..] => (b.0 - a.0, b.1 / a.1),
+        _ => (0.0, 0.0),
+    };
+    let left = trace.last().map_or(0.0, |l| l.1.abs() / first);
+    (wall, None, vec![("stretch_left", left), ("period", period), ("decay", decay)])
 }

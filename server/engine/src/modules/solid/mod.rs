@@ -31,10 +31,10 @@
 //! cannot also have births or deaths (the map needs `slot_of`).
 //!
 //! Validation ([`cases`]): VALIDATION.md section 8's rest shape, free rigid
-//! motion, drop volume and solver table.
+//! motion, drop volume, stiffness and solver tables, and orientation.
 //!
-//! Not yet here: oriented particles, the orientation channel and the viewer's
-//! ellipsoids, the other cases of VALIDATION.md section 8.
+//! Oriented particles ([`orient`]) are optional. Not yet here: the viewer's
+//! ellipsoids.
 
 pub mod cases;
 pub mod clusters;
