@@ -86,9 +86,10 @@ pub enum ClusterSolver {
     /// the positions the colours before them left (the same on both backends: the
     /// CPU does not run the sequential cluster-by-cluster order).
     GaussSeidel,
-    /// After Fratarcangeli et al. 2016: the clusters in `colours` colours, Jacobi
-    /// within a colour (its clusters may share particles) and Gauss-Seidel across
-    /// colours; two colours are red-black Gauss-Seidel.
+    /// After Fratarcangeli et al. 2016: the clusters in `colours` colours (the
+    /// Gauss-Seidel colour modulo `colours`), Jacobi within a colour (its clusters
+    /// may share particles) and Gauss-Seidel across colours. Not sound yet: a
+    /// stretched bar does not come back (docs/solid.md, the stiffness table).
     Hybrid,
 }
 
