@@ -172,6 +172,19 @@ pub const STABILITY: &[StabilityCase] = &[
         expect: Expect::FinishOrHalt,
     },
     StabilityCase {
+        name: "solid_rod_clusters_2_3",
+        what: "a rod one particle thick (at 2 cm) with clusters of radius 1 spacing: 2 or 3 members each, alpha = 1, falling on the floor",
+        preset: "elastic_drop",
+        spacing: (0.02, 0.01),
+        overrides: &[
+            "solid.stiffness=1",
+            "solid.cluster_radius=1",
+            r#"fluids[0].blocks=[{"min":[0.1,0.4,0.29],"max":[0.5,0.42,0.31]}]"#,
+        ],
+        until: (0.4, 1.0),
+        expect: Expect::FinishOrHalt,
+    },
+    StabilityCase {
         name: "solid_stack_5",
         what: "five elastic cubes 8 cm wide, 4 cm apart, falling onto each other into a stack, alpha = 1",
         preset: "elastic_drop",
