@@ -27,6 +27,7 @@ fn scenes() -> Vec<(String, Model)> {
         ("dam_break", &["particle_spacing=0.05", "solver.method=\"wcsph\"", "fluids[0].xsph=0.1"]),
         ("hydrostatic", &["particle_spacing=0.05", "solver.delta_sph=null"]),
         ("cross_channel", &["particle_spacing=0.1", r#"snow.solver={"method":"explicit"}"#]),
+        ("elastic_drop", &["particle_spacing=0.04", "solid.oriented={}"]),
         (
             "heated_channel",
             &[
