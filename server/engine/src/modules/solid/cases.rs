@@ -209,13 +209,32 @@ pub const STABILITY: &[StabilityCase] = &[
 
 /// Positions by particle id.
 pub fn by_id(sim: &Simulation) -> Vec<Vec3> {
-    let cols = sim.backend().download(&["x", "id"]);
-    let (Column::Vec3(x), Column::U32(id)) = (&cols[0], &cols[1]) else { panic!("positions and ids") };
+    vec3s_by_id(sim, "x")
+}
+
+/// A vector attribute of the particles by particle id.
+fn vec3s_by_id(sim: &Simulation, name: &str) -> Vec<Vec3> {
+    let cols = sim.backend().download(&[name, "id"]);
+    let (Column::Vec3(x), Column::U32(id)) = (&cols[0], &cols[1]) else { panic!("{name} and ids") };
     let mut out = vec![Vec3::ZERO; x.len()];
     for (p, &i) in x.iter().zip(id) {
         out[i as usize] = *p;
     }
     out
+}
+
+/// Steps while `more` (asked before each step and after the last) says so: the
+/// steps' wall time (s), or what a run that halted measured.
+fn run(sim: &mut Simulation, mut more: impl FnMut(&Simulation) -> bool) -> Result<f64, Measured> {
+    let mut wall = 0.0;
+    while more(sim) {
+        let t = std::time::Instant::now();
+        if let Err(h) = sim.step() {
+            return Err((wall, Some(h), Vec::new()));
+        }
+        wall += t.elapsed().as_secs_f64();
+    }
+    Ok(wall)
 }
 
 /// The largest distance (m) of a particle from the best rigid motion of its rest
@@ -234,27 +253,16 @@ pub fn shape_error(x0: &[Vec3], x: &[Vec3]) -> f32 {
 /// 1000 steps at rest; the shape error relative to the cube's side.
 fn rest_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let x0 = by_id(sim);
-    let mut wall = 0.0;
-    for _ in 0..1000 {
-        let t = std::time::Instant::now();
-        if let Err(h) = sim.step() {
-            return (wall, Some(h), Vec::new());
-        }
-        wall += t.elapsed().as_secs_f64();
-    }
+    let mut steps = 0;
+    let wall = match run(sim, |_| {
+        steps += 1;
+        steps <= 1000
+    }) {
+        Ok(wall) => wall,
+        Err(halted) => return halted,
+    };
     let e = shape_error(&x0, &by_id(sim)) / super::presets::DROP.0;
     (wall, None, vec![("shape_error", f64::from(e))])
-}
-
-/// Velocities by particle id.
-fn velocities(sim: &Simulation) -> Vec<Vec3> {
-    let cols = sim.backend().download(&["v", "id"]);
-    let (Column::Vec3(v), Column::U32(id)) = (&cols[0], &cols[1]) else { panic!("velocities and ids") };
-    let mut out = vec![Vec3::ZERO; v.len()];
-    for (u, &i) in v.iter().zip(id) {
-        out[i as usize] = *u;
-    }
-    out
 }
 
 /// Linear momentum and angular momentum about the centre (equal masses: per unit
@@ -270,19 +278,15 @@ fn momenta(x: &[Vec3], v: &[Vec3]) -> (glam::DVec3, glam::DVec3) {
 /// 10 s of free spin: the momenta's drifts and the shape error at the end.
 fn rigid_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let x0 = by_id(sim);
-    let v0 = velocities(sim);
+    let v0 = vec3s_by_id(sim, "v");
     let (p0, l0) = momenta(&x0, &v0);
     let scale: f64 = v0.iter().map(|u| f64::from(u.length())).sum();
-    let mut wall = 0.0;
-    while sim.time() < 10.0 {
-        let t = std::time::Instant::now();
-        if let Err(h) = sim.step() {
-            return (wall, Some(h), Vec::new());
-        }
-        wall += t.elapsed().as_secs_f64();
-    }
+    let wall = match run(sim, |sim| sim.time() < 10.0) {
+        Ok(wall) => wall,
+        Err(halted) => return halted,
+    };
     let x = by_id(sim);
-    let (p, l) = momenta(&x, &velocities(sim));
+    let (p, l) = momenta(&x, &vec3s_by_id(sim, "v"));
     let e = shape_error(&x0, &x) / super::presets::DROP.0;
     (
         wall,
@@ -299,14 +303,10 @@ fn rigid_case(sim: &mut Simulation, _spacing: f64) -> Measured {
 /// 2 s: dropped, bounced and settled on the floor.
 fn drop_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let x0 = by_id(sim);
-    let mut wall = 0.0;
-    while sim.time() < 2.0 {
-        let t = std::time::Instant::now();
-        if let Err(h) = sim.step() {
-            return (wall, Some(h), Vec::new());
-        }
-        wall += t.elapsed().as_secs_f64();
-    }
+    let wall = match run(sim, |sim| sim.time() < 2.0) {
+        Ok(wall) => wall,
+        Err(halted) => return halted,
+    };
     (wall, None, vec![("volume_error", (volume_ratio(&x0, &by_id(sim)) - 1.0).abs())])
 }
 
@@ -372,17 +372,15 @@ fn angle_between(a: Quat, b: Quat) -> f64 {
 /// orientation case.
 fn orientation_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let x0 = by_id(sim);
-    let mut wall = 0.0;
     let mut unit = 0.0f64;
-    while sim.time() < 1.0 {
-        let t = std::time::Instant::now();
-        if let Err(h) = sim.step() {
-            return (wall, Some(h), Vec::new());
-        }
-        wall += t.elapsed().as_secs_f64();
+    let wall = match run(sim, |sim| {
         let Column::Quat(q) = &sim.backend().download(&["solid_orientation"])[0] else { panic!("orientations") };
         unit = q.iter().fold(unit, |u, q| u.max((f64::from(q.length()) - 1.0).abs()));
-    }
+        sim.time() < 1.0
+    }) {
+        Ok(wall) => wall,
+        Err(halted) => return halted,
+    };
     let x = by_id(sim);
     let n = x.len() as f32;
     let (c0, c) = (x0.iter().sum::<Vec3>() / n, x.iter().sum::<Vec3>() / n);
@@ -448,16 +446,14 @@ fn stiffness_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let stretched = x.iter().map(|p| *p + Vec3::X * (0.1 * (p.x - centre.x))).collect();
     sim.backend_mut().upload("x", Column::Vec3(stretched));
     let first = stretch_of(sim) - rest;
-    let mut wall = 0.0;
-    let mut trace: Vec<(f64, f64)> = vec![(0.0, first)];
-    while sim.time() < 2.0 {
-        let t = std::time::Instant::now();
-        if let Err(h) = sim.step() {
-            return (wall, Some(h), Vec::new());
-        }
-        wall += t.elapsed().as_secs_f64();
+    let mut trace: Vec<(f64, f64)> = Vec::new();
+    let wall = match run(sim, |sim| {
         trace.push((sim.time(), stretch_of(sim) - rest));
-    }
+        sim.time() < 2.0
+    }) {
+        Ok(wall) => wall,
+        Err(halted) => return halted,
+    };
     // Peaks of the stretch (local maxima above a hundredth of the first).
     let peaks: Vec<(f64, f64)> = trace
         .windows(3)
