@@ -136,14 +136,16 @@ impl CpuPass for Way {
 }
 
 /// Each particle moves by `alpha` of the weighted mean of its ways (the Jacobi
-/// solvers' eqs. 2.31 and 2.35, a colour's clusters in a coloured sweep); its
-/// residual is the largest such mean over the iteration's sweeps (m).
+/// solvers' eqs. 2.31 and 2.35, a colour's clusters in a coloured sweep), and no
+/// further than its room (`SolidConsts::room`: out of the walls); its residual is
+/// the largest such mean over the iteration's sweeps (m).
 #[derive(Debug)]
 pub struct Project;
 
 impl CpuPass for Project {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        let (alpha, first) = (cx.model.consts::<SolidConsts>().stiffness, cx.sweep == 0);
+        let c = cx.model.consts::<SolidConsts>();
+        let (alpha, (low, high), first) = (c.stiffness, c.room, cx.sweep == 0);
         let a = &mut *cx.attrs;
         let (hx, hr) = (a.handle::<Vec3>("x"), a.handle::<f32>(RESIDUAL.name));
         let (mut x, mut residual) = (a.take(hx), a.take(hr));
@@ -155,7 +157,7 @@ impl CpuPass for Project {
             if weight[i] > 0.0 {
                 let mean = way[i] / weight[i];
                 *r = r.max(mean.length());
-                *x += mean * alpha;
+                *x = (*x + mean * alpha).clamp(low, high);
             }
         });
         a.put(hx, x);

@@ -352,6 +352,10 @@ pub struct SolidConsts {
     pub ellipsoid: Vec3,
     /// How orientations are blended.
     pub blend: spec::Blend,
+    /// The room an elastic particle's centre is held in (m): the scene's box of
+    /// walls less half a spacing on each closed face (unbounded on open faces,
+    /// and everywhere without a box).
+    pub room: (Vec3, Vec3),
 }
 
 impl SolidConsts {
@@ -388,7 +392,35 @@ fn consts(scene: &Scene, colours: u32) -> SolidConsts {
         oriented: s.oriented.is_some(),
         ellipsoid: (Vec3::from(radii) * scene.particle_spacing).powf(2.0) / 5.0,
         blend: s.oriented.as_ref().map_or_else(Default::default, |o| o.blend),
+        room: room(scene),
     }
+}
+
+/// The box of walls less half a spacing (a particle's radius) on each closed
+/// face: the solve's collision constraint (position-based dynamics, Mueller et
+/// al. 2007, alg. 1 line 7). The walls' pressure alone lets a rigid body's corner
+/// through: the matching hands the corner the whole body's momentum each step
+/// faster than the pressure on that one particle takes it away.
+fn room(scene: &Scene) -> (Vec3, Vec3) {
+    let r = 0.5 * scene.particle_spacing;
+    let mut room = (Vec3::splat(-f32::MAX), Vec3::splat(f32::MAX));
+    if let Some(crate::scene::Boundary::Box { min, max, open, .. }) =
+        scene.boundaries.iter().find(|b| matches!(b, crate::scene::Boundary::Box { .. }))
+    {
+        use crate::scene::Face;
+        for (k, (low, high)) in [(Face::MinusX, Face::PlusX), (Face::MinusY, Face::PlusY), (Face::MinusZ, Face::PlusZ)]
+            .into_iter()
+            .enumerate()
+        {
+            if !open.contains(&low) {
+                room.0[k] = min[k] + r;
+            }
+            if !open.contains(&high) {
+                room.1[k] = max[k] - r;
+            }
+        }
+    }
+    room
 }
 
 /// The position solve: a fixed number of iterations, as the thesis's solvers run.

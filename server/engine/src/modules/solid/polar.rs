@@ -25,33 +25,37 @@ pub fn iterative(a: Mat3, mut q: Quat, iterations: u32) -> Quat {
 }
 
 /// The first thesis's: `A^T A = V diag(l) V^T` (Jacobi eigenvalue rotations),
-/// `S^-1 = V diag(1 / sqrt(l)) V^T`, `R = A S^-1`; where `det A < 0` the axis of
-/// the smallest eigenvalue is flipped, so `R` is a rotation, not a reflection.
-/// Eigenvalues below `1e-12 * trace` are raised to it (a flat cluster).
+/// `R = A S^-1 = A V diag(1 / sqrt(l)) V^T`, written as `R = U V^T` with
+/// `u_k = A v_k / sqrt(l_k)` for the two largest eigenvalues and the third axes
+/// `u_0 x u_1`, `v_0 x v_1`: so `R` is a rotation where `det A < 0` (the thesis's
+/// flip of the smallest axis) and also for a flat cluster (a thin feature's,
+/// `l_2 = 0`: its `1 / sqrt(l_2)` would multiply rounding into the rotation). A
+/// cluster on a line (`l_1` below [`FLAT`] of `l_0`) turns by the shortest arc
+/// from `v_0` to `u_0`; one on a point does not turn.
 pub fn eigen(a: Mat3) -> Quat {
     let (values, v) = symmetric_eigen(a.transpose() * a);
-    let floor = 1e-12 * (values.x + values.y + values.z).max(1e-30);
-    let mut inv = values.max(Vec3::splat(floor)).map(|l| 1.0 / l.sqrt());
-    if a.determinant() < 0.0 {
-        let smallest = if values.x <= values.y && values.x <= values.z {
-            0
-        } else if values.y <= values.z {
-            1
-        } else {
-            2
-        };
-        inv[smallest] = -inv[smallest];
+    let mut order = [0, 1, 2];
+    order.sort_by(|&i, &j| values[j].total_cmp(&values[i]));
+    let (v0, v1) = (v.col(order[0]), v.col(order[1]));
+    let u0 = (a * v0).normalize_or_zero();
+    if u0 == Vec3::ZERO {
+        return Quat::IDENTITY;
     }
-    let r = a * v * Mat3::from_diagonal(inv) * v.transpose();
-    Quat::from_mat3(&orthonormal(r)).normalize()
+    if values[order[1]] <= FLAT * values[order[0]] {
+        return Quat::from_rotation_arc(v0, u0);
+    }
+    let u1 = a * v1;
+    let u1 = (u1 - u0 * u0.dot(u1)).normalize();
+    let v1 = (v1 - v0 * v0.dot(v1)).normalize();
+    let u = Mat3::from_cols(u0, u1, u0.cross(u1));
+    let w = Mat3::from_cols(v0, v1, v0.cross(v1));
+    Quat::from_mat3(&(u * w.transpose())).normalize()
 }
 
-/// Gram-Schmidt on the columns (rounding leaves `R` a hair off orthonormal).
-fn orthonormal(r: Mat3) -> Mat3 {
-    let x = r.x_axis.normalize_or_zero();
-    let y = (r.y_axis - x * x.dot(r.y_axis)).normalize_or_zero();
-    Mat3::from_cols(x, y, x.cross(y))
-}
+/// Below this share of the largest eigenvalue of `A^T A` a direction is taken as
+/// missing from a cluster (the rounding of a flat or straight cluster's is about
+/// 1e-14 of it; a real thickness of a thousandth of its size gives 1e-6).
+pub const FLAT: f32 = 1e-8;
 
 /// Eigenvalues and eigenvectors (columns) of a symmetric 3x3 matrix by cyclic
 /// Jacobi rotations.
@@ -109,5 +113,31 @@ mod tests {
         for q in [eigen(flipped), iterative(flipped, Quat::IDENTITY, 100)] {
             assert!((Mat3::from_quat(q).determinant() - 1.0).abs() < 1e-5 && q.is_finite());
         }
+    }
+
+    /// A flat cluster (a plane of points, as in a bunny's ear one lattice layer
+    /// thick) and a straight one (two points) turned by a rotation: the eigen
+    /// method finds the rotation, not one skewed by the rounding of the missing
+    /// direction.
+    #[test]
+    fn eigen_turns_flat_and_straight_clusters_right() {
+        let r = Quat::from_euler(glam::EulerRot::XYZ, 0.3, 1.1, -0.7);
+        let moment = |rest: &[Vec3]| {
+            let c = rest.iter().sum::<Vec3>() / rest.len() as f32;
+            rest.iter().fold(Mat3::ZERO, |a, &q| {
+                let (q, x) = (q - c, r * (q - c));
+                a + Mat3::from_cols(x * q.x, x * q.y, x * q.z)
+            })
+        };
+        let s = 0.01;
+        let plane: Vec<Vec3> =
+            (0..9).map(|k| Vec3::new((k % 3) as f32 * s, (k / 3) as f32 * s, 0.0) + Vec3::splat(0.3)).collect();
+        let q = eigen(moment(&plane));
+        assert!(q.angle_between(r) < 1e-3, "plane: {:?} is {} rad off", q, q.angle_between(r));
+        // A line fixes the rotation up to a turn about itself: its direction maps right.
+        let line = [Vec3::splat(0.3), Vec3::new(0.3 + s, 0.3, 0.3)];
+        let q = eigen(moment(&line));
+        assert!((q * Vec3::X - r * Vec3::X).length() < 1e-4, "line: {:?}", q * Vec3::X);
+        assert_eq!(eigen(Mat3::ZERO), Quat::IDENTITY);
     }
 }

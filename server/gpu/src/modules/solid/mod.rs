@@ -234,6 +234,14 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         c.sweeps,
         blend,
         0,
+        c.room.0.x.to_bits(),
+        c.room.0.y.to_bits(),
+        c.room.0.z.to_bits(),
+        0,
+        c.room.1.x.to_bits(),
+        c.room.1.y.to_bits(),
+        c.room.1.z.to_bits(),
+        0,
     ];
     Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())
 }

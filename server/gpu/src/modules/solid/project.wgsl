@@ -1,4 +1,5 @@
-// A particle moves by alpha of the weighted mean of its ways; its residual is the
+// A particle moves by alpha of the weighted mean of its ways, no further than its
+// room (out of the walls); its residual is the
 // largest such mean over the iteration's sweeps (floe-engine `solid::cpu::Project`).
 
 @group(0) @binding(2) var<uniform> sweep: vec4<u32>;
@@ -20,7 +21,8 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     if (weight[i] > 0.0) {
         let mean = way[i].xyz / weight[i];
         r = max(r, length(mean));
-        pos[i] = vec4<f32>(pos[i].xyz + mean * solid.settings.x, pos[i].w);
+        let moved = clamp(pos[i].xyz + mean * solid.settings.x, solid.low.xyz, solid.high.xyz);
+        pos[i] = vec4<f32>(moved, pos[i].w);
     }
     residual[i] = r;
 }

@@ -8,6 +8,9 @@ struct Solid {
     sizes: vec4<u32>,
     // Solver (SOLVER_*), the colours a cluster's colour is taken modulo, blend (0 QLERP, 1 ExpMap), unused.
     solver: vec4<u32>,
+    // The room an elastic particle is held in (SolidConsts::room), lower and upper corners (m).
+    low: vec4<f32>,
+    high: vec4<f32>,
 }
 
 @group(0) @binding(1) var<uniform> solid: Solid;
@@ -112,16 +115,27 @@ fn mat_quat(m: mat3x3<f32>) -> vec4<f32> {
     return vec4<f32>((m12 - m21) * inv4w, (m20 - m02) * inv4w, (m01 - m10) * inv4w, four_wsq * inv4w);
 }
 
-// Gram-Schmidt on the columns (polar::orthonormal).
-fn orthonormal(r: mat3x3<f32>) -> mat3x3<f32> {
-    let x = normalize(r[0]);
-    let y = normalize(r[1] - x * dot(x, r[1]));
-    return mat3x3<f32>(x, y, cross(x, y));
+/// Below this share of the largest eigenvalue of A^T A a direction is missing from
+/// a cluster (polar.rs's FLAT).
+const FLAT: f32 = 1e-8;
+
+/// The shortest-arc rotation taking the unit vector a to the unit vector b.
+fn arc(a: vec3<f32>, b: vec3<f32>) -> vec4<f32> {
+    let d = dot(a, b);
+    if (d < -0.999999) {
+        // Opposite: half a turn about any axis square to a.
+        var axis = cross(vec3<f32>(1.0, 0.0, 0.0), a);
+        if (dot(axis, axis) < 1e-6) {
+            axis = cross(vec3<f32>(0.0, 1.0, 0.0), a);
+        }
+        return vec4<f32>(normalize(axis), 0.0);
+    }
+    let q = vec4<f32>(cross(a, b), 1.0 + d);
+    return q / length(q);
 }
 
 // The first thesis's polar decomposition (polar::eigen): Jacobi eigenvalue
-// rotations of A^T A, S^-1 = V diag(1 / sqrt(l)) V^T, R = A S^-1, the smallest
-// axis flipped where det A < 0.
+// rotations of A^T A, R = A V diag(1 / sqrt(l)) V^T as U V^T.
 fn polar_eigen(m: mat3x3<f32>) -> vec4<f32> {
     let ata = transpose(m) * m;
     var a: array<array<f32, 3>, 3>;
@@ -177,19 +191,29 @@ fn polar_eigen(m: mat3x3<f32>) -> vec4<f32> {
         vec3<f32>(v[0][1], v[1][1], v[2][1]),
         vec3<f32>(v[0][2], v[1][2], v[2][2]),
     );
-    let floor = 1e-12 * max(values.x + values.y + values.z, 1e-30);
-    var inv = vec3<f32>(1.0) / sqrt(max(values, vec3<f32>(floor)));
-    if (determinant(m) < 0.0) {
-        if (values.x <= values.y && values.x <= values.z) {
-            inv.x = -inv.x;
-        } else if (values.y <= values.z) {
-            inv.y = -inv.y;
-        } else {
-            inv.z = -inv.z;
-        }
+    // The two largest eigenvalues' axes, u_k = A v_k / |A v_k|, and R = U V^T with
+    // the third axes their cross products (polar.rs's eigen: a rotation also for
+    // flat clusters and where det A < 0; a straight cluster turns by the shortest arc).
+    var i0 = 0;
+    var i1 = 1;
+    var i2 = 2;
+    if (values[i1] > values[i0]) { let t = i0; i0 = i1; i1 = t; }
+    if (values[i2] > values[i0]) { let t = i0; i0 = i2; i2 = t; }
+    if (values[i2] > values[i1]) { let t = i1; i1 = i2; i2 = t; }
+    let v0 = vecs[i0];
+    let av0 = m * v0;
+    if (dot(av0, av0) == 0.0) {
+        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
-    let d = mat3x3<f32>(vec3<f32>(inv.x, 0.0, 0.0), vec3<f32>(0.0, inv.y, 0.0), vec3<f32>(0.0, 0.0, inv.z));
-    let r = m * vecs * d * transpose(vecs);
-    let q = mat_quat(orthonormal(r));
+    let u0 = normalize(av0);
+    if (values[i1] <= FLAT * values[i0]) {
+        return arc(v0, u0);
+    }
+    let v1 = normalize(vecs[i1] - v0 * dot(v0, vecs[i1]));
+    let av1 = m * vecs[i1];
+    let u1 = normalize(av1 - u0 * dot(u0, av1));
+    let u = mat3x3<f32>(u0, u1, cross(u0, u1));
+    let w = mat3x3<f32>(v0, v1, cross(v0, v1));
+    let q = mat_quat(u * transpose(w));
     return q / length(q);
 }
