@@ -52,6 +52,7 @@ async fn rest_mirrors_the_control_calls() {
                 "snowfall_then_avalanche",
                 "snow_roof",
                 "elastic_drop",
+                "bunny",
                 "floating_blocks"
             ])
         )

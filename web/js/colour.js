@@ -44,10 +44,7 @@ export function colourModes(channels) {
  * @returns {Float32Array|null}
  */
 export function colourValues(frame, channel, sceneChannels = []) {
-  const tag = sceneChannels.find((c) => c.name === channel)?.tag;
-  const found = channel === NONE
-    ? undefined
-    : frame.channels?.find((c) => c.name === channel || (tag !== undefined && c.tag === tag));
+  const found = channel === NONE ? undefined : findChannel(frame, channel, sceneChannels);
   if (!found) return null;
   const data = found.values;
   const n = frame.positions.length / 3;
@@ -60,6 +57,18 @@ export function colourValues(frame, channel, sceneChannels = []) {
     out[i] = Math.sqrt(sum);
   }
   return out;
+}
+
+/**
+ * A decoded frame's channel named `channel`, found by its name or, for a module's channel
+ * decoded as `channel <tag>`, by the tag the scene's channel list gives it; undefined when absent.
+ * @param {{channels?: {tag?: number, name: string}[]}} frame
+ * @param {string} channel
+ * @param {{name: string, tag?: number}[]} [sceneChannels]
+ */
+export function findChannel(frame, channel, sceneChannels = []) {
+  const tag = sceneChannels.find((c) => c.name === channel)?.tag;
+  return frame.channels?.find((c) => c.name === channel || (tag !== undefined && c.tag === tag));
 }
 
 /**

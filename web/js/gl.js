@@ -26,9 +26,10 @@ export function programWith(gl, vert, frag, uniforms) {
 
 /**
  * Particle attributes' locations, fixed in every particle shader (`layout(location = ...)`), so
- * one vertex array serves the sphere, depth and thickness programs.
+ * one vertex array serves the sphere, depth and thickness programs; `orientation` (a
+ * quaternion) only the ellipsoid program's, in a vertex array of its own (ellipsoid.js).
  */
-export const ATTRIBUTES = Object.freeze({ position: 0, value: 1 });
+export const ATTRIBUTES = Object.freeze({ position: 0, value: 1, orientation: 2 });
 
 /**
  * A vertex shader drawing one triangle over the whole viewport (`gl.drawArrays(gl.TRIANGLES, 0, 3)`

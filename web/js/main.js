@@ -4,6 +4,7 @@
 import { OrbitCamera } from './camera.js';
 import { DEFAULT_CHANNELS, NONE, colourModes, colourValues, valueRange } from './colour.js';
 import { Credentials } from './credentials.js';
+import { orientationValues, orientedRadii, streamedChannels } from './ellipsoid.js';
 import { bindKeys, fillHelp } from './help.js';
 import { acting, showError } from './notify.js';
 import { wallLines } from './outline.js';
@@ -107,6 +108,8 @@ function open(scene) {
   showColourModes(scene.channels ?? DEFAULT_CHANNELS);
   // The first material's look (a scene of several materials draws them all in it).
   renderer.look = LOOKS[scene.materials?.[0]?.look] ?? LOOKS.water;
+  // Oriented particles (an elastic solid's `solid.oriented`) are drawn as ellipsoids.
+  renderer.setOriented(orientedRadii(scene.scene, scene.particle_spacing));
   showTunables(scene);
   const tank = scene.scene?.boundaries?.find((b) => b.kind === 'box');
   showScene({ min: scene.bounds_min, max: scene.bounds_max }, wallLines(scene.scene), scene.particle_spacing, changed, tank);
@@ -163,7 +166,8 @@ function connect() {
   const channel = $('colour').value;
   const url = new URL(`/api/v1/scenes/${state.scene.scene_id}/ws`, location.href);
   url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
-  url.search = new URLSearchParams({ channels: channel === NONE ? '' : channel, max_fps: '60' });
+  // The colour channel, and oriented particles' orientations where the scene streams them.
+  url.search = new URLSearchParams({ channels: streamedChannels(channel, state.scene.channels).join(','), max_fps: '60' });
   const ws = new WebSocket(url, credentials.protocols());
   ws.binaryType = 'arraybuffer';
   state.socket = ws;
@@ -230,7 +234,7 @@ function showFrame(frame) {
     $('legend-min').textContent = lo.toPrecision(3);
     $('legend-max').textContent = hi.toPrecision(3);
   }
-  renderer.upload(frame.positions, values);
+  renderer.upload(frame.positions, values, renderer.radii ? orientationValues(frame, state.scene?.channels) : null);
 }
 
 /**
@@ -409,6 +413,8 @@ const replay = new Replay({
     // The walls are not recorded; the positions' range (a cube around the domain) frames the
     // first view, until every frame is read and their extent is known.
     state.spacing = info.spacing;
+    // A recording does not say how its particles are shaped: spheres.
+    renderer.setOriented(null);
     showScene(info.bounds, new Float32Array(0), info.spacing, true, null);
   },
   onReady: (extent) => showScene(extent, new Float32Array(0), state.spacing, !camera.moved),
@@ -503,6 +509,7 @@ function frame(now) {
     $('stats').textContent = [
       state.renderFps > 0 ? `render     ${state.renderFps.toFixed(0)} fps (${renderer.view})${resolutionNote()}` : `render     idle (${renderer.view})`,
       `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}${renderer.drawnCount < renderer.count ? ` (${renderer.drawnCount} drawn)` : ''}`,
+      renderer.oriented ? `oriented   ellipsoids ${renderer.radii.map((r) => (1000 * r).toPrecision(2)).join(' x ')} mm${renderer.view === 'spheres' ? '' : ' (spheres view)'}` : '',
       ...(replay.active ? replay.describe() : []),
       s ? `sim time   ${s.sim_time.toFixed(3)} s (${s.state})` : '',
       rt.text ? `real time  ${rt.text}` : '',

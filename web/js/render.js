@@ -1,12 +1,15 @@
 // WebGL2 particle renderer with two views: spheres (each particle a point sprite shaded as a lit
-// sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection) and
-// the fluid's surface (surface.js); particles hidden deep inside the fluid are left out or
-// merged (cull.js). Both draw particles at their physical size (spacing.js); the scene's box walls
-// are lines (outline.js), its floor a checkerboard (floor.js), its terrains lit meshes
-// (terrain.js) and its other sets, grids and a module's own particles, tiles and points
-// (others.js).
+// sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection; in a
+// scene of oriented particles each is drawn as its ellipsoid instead, of the scene's radii and
+// turned by the orientation the stream carries, ellipsoid.js) and the fluid's surface
+// (surface.js, spheres whatever the particles' orientation); particles hidden deep inside the
+// fluid are left out or merged (cull.js). Both draw spheres at the particles' physical size
+// (spacing.js); the scene's box walls are lines (outline.js), its floor a checkerboard
+// (floor.js), its terrains lit meshes (terrain.js) and its other sets, grids and a module's own
+// particles, tiles and points (others.js).
 
 import { CELL, cubeLumps, cubesOf, innerCubes, lumpedParticles, outerParticles } from './cull.js';
+import { ELLIPSOID_POINT, ELLIPSOID_VERT, boundingRadius } from './ellipsoid.js';
 import { ATTRIBUTES, programWith } from './gl.js';
 import { Floor } from './floor.js';
 import { Others } from './others.js';
@@ -29,14 +32,17 @@ export const LOOKS = {
   solid: { rgb: [0.6, 0.6, 0.62], opaque: true },
 };
 
-const FRAG = `#version 300 es
+/**
+ * The particle fragment shader: `inputs` declares the surface's GLSL (its varyings and its
+ * point function), `point` sets `vec3 n`, the view-space normal under the fragment, or discards.
+ */
+const shaded = (inputs, point) => `#version 300 es
 precision highp float;
 uniform bool u_coloured;
 uniform vec3 u_plain;
-in float v_t, v_radius;
-in vec3 v_center;
+in float v_t;
 out vec4 colour;
-${SPHERE_POINT}
+${inputs}
 vec3 ramp(float t) {
   // A perceptual blue-green-yellow ramp (close to viridis).
   vec3 a = vec3(0.267, 0.005, 0.329), b = vec3(0.128, 0.567, 0.551), c = vec3(0.993, 0.906, 0.144);
@@ -46,13 +52,21 @@ void main() {
   vec3 n;
   // Depth is the sprite's (the particle centre's): writing each fragment's sphere depth would
   // switch off early depth tests, which halves the frame rate on software GL.
-  spherePoint(v_center, v_radius, n);
+  ${point}
   vec3 l = normalize(vec3(0.4, 0.7, 0.6));
   vec3 h = normalize(l + vec3(0.0, 0.0, 1.0));
   vec3 base = u_coloured ? ramp(v_t) : u_plain;
   float diffuse = max(dot(n, l), 0.0), specular = pow(max(dot(n, h), 0.0), 48.0);
   colour = vec4(base * (0.25 + 0.75 * diffuse) + vec3(0.35) * specular, 1.0);
 }`;
+
+/** Spheres: the particles of every scene but those of oriented particles. */
+const FRAG = shaded(`in float v_radius;
+in vec3 v_center;
+${SPHERE_POINT}`, 'spherePoint(v_center, v_radius, n);');
+
+/** Ellipsoids: oriented particles (ellipsoid.js). */
+const ELLIPSOID_FRAG = shaded(ELLIPSOID_POINT, 'ellipsoidPoint(n);');
 
 /** The background colour (the page's), linear 0-1 RGB. */
 export const BACKGROUND = [0.063, 0.078, 0.094];
@@ -95,6 +109,14 @@ export class Renderer {
       gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
     }
     gl.bindVertexArray(null);
+    /**
+     * The ellipsoid program and its vertex array (the particles' buffers and a quaternion's),
+     * made when a scene of oriented particles is first drawn (a scene without them pays
+     * nothing); false where it cannot be made (oriented particles are then drawn as spheres).
+     */
+    this.ellipsoids = null;
+    /** The oriented particles' ellipsoid radii (m), or null when the scene has none. */
+    this.radii = null;
     /** Particles in the frame, and those in the GPU's buffers (the sphere view leaves out hidden ones). */
     this.count = 0;
     this.drawnCount = 0;
@@ -156,8 +178,26 @@ export class Renderer {
     return Surface.unsupported(this.gl);
   }
 
-  /** New particle data: positions (x,y,z interleaved) and one value per particle (or null). */
-  upload(positions, values) {
+  /**
+   * A scene's oriented particles: the radii (m) of each one's ellipsoid, or null for a scene
+   * without them (its particles are spheres, whatever frames carry).
+   */
+  setOriented(radii) {
+    this.radii = radii ? [...radii] : null;
+    this.buffered = null;
+    this.version += 1;
+  }
+
+  /** Whether the sphere view draws the frame's particles as ellipsoids. */
+  get oriented() {
+    return this.radii !== null && this.frame?.orientations != null && this.ellipsoids !== false;
+  }
+
+  /**
+   * New particle data: positions (x,y,z interleaved), one value per particle (or null) and, in a
+   * scene of oriented particles, their quaternions (x,y,z,w interleaved; or null).
+   */
+  upload(positions, values, orientations = null) {
     this.count = positions.length / 3;
     const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < positions.length; i += 3) {
@@ -169,7 +209,7 @@ export class Renderer {
     }
     /** The particles' bounding box (m). */
     this.box = { min, max };
-    this.frame = { positions, values };
+    this.frame = { positions, values, orientations };
     this.drawable = null;
     this.buffered = null;
     this.coloured = values != null;
@@ -178,16 +218,19 @@ export class Renderer {
 
   /**
    * Fills the buffers with what is drawn (`kind`): for `'spheres'` the particles outside inner
-   * cubes and their values; for `'surface'` those and one sphere per inner cube, for
-   * `'surface-far'` one sphere per cube, with radius scales in place of values (cull.js).
+   * cubes and their values; for `'ellipsoids'` every particle, its value and its quaternion
+   * (cull.js's reckoning that outer particles hide inner ones holds for spheres of a particle's
+   * volume, not for thinner ellipsoids); for `'surface'` the outer particles and one sphere per
+   * inner cube, for `'surface-far'` one sphere per cube, with radius scales in place of values.
    */
   #buffer(kind) {
     if (this.buffered === kind || !this.frame) return;
-    const { positions, values } = this.frame;
+    const { positions, values, orientations } = this.frame;
     const d = (this.drawable ??= { grid: cubesOf(positions, this.spacing, this.box) });
     const cubes = () => (d.cubes ??= innerCubes(positions, this.spacing, this.box, d.grid));
     let data;
     if (kind === 'spheres') data = (d.spheres ??= outerParticles(positions, values, cubes()));
+    else if (kind === 'ellipsoids') data = { positions, values };
     else {
       const lumps = kind === 'surface-far' ? (d.far ??= cubeLumps(positions, d.grid)) : (d.surface ??= lumpedParticles(positions, cubes()));
       data = { positions: lumps.positions, values: lumps.scales };
@@ -198,6 +241,10 @@ export class Renderer {
     gl.bufferData(gl.ARRAY_BUFFER, data.positions, gl.DYNAMIC_DRAW);
     gl.bindBuffer(gl.ARRAY_BUFFER, this.valBuf);
     gl.bufferData(gl.ARRAY_BUFFER, data.values ?? new Float32Array(this.drawnCount), gl.DYNAMIC_DRAW);
+    if (kind === 'ellipsoids') {
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.ellipsoids.quatBuf);
+      gl.bufferData(gl.ARRAY_BUFFER, orientations, gl.DYNAMIC_DRAW);
+    }
     this.buffered = kind;
   }
 
@@ -223,7 +270,8 @@ export class Renderer {
     // Seen from afar the surface view draws cubes of particles (cull.js): a spacing spans fewer
     // than FAR_PIXELS pixels of its passes where the particles come nearest the camera.
     const far = surface && pixelsAcross(this.spacing, this.box, proj, view, h * Surface.SCALE) < FAR_PIXELS;
-    this.#buffer(surface ? (far ? 'surface-far' : 'surface') : 'spheres');
+    const ellipsoids = !surface && this.oriented ? this.#ellipsoidProgram() : null;
+    this.#buffer(surface ? (far ? 'surface-far' : 'surface') : ellipsoids ? 'ellipsoids' : 'spheres');
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     gl.viewport(0, 0, w, h);
     this.#background(proj, view);
@@ -237,20 +285,55 @@ export class Renderer {
       return true;
     }
     gl.enable(gl.DEPTH_TEST);
-    const { program, u } = this.spheres;
+    const { program, u, vao } = ellipsoids ?? { ...this.spheres, vao: this.vao };
     gl.useProgram(program);
     gl.uniformMatrix4fv(u.u_proj, false, proj);
     gl.uniformMatrix4fv(u.u_view, false, view);
-    gl.uniform1f(u.u_radius, this.radius);
     gl.uniform1f(u.u_viewport_h, h);
     gl.uniform2f(u.u_range, this.range[0], this.range[1]);
     gl.uniform1i(u.u_coloured, this.coloured ? 1 : 0);
     gl.uniform3fv(u.u_plain, this.look.rgb);
-    gl.uniform1i(u.u_scaled, 0);
-    gl.bindVertexArray(this.vao);
+    if (ellipsoids) {
+      gl.uniform1f(u.u_radius, boundingRadius(this.radii));
+      gl.uniform3fv(u.u_radii, this.radii);
+    } else {
+      gl.uniform1f(u.u_radius, this.radius);
+      gl.uniform1i(u.u_scaled, 0);
+    }
+    gl.bindVertexArray(vao);
     gl.drawArrays(gl.POINTS, 0, this.drawnCount);
     this.outline.draw(proj, view);
     return true;
+  }
+
+  /**
+   * The ellipsoid program, its vertex array (the particles' position and value buffers, and the
+   * quaternions' `quatBuf`), made on first use; null where the driver refuses it (warned once).
+   */
+  #ellipsoidProgram() {
+    if (this.ellipsoids !== null) return this.ellipsoids || null;
+    const gl = this.gl;
+    let e;
+    try {
+      e = programWith(gl, ELLIPSOID_VERT, ELLIPSOID_FRAG,
+        ['u_proj', 'u_view', 'u_radius', 'u_radii', 'u_viewport_h', 'u_range', 'u_coloured', 'u_plain']);
+    } catch (err) {
+      console.warn(`oriented particles drawn as spheres: the ellipsoid shader failed: ${err.message}`);
+      this.ellipsoids = false;
+      return null;
+    }
+    e.vao = gl.createVertexArray();
+    e.quatBuf = gl.createBuffer();
+    gl.bindVertexArray(e.vao);
+    for (const [buf, loc, size] of [[this.posBuf, ATTRIBUTES.position, 3], [this.valBuf, ATTRIBUTES.value, 1],
+      [e.quatBuf, ATTRIBUTES.orientation, 4]]) {
+      gl.bindBuffer(gl.ARRAY_BUFFER, buf);
+      gl.enableVertexAttribArray(loc);
+      gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
+    }
+    gl.bindVertexArray(null);
+    this.ellipsoids = e;
+    return e;
   }
 
   /**

@@ -144,9 +144,12 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
         &["particle_spacing=0.1", "snowfall.height=3.2", "snowfall.depth_per_hour=540", "snowfall.release.at=5"],
         0x59eed517fc9457a9,
     ),
-    // Recorded when the solid module was added.
-    ("elastic_drop", &["particle_spacing=0.04"], 0xb07387955097c90d),
-    ("floating_blocks", &["particle_spacing=0.04"], 0xe30c22a5fa60de79),
+    // Recorded when the eigen rotation came to be built from the two largest
+    // eigenvalues' axes (for flat clusters) and the walls held elastic particles
+    // in the position solve; the bunny when it was added.
+    ("elastic_drop", &["particle_spacing=0.04"], 0xdfa2b6fd9128456b),
+    ("floating_blocks", &["particle_spacing=0.04"], 0x17035fe7925f5b21),
+    ("bunny", &["particle_spacing=0.0196"], 0x93e350edc95029d1),
 ];
 
 /// State attributes the core added after the checksums were recorded, which no

@@ -4,7 +4,8 @@
 //!
 //! A scene names a mesh as an asset of the server's `--assets` directory (a plain
 //! file name, read into the scene at creation so the scene never depends on the
-//! file again) or inline as base64 ([`MeshSource`]); the mesh is scaled uniformly
+//! file again), inline as base64, or as one of the meshes built into the server
+//! ([`BUILTIN`]: the Stanford bunny) ([`MeshSource`]); the mesh is scaled uniformly
 //! and centred to fit the box it fills. What is refused, each naming the file:
 //! a file over [`MAX_MESH_BYTES`] or [`MAX_TRIANGLES`], one neither format parses,
 //! a coordinate that is not finite, a mesh without volume, an open mesh (an edge
@@ -32,7 +33,10 @@ pub const MAX_MESH_BYTES: usize = 16 << 20;
 /// Most triangles a mesh may have.
 pub const MAX_TRIANGLES: usize = 1 << 20;
 
-/// A mesh a scene names: exactly one of `asset` and `data_base64`.
+/// The meshes built into the server, by name, with where they come from.
+pub const BUILTIN: &[(&str, &str)] = &[("bunny", include_str!("../../data/bunny.obj"))];
+
+/// A mesh a scene names: exactly one of `asset`, `data_base64` and `builtin`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSource {
@@ -43,6 +47,11 @@ pub struct MeshSource {
     /// The file's bytes, base64 (OBJ or STL, told apart by their content).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub data_base64: Option<String>,
+    /// A mesh built into the server, by name: `bunny` (the Stanford bunny, 1839
+    /// vertices, 3674 triangles; Stanford 3D Scanning Repository, public domain as
+    /// the npm package `bunny` ships it). Scenes stay small: the mesh is not copied in.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub builtin: Option<String>,
     /// The name errors give the file (the asset's name, kept when it is read in).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
@@ -75,16 +84,19 @@ impl MeshFill {
 impl MeshSource {
     /// The name errors call the mesh by.
     pub fn name(&self) -> &str {
-        self.file.as_deref().or(self.asset.as_deref()).unwrap_or("inline mesh")
+        self.file.as_deref().or(self.asset.as_deref()).or(self.builtin.as_deref()).unwrap_or("inline mesh")
     }
 
     /// The mesh, decoded and checked; errors name the file.
     pub fn load(&self) -> Result<TriMesh, String> {
         let name = self.name();
+        if let Some(b) = &self.builtin {
+            return TriMesh::from_bytes(builtin(b)?.as_bytes()).map_err(|e| format!("{name}: {e}"));
+        }
         let Some(text) = &self.data_base64 else {
             return Err(match &self.asset {
                 Some(a) => format!("asset {a:?} was not read: scenes naming an asset load with an assets directory"),
-                None => "give exactly one of asset and data_base64".into(),
+                None => "give exactly one of asset, data_base64 and builtin".into(),
             });
         };
         if text.len() / 4 * 3 > MAX_MESH_BYTES + 3 {
@@ -101,19 +113,35 @@ impl MeshSource {
 /// as an asset by its name only (it is read and checked when the scene is created,
 /// [`read_assets`]).
 pub fn validate(c: &mut Checker, path: &str, mesh: &MeshSource) {
-    match (&mesh.asset, &mesh.data_base64) {
-        (Some(_), Some(_)) | (None, None) => c.fail(path, "give exactly one of asset and data_base64".into()),
+    let given = [mesh.asset.is_some(), mesh.data_base64.is_some(), mesh.builtin.is_some()];
+    if given.iter().filter(|g| **g).count() != 1 {
+        return c.fail(path, "give exactly one of asset, data_base64 and builtin".into());
+    }
+    match (&mesh.asset, &mesh.builtin) {
+        (_, Some(name)) => {
+            if let Err(e) = builtin(name) {
+                c.fail(&format!("{path}.builtin"), e);
+            }
+        }
         (Some(name), None) => {
             if let Err(e) = asset_name(name) {
                 c.fail(&format!("{path}.asset"), e);
             }
         }
-        (None, Some(_)) => {
+        (None, None) => {
             if let Err(e) = mesh.load() {
                 c.fail(path, e);
             }
         }
     }
+}
+
+/// The OBJ text of the built-in mesh `name`.
+fn builtin(name: &str) -> Result<&'static str, String> {
+    BUILTIN.iter().find(|(n, _)| *n == name).map(|(_, text)| *text).ok_or_else(|| {
+        let names: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
+        format!("no built-in mesh named {name:?} (there are: {names:?})")
+    })
 }
 
 /// A plain file name ending in `.obj` or `.stl`.

@@ -64,6 +64,7 @@ fn source(name: &str, bytes: &[u8]) -> MeshSource {
     MeshSource {
         asset: None,
         data_base64: Some(base64::engine::general_purpose::STANDARD.encode(bytes)),
+        builtin: None,
         file: Some(name.into()),
         fill: MeshFill::Lattice,
     }
@@ -143,9 +144,15 @@ fn bad_meshes_are_refused_naming_the_file_and_the_fault() {
     let huge = vec![b' '; MAX_MESH_BYTES + 1];
     let e = err("huge.stl", &huge);
     assert_eq!(e, "huge.stl: 16777217 bytes, more than the limit of 16777216 (16 MiB)");
-    let e = MeshSource { asset: Some("a.obj".into()), data_base64: None, file: None, fill: MeshFill::Lattice }
-        .load()
-        .unwrap_err();
+    let e = MeshSource {
+        asset: Some("a.obj".into()),
+        data_base64: None,
+        builtin: None,
+        file: None,
+        fill: MeshFill::Lattice,
+    }
+    .load()
+    .unwrap_err();
     assert!(e.contains("scenes naming an asset load with an assets directory"), "{e}");
 }
 
@@ -215,6 +222,26 @@ fn a_fluid_block_may_be_a_mesh_inline_or_an_asset() {
     assert!(e.contains("must name an .obj or .stl file"), "{e}");
     let e = scene_with(serde_json::json!({"data_base64": "bm90IGEgbWVzaA=="})).unwrap_err().to_string();
     assert!(e.contains("fluids[0].blocks[0].mesh: inline mesh: "), "{e}");
+    let e = scene_with(serde_json::json!({"builtin": "teapot"})).unwrap_err().to_string();
+    assert!(
+        e.contains("fluids[0].blocks[0].mesh.builtin: no built-in mesh named \"teapot\" (there are: [\"bunny\"])"),
+        "{e}"
+    );
+    let e = scene_with(serde_json::json!({"builtin": "bunny", "asset": "a.obj"})).unwrap_err().to_string();
+    assert!(e.contains("fluids[0].blocks[0].mesh: give exactly one of asset, data_base64 and builtin"), "{e}");
+}
+
+/// The built-in bunny is a closed, outward-facing mesh, its volume 0.27 of its
+/// bounding box (the Stanford bunny's), y up.
+#[test]
+fn the_builtin_bunny_is_closed_and_outward() {
+    let m = MeshSource { builtin: Some("bunny".into()), ..source("x", b"") };
+    let m = MeshSource { data_base64: None, file: None, ..m }.load().unwrap();
+    assert_eq!((m.vertices.len(), m.triangles.len()), (1839, 3674));
+    let size = m.bounds().max - m.bounds().min;
+    let share = m.volume() / f64::from(size.x * size.y * size.z);
+    assert!((share - 0.269).abs() < 1e-3, "{share}");
+    assert!(size.y > 0.95 * size.x && size.z < size.y, "{size:?}");
 }
 
 /// Poisson-disk filling: every point inside the tube, none two closer than the
