@@ -174,9 +174,12 @@ fn admin_store_options_go_before_or_after_the_subcommand() {
 #[test]
 fn bench_cases_come_from_the_modules() {
     let names: Vec<&str> = floe_engine::module::bench_cases().iter().map(|c| c.name).collect();
-    assert_eq!(names, ["heat", "avalanche", "snowfall", "solid"]);
+    assert_eq!(names, ["heat", "avalanche", "snowfall", "solid", "bunny"]);
     let err = floe(&["bench", "--case", "nope"]).unwrap_err();
-    assert_eq!(format!("{err:#}"), "no bench case nope; there are [\"heat\", \"avalanche\", \"snowfall\", \"solid\"]");
+    assert_eq!(
+        format!("{err:#}"),
+        "no bench case nope; there are [\"heat\", \"avalanche\", \"snowfall\", \"solid\", \"bunny\"]"
+    );
     let err = floe(&["bench", "--backend", "cpu", "--case", "avalanche"]).unwrap_err();
     assert_eq!(format!("{err:#}"), "--case of a preset needs --until SECONDS (simulated time)");
     floe(&["bench", "--backend", "cpu", "--case", "avalanche", "--until", "0.001", "--particles", "2000"]).unwrap();

@@ -148,6 +148,10 @@ pub const CASES: &[Case] = &[
                 overrides: &[BAR[0], BAR[1], "solid.stiffness=0.1", "solid.solver=\"gauss_seidel\""],
             },
             Variant { name: "hybrid", overrides: &[BAR[0], BAR[1], "solid.stiffness=0.1", "solid.solver=\"hybrid\""] },
+            Variant {
+                name: "hybrid_3_colours",
+                overrides: &[BAR[0], BAR[1], "solid.stiffness=0.1", "solid.solver=\"hybrid\"", "solid.colours=3"],
+            },
         ],
         measure: stiffness_case,
     },

@@ -106,7 +106,8 @@ impl CpuPass for Rotate {
 /// Per membership: the way to its goal, `g_k - x_k = R q_k + c - x_k` (the
 /// thesis's eq. 2.19, all relative to the cluster's own particle), times its
 /// weight: 1 (Jacobi, and the clusters of this sweep's colour), `|g_k - x_k|`
-/// (weighted Jacobi, eq. 2.34), 0 (a cluster of another colour).
+/// (weighted Jacobi, eq. 2.34); a cluster of another colour has no way and
+/// [`SolidConsts::idle_weight`].
 #[derive(Debug)]
 pub struct Way;
 
@@ -123,7 +124,7 @@ impl CpuPass for Way {
         way.par_iter_mut().zip(weight.par_iter_mut()).enumerate().with_min_len(4096).for_each(|(k, (d, w))| {
             let s = segment[k] as usize;
             if !c.active(colour[s], sweep) {
-                (*d, *w) = (Vec3::ZERO, 0.0);
+                (*d, *w) = (Vec3::ZERO, c.idle_weight());
                 return;
             }
             let to_goal = rotation[s] * rest[k] - (x[k] - centre[s]);

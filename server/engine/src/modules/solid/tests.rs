@@ -140,6 +140,14 @@ fn the_solver_changes_while_the_scene_runs() {
     assert!(err.contains("solid.iterations"), "{err}");
     let err = sim.set_parameters(&set(&["solid.solver=\"newton\""])).unwrap_err().to_string();
     assert!(err.contains("solid.solver") || err.contains("newton"), "{err}");
+    let err = sim.set_parameters(&set(&["solid.oriented.blend=\"exp_map\""])).unwrap_err().to_string();
+    assert!(err.contains("solid.oriented.blend: cannot change while the scene exists"), "{err}");
+    sim.step().unwrap();
+    // With oriented particles the blend changes live.
+    let mut sim = drop(&["particle_spacing=0.04", "solid.oriented={}"]);
+    sim.step().unwrap();
+    sim.set_parameters(&set(&["solid.oriented.blend=\"exp_map\""])).unwrap();
+    assert_eq!(sim.model().consts::<SolidConsts>().blend, spec::Blend::ExpMap);
     sim.step().unwrap();
 }
 

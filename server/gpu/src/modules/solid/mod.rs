@@ -233,7 +233,7 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         solver,
         c.sweeps,
         blend,
-        0,
+        c.idle_weight() as u32,
         c.room.0.x.to_bits(),
         c.room.0.y.to_bits(),
         c.room.0.z.to_bits(),

@@ -6,7 +6,8 @@ struct Solid {
     settings: vec4<f32>,
     // Clusters, memberships, rotation method (0 iterative, 1 eigen), iterations of the iterative one.
     sizes: vec4<u32>,
-    // Solver (SOLVER_*), the colours a cluster's colour is taken modulo, blend (0 QLERP, 1 ExpMap), unused.
+    // Solver (SOLVER_*), the colours a cluster's colour is taken modulo, blend (0 QLERP, 1 ExpMap),
+    // the weight of a cluster of another colour (SolidConsts::idle_weight: 1 hybrid, else 0).
     solver: vec4<u32>,
     // The room an elastic particle is held in (SolidConsts::room), lower and upper corners (m).
     low: vec4<f32>,

@@ -1,5 +1,6 @@
-// Per membership: the way to its goal, R q_k + c - x_k, times its weight
-// (floe-engine `solid::cpu::Way`).
+// Per membership: the way to its goal, R q_k + c - x_k, times its weight; a
+// cluster of another colour has none and the idle weight (floe-engine
+// `solid::cpu::Way`).
 
 @group(0) @binding(2) var<uniform> sweep: vec4<u32>;
 @group(0) @binding(3) var<storage, read> rotation: array<vec4<f32>>;
@@ -20,7 +21,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     let s = segment[k];
     if (!matched(colour[s], sweep.x)) {
         way[k] = vec4<f32>(0.0);
-        weight[k] = 0.0;
+        weight[k] = f32(solid.solver.w);
         return;
     }
     let to_goal = quat_rotate(rotation[s], rest[k].xyz) - (relative[k].xyz - centre[s].xyz);
