@@ -188,6 +188,20 @@ fn validate(scene: &Scene, c: &mut Checker) {
                 c.finite(&format!("{bp}.taylor_green.amplitude"), tg.amplitude);
                 c.positive(&format!("{bp}.taylor_green.wavelength"), tg.wavelength);
             }
+            let d = scene.particle_spacing;
+            let points = if d.is_finite() && d > 0.0 { box_count(b.min, b.max, d) } else { 0 };
+            if points as f64 > crate::scene::validate::MAX_PARTICLES {
+                // Named here, before the mesh is read or anything placed: the core's
+                // limit counts the whole scene.
+                c.fail(
+                    &bp,
+                    format!(
+                        "its box holds {points} lattice points at particle_spacing {d} (a mesh or shape fills \
+                         part of them), more than the limit of {:.0e}; make it smaller or the spacing larger",
+                        crate::scene::validate::MAX_PARTICLES
+                    ),
+                );
+            }
             if let Some(mesh) = &b.mesh {
                 crate::mesh::validate(c, &format!("{bp}.mesh"), mesh);
                 if !b.shape.is_box() {

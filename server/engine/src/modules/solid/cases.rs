@@ -231,6 +231,15 @@ pub const STABILITY: &[StabilityCase] = &[
         expect: Expect::FinishOrHalt,
     },
     StabilityCase {
+        name: "solid_bunny_thrown_5",
+        what: "the bunny thrown at the floor at 5 m/s, alpha = 1: its ears one or two lattice layers thick, clusters of 3 to 5 members at their tips",
+        preset: "bunny",
+        spacing: (0.0196, 0.0146),
+        overrides: &["fluids[0].blocks[0].velocity=[0,-5,0]", "solver.expected_max_speed=5", "solid.stiffness=1"],
+        until: (0.2, 0.5),
+        expect: Expect::FinishOrHalt,
+    },
+    StabilityCase {
         name: "solid_heavy_into_water_10",
         what: "the 2000 kg/m^3 block of floating_blocks thrown into the water at 10 m/s",
         preset: "floating_blocks",

@@ -165,7 +165,11 @@ fn bodies_outside_the_walls_or_overlapping_are_refused() {
         r#"fluids[0].blocks=[{"min":[0.1,0.1,0.1],"max":[0.3,0.3,0.3]},{"min":[0.2,0.2,0.2],"max":[0.4,0.4,0.4]}]"#;
     let err = refused(&[two]);
     assert!(err.contains("fluids[0].blocks[1]") && err.contains("overlaps fluids[0].blocks[0]"), "{err}");
-    for preset in ["elastic_drop", "floating_blocks"] {
+    for preset in ["elastic_drop", "floating_blocks", "bunny"] {
         from_preset(preset, &[]).unwrap();
     }
+    // A mesh body too large for the particle limit, named before the mesh is read.
+    let o = vec!["particle_spacing=0.0005".to_string()];
+    let err = from_preset("bunny", &o).map(|_| ()).unwrap_err().to_string();
+    assert!(err.contains("fluids[0].blocks[0]: its box holds 194488320 lattice points"), "{err}");
 }
