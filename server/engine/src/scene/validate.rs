@@ -303,7 +303,10 @@ mod tests {
             errors(&["fluids[0].viscosity={\"model\":\"artificial\",\"alpha\":3}"]),
             "fluids[0].viscosity.alpha: must be between 0 and 1, got 3"
         );
-        assert!(errors(&["particle_spacing=1e-5"]).starts_with("particle_spacing: the scene would create"));
+        // The block is named first (fluid's check), then the scene's count (the core's).
+        let e = errors(&["particle_spacing=1e-5"]);
+        assert!(e.starts_with("fluids[0].blocks[0]: its box holds"), "{e}");
+        assert!(e.contains("\nparticle_spacing: the scene would create"), "{e}");
         assert_eq!(
             errors(&["modules=[]"]),
             "modules: must list \"fluid\", since the scene has its section fluids\nmodules: must list at least one module"
