@@ -32,29 +32,18 @@ pub const DROP: (f32, f32) = (0.2, 0.3);
 pub fn elastic_drop() -> Scene {
     let (side, drop) = DROP;
     let (lo, hi) = (0.3 - 0.5 * side, 0.3 + 0.5 * side);
-    Scene {
-        name: "elastic_drop".into(),
-        modules: vec!["fluid".into(), super::MODULE.id.into()],
-        particle_spacing: 0.02,
-        gravity: [0.0, -9.81, 0.0],
-        boundaries: vec![Boundary::Box { min: [0.0; 3], max: [0.6, 0.8, 0.6], open: vec![Face::PlusY], layers: 2 }],
-        domain: None,
-        periodic: Vec::new(),
-        solver: Solver { expected_max_speed: Some((2.0f32 * 9.81 * drop).sqrt()), ..Solver::default() },
-        guard: Default::default(),
-        sections: Default::default(),
-    }
-    .with(
-        "fluids",
-        json!([{
-            "name": "jelly",
-            "rest_density": 1000.0,
-            "viscosity": { "model": "artificial", "alpha": 0.05 },
-            "look": "ice",
-            "blocks": [{ "min": [lo, drop, lo], "max": [hi, drop + side, hi] }],
-        }]),
-    )
-    .with("solid", json!({ "bodies": [{ "fluid": "jelly" }], "stiffness": 0.5, "iterations": 3 }))
+    open_box("elastic_drop", 0.02, [0.6, 0.8, 0.6], (2.0f32 * 9.81 * drop).sqrt())
+        .with(
+            "fluids",
+            json!([{
+                "name": "jelly",
+                "rest_density": 1000.0,
+                "viscosity": { "model": "artificial", "alpha": 0.05 },
+                "look": "ice",
+                "blocks": [{ "min": [lo, drop, lo], "max": [hi, drop + side, hi] }],
+            }]),
+        )
+        .with("solid", json!({ "bodies": [{ "fluid": "jelly" }], "stiffness": 0.5, "iterations": 3 }))
 }
 
 /// A tank 0.6 m square with water 0.3 m deep, and two elastic cubes 12 cm wide
@@ -66,28 +55,20 @@ pub fn floating_blocks() -> Scene {
         json!({ "name": name, "rest_density": density, "look": "ice",
                 "viscosity": { "model": "artificial", "alpha": 0.05 }, "blocks": cube(x) })
     };
-    Scene {
-        name: "floating_blocks".into(),
-        modules: vec!["fluid".into(), super::MODULE.id.into()],
-        particle_spacing: 0.02,
-        gravity: [0.0, -9.81, 0.0],
-        boundaries: vec![Boundary::Box { min: [0.0; 3], max: [0.6, 0.8, 0.6], open: vec![Face::PlusY], layers: 2 }],
-        domain: None,
-        periodic: Vec::new(),
-        solver: Solver { expected_max_speed: Some((2.0f32 * 9.81 * 0.5).sqrt()), ..Solver::default() },
-        guard: Default::default(),
-        sections: Default::default(),
-    }
-    .with(
-        "fluids",
-        json!([
-            { "name": "water", "rest_density": 1000.0, "viscosity": { "model": "artificial", "alpha": 0.02 },
-              "blocks": [{ "min": [0.0, 0.0, 0.0], "max": [0.6, 0.3, 0.6] }] },
-            body("light", 500.0, 0.1),
-            body("heavy", 2000.0, 0.38),
-        ]),
-    )
-    .with("solid", json!({ "bodies": [{ "fluid": "light" }, { "fluid": "heavy" }], "stiffness": 0.5, "iterations": 3 }))
+    open_box("floating_blocks", 0.02, [0.6, 0.8, 0.6], (2.0f32 * 9.81 * 0.5).sqrt())
+        .with(
+            "fluids",
+            json!([
+                { "name": "water", "rest_density": 1000.0, "viscosity": { "model": "artificial", "alpha": 0.02 },
+                  "blocks": [{ "min": [0.0, 0.0, 0.0], "max": [0.6, 0.3, 0.6] }] },
+                body("light", 500.0, 0.1),
+                body("heavy", 2000.0, 0.38),
+            ]),
+        )
+        .with(
+            "solid",
+            json!({ "bodies": [{ "fluid": "light" }, { "fluid": "heavy" }], "stiffness": 0.5, "iterations": 3 }),
+        )
 }
 
 /// The box the bunny fills (m): the built-in mesh's proportions, 32 cm long,
@@ -100,28 +81,35 @@ pub const BUNNY: ([f32; 3], [f32; 3]) = ([0.24, 0.1, 0.18], [0.56, 0.412, 0.4235
 /// alpha 0.5, three Jacobi iterations a step.
 pub fn bunny() -> Scene {
     let (lo, hi) = BUNNY;
+    // The landing speed (1.4 m/s) and the ears flapping faster.
+    open_box("bunny", 0.01, [0.8, 0.8, 0.6], 3.0)
+        .with(
+            "fluids",
+            json!([{
+                "name": "bunny",
+                "rest_density": 1000.0,
+                "viscosity": { "model": "artificial", "alpha": 0.05 },
+                "look": "ice",
+                "blocks": [{ "min": lo, "max": hi, "mesh": { "builtin": "bunny" } }],
+            }]),
+        )
+        .with("solid", json!({ "bodies": [{ "fluid": "bunny" }], "stiffness": 0.5, "iterations": 3 }))
+}
+
+/// A scene of fluid and elastic bodies in a box of walls from the origin to
+/// `max` (m), open at the top, under gravity; `speed` is the fastest a particle
+/// is expected to move (m/s).
+fn open_box(name: &str, spacing: f32, max: [f32; 3], speed: f32) -> Scene {
     Scene {
-        name: "bunny".into(),
+        name: name.into(),
         modules: vec!["fluid".into(), super::MODULE.id.into()],
-        particle_spacing: 0.01,
+        particle_spacing: spacing,
         gravity: [0.0, -9.81, 0.0],
-        boundaries: vec![Boundary::Box { min: [0.0; 3], max: [0.8, 0.8, 0.6], open: vec![Face::PlusY], layers: 2 }],
+        boundaries: vec![Boundary::Box { min: [0.0; 3], max, open: vec![Face::PlusY], layers: 2 }],
         domain: None,
         periodic: Vec::new(),
-        // The landing speed (1.4 m/s) and the ears flapping faster.
-        solver: Solver { expected_max_speed: Some(3.0), ..Solver::default() },
+        solver: Solver { expected_max_speed: Some(speed), ..Solver::default() },
         guard: Default::default(),
         sections: Default::default(),
     }
-    .with(
-        "fluids",
-        json!([{
-            "name": "bunny",
-            "rest_density": 1000.0,
-            "viscosity": { "model": "artificial", "alpha": 0.05 },
-            "look": "ice",
-            "blocks": [{ "min": lo, "max": hi, "mesh": { "builtin": "bunny" } }],
-        }]),
-    )
-    .with("solid", json!({ "bodies": [{ "fluid": "bunny" }], "stiffness": 0.5, "iterations": 3 }))
 }

@@ -1,0 +1,165 @@
+//! The solid module's attributes (the clusters' map, its memberships', clusters'
+//! and particles' values) and passes, and the order of an iteration's passes.
+
+use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
+use crate::maps::MapSpec;
+use crate::plan::PassSpec;
+use crate::scheme::Op;
+
+/// The clusters: segments `solid_cluster`, one per particle of an elastic body.
+pub static CLUSTERS: MapSpec =
+    crate::index_map!("solid_clusters", segments: "solid_cluster", members: PARTICLES, module: "solid");
+
+const fn attr(name: &'static str, elem: Elem, unit: &'static str, role: Role, space: &'static str) -> AttrSpec {
+    AttrSpec { name, elem, unit, role, added_later: false, space, module: "solid", about: name }
+}
+
+/// Each membership's rest offset from its cluster's centre (m).
+pub static REST: AttrSpec = attr("solid_clusters_rest", Elem::Vec3, "m", Role::Constant, "solid_clusters");
+/// Each cluster's own particle (id), the origin its positions are taken from.
+pub static OWNER: AttrSpec = attr("cluster_owner", Elem::U32, "", Role::Constant, "solid_cluster");
+/// Each cluster's colour: no two clusters of a colour share a particle.
+pub static COLOUR: AttrSpec = attr("cluster_colour", Elem::U32, "", Role::Constant, "solid_cluster");
+/// Each membership's member position relative to its cluster's own particle (m).
+pub static MEMBER_X: AttrSpec = attr("solid_clusters_x", Elem::Vec3, "m", Role::Derived, "solid_clusters");
+/// Each membership's moment `(x - c) q^T` (m^2).
+pub static MEMBER_MOMENT: AttrSpec = attr("solid_clusters_moment", Elem::Mat3, "m^2", Role::Derived, "solid_clusters");
+/// Each membership's way to its goal, `g - x`, times its weight (m).
+pub static MEMBER_WAY: AttrSpec = attr("solid_clusters_way", Elem::Vec3, "m", Role::Derived, "solid_clusters");
+/// Each membership's weight in its member's move (0 for a cluster not swept now).
+pub static MEMBER_WEIGHT: AttrSpec = attr("solid_clusters_weight", Elem::F32, "", Role::Derived, "solid_clusters");
+/// Each cluster's sum of its members' relative positions (m).
+pub static CLUSTER_SUM: AttrSpec = attr("cluster_x_sum", Elem::Vec3, "m", Role::Derived, "solid_cluster");
+/// Each cluster's moment matrix `A_pq` (m^2).
+pub static CLUSTER_MOMENT: AttrSpec = attr("cluster_moment", Elem::Mat3, "m^2", Role::Derived, "solid_cluster");
+/// Each cluster's centre relative to its own particle (m).
+pub static CENTRE: AttrSpec = attr("cluster_centre", Elem::Vec3, "m", Role::Derived, "solid_cluster");
+/// Each cluster's rotation from its rest shape (state: the next extraction starts from it).
+pub static ROTATION: AttrSpec = attr("cluster_rotation", Elem::Quat, "", Role::State, "solid_cluster");
+/// Each particle's sum of its weighted ways (m).
+pub static WAY_SUM: AttrSpec = attr("solid_way_sum", Elem::Vec3, "m", Role::Derived, PARTICLES);
+/// Each particle's sum of its ways' weights.
+pub static WEIGHT_SUM: AttrSpec = attr("solid_weight_sum", Elem::F32, "", Role::Derived, PARTICLES);
+/// Each particle's largest way (its weighted mean) over this iteration's sweeps (m).
+pub static RESIDUAL: AttrSpec = attr("solid_residual", Elem::F32, "m", Role::Derived, PARTICLES);
+
+const fn solve(
+    name: &'static str,
+    reads: &'static [&'static str],
+    writes: &'static [&'static str],
+    accumulates: &'static [&'static str],
+) -> PassSpec {
+    PassSpec::solve("solid", name, reads, writes, accumulates)
+}
+
+pub(super) static GATHER: PassSpec = solve(
+    "solid.gather",
+    &["solid_clusters_member", "slot_of", "x", "solid_clusters_segment", "cluster_owner", "cluster_colour"],
+    &[],
+    &["solid_clusters_x"],
+);
+pub(super) static CENTRE_SUM: PassSpec = solve(
+    "solid.centre_sum",
+    &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_x"],
+    &["cluster_x_sum"],
+    &[],
+);
+pub(super) static MOMENT: PassSpec = solve(
+    "solid.moment",
+    &[
+        "solid_clusters_x",
+        "cluster_x_sum",
+        "solid_clusters_segment",
+        "solid_clusters_len",
+        "solid_clusters_rest",
+        "cluster_colour",
+    ],
+    &[],
+    &["solid_clusters_moment"],
+);
+pub(super) static MOMENT_SUM: PassSpec = solve(
+    "solid.moment_sum",
+    &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_moment"],
+    &["cluster_moment"],
+    &[],
+);
+pub(super) static ROTATE: PassSpec = solve(
+    "solid.rotate",
+    &["cluster_moment", "cluster_x_sum", "solid_clusters_len", "cluster_colour"],
+    &["cluster_centre"],
+    &["cluster_rotation"],
+);
+/// A way is the difference of two offsets of a cluster's size (cm) and may be
+/// a millionth of them: the GPU's agrees to the rounding of the offsets, a
+/// fraction of the way itself.
+pub(super) static WAY: PassSpec = PassSpec {
+    tolerance: 0.25,
+    ..solve(
+        "solid.way",
+        &[
+            "cluster_rotation",
+            "cluster_centre",
+            "cluster_colour",
+            "solid_clusters_segment",
+            "solid_clusters_rest",
+            "solid_clusters_x",
+        ],
+        &["solid_clusters_way", "solid_clusters_weight"],
+        &[],
+    )
+};
+pub(super) static WAY_SUM_PASS: PassSpec = solve(
+    "solid.way_sum",
+    &[
+        "solid_clusters_first",
+        "solid_clusters_count",
+        "solid_clusters_order",
+        "solid_clusters_live",
+        "id",
+        "solid_clusters_way",
+    ],
+    &["solid_way_sum"],
+    &[],
+);
+pub(super) static WEIGHT_SUM_PASS: PassSpec = solve(
+    "solid.weight_sum",
+    &[
+        "solid_clusters_first",
+        "solid_clusters_count",
+        "solid_clusters_order",
+        "solid_clusters_live",
+        "id",
+        "solid_clusters_weight",
+    ],
+    &["solid_weight_sum"],
+    &[],
+);
+pub(super) static PROJECT: PassSpec =
+    solve("solid.project", &["solid_way_sum", "solid_weight_sum"], &[], &["x", "solid_residual"]);
+
+/// The passes of one iteration's sweep, in order.
+pub(super) const ITERATION: &[Op] = &[
+    Op::Pass("solid.gather"),
+    Op::Pass("solid.centre_sum"),
+    Op::Pass("solid.moment"),
+    Op::Pass("solid.moment_sum"),
+    Op::Pass("solid.rotate"),
+    Op::Pass("solid.way"),
+    Op::Pass("solid.way_sum"),
+    Op::Pass("solid.weight_sum"),
+    Op::Pass("solid.project"),
+];
+
+/// The same with oriented particles: the members' ellipsoids join the moments.
+pub(super) const ITERATION_ORIENTED: &[Op] = &[
+    Op::Pass("solid.gather"),
+    Op::Pass("solid.centre_sum"),
+    Op::Pass("solid.moment"),
+    Op::Pass("solid.moment_sum"),
+    Op::Pass("solid.ellipsoid"),
+    Op::Pass("solid.rotate"),
+    Op::Pass("solid.way"),
+    Op::Pass("solid.way_sum"),
+    Op::Pass("solid.weight_sum"),
+    Op::Pass("solid.project"),
+];
