@@ -10,6 +10,7 @@
 //! |---|---|---|---|
 //! | [`VISCOSITY`] | `mu` | Pa s | set once: one module per scene writes it per particle |
 //! | [`VISCOSITY_FACTOR`] | `viscosity_shift` | 1 | multiply: modules scale what the setter writes |
+//! | [`LIQUID_FRACTION`] | `liquid_fraction` | 1 | set by the module that changes a solid's phase (heat's melting); read by those that blend by it (the solid module) |
 //!
 //! The viscosity's force (explicit or implicit, [`crate::viscosity`]) is the core's:
 //! it acts on `mu` whoever wrote it, integrated as the setting module chose.
@@ -33,6 +34,22 @@ pub static VISCOSITY: Quantity = Quantity { about: "viscosity", attr: &viscosity
 
 /// A factor on the viscosity a module sets (1).
 pub static VISCOSITY_FACTOR: Quantity = Quantity { about: "viscosity factor", attr: &viscosity::FACTOR };
+
+/// The liquid fraction of each particle that melts or freezes: 0 solid, 1
+/// liquid, in between while it melts or freezes; 0 for materials that never
+/// change phase (so an elastic body that does not melt stays elastic). The heat module allocates and writes it in scenes where a
+/// fluid melts (`heat.fluids[i].melting`); the solid module, built after it,
+/// blends its particles' solid and fluid updates by it where the scene has it.
+pub static LIQUID_FRACTION: AttrSpec = AttrSpec {
+    name: "liquid_fraction",
+    elem: crate::attrs::Elem::F32,
+    unit: "1",
+    role: crate::attrs::Role::State,
+    added_later: false,
+    space: crate::attrs::PARTICLES,
+    module: "core",
+    about: "Liquid fraction beta: 0 solid, 1 liquid.",
+};
 
 /// What a module does with the viscosity of one material.
 #[derive(Debug, Clone, Copy, PartialEq)]

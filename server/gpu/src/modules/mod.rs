@@ -18,6 +18,7 @@ pub static PASSES: &[&GpuPass] = &[
     &heat::CONDUCTION,
     &heat::BUOYANCY,
     &heat::INTEGRATE,
+    &heat::MELT,
     &heat::VISCOSITY,
     &heat::VISCOSITY_SHIFT,
     &snow::SHEAR,

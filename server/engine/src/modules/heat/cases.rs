@@ -37,6 +37,18 @@ pub const CASES: &[Case] = &[
         measure: conduction_case,
     },
     Case {
+        name: "stefan",
+        module: "heat",
+        reference: "VALIDATION.md §7: one-phase Stefan problem, melt front s(t) = 2 lambda sqrt(alpha t), lambda exp(lambda^2) erf(lambda) = St / sqrt(pi), St = 0.5",
+        preset: "stefan",
+        primary_error: "front_error",
+        spacings: (&[0.002, 0.0013333, 0.001], &[0.002, 0.0013333, 0.001, 0.0005]),
+        checked_at: Some(0.0013333),
+        bounds: &[("front_error", 0.05)],
+        variants: &[Variant { name: "default", overrides: &[] }],
+        measure: super::stefan::case,
+    },
+    Case {
         name: "layers_at_rest",
         module: "heat",
         reference: "two fluids at rest, light over heavy: spurious speed after settling, in units of sqrt(g H)",

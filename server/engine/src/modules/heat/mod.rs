@@ -8,6 +8,8 @@
 //! - [`conduction`]: the conduction pass (Cleary & Monaghan 1999).
 //! - [`passes`]: buoyancy (a force pass accumulating into `a`) and the
 //!   integration `T += dt dT/dt` in the kick stage.
+//! - [`phase`]: melting and freezing by enthalpy, with latent heat: a fluid that
+//!   melts (`melting`) and its melt, a phase of it, and the liquid fraction.
 //! - [`viscosity`]: temperature-dependent viscosity laws, written into the core's
 //!   per-particle viscosity, or into its factor where another module sets it
 //!   ([`crate::quantities`]).
@@ -18,8 +20,10 @@
 pub mod cases;
 pub mod conduction;
 pub mod passes;
+pub mod phase;
 pub mod presets;
 pub mod spec;
+pub mod stefan;
 pub mod viscosity;
 
 use crate::attrs::{AttrSpec, Column, Elem, PARTICLES, Role};
@@ -52,7 +56,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     count: |_| Vec::new(),
     materials: |_| 0,
     claims,
-    particles: |_, _| Ok(()),
+    particles: phase::declare,
     build,
     retune,
     tunables: TUNABLES,
@@ -60,6 +64,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("heat.conduction", &conduction::Conduction),
         ("heat.buoyancy", &passes::Buoyancy),
         ("heat.integrate", &passes::Integrate),
+        ("heat.melt", &phase::Melt),
         ("heat.viscosity", &viscosity::Viscosity),
         ("heat.viscosity_shift", &viscosity::Shift),
     ],
@@ -151,6 +156,18 @@ pub const TEMPERATURE_CHANNEL: ChannelSpec = ChannelSpec {
     source: Source::Attr("temperature"),
 };
 
+/// Each particle's liquid fraction, in scenes where a fluid melts.
+pub const LIQUID_FRACTION_CHANNEL: ChannelSpec = ChannelSpec {
+    name: "liquid_fraction",
+    unit: "1",
+    components: 1,
+    exact: false,
+    set: PARTICLES,
+    module: "heat",
+    about: "Liquid fraction beta of a particle that melts or freezes: 0 solid, 1 liquid, in between while melting or freezing (0 for materials that never change phase).",
+    source: Source::Attr("liquid_fraction"),
+};
+
 /// Most wall boxes, and most heat sources and fluxes together, a scene may declare
 /// (the GPU uniform's arrays).
 pub const MAX_BOXES: usize = 8;
@@ -182,6 +199,8 @@ pub struct HeatConsts {
     pub shifts_rheology: bool,
     /// The temperatures the scene may reach, `heat.range` (K).
     pub range: [Real; 2],
+    /// Each material's phase change, where it melts or freezes.
+    pub phases: Vec<Option<phase::PhaseChange>>,
 }
 
 /// Where heat enters the fluid, and how much.
@@ -217,6 +236,7 @@ impl HeatConsts {
             per_material(materials, &heat.fluids.iter().map(f).collect::<Vec<_>>())
         };
         let conductivity = each(|f| f.conductivity);
+        let capacity = each(|f| f.heat_capacity);
         let n = conductivity.len();
         let scale = kernel.pair_lattice_scale(spacing);
         let mut pair_conductivity = Vec::with_capacity(n * n);
@@ -228,7 +248,8 @@ impl HeatConsts {
         let aabb = |min: [f32; 3], max: [f32; 3]| Aabb::new(min.into(), max.into());
         Self {
             conductivity,
-            capacity: each(|f| f.heat_capacity),
+            phases: phase::phases(&heat, materials, &capacity),
+            capacity,
             expansion: each(|f| f.expansion),
             pair_conductivity,
             reference: heat.reference_temperature,
@@ -277,6 +298,11 @@ impl HeatConsts {
         self.viscosity.iter().any(|l| l.kind != viscosity::Kind::None)
     }
 
+    /// Whether any material melts or freezes.
+    pub fn melts(&self) -> bool {
+        self.phases.iter().any(Option::is_some)
+    }
+
     /// Whether any material feels buoyancy.
     pub fn buoyant(&self) -> bool {
         self.expansion.iter().any(|&b| b != 0.0)
@@ -320,7 +346,12 @@ fn validate(scene: &Scene, c: &mut Checker) {
         if let Some(law) = &f.viscosity {
             validate_law(c, &format!("{p}.viscosity"), law);
         }
+        if let Some(m) = &f.melting {
+            temperature(c, &format!("{p}.melting.temperature"), m.temperature);
+            c.within(&format!("{p}.melting.latent_heat"), m.latent_heat, 1.0, 1e8);
+        }
     }
+    validate_melts(scene, &heat, c);
     c.positive("heat.max_viscosity", heat.max_viscosity);
     crate::viscosity::validate_solver(c, "heat.viscous_solver", heat.viscous_solver);
     for (name, boxes) in [("regions", &heat.regions), ("walls", &heat.walls)] {
@@ -343,6 +374,29 @@ fn validate(scene: &Scene, c: &mut Checker) {
         if count > MAX_BOXES {
             let what = if name == "sources" { "sources and fluxes together" } else { "boxes" };
             c.fail(&format!("heat.{name}"), format!("at most {MAX_BOXES} {what}, got {count}"));
+        }
+    }
+}
+
+/// Each `melting.into` names another fluid of the scene, one that does not melt
+/// itself (its melt would have two phase changes).
+fn validate_melts(scene: &Scene, heat: &spec::Heat, c: &mut Checker) {
+    /// What this check reads of a fluid (the fluid module's section, as data).
+    #[derive(serde::Deserialize)]
+    struct Named {
+        name: String,
+    }
+    let names: Vec<String> =
+        scene.section::<Vec<Named>>("fluids").unwrap_or_default().into_iter().map(|f| f.name).collect();
+    for (i, m) in heat.fluids.iter().enumerate().filter_map(|(i, f)| f.melting.as_ref().map(|m| (i, m))) {
+        let path = format!("heat.fluids[{i}].melting.into");
+        match names.iter().position(|n| *n == m.into) {
+            None => c.fail(&path, format!("no fluid named {:?} (the scene's: {names:?})", m.into)),
+            Some(j) if j == i => c.fail(&path, "must name another fluid than the one that melts".into()),
+            Some(j) if heat.fluids.get(j).is_some_and(|f| f.melting.is_some()) => {
+                c.fail(&path, format!("names {:?}, which melts itself", m.into))
+            }
+            Some(_) => {}
         }
     }
 }
@@ -416,7 +470,7 @@ fn claims(scene: &Scene) -> Vec<Claim> {
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let heat = section(scene);
     let t = initial_temperatures(&heat, b);
-    b.attr(&TEMPERATURE, Column::F32(t));
+    b.attr(&TEMPERATURE, Column::F32(t.clone()));
     b.zeros(&TEMPERATURE_CARRY);
     b.zeros(&HEAT_RATE);
     let consts = HeatConsts::new(scene, b.materials(), &b.kernel, b.quantities.role(MODULE.id));
@@ -424,7 +478,11 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     if consts.buoyant() {
         b.pass(&passes::BUOYANCY);
     }
-    b.pass(&passes::INTEGRATE);
+    if consts.melts() {
+        melting(b, &consts, &t);
+    } else {
+        b.pass(&passes::INTEGRATE);
+    }
     if consts.viscous() {
         b.pass(if consts.shifts_rheology { &viscosity::SHIFT } else { &viscosity::VISCOSITY });
     }
@@ -432,6 +490,25 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.channel(TEMPERATURE_CHANNEL);
     b.set_consts(consts);
     Ok(())
+}
+
+/// The state of particles that melt or freeze: each one's enthalpy from its
+/// starting temperature, its liquid fraction, and the integration that changes
+/// their phase.
+fn melting(b: &mut ModelBuilder, consts: &HeatConsts, t: &[Real]) {
+    let material = match b.column("material") {
+        Some(Column::U32(m)) => m.clone(),
+        _ => unreachable!("a fluid that melts and its melt are two materials"),
+    };
+    let h: Vec<Real> =
+        t.iter().zip(&material).map(|(&t, &m)| consts.phases[m as usize].map_or(0.0, |p| p.initial(t))).collect();
+    let beta =
+        h.iter().zip(&material).map(|(&h, &m)| consts.phases[m as usize].map_or(0.0, |p| p.fraction(h))).collect();
+    b.attr(&phase::ENTHALPY, Column::F32(h));
+    b.zeros(&phase::ENTHALPY_CARRY);
+    b.attr(&crate::quantities::LIQUID_FRACTION, Column::F32(beta));
+    b.pass(&phase::MELT);
+    b.channel(LIQUID_FRACTION_CHANNEL);
 }
 
 /// Conductivities and expansion may change; buoyancy's pass comes and goes with it.
@@ -479,27 +556,51 @@ fn dt_limit(model: &Model) -> Option<(&'static str, Real)> {
     [diffusion, viscous].into_iter().flatten().min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
-/// Mean, smallest and largest temperature (K) and the heat content
-/// `sum_i m_i c_i T_i` (J), summed in f64.
+/// Mean, smallest and largest temperature (K) and the heat content (J, summed in
+/// f64): `sum_i m_i c_i T_i`, where a fluid melts `sum_i m_i (c_s T_m + H_i)` for
+/// its particles (the enthalpy from T and the liquid fraction, [`phase`]); there
+/// also the mass of solid and of melt (kg) and the latent heat stored (J).
 fn measures(sim: &crate::Simulation) -> Vec<Measure> {
+    let (model, c) = (sim.model(), sim.model().consts::<HeatConsts>());
     let several = sim.channels().iter().any(|c| c.name == "material");
-    let p = sim.read(if several { &["temperature", "material"] } else { &["temperature"] });
+    let names: &[&str] = match (c.melts(), several) {
+        (true, _) => &["temperature", "material", "liquid_fraction"],
+        (false, true) => &["temperature", "material"],
+        (false, false) => &["temperature"],
+    };
+    let p = sim.read(names);
     let Some(t) = p.channel("temperature").and_then(|t| t.as_scalars()) else { return Vec::new() };
     let material = p.channel("material").and_then(|m| m.as_exact());
-    let (model, c) = (sim.model(), sim.model().consts::<HeatConsts>());
+    let beta = p.channel("liquid_fraction").and_then(|b| b.as_scalars());
     let (mut sum, mut heat, mut lo, mut hi) = (0.0f64, 0.0f64, f64::INFINITY, f64::NEG_INFINITY);
+    let (mut solid, mut melt, mut latent) = (0.0f64, 0.0f64, 0.0f64);
     for (i, &t) in t.iter().enumerate() {
         let m = material.map_or(0, |m| usize::from(m[i]));
+        let mass = f64::from(model.materials.get(m).mass);
+        match (c.phases[m], beta) {
+            (Some(p), Some(beta)) => {
+                let b = beta[i];
+                heat += mass * p.heat(p.enthalpy(t, b));
+                (solid, melt) = (solid + mass * f64::from(1.0 - b), melt + mass * f64::from(b));
+                latent += mass * f64::from(b) * f64::from(p.latent);
+            }
+            _ => heat += mass * f64::from(c.capacity[m]) * f64::from(t),
+        }
         let t = f64::from(t);
         sum += t;
-        heat += f64::from(model.materials.get(m).mass) * f64::from(c.capacity[m]) * t;
         (lo, hi) = (lo.min(t), hi.max(t));
     }
     let mean = sum / t.len().max(1) as f64;
-    vec![
+    let mut out = vec![
         Measure::new("heat.mean_temperature", mean, "K"),
         Measure::new("heat.min_temperature", lo, "K"),
         Measure::new("heat.max_temperature", hi, "K"),
         Measure::new("heat.total_heat", heat, "J"),
-    ]
+    ];
+    if c.melts() {
+        out.push(Measure::new("heat.solid_mass", solid, "kg"));
+        out.push(Measure::new("heat.melt_mass", melt, "kg"));
+        out.push(Measure::new("heat.latent_heat", latent, "J"));
+    }
+    out
 }

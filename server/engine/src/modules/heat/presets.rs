@@ -34,6 +34,11 @@ pub const PRESETS: &[Preset] = &[
         scene: heated_channel,
     },
     Preset {
+        name: "stefan",
+        about: "The one-phase Stefan problem (VALIDATION.md §7): a slab of solid at its melting point melts from a wall 10 K warmer (Stefan number 0.5), 320 particles.",
+        scene: super::stefan::stefan,
+    },
+    Preset {
         name: "layers",
         about: "A light fluid at rest on one ten times as dense, in a closed tank: spurious currents at the interface.",
         scene: layers,
@@ -50,7 +55,7 @@ pub const CONDUCTION_ALPHA: f32 = 1e-4;
 
 /// A fluid of the `fluids` section (the fluid module's, as the document has it)
 /// filling the box `min`-`max` at rest.
-fn fluid(name: &str, rest_density: f32, viscosity: Value, min: [f32; 3], max: [f32; 3]) -> Value {
+pub(super) fn fluid(name: &str, rest_density: f32, viscosity: Value, min: [f32; 3], max: [f32; 3]) -> Value {
     json!({ "name": name, "rest_density": rest_density, "viscosity": viscosity, "blocks": [{ "min": min, "max": max }] })
 }
 
@@ -60,10 +65,10 @@ fn laplacian(nu: f32) -> Value {
 }
 
 fn water(temperature: f32, expansion: f32) -> ThermalFluid {
-    ThermalFluid { conductivity: 0.6, heat_capacity: 4186.0, expansion, temperature, viscosity: None }
+    ThermalFluid { conductivity: 0.6, heat_capacity: 4186.0, expansion, temperature, viscosity: None, melting: None }
 }
 
-fn heat(fluids: Vec<ThermalFluid>, walls: Vec<TemperatureBox>) -> Heat {
+pub(super) fn heat(fluids: Vec<ThermalFluid>, walls: Vec<TemperatureBox>) -> Heat {
     Heat {
         fluids,
         reference_temperature: 293.15,
@@ -78,11 +83,11 @@ fn heat(fluids: Vec<ThermalFluid>, walls: Vec<TemperatureBox>) -> Heat {
     }
 }
 
-fn wall_box(min: [f32; 3], max: [f32; 3], temperature: f32) -> TemperatureBox {
+pub(super) fn wall_box(min: [f32; 3], max: [f32; 3], temperature: f32) -> TemperatureBox {
     TemperatureBox { min, max, temperature }
 }
 
-fn scene(name: &str, spacing: f32, fluids: Vec<Value>, boundaries: Vec<Boundary>, heat: Heat) -> Scene {
+pub(super) fn scene(name: &str, spacing: f32, fluids: Vec<Value>, boundaries: Vec<Boundary>, heat: Heat) -> Scene {
     let mut s = Scene {
         name: name.into(),
         modules: vec!["fluid".into(), "heat".into()],
@@ -112,6 +117,7 @@ pub fn conduction() -> Scene {
             expansion: 0.0,
             temperature: CONDUCTION_T.0,
             viscosity: None,
+            melting: None,
         }],
         Vec::new(),
     );
@@ -192,7 +198,14 @@ pub fn heated_cavity() -> Scene {
     let hot = wall_box([-1.0, -1.0, -1.0], [0.0, 1.0, 1.0], CAVITY_T.0);
     let cold = wall_box([l, -1.0, -1.0], [1.0, 1.0, 1.0], CAVITY_T.1);
     let t0 = 0.5 * (CAVITY_T.0 + CAVITY_T.1);
-    let thermal = ThermalFluid { conductivity: k, heat_capacity: c, expansion: beta, temperature: t0, viscosity: None };
+    let thermal = ThermalFluid {
+        conductivity: k,
+        heat_capacity: c,
+        expansion: beta,
+        temperature: t0,
+        viscosity: None,
+        melting: None,
+    };
     let mut heat = heat(vec![thermal], vec![hot, cold]);
     heat.reference_temperature = t0;
     heat.buoyancy_gravity = Some([0.0, -9.81, 0.0]);
@@ -277,6 +290,7 @@ pub fn heated_channel() -> Scene {
         expansion: 0.0,
         temperature: 300.0,
         viscosity: Some(law),
+        melting: None,
     };
     let walls =
         vec![wall_box([-1.0, -1.0, -1.0], [2.0, 0.0, 2.0], cold), wall_box([-1.0, 1.0, -1.0], [2.0, 2.0, 2.0], hot)];

@@ -75,6 +75,32 @@ pub struct ThermalFluid {
     /// `viscosity` model (which must then be `{"model": "none"}`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub viscosity: Option<ViscosityLaw>,
+    /// A solid that melts: the fluid is the solid phase (ice), with its melting
+    /// point and latent heat, and names the fluid its melt becomes (water).
+    /// Absent: the fluid never changes phase.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub melting: Option<Melting>,
+}
+
+/// Melting and freezing by enthalpy (Floe's model, docs/ice.md): a particle's
+/// specific enthalpy rises with the heat it takes in; below the melting point it
+/// sets the temperature with this fluid's heat capacity, across the latent heat
+/// the temperature stays at the melting point while the liquid fraction rises
+/// from 0 to 1, above it the temperature rises with the melt's heat capacity.
+/// A fully melted particle becomes a particle of the melt, one that loses its
+/// latent heat again becomes the solid.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Melting {
+    /// Melting point T_m (K). Ice: 273.15.
+    #[serde(default = "default_melting_point")]
+    pub temperature: f32,
+    /// Specific latent heat of fusion L (J/kg). Ice: 3.34e5.
+    pub latent_heat: f32,
+    /// The fluid (`name`) whose rest density, viscosity and thermal properties the
+    /// melt takes, keeping this fluid's particle mass (a phase of it: mass is
+    /// conserved exactly). It may start with no blocks.
+    pub into: String,
 }
 
 /// A fluid's dynamic viscosity as a function of its temperature T (K).
@@ -151,6 +177,10 @@ pub struct WallFlux {
 
 fn default_reference() -> f32 {
     293.15
+}
+
+fn default_melting_point() -> f32 {
+    273.15
 }
 
 fn default_max_viscosity() -> f32 {

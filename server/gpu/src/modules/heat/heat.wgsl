@@ -34,6 +34,12 @@ struct Heat {
     law_clamp: array<vec4<f32>, 16>,
     // Per material, 4 each: the table's points (T K, mu Pa s), two per vec4.
     table: array<vec4<f32>, 64>,
+    // Per material that melts or freezes (both phases): melting point (K), latent
+    // heat (J/kg), the solid's and the melt's heat capacity (J/(kg K)).
+    phase: array<vec4<f32>, 16>,
+    // Per material: the solid's and the melt's material index, 1 where it changes
+    // phase (0: never), unused.
+    phase_of: array<vec4<u32>, 16>,
 }
 
 fn inside(p: vec3<f32>, lo: vec4<f32>, hi: vec4<f32>) -> bool {

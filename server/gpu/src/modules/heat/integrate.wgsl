@@ -1,5 +1,5 @@
-// T += dt dT/dt with Kahan's compensation (floe-engine `modules::heat::passes`,
-// `compensated_add`, the same operations in the same order), dt the stage's.
+// T += dt dT/dt with Kahan's compensation (floe-engine `modules::heat::passes`),
+// dt the stage's.
 
 // The stage's dt (s) in x; y, z, w are 0.
 @group(0) @binding(1) var<uniform> dt: vec4<f32>;
@@ -13,12 +13,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     if (i >= params.n) {
         return;
     }
-    let t = temperature[i];
-    let y = dt.x * heat_rate[i] - temperature_carry[i];
-    // The sum as rounded, made opaque to the shader compiler (its bits XOR those of
-    // dt.w, always 0): compilers that treat float arithmetic as exact otherwise
-    // simplify (t + y) - t - y to 0, and the carry with it.
-    let next = bitcast<f32>(bitcast<u32>(t + y) ^ bitcast<u32>(dt.w));
-    temperature_carry[i] = (next - t) - y;
-    temperature[i] = next;
+    let s = compensated_add(temperature[i], temperature_carry[i], dt.x * heat_rate[i], dt.w);
+    temperature[i] = s.x;
+    temperature_carry[i] = s.y;
 }

@@ -2,7 +2,8 @@
 //! temperature integration, with the module uniform `heat` (per material:
 //! conductivity, heat capacity, expansion; per pair: the combined conductivity;
 //! the walls held at a temperature and the heat sources; per material: the
-//! viscosity's temperature law).
+//! viscosity's temperature law; per material that melts or freezes: its phase
+//! change).
 
 use crate::layout::MAX_MATERIALS;
 use crate::pass::{GpuPass, always};
@@ -46,9 +47,31 @@ pub static BUOYANCY: GpuPass = GpuPass {
 /// `T += dt dT/dt`, compensated.
 pub static INTEGRATE: GpuPass = GpuPass {
     name: "heat.integrate",
-    source: particle_kernel!("integrate.wgsl"),
+    source: particle_kernel!("compensated.wgsl", "integrate.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (U, "dt"), (W, "temperature"), (W, "temperature_carry"), (R, "heat_rate")],
+    space: PARTICLES,
+    when: always,
+};
+
+/// The integration where a fluid melts: temperature, or enthalpy, liquid fraction
+/// and phase.
+pub static MELT: GpuPass = GpuPass {
+    name: "heat.melt",
+    source: particle_kernel!("heat.wgsl", "compensated.wgsl", "melt.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "dt"),
+        (U, "heat"),
+        (W, "x"),
+        (W, "temperature"),
+        (W, "temperature_carry"),
+        (R, "heat_rate"),
+        (W, "enthalpy"),
+        (W, "enthalpy_carry"),
+        (W, "liquid_fraction"),
+    ],
     space: PARTICLES,
     when: always,
 };
@@ -91,6 +114,8 @@ struct HeatParams {
     law: [[f32; 4]; MAX_MATERIALS],
     law_clamp: [[f32; 4]; MAX_MATERIALS],
     table: [[f32; 4]; MAX_MATERIALS * MAX_POINTS / 2],
+    phase: [[f32; 4]; MAX_MATERIALS],
+    phase_of: [[u32; 4]; MAX_MATERIALS],
 }
 
 /// The uniform's bytes, when the scene has the heat module.
@@ -112,6 +137,10 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         }
         for b in 0..n {
             p.pair[a * MAX_MATERIALS + b][0] = c.pair_conductivity[a * n + b];
+        }
+        if let Some(ph) = c.phases[a] {
+            p.phase[a] = [ph.melting_point, ph.latent, ph.solid_capacity, ph.liquid_capacity];
+            p.phase_of[a] = [ph.solid, ph.liquid, 1, 0];
         }
     }
     (p.reference, p.eps_h2) = (c.reference, 0.01 * h * h);

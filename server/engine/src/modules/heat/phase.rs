@@ -1,0 +1,279 @@
+//! Melting and freezing by enthalpy (Floe's model, docs/ice.md; the enthalpy
+//! method of phase change, e.g. Voller & Prakash 1987, on SPH particles).
+//!
+//! A fluid with `melting` is the solid phase of a substance (ice); the module
+//! declares its melt as a phase of it ([`crate::model::ModelBuilder::phase`]) like
+//! the fluid named `into` (water): the melt keeps the solid's particle mass, so
+//! mass is conserved exactly, and takes the rest density, viscosity, conductivity
+//! and heat capacity of `into`. Each particle of either phase carries a specific
+//! enthalpy `H` (J/kg) relative to the solid at the melting point `T_m`:
+//!
+//! - `H < 0`: solid, `T = T_m + H / c_s`, liquid fraction `beta = 0`;
+//! - `0 <= H <= L`: melting, `T = T_m`, `beta = H / L`;
+//! - `H > L`: liquid, `T = T_m + (H - L) / c_l`, `beta = 1`.
+//!
+//! The conduction pass gives `dT/dt` with the capacity `c` of the particle's
+//! material, so `dH = c dT/dt dt` is the heat per kilogram it took in whatever its
+//! phase (summed with Kahan's compensation, as the temperature is). A particle
+//! becomes the melt once `H >= L` (fully melted) and the solid again once `H <= 0`
+//! (fully frozen); in between it keeps the phase it had, so a melting particle is
+//! still solid (an elastic body's member) and a freezing one still liquid. `beta`
+//! is the core's quantity [`crate::quantities::LIQUID_FRACTION`]: the solid module
+//! blends a melting particle's updates by it (the first thesis's eqs. 2.39-2.40).
+//! Heat conducts with each material's own conductivity and capacity, so the total
+//! heat `sum m (c_s T_m + H)` (and `sum m c T` for particles that never change
+//! phase) changes only through walls and sources.
+
+use super::HeatConsts;
+use super::passes::compensated_add;
+use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
+use crate::cpu::{CpuCx, CpuPass};
+use crate::materials::Material;
+use crate::math::Real;
+use crate::model::{BuildError, ModelBuilder};
+use crate::plan::{PassSpec, Stage};
+use crate::scene::Scene;
+use rayon::prelude::*;
+
+/// A substance's phase change, as each of its two materials sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhaseChange {
+    /// Melting point T_m (K).
+    pub melting_point: Real,
+    /// Specific latent heat L (J/kg).
+    pub latent: Real,
+    /// The solid's heat capacity c_s (J/(kg K)).
+    pub solid_capacity: Real,
+    /// The melt's heat capacity c_l (J/(kg K)).
+    pub liquid_capacity: Real,
+    /// The solid's material index.
+    pub solid: u32,
+    /// The melt's material index.
+    pub liquid: u32,
+}
+
+impl PhaseChange {
+    /// The enthalpy (J/kg, relative to the solid at `T_m`) of a particle at `t`
+    /// (K) with liquid fraction `beta`.
+    pub fn enthalpy(&self, t: Real, beta: Real) -> Real {
+        if t < self.melting_point {
+            self.solid_capacity * (t - self.melting_point)
+        } else if t > self.melting_point {
+            self.latent + self.liquid_capacity * (t - self.melting_point)
+        } else {
+            beta * self.latent
+        }
+    }
+
+    /// The enthalpy of a particle of the solid starting at `t`: below the melting
+    /// point the solid's, above it the melt's (it melts in its first step).
+    pub fn initial(&self, t: Real) -> Real {
+        self.enthalpy(t, 0.0)
+    }
+
+    /// The temperature (K) at enthalpy `h` (melting.wgsl computes the same).
+    pub fn temperature(&self, h: Real) -> Real {
+        if h < 0.0 {
+            self.melting_point + h / self.solid_capacity
+        } else if h > self.latent {
+            self.melting_point + (h - self.latent) / self.liquid_capacity
+        } else {
+            self.melting_point
+        }
+    }
+
+    /// The liquid fraction at enthalpy `h`.
+    pub fn fraction(&self, h: Real) -> Real {
+        (h / self.latent).clamp(0.0, 1.0)
+    }
+
+    /// The material of a particle of `material` at enthalpy `h`: the melt once
+    /// fully melted, the solid once fully frozen, else as it was.
+    pub fn material(&self, h: Real, material: u32) -> u32 {
+        if h >= self.latent {
+            self.liquid
+        } else if h <= 0.0 {
+            self.solid
+        } else {
+            material
+        }
+    }
+
+    /// The heat (J/kg) of a particle at enthalpy `h` counted from 0 K along the
+    /// solid's capacity: `c_s T_m + H`.
+    pub fn heat(&self, h: Real) -> f64 {
+        f64::from(self.solid_capacity) * f64::from(self.melting_point) + f64::from(h)
+    }
+}
+
+/// Specific enthalpy (J/kg), the state of particles that change phase.
+pub static ENTHALPY: AttrSpec = AttrSpec {
+    name: "enthalpy",
+    elem: Elem::F32,
+    unit: "J/kg",
+    role: Role::State,
+    added_later: false,
+    space: PARTICLES,
+    module: "heat",
+    about: "Specific enthalpy relative to the solid at its melting point (particles that melt or freeze).",
+};
+
+/// The rounding lost from the enthalpy's last increments (J/kg).
+pub static ENTHALPY_CARRY: AttrSpec = AttrSpec {
+    name: "enthalpy_carry",
+    elem: Elem::F32,
+    unit: "J/kg",
+    role: Role::State,
+    added_later: false,
+    space: PARTICLES,
+    module: "heat",
+    about: "Rounding lost from the enthalpy's last increments, subtracted from the next.",
+};
+
+/// The integration of scenes where a fluid melts: the temperature of the other
+/// particles, the enthalpy, temperature, liquid fraction and phase of those that
+/// melt or freeze.
+pub static MELT: PassSpec = PassSpec {
+    name: "heat.melt",
+    module: "heat",
+    stage: Stage::Kick,
+    reads: &["heat_rate"],
+    writes: &["liquid_fraction"],
+    accumulates: &["temperature", "temperature_carry", "enthalpy", "enthalpy_carry", "material"],
+    tolerance: 1e-5,
+};
+
+/// The phase of each material (`None` where it never changes phase), from the
+/// scene's `melting` entries and the materials table (solid and melt both get it).
+pub fn phases(heat: &super::spec::Heat, materials: &[Material], capacity: &[Real]) -> Vec<Option<PhaseChange>> {
+    let mut out = vec![None; materials.len()];
+    for (i, f) in heat.fluids.iter().enumerate() {
+        let Some(m) = &f.melting else { continue };
+        let Some(liquid) = materials.iter().position(|x| x.name == melt_name(&materials[i].name)) else { continue };
+        let phase = PhaseChange {
+            melting_point: m.temperature,
+            latent: m.latent_heat,
+            solid_capacity: capacity[i],
+            liquid_capacity: capacity[liquid],
+            solid: i as u32,
+            liquid: liquid as u32,
+        };
+        (out[i], out[liquid]) = (Some(phase), Some(phase));
+    }
+    out
+}
+
+/// The name of the melt of the fluid `solid`.
+pub fn melt_name(solid: &str) -> String {
+    format!("{solid}_melt")
+}
+
+/// Declares the melt of each fluid that melts, a phase of it like its `into`.
+pub fn declare(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
+    let Some(heat) = scene.section::<super::spec::Heat>(super::SECTION) else { return Ok(()) };
+    for (i, f) in heat.fluids.iter().enumerate() {
+        let Some(m) = &f.melting else { continue };
+        let names: Vec<String> = b.materials().iter().map(|m| m.name.clone()).collect();
+        let Some(like) = names.iter().position(|n| *n == m.into) else {
+            return Err(BuildError::Setting(format!(
+                "heat.fluids[{i}].melting.into: no fluid named {:?} (the scene's: {names:?})",
+                m.into
+            )));
+        };
+        let rho = b.materials()[like].rest_density;
+        b.phase(i as u32, like as u32, &melt_name(&names[i]), rho);
+    }
+    Ok(())
+}
+
+/// The integration on the CPU.
+#[derive(Debug)]
+pub struct Melt;
+
+impl CpuPass for Melt {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let dt = cx.dt;
+        let hc: &HeatConsts = cx.model.consts();
+        let a = &mut *cx.attrs;
+        let handles = (
+            a.handle::<Real>("temperature"),
+            a.handle::<Real>("temperature_carry"),
+            a.handle::<Real>(ENTHALPY.name),
+            a.handle::<Real>(ENTHALPY_CARRY.name),
+            a.handle::<Real>(crate::quantities::LIQUID_FRACTION.name),
+            a.handle::<u32>("material"),
+        );
+        let (mut t, mut tc, mut h, mut hcarry, mut beta, mut material) = (
+            a.take(handles.0),
+            a.take(handles.1),
+            a.take(handles.2),
+            a.take(handles.3),
+            a.take(handles.4),
+            a.take(handles.5),
+        );
+        let rate = a.get(a.handle::<Real>("heat_rate"));
+        let each = t
+            .par_iter_mut()
+            .zip(tc.par_iter_mut())
+            .zip(h.par_iter_mut())
+            .zip(hcarry.par_iter_mut())
+            .zip(beta.par_iter_mut())
+            .zip(material.par_iter_mut())
+            .zip(rate.par_iter())
+            .with_min_len(4096);
+        each.for_each(|((((((t, tc), h), hcarry), beta), m), &r)| {
+            let own = *m as usize;
+            match hc.phases[own] {
+                None => (*t, *tc) = compensated_add(*t, *tc, dt * r),
+                Some(p) => {
+                    (*h, *hcarry) = compensated_add(*h, *hcarry, dt * r * hc.capacity[own]);
+                    *t = p.temperature(*h);
+                    *beta = p.fraction(*h);
+                    *m = p.material(*h, *m);
+                }
+            }
+        });
+        let a = &mut *cx.attrs;
+        a.put(handles.0, t);
+        a.put(handles.1, tc);
+        a.put(handles.2, h);
+        a.put(handles.3, hcarry);
+        a.put(handles.4, beta);
+        a.put(handles.5, material);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ICE: PhaseChange = PhaseChange {
+        melting_point: 273.15,
+        latent: 3.34e5,
+        solid_capacity: 2100.0,
+        liquid_capacity: 4186.0,
+        solid: 0,
+        liquid: 2,
+    };
+
+    #[test]
+    fn enthalpy_and_temperature_agree_across_the_phases() {
+        for t in [250.0, 273.0, 273.15, 274.0, 300.0] {
+            let h = ICE.enthalpy(t, 0.0);
+            assert!((ICE.temperature(h) - t).abs() < 1e-3, "{t}: {h} gives {}", ICE.temperature(h));
+        }
+        assert_eq!(ICE.enthalpy(273.15, 0.25), 0.25 * 3.34e5);
+        assert_eq!(ICE.temperature(1e5), 273.15);
+        assert_eq!(ICE.fraction(ICE.latent * 0.5), 0.5);
+        assert_eq!(ICE.fraction(-10.0), 0.0);
+        assert_eq!(ICE.fraction(1e6), 1.0);
+    }
+
+    #[test]
+    fn a_particle_changes_phase_only_when_fully_melted_or_frozen() {
+        assert_eq!(ICE.material(-1.0, 2), 0, "frozen melt is ice");
+        assert_eq!(ICE.material(0.5 * ICE.latent, 0), 0, "half-melted ice is still ice");
+        assert_eq!(ICE.material(0.5 * ICE.latent, 2), 2, "half-frozen melt is still melt");
+        assert_eq!(ICE.material(ICE.latent, 0), 2, "fully melted ice is melt");
+    }
+}
