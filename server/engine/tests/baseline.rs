@@ -150,6 +150,10 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     ("elastic_drop", &["particle_spacing=0.04"], 0xdfa2b6fd9128456b),
     ("floating_blocks", &["particle_spacing=0.04"], 0x17035fe7925f5b21),
     ("bunny", &["particle_spacing=0.0196"], 0x93e350edc95029d1),
+    // Recorded when ice came to melt.
+    ("stefan", &[], 0xfe71ac67f0c20e84),
+    ("ice_cube_in_glass", &["particle_spacing=0.01"], 0x9f63c26253187dbe),
+    ("ice_melting", &["particle_spacing=0.0196"], 0x392d1e6c25de3a92),
 ];
 
 /// State attributes the core added after the checksums were recorded, which no

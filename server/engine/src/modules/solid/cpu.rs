@@ -4,13 +4,76 @@
 //! particle's move by the weighted mean of its ways.
 
 use super::{
-    CENTRE, CLUSTER_MOMENT, CLUSTER_SUM, CLUSTERS, COLOUR, MEMBER_MOMENT, MEMBER_WAY, MEMBER_WEIGHT, MEMBER_X, OWNER,
-    RESIDUAL, REST, ROTATION, SolidConsts, WAY_SUM, WEIGHT_SUM,
+    CENTRE, CLUSTER_LIVE, CLUSTER_MOMENT, CLUSTER_SUM, CLUSTERS, COLOUR, MEMBER_MOMENT, MEMBER_WAY, MEMBER_WEIGHT,
+    MEMBER_X, MIN_MEMBERS, OWNER, RESIDUAL, REST, REST_CENTRE, ROTATION, SolidConsts, WAY_SUM, WEIGHT_SUM,
     spec::{ClusterSolver, Rotation},
 };
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Mat3, Quat, Vec3};
 use rayon::prelude::*;
+
+/// Per cluster of a melting body: which members hold (`super::LEAVE`), in
+/// membership order as the GPU's `leave.wgsl`.
+#[derive(Debug)]
+pub struct Leave;
+
+impl CpuPass for Leave {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let c = cx.model.consts::<SolidConsts>();
+        let a = &mut *cx.attrs;
+        let h = a.handle::<u32>(CLUSTERS.live.name);
+        let mut live = a.take(h);
+        let (start, len) = (a.get(a.handle::<u32>(CLUSTERS.start.name)), a.get(a.handle::<u32>(CLUSTERS.len.name)));
+        let (member, owner) = (a.get(a.handle::<u32>(CLUSTERS.member.name)), a.get(a.handle::<u32>(OWNER.name)));
+        let (slot, x) = (a.get(a.handle::<u32>("slot_of")), a.get(a.handle::<Vec3>("x")));
+        let material = a.get(a.handle::<u32>("material"));
+        let r2 = c.radius * c.radius;
+        for s in 0..start.len() {
+            let span = start[s] as usize..(start[s] + len[s]) as usize;
+            let origin = x[slot[owner[s] as usize] as usize];
+            let mut held = 0;
+            for k in span.clone() {
+                let i = slot[member[k] as usize] as usize;
+                let elastic = c.elastic >> material[i] & 1 == 1;
+                let keeps = elastic && (live[k] == 1 || x[i].distance_squared(origin) <= r2);
+                live[k] = u32::from(keeps);
+                held += live[k];
+            }
+            if held < MIN_MEMBERS {
+                live[span].fill(0);
+            }
+        }
+        a.put(h, live);
+    }
+}
+
+/// Per cluster: its live members and the mean of their rest offsets (0 while
+/// all are live).
+#[derive(Debug)]
+pub struct Live;
+
+impl CpuPass for Live {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let a = &mut *cx.attrs;
+        let (hn, hc) = (a.handle::<u32>(CLUSTER_LIVE.name), a.handle::<Vec3>(REST_CENTRE.name));
+        let (mut count, mut centre) = (a.take(hn), a.take(hc));
+        let (start, len) = (a.get(a.handle::<u32>(CLUSTERS.start.name)), a.get(a.handle::<u32>(CLUSTERS.len.name)));
+        let (live, rest) = (a.get(a.handle::<u32>(CLUSTERS.live.name)), a.get(a.handle::<Vec3>(REST.name)));
+        count.par_iter_mut().zip(centre.par_iter_mut()).enumerate().with_min_len(1024).for_each(|(s, (n, q))| {
+            let span = start[s] as usize..(start[s] + len[s]) as usize;
+            let (mut held, mut sum) = (0, Vec3::ZERO);
+            for k in span {
+                if live[k] == 1 {
+                    (held, sum) = (held + 1, sum + rest[k]);
+                }
+            }
+            *n = held;
+            *q = if held < len[s] && held > 0 { sum / held as f32 } else { Vec3::ZERO };
+        });
+        a.put(hn, count);
+        a.put(hc, centre);
+    }
+}
 
 /// `x_k = x[member k] - x[the cluster's own particle]` per membership of a
 /// cluster matched in this sweep.
@@ -56,7 +119,7 @@ impl CpuPass for Moment {
         let x = a.get(a.handle::<Vec3>(MEMBER_X.name));
         let sum = a.get(a.handle::<Vec3>(CLUSTER_SUM.name));
         let segment = a.get(a.handle::<u32>(CLUSTERS.segment.name));
-        let len = a.get(a.handle::<u32>(CLUSTERS.len.name));
+        let live = a.get(a.handle::<u32>(CLUSTER_LIVE.name));
         let rest = a.get(a.handle::<Vec3>(REST.name));
         let colour = a.get(a.handle::<u32>(COLOUR.name));
         out.par_iter_mut().enumerate().with_min_len(4096).for_each(|(k, m)| {
@@ -64,16 +127,18 @@ impl CpuPass for Moment {
             if !c.active(colour[s], sweep) {
                 return;
             }
-            let p = x[k] - sum[s] / len[s] as f32;
+            let p = x[k] - sum[s] / live[s].max(1) as f32;
             *m = Mat3::from_cols(p * rest[k].x, p * rest[k].y, p * rest[k].z);
         });
         a.put(h, out);
     }
 }
 
-/// Per cluster matched in this sweep: its centre and its rotation from the
-/// summed moment, warm-started from the rotation it had (the state
-/// `cluster_rotation`).
+/// Per cluster matched in this sweep: its rotation from the summed moment,
+/// warm-started from the rotation it had (the state `cluster_rotation`), and
+/// the origin of its goals: the live members' centre less the rotated mean of
+/// their rest offsets (the centre itself while every member is live). The
+/// moment needs no such shift: the members' offsets from their centre sum to 0.
 #[derive(Debug)]
 pub struct Rotate;
 
@@ -87,16 +152,16 @@ impl CpuPass for Rotate {
         let colour = a.get(a.handle::<u32>(COLOUR.name));
         let moment = a.get(a.handle::<Mat3>(CLUSTER_MOMENT.name));
         let sum = a.get(a.handle::<Vec3>(CLUSTER_SUM.name));
-        let len = a.get(a.handle::<u32>(CLUSTERS.len.name));
+        let (live, rest) = (a.get(a.handle::<u32>(CLUSTER_LIVE.name)), a.get(a.handle::<Vec3>(REST_CENTRE.name)));
         rotation.par_iter_mut().zip(centre.par_iter_mut()).enumerate().with_min_len(1024).for_each(|(s, (q, m))| {
             if !c.active(colour[s], sweep) {
                 return;
             }
-            *m = sum[s] / len[s] as f32;
             *q = match how {
                 Rotation::Iterative => super::polar::iterative(moment[s], *q, super::POLAR_ITERATIONS),
                 Rotation::Eigen => super::polar::eigen(moment[s]),
             };
+            *m = sum[s] / live[s].max(1) as f32 - *q * rest[s];
         });
         a.put(hr, rotation);
         a.put(hc, centre);
@@ -137,9 +202,13 @@ impl CpuPass for Way {
 }
 
 /// Each particle moves by `alpha` of the weighted mean of its ways (the Jacobi
-/// solvers' eqs. 2.31 and 2.35, a colour's clusters in a coloured sweep), and no
-/// further than its room (`SolidConsts::room`: out of the walls); its residual is
-/// the largest such mean over the iteration's sweeps (m).
+/// solvers' eqs. 2.31 and 2.35, a colour's clusters in a coloured sweep), times
+/// `1 - beta` where the bodies melt (the blend of the first thesis's eqs.
+/// 2.39-2.40: the move is the solid's update over the fluid's, so the particle
+/// ends at `beta` of the fluid's position and `1 - beta` of the solid's, and its
+/// velocity, `v += (x - x_predicted) / dt`, likewise), and no further than its
+/// room (`SolidConsts::room`: out of the walls); its residual is the largest such
+/// mean over the iteration's sweeps (m).
 #[derive(Debug)]
 pub struct Project;
 
@@ -151,6 +220,7 @@ impl CpuPass for Project {
         let (hx, hr) = (a.handle::<Vec3>("x"), a.handle::<f32>(RESIDUAL.name));
         let (mut x, mut residual) = (a.take(hx), a.take(hr));
         let (way, weight) = (a.get(a.handle::<Vec3>(WAY_SUM.name)), a.get(a.handle::<f32>(WEIGHT_SUM.name)));
+        let beta = a.find::<f32>(crate::quantities::LIQUID_FRACTION.name).map(|h| a.get(h));
         x.par_iter_mut().zip(residual.par_iter_mut()).enumerate().with_min_len(4096).for_each(|(i, (x, r))| {
             if first {
                 *r = 0.0;
@@ -158,7 +228,8 @@ impl CpuPass for Project {
             if weight[i] > 0.0 {
                 let mean = way[i] / weight[i];
                 *r = r.max(mean.length());
-                *x = (*x + mean * alpha).clamp(low, high);
+                let share = beta.map_or(alpha, |b| alpha * (1.0 - b[i]));
+                *x = (*x + mean * share).clamp(low, high);
             }
         });
         a.put(hx, x);

@@ -57,7 +57,7 @@ use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
 use crate::scene::tunable::Tunable;
 use crate::scene::validate::Checker;
-use crate::scheme::{Iterate, Op, ReduceOp, Reduction};
+use crate::scheme::{Iterate, ReduceOp, Reduction};
 
 /// The module's definition.
 pub static MODULE: ModuleDef = ModuleDef {
@@ -74,6 +74,8 @@ pub static MODULE: ModuleDef = ModuleDef {
     retune,
     tunables: TUNABLES,
     cpu: &[
+        ("solid.leave", &cpu::Leave),
+        ("solid.live", &cpu::Live),
         ("solid.gather", &cpu::GatherRelative),
         ("solid.centre_sum", &SegmentSum::<Vec3>::new(&CLUSTERS, "solid_clusters_x", "cluster_x_sum")),
         ("solid.moment", &cpu::Moment),
@@ -186,6 +188,9 @@ pub const TUNABLES: &[Tunable] = &[
 pub const MAX_ITERATIONS: u32 = 100;
 /// The most colours of the hybrid solver.
 pub const MAX_COLOURS: u32 = 64;
+/// The fewest live members a cluster of a melting body keeps; with fewer it
+/// dissolves. Four: the fewest points that span a volume.
+pub const MIN_MEMBERS: u32 = 4;
 
 /// The module's constants.
 #[derive(Debug, Clone)]
@@ -214,6 +219,15 @@ pub struct SolidConsts {
     /// walls less half a spacing on each closed face (unbounded on open faces,
     /// and everywhere without a box).
     pub room: (Vec3, Vec3),
+    /// The cluster radius (m): a member that froze again rejoins a cluster whose
+    /// own particle is within it.
+    pub radius: Real,
+    /// The elastic materials, a bit each: a member of another material (melted)
+    /// leaves its clusters.
+    pub elastic: u32,
+    /// Whether the bodies melt (the scene has a liquid fraction): their members
+    /// leave and their updates blend.
+    pub melting: bool,
 }
 
 impl SolidConsts {
@@ -243,7 +257,7 @@ fn section(scene: &Scene) -> spec::Solid {
     scene.section(SECTION).expect("the registry builds the solid module only for scenes with its section")
 }
 
-fn consts(scene: &Scene, colours: u32) -> SolidConsts {
+fn consts(scene: &Scene, colours: u32, elastic: u32, melting: bool) -> SolidConsts {
     let s = section(scene);
     let sweeps = match s.solver {
         spec::ClusterSolver::Jacobi | spec::ClusterSolver::WeightedJacobi => 1,
@@ -262,8 +276,15 @@ fn consts(scene: &Scene, colours: u32) -> SolidConsts {
         ellipsoid: (Vec3::from(radii) * scene.particle_spacing).powf(2.0) / 5.0,
         blend: s.oriented.as_ref().map_or_else(Default::default, |o| o.blend),
         room: room(scene),
+        radius: s.cluster_radius * scene.particle_spacing * RADIUS_SLACK,
+        elastic,
+        melting,
     }
 }
+
+/// Lattice neighbours at exactly the cluster radius are members: the radius
+/// grows by this factor against the positions' rounding.
+const RADIUS_SLACK: f32 = 1.0001;
 
 /// The box of walls less half a spacing (a particle's radius) on each closed
 /// face: the solve's collision constraint (position-based dynamics, Mueller et
@@ -296,7 +317,11 @@ fn room(scene: &Scene) -> (Vec3, Vec3) {
 fn shape_solve(iterations: u32, c: &SolidConsts) -> Iterate {
     Iterate {
         name: "solid.shape",
-        start: if c.oriented { &[Op::Pass("solid.orient_predict")] } else { &[] },
+        start: match (c.oriented, c.melting) {
+            (true, _) => START_ORIENTED,
+            (false, true) => START_MELTING,
+            (false, false) => START,
+        },
         iteration: if c.oriented { ITERATION_ORIENTED } else { ITERATION },
         residual: Reduction { attr: "solid_residual", op: ReduceOp::Max },
         tolerance: f64::INFINITY,
@@ -411,7 +436,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         _ => vec![0; x.len()],
     };
     let ids: Vec<u32> = (0..x.len() as u32).filter(|&i| elastic.iter().any(|e| e.0 == material[i as usize])).collect();
-    let radius = s.cluster_radius * scene.particle_spacing * 1.0001;
+    let radius = s.cluster_radius * scene.particle_spacing * RADIUS_SLACK;
     let found = clusters::build(&ids, &x, &material, radius);
     if let Some(k) = found.lists.iter().position(|l| l.len() < 2) {
         return Err(BuildError::Setting(format!(
@@ -426,6 +451,8 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.attr(&OWNER, Column::U32(ids));
     b.attr(&COLOUR, Column::U32(colour));
     for spec in [
+        &CLUSTER_LIVE,
+        &REST_CENTRE,
         &MEMBER_X,
         &MEMBER_MOMENT,
         &MEMBER_WAY,
@@ -441,10 +468,24 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     }
     let clusters = found.lists.len();
     b.attr(&ROTATION, Column::Quat(vec![Quat::IDENTITY; clusters]));
-    for pass in [&GATHER, &CENTRE_SUM, &MOMENT, &MOMENT_SUM, &ROTATE, &WAY, &WAY_SUM_PASS, &WEIGHT_SUM_PASS, &PROJECT] {
+    let melting = b.column(crate::quantities::LIQUID_FRACTION.name).is_some();
+    if melting && s.oriented.is_some() {
+        return Err(BuildError::Setting(
+            "solid.oriented: oriented particles do not melt yet; a scene whose bodies melt (heat.fluids[i].melting) has none"
+                .into(),
+        ));
+    }
+    if melting {
+        b.pass(&LEAVE);
+    }
+    let project = if melting { &PROJECT_BLENDED } else { &PROJECT };
+    for pass in
+        [&LIVE, &GATHER, &CENTRE_SUM, &MOMENT, &MOMENT_SUM, &ROTATE, &WAY, &WAY_SUM_PASS, &WEIGHT_SUM_PASS, project]
+    {
         b.pass(pass);
     }
-    let c = consts(scene, colours);
+    let mask = elastic.iter().fold(0u32, |m, e| m | 1 << e.0);
+    let c = consts(scene, colours, mask, melting);
     if c.oriented {
         orient_particles(b, &material, &elastic);
     }
@@ -490,7 +531,8 @@ fn spin(b: &mut ModelBuilder, x: &[Vec3], material: &[u32], elastic: &[(u32, [f3
 /// particles may not be switched on or off: the tunables' check refuses a
 /// `solid.oriented.blend` for a scene without them).
 fn retune(scene: &Scene, model: &mut Model) {
-    let c = consts(scene, model.consts::<SolidConsts>().colours);
+    let old = model.consts::<SolidConsts>();
+    let c = consts(scene, old.colours, old.elastic, old.melting);
     let solve = shape_solve(section(scene).iterations, &c);
     for s in model.position_solves.iter_mut().filter(|s| s.name == solve.name) {
         *s = solve;

@@ -36,6 +36,13 @@ pub static CLUSTER_MOMENT: AttrSpec = attr("cluster_moment", Elem::Mat3, "m^2", 
 pub static CENTRE: AttrSpec = attr("cluster_centre", Elem::Vec3, "m", Role::Derived, "solid_cluster");
 /// Each cluster's rotation from its rest shape (state: the next extraction starts from it).
 pub static ROTATION: AttrSpec = attr("cluster_rotation", Elem::Quat, "", Role::State, "solid_cluster");
+/// Each cluster's live members: those that have not left it (every member,
+/// unless the scene's bodies melt).
+pub static CLUSTER_LIVE: AttrSpec = attr("cluster_live", Elem::U32, "", Role::Derived, "solid_cluster");
+/// Each cluster's rest offsets' mean over its live members (m): 0 while every
+/// member is live (the offsets are centred at build); the goals are taken about
+/// it once some left.
+pub static REST_CENTRE: AttrSpec = attr("cluster_rest_centre", Elem::Vec3, "m", Role::Derived, "solid_cluster");
 /// Each particle's sum of its weighted ways (m).
 pub static WAY_SUM: AttrSpec = attr("solid_way_sum", Elem::Vec3, "m", Role::Derived, PARTICLES);
 /// Each particle's sum of its ways' weights.
@@ -64,13 +71,39 @@ pub(super) static CENTRE_SUM: PassSpec = solve(
     &["cluster_x_sum"],
     &[],
 );
+/// Members leave the clusters of a melting body: a membership holds while its
+/// particle is of an elastic material (a fully melted one is not; one that froze
+/// again rejoins where it is within the cluster radius of the cluster's own
+/// particle), and a cluster with fewer than [`super::MIN_MEMBERS`] such members
+/// dissolves (its memberships all leave).
+pub(super) static LEAVE: PassSpec = solve(
+    "solid.leave",
+    &[
+        "solid_clusters_start",
+        "solid_clusters_len",
+        "solid_clusters_member",
+        "slot_of",
+        "x",
+        "material",
+        "cluster_owner",
+    ],
+    &[],
+    &["solid_clusters_live"],
+);
+/// Each cluster's live members and their rest offsets' mean.
+pub(super) static LIVE: PassSpec = solve(
+    "solid.live",
+    &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_rest"],
+    &["cluster_live", "cluster_rest_centre"],
+    &[],
+);
 pub(super) static MOMENT: PassSpec = solve(
     "solid.moment",
     &[
         "solid_clusters_x",
         "cluster_x_sum",
         "solid_clusters_segment",
-        "solid_clusters_len",
+        "cluster_live",
         "solid_clusters_rest",
         "cluster_colour",
     ],
@@ -85,7 +118,7 @@ pub(super) static MOMENT_SUM: PassSpec = solve(
 );
 pub(super) static ROTATE: PassSpec = solve(
     "solid.rotate",
-    &["cluster_moment", "cluster_x_sum", "solid_clusters_len", "cluster_colour"],
+    &["cluster_moment", "cluster_x_sum", "cluster_live", "cluster_rest_centre", "cluster_colour"],
     &["cluster_centre"],
     &["cluster_rotation"],
 );
@@ -136,6 +169,16 @@ pub(super) static WEIGHT_SUM_PASS: PassSpec = solve(
 );
 pub(super) static PROJECT: PassSpec =
     solve("solid.project", &["solid_way_sum", "solid_weight_sum"], &[], &["x", "solid_residual"]);
+/// The projection where the bodies melt: a particle moves by `1 - beta` of its
+/// solid update (the first thesis's eqs. 2.39-2.40).
+pub(super) static PROJECT_BLENDED: PassSpec =
+    solve("solid.project", &["solid_way_sum", "solid_weight_sum", "liquid_fraction"], &[], &["x", "solid_residual"]);
+
+/// What runs once before a step's iterations: the clusters' live members (after
+/// the melted leave, where bodies melt), the oriented particles' prediction.
+pub(super) const START: &[Op] = &[Op::Pass("solid.live")];
+pub(super) const START_MELTING: &[Op] = &[Op::Pass("solid.leave"), Op::Pass("solid.live")];
+pub(super) const START_ORIENTED: &[Op] = &[Op::Pass("solid.orient_predict"), Op::Pass("solid.live")];
 
 /// The passes of one iteration's sweep, in order.
 pub(super) const ITERATION: &[Op] = &[

@@ -11,7 +11,7 @@ use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
 use floe_engine::modules::solid::{
-    CLUSTERS, POLAR_ITERATIONS, SolidConsts,
+    CLUSTERS, MIN_MEMBERS, POLAR_ITERATIONS, SolidConsts,
     spec::{Blend, ClusterSolver, Rotation},
 };
 
@@ -23,6 +23,45 @@ pub static MOMENT_SUM: GpuPass = crate::map_pass!(segment_sum "solid.moment_sum"
 pub static WAY_SUM: GpuPass = crate::map_pass!(member_sum "solid.way_sum", map "solid_clusters", members "particles", words 4, from "solid_clusters_way" into "solid_way_sum");
 /// Each particle's sum of its ways' weights.
 pub static WEIGHT_SUM: GpuPass = crate::map_pass!(member_sum "solid.weight_sum", map "solid_clusters", members "particles", words 1, from "solid_clusters_weight" into "solid_weight_sum");
+
+/// Which members of a melting body's clusters hold.
+pub static LEAVE: GpuPass = GpuPass {
+    name: "solid.leave",
+    source: particle_kernel!("solid.wgsl", "leave.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "solid_clusters_start"),
+        (R, "solid_clusters_len"),
+        (R, "solid_clusters_member"),
+        (R, "slot_of"),
+        (R, "x"),
+        (R, "cluster_owner"),
+        (W, "solid_clusters_live"),
+    ],
+    space: "solid_cluster",
+    when: always,
+};
+
+/// Each cluster's live members and their rest offsets' mean.
+pub static LIVE: GpuPass = GpuPass {
+    name: "solid.live",
+    source: particle_kernel!("solid.wgsl", "live.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "solid_clusters_start"),
+        (R, "solid_clusters_len"),
+        (R, "solid_clusters_live"),
+        (R, "solid_clusters_rest"),
+        (W, "cluster_live"),
+        (W, "cluster_rest_centre"),
+    ],
+    space: "solid_cluster",
+    when: always,
+};
 
 /// Member positions relative to their cluster's own particle.
 pub static GATHER: GpuPass = GpuPass {
@@ -57,7 +96,7 @@ pub static MOMENT: GpuPass = GpuPass {
         (R, "solid_clusters_x"),
         (R, "cluster_x_sum"),
         (R, "solid_clusters_segment"),
-        (R, "solid_clusters_len"),
+        (R, "cluster_live"),
         (R, "solid_clusters_rest"),
         (R, "cluster_colour"),
         (W, "solid_clusters_moment"),
@@ -77,7 +116,8 @@ pub static ROTATE: GpuPass = GpuPass {
         (U, "sweep"),
         (R, "cluster_moment"),
         (R, "cluster_x_sum"),
-        (R, "solid_clusters_len"),
+        (R, "cluster_live"),
+        (R, "cluster_rest_centre"),
         (R, "cluster_colour"),
         (W, "cluster_centre"),
         (W, "cluster_rotation"),
@@ -123,8 +163,32 @@ pub static PROJECT: GpuPass = GpuPass {
         (W, "solid_residual"),
     ],
     space: PARTICLES,
-    when: always,
+    when: |m| !melting(m),
 };
+
+/// The same where the bodies melt: the move times `1 - beta`.
+pub static PROJECT_BLENDED: GpuPass = GpuPass {
+    name: "solid.project",
+    source: particle_kernel!("solid.wgsl", "project.wgsl", "project_blended.wgsl"),
+    entry: "blended",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (U, "sweep"),
+        (R, "solid_way_sum"),
+        (R, "solid_weight_sum"),
+        (W, "x"),
+        (W, "solid_residual"),
+        (R, "liquid_fraction"),
+    ],
+    space: PARTICLES,
+    when: melting,
+};
+
+/// Whether the scene's bodies melt.
+fn melting(model: &Model) -> bool {
+    model.consts::<SolidConsts>().melting
+}
 
 /// Each particle's sum of turns (oriented particles).
 pub static ORIENT_SUM: GpuPass = crate::map_pass!(member_sum "solid.orient_sum", map "solid_clusters", members "particles", words 4, from "solid_clusters_turn" into "solid_turn_sum");
@@ -241,6 +305,10 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         c.room.1.x.to_bits(),
         c.room.1.y.to_bits(),
         c.room.1.z.to_bits(),
+        0,
+        c.radius.to_bits(),
+        c.elastic,
+        MIN_MEMBERS,
         0,
     ];
     Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())

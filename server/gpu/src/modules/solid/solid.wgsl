@@ -12,6 +12,9 @@ struct Solid {
     // The room an elastic particle is held in (SolidConsts::room), lower and upper corners (m).
     low: vec4<f32>,
     high: vec4<f32>,
+    // The cluster radius (m) in x (as f32), the elastic materials' bits in y, the
+    // fewest members a cluster keeps (MIN_MEMBERS) in z.
+    melt: vec4<u32>,
 }
 
 @group(0) @binding(1) var<uniform> solid: Solid;
