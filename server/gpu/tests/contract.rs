@@ -68,6 +68,8 @@ fn disagreements(model: &Model, passes: &[&PassSpec], kernel: &GpuPass) -> Vec<S
             // Any kernel may read positions: the GPU keeps each particle's material
             // index in the w of its position (the CPU's `material` attribute).
             Access::Read if name == "x" => None,
+            // And a pass that changes particles' phase writes it there.
+            Access::ReadWrite if name == "x" && passes.iter().any(|p| produces(p, "material")) => None,
             _ if is_attr(name) && !declared(name) => Some("binds an attribute its pass does not declare"),
             Access::ReadWrite if is_attr(name) && !passes.iter().any(|p| produces(p, name)) => {
                 Some("binds read-write an attribute its pass only reads")

@@ -27,6 +27,7 @@ pub static PASSES: &[&GpuPass] = &[
     &snowfall::FALL,
     &snowfall::SURFACE,
     &solid::LEAVE,
+    &solid::REJOIN,
     &solid::LIVE,
     &solid::GATHER,
     &solid::CENTRE_SUM,

@@ -8,7 +8,6 @@ use crate::Simulation;
 use crate::attrs::Column;
 use crate::math::{Mat3, Quat, Vec3};
 use crate::validation::cases::{Case, Measured, Variant};
-use crate::validation::stability::{Expect, StabilityCase};
 
 /// The cases, for the module registry.
 pub const CASES: &[Case] = &[
@@ -127,6 +126,18 @@ pub const CASES: &[Case] = &[
         measure: orientation_case,
     },
     Case {
+        name: "ice_insulated",
+        module: "solid",
+        reference: "conservation: the ice cube of ice_cube_in_glass at its melting point melting in water at 293 K in an insulated glass for 1 s: the total heat (sensible and latent) to 1e-6 relative, the solid's mass only falling, solid and melt together the cube's mass",
+        preset: "ice_cube_in_glass",
+        primary_error: "heat_drift",
+        spacings: (&[0.01, 0.0075], &[0.01, 0.0075, 0.005]),
+        checked_at: Some(0.01),
+        bounds: &[("heat_drift", 1e-6), ("solid_mass_rise_kg", 0.0), ("mass_error", 1e-6)],
+        variants: &[Variant { name: "default", overrides: &["heat.fluids[1].temperature=273.15"] }],
+        measure: super::melting::insulated_case,
+    },
+    Case {
         name: "solid_stiffness",
         module: "solid",
         reference: "VALIDATION.md section 8, stiffness table: a bar 0.4 x 0.08 x 0.08 m stretched by 10 % along its length and released without gravity, for 2 s; the period (s) of its length's oscillation and the ratio of two successive peaks of its stretch (0 where it does not swing back: overdamped), for alpha 0.1, 0.5 and 1, a step capped at 2e-4 s, and each solver; the stretch left at the end relative to the initial one (checked: the bar comes back)",
@@ -174,81 +185,6 @@ const LANDING: &[&str] = &[
 
 /// The free rigid motion: no gravity, alpha 1, 2 rad/s about the vertical.
 const SPINNING: &[&str] = &["gravity=[0,0,0]", "solid.stiffness=1", "solid.bodies[0].angular_velocity=[0,2,0]"];
-
-/// The stability battery (VALIDATION.md's stiff and extreme cases for solids):
-/// each must finish, or halt naming why.
-pub const STABILITY: &[StabilityCase] = &[
-    StabilityCase {
-        name: "solid_rigid_many_iterations",
-        what: "alpha = 1 with 50 cluster iterations a step: a rigid jelly dropped on the floor",
-        preset: "elastic_drop",
-        spacing: (0.04, 0.02),
-        overrides: &["solid.stiffness=1", "solid.iterations=50"],
-        until: (0.4, 1.0),
-        expect: Expect::FinishOrHalt,
-    },
-    StabilityCase {
-        name: "solid_small_clusters",
-        what: "clusters of a particle and its 6 face neighbours (radius 1 spacing), alpha = 1",
-        preset: "elastic_drop",
-        spacing: (0.04, 0.02),
-        overrides: &["solid.cluster_radius=1", "solid.stiffness=1"],
-        until: (0.4, 1.0),
-        expect: Expect::FinishOrHalt,
-    },
-    StabilityCase {
-        name: "solid_impact_20",
-        what: "the jelly thrown at the floor at 20 m/s",
-        preset: "elastic_drop",
-        spacing: (0.04, 0.02),
-        overrides: &["fluids[0].blocks[0].velocity=[0,-20,0]", "solver.expected_max_speed=20"],
-        until: (0.1, 0.3),
-        expect: Expect::FinishOrHalt,
-    },
-    StabilityCase {
-        name: "solid_rod_clusters_2_3",
-        what: "a rod one particle thick (at 2 cm) with clusters of radius 1 spacing: 2 or 3 members each, alpha = 1, falling on the floor",
-        preset: "elastic_drop",
-        spacing: (0.02, 0.01),
-        overrides: &[
-            "solid.stiffness=1",
-            "solid.cluster_radius=1",
-            r#"fluids[0].blocks=[{"min":[0.1,0.4,0.29],"max":[0.5,0.42,0.31]}]"#,
-        ],
-        until: (0.4, 1.0),
-        expect: Expect::FinishOrHalt,
-    },
-    StabilityCase {
-        name: "solid_stack_5",
-        what: "five elastic cubes 8 cm wide, 4 cm apart, falling onto each other into a stack, alpha = 1",
-        preset: "elastic_drop",
-        spacing: (0.02, 0.01),
-        overrides: &[
-            "solid.stiffness=1",
-            "fluids[0].blocks=[{\"min\":[0.26,0.02,0.26],\"max\":[0.34,0.1,0.34]},{\"min\":[0.26,0.14,0.26],\"max\":[0.34,0.22,0.34]},{\"min\":[0.26,0.26,0.26],\"max\":[0.34,0.34,0.34]},{\"min\":[0.26,0.38,0.26],\"max\":[0.34,0.46,0.34]},{\"min\":[0.26,0.5,0.26],\"max\":[0.34,0.58,0.34]}]",
-        ],
-        until: (0.5, 1.5),
-        expect: Expect::FinishOrHalt,
-    },
-    StabilityCase {
-        name: "solid_bunny_thrown_5",
-        what: "the bunny thrown at the floor at 5 m/s, alpha = 1: its ears one or two lattice layers thick, clusters of 3 to 5 members at their tips",
-        preset: "bunny",
-        spacing: (0.0196, 0.0146),
-        overrides: &["fluids[0].blocks[0].velocity=[0,-5,0]", "solver.expected_max_speed=5", "solid.stiffness=1"],
-        until: (0.2, 0.5),
-        expect: Expect::FinishOrHalt,
-    },
-    StabilityCase {
-        name: "solid_heavy_into_water_10",
-        what: "the 2000 kg/m^3 block of floating_blocks thrown into the water at 10 m/s",
-        preset: "floating_blocks",
-        spacing: (0.04, 0.02),
-        overrides: &["fluids[2].blocks[0].velocity=[0,-10,0]", "solver.expected_max_speed=10"],
-        until: (0.2, 0.5),
-        expect: Expect::FinishOrHalt,
-    },
-];
 
 /// Positions by particle id.
 pub fn by_id(sim: &Simulation) -> Vec<Vec3> {

@@ -35,9 +35,12 @@ impl CpuPass for Leave {
             for k in span.clone() {
                 let i = slot[member[k] as usize] as usize;
                 let elastic = c.elastic >> material[i] & 1 == 1;
-                let keeps = elastic && (live[k] == 1 || x[i].distance_squared(origin) <= r2);
-                live[k] = u32::from(keeps);
-                held += live[k];
+                live[k] = match (elastic, live[k] == 1) {
+                    (false, _) => 0,
+                    (true, true) => 1,
+                    (true, false) => 2 * u32::from(x[i].distance_squared(origin) <= r2),
+                };
+                held += u32::from(live[k] > 0);
             }
             if held < MIN_MEMBERS {
                 live[span].fill(0);
@@ -47,13 +50,36 @@ impl CpuPass for Leave {
     }
 }
 
+/// Per membership rejoining its cluster (`super::REJOIN`): its new rest offset.
+#[derive(Debug)]
+pub struct Rejoin;
+
+impl CpuPass for Rejoin {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let a = &mut *cx.attrs;
+        let (hr, hl) = (a.handle::<Vec3>(REST.name), a.handle::<u32>(CLUSTERS.live.name));
+        let (mut rest, mut live) = (a.take(hr), a.take(hl));
+        let (x, segment) = (a.get(a.handle::<Vec3>(MEMBER_X.name)), a.get(a.handle::<u32>(CLUSTERS.segment.name)));
+        let (rotation, centre) = (a.get(a.handle::<Quat>(ROTATION.name)), a.get(a.handle::<Vec3>(CENTRE.name)));
+        rest.par_iter_mut().zip(live.par_iter_mut()).enumerate().with_min_len(4096).for_each(|(k, (q, l))| {
+            if *l == 2 {
+                let s = segment[k] as usize;
+                (*q, *l) = (rotation[s].conjugate() * (x[k] - centre[s]), 1);
+            }
+        });
+        a.put(hr, rest);
+        a.put(hl, live);
+    }
+}
+
 /// Per cluster: its live members and the mean of their rest offsets (0 while
-/// all are live).
+/// all are live in a body that does not melt).
 #[derive(Debug)]
 pub struct Live;
 
 impl CpuPass for Live {
     fn run(&self, cx: &mut CpuCx<'_>) {
+        let melting = cx.model.consts::<SolidConsts>().melting;
         let a = &mut *cx.attrs;
         let (hn, hc) = (a.handle::<u32>(CLUSTER_LIVE.name), a.handle::<Vec3>(REST_CENTRE.name));
         let (mut count, mut centre) = (a.take(hn), a.take(hc));
@@ -68,7 +94,7 @@ impl CpuPass for Live {
                 }
             }
             *n = held;
-            *q = if held < len[s] && held > 0 { sum / held as f32 } else { Vec3::ZERO };
+            *q = if (melting || held < len[s]) && held > 0 { sum / held as f32 } else { Vec3::ZERO };
         });
         a.put(hn, count);
         a.put(hc, centre);

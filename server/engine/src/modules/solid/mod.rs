@@ -39,11 +39,13 @@
 pub mod cases;
 pub mod clusters;
 pub mod cpu;
+pub mod melting;
 pub mod orient;
 pub mod passes;
 pub mod polar;
 pub mod presets;
 pub mod spec;
+pub mod stability;
 
 pub use passes::*;
 
@@ -75,6 +77,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     tunables: TUNABLES,
     cpu: &[
         ("solid.leave", &cpu::Leave),
+        ("solid.rejoin", &cpu::Rejoin),
         ("solid.live", &cpu::Live),
         ("solid.gather", &cpu::GatherRelative),
         ("solid.centre_sum", &SegmentSum::<Vec3>::new(&CLUSTERS, "solid_clusters_x", "cluster_x_sum")),
@@ -95,7 +98,7 @@ pub static MODULE: ModuleDef = ModuleDef {
     dt_limit: |_| None,
     measures: |_| Vec::new(),
     cases: cases::CASES,
-    stability: cases::STABILITY,
+    stability: stability::STABILITY,
     bench: &[
         BenchCase {
             name: "solid",
@@ -477,6 +480,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     }
     if melting {
         b.pass(&LEAVE);
+        b.pass(&REJOIN);
     }
     let project = if melting { &PROJECT_BLENDED } else { &PROJECT };
     for pass in

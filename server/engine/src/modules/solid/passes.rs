@@ -14,8 +14,11 @@ const fn attr(name: &'static str, elem: Elem, unit: &'static str, role: Role, sp
     AttrSpec { name, elem, unit, role, added_later: false, space, module: "solid", about: name }
 }
 
-/// Each membership's rest offset from its cluster's centre (m).
-pub static REST: AttrSpec = attr("solid_clusters_rest", Elem::Vec3, "m", Role::Constant, "solid_clusters");
+/// Each membership's rest offset from its cluster's centre (m): state, since a
+/// member of a melting body that froze again rejoins at a new offset (saved from
+/// the version that added melting on; older snapshots restore it as built).
+pub static REST: AttrSpec =
+    AttrSpec { added_later: true, ..attr("solid_clusters_rest", Elem::Vec3, "m", Role::State, "solid_clusters") };
 /// Each cluster's own particle (id), the origin its positions are taken from.
 pub static OWNER: AttrSpec = attr("cluster_owner", Elem::U32, "", Role::Constant, "solid_cluster");
 /// Each cluster's colour: no two clusters of a colour share a particle.
@@ -40,8 +43,8 @@ pub static ROTATION: AttrSpec = attr("cluster_rotation", Elem::Quat, "", Role::S
 /// unless the scene's bodies melt).
 pub static CLUSTER_LIVE: AttrSpec = attr("cluster_live", Elem::U32, "", Role::Derived, "solid_cluster");
 /// Each cluster's rest offsets' mean over its live members (m): 0 while every
-/// member is live (the offsets are centred at build); the goals are taken about
-/// it once some left.
+/// member is live in a body that does not melt (the offsets are centred at
+/// build); the goals are taken about it.
 pub static REST_CENTRE: AttrSpec = attr("cluster_rest_centre", Elem::Vec3, "m", Role::Derived, "solid_cluster");
 /// Each particle's sum of its weighted ways (m).
 pub static WAY_SUM: AttrSpec = attr("solid_way_sum", Elem::Vec3, "m", Role::Derived, PARTICLES);
@@ -71,11 +74,11 @@ pub(super) static CENTRE_SUM: PassSpec = solve(
     &["cluster_x_sum"],
     &[],
 );
-/// Members leave the clusters of a melting body: a membership holds while its
-/// particle is of an elastic material (a fully melted one is not; one that froze
-/// again rejoins where it is within the cluster radius of the cluster's own
-/// particle), and a cluster with fewer than [`super::MIN_MEMBERS`] such members
-/// dissolves (its memberships all leave).
+/// Members leave the clusters of a melting body: a membership holds (1) while its
+/// particle is of an elastic material (a fully melted one is not); one that froze
+/// again may rejoin (2, for [`REJOIN`]) where it is within the cluster radius of
+/// the cluster's own particle; a cluster with fewer than [`super::MIN_MEMBERS`]
+/// members holding or rejoining dissolves (its memberships all leave).
 pub(super) static LEAVE: PassSpec = solve(
     "solid.leave",
     &[
@@ -89,6 +92,17 @@ pub(super) static LEAVE: PassSpec = solve(
     ],
     &[],
     &["solid_clusters_live"],
+);
+/// A member rejoining a cluster (2) takes as its rest offset where it was at the
+/// end of the last step in the cluster's frame, `R^T (x - o)` with `o` the origin
+/// of the cluster's goals: its goal is where it froze, so it joins without a jolt
+/// (the original offset would pull melt that flowed and froze back to where it
+/// once was in the body, at up to 16 m/s in `ice_refreezing`).
+pub(super) static REJOIN: PassSpec = solve(
+    "solid.rejoin",
+    &["solid_clusters_x", "solid_clusters_segment", "cluster_rotation", "cluster_centre"],
+    &[],
+    &["solid_clusters_rest", "solid_clusters_live"],
 );
 /// Each cluster's live members and their rest offsets' mean.
 pub(super) static LIVE: PassSpec = solve(
@@ -177,7 +191,7 @@ pub(super) static PROJECT_BLENDED: PassSpec =
 /// What runs once before a step's iterations: the clusters' live members (after
 /// the melted leave, where bodies melt), the oriented particles' prediction.
 pub(super) const START: &[Op] = &[Op::Pass("solid.live")];
-pub(super) const START_MELTING: &[Op] = &[Op::Pass("solid.leave"), Op::Pass("solid.live")];
+pub(super) const START_MELTING: &[Op] = &[Op::Pass("solid.leave"), Op::Pass("solid.rejoin"), Op::Pass("solid.live")];
 pub(super) const START_ORIENTED: &[Op] = &[Op::Pass("solid.orient_predict"), Op::Pass("solid.live")];
 
 /// The passes of one iteration's sweep, in order.

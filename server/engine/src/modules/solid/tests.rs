@@ -173,3 +173,42 @@ fn bodies_outside_the_walls_or_overlapping_are_refused() {
     let err = from_preset("bunny", &o).map(|_| ()).unwrap_err().to_string();
     assert!(err.contains("fluids[0].blocks[0]: its box holds 194488320 lattice points"), "{err}");
 }
+
+/// Ice that melts: a cube 1 K above its melting point, without gravity, melts in
+/// its first step (every member leaves, every cluster dissolves); a heat sink
+/// freezes it again, and its members rejoin their clusters (each within the
+/// cluster radius of the cluster's own particle, the cube having barely moved),
+/// which then hold its shape as before.
+#[test]
+fn melted_ice_leaves_its_clusters_and_rejoins_them_when_it_freezes() {
+    let o: Vec<String> = [
+        "particle_spacing=0.01",
+        "gravity=[0,0,0]",
+        "fluids[0].blocks=[]",
+        "heat.fluids[1].temperature=274.15",
+        r#"heat.sources=[{"min":[0,0,0],"max":[1,1,1],"power":-2e9}]"#,
+    ]
+    .map(String::from)
+    .to_vec();
+    let mut sim = crate::Simulation::new_cpu(from_preset("ice_cube_in_glass", &o).unwrap()).unwrap();
+    let live = |sim: &crate::Simulation| match &sim.backend().download(&[CLUSTERS.live.name])[0] {
+        Column::U32(l) => (l.iter().sum::<u32>(), l.len() as u32),
+        _ => unreachable!("memberships are u32"),
+    };
+    let materials = |sim: &crate::Simulation| match &sim.backend().download(&["material"])[0] {
+        Column::U32(m) => m.clone(),
+        _ => unreachable!("materials are u32"),
+    };
+    assert_eq!(live(&sim).0, live(&sim).1, "every membership holds at the start");
+    sim.step().unwrap();
+    sim.step().unwrap();
+    assert!(materials(&sim).iter().all(|&m| m == 2), "all melted: {:?}", materials(&sim));
+    assert_eq!(live(&sim).0, 0, "melted particles hold no membership");
+    while materials(&sim).iter().any(|&m| m != 1) {
+        assert!(sim.time() < 1.0, "not frozen by {} s", sim.time());
+        sim.step().unwrap();
+    }
+    sim.step().unwrap();
+    let (held, all) = live(&sim);
+    assert!(held as f64 > 0.9 * all as f64, "{held} of {all} memberships rejoined");
+}

@@ -1,7 +1,8 @@
 // Per cluster of a melting body: which members hold (floe-engine
-// `solid::cpu::Leave`, in the same order): those of an elastic material (the
-// material index in the w of x) that held or are within the cluster radius of
-// the cluster's own particle; fewer than solid.melt.z and the cluster dissolves.
+// `solid::cpu::Leave`, in the same order): 1 those of an elastic material (the
+// material index in the w of x) that held, 2 (rejoining) those that did not but
+// are within the cluster radius of the cluster's own particle, 0 the others;
+// with fewer than solid.melt.z holding or rejoining the cluster dissolves.
 
 @group(0) @binding(2) var<storage, read> start: array<u32>;
 @group(0) @binding(3) var<storage, read> len: array<u32>;
@@ -24,9 +25,14 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
         let p = pos[slot_of[member[k]]];
         let elastic = ((solid.melt.y >> material_of(p)) & 1u) == 1u;
         let d = p.xyz - origin;
-        let keeps = elastic && (live[k] == 1u || dot(d, d) <= radius * radius);
-        live[k] = select(0u, 1u, keeps);
-        held += live[k];
+        var now = 0u;
+        if (elastic && live[k] == 1u) {
+            now = 1u;
+        } else if (elastic && dot(d, d) <= radius * radius) {
+            now = 2u;
+        }
+        live[k] = now;
+        held += select(0u, 1u, now > 0u);
     }
     if (held < solid.melt.z) {
         for (var k = start[s]; k < start[s] + len[s]; k++) {

@@ -1,5 +1,6 @@
 // Per cluster: its live members and the mean of their rest offsets, 0 while
-// all are live (floe-engine `solid::cpu::Live`, in the same order).
+// all are live in a body that does not melt (solid.melt.w 0; floe-engine
+// `solid::cpu::Live`, in the same order).
 
 @group(0) @binding(2) var<storage, read> start: array<u32>;
 @group(0) @binding(3) var<storage, read> len: array<u32>;
@@ -24,7 +25,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     }
     count[s] = held;
     var centre = vec3<f32>(0.0);
-    if (held < len[s] && held > 0u) {
+    if ((solid.melt.w == 1u || held < len[s]) && held > 0u) {
         centre = sum / f32(held);
     }
     rest_centre[s] = vec4<f32>(centre, 0.0);

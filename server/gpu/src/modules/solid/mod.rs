@@ -44,6 +44,25 @@ pub static LEAVE: GpuPass = GpuPass {
     when: always,
 };
 
+/// Each rejoining member's new rest offset.
+pub static REJOIN: GpuPass = GpuPass {
+    name: "solid.rejoin",
+    source: particle_kernel!("solid.wgsl", "rejoin.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "solid_clusters_x"),
+        (R, "solid_clusters_segment"),
+        (R, "cluster_rotation"),
+        (R, "cluster_centre"),
+        (W, "solid_clusters_rest"),
+        (W, "solid_clusters_live"),
+    ],
+    space: "solid_clusters",
+    when: always,
+};
+
 /// Each cluster's live members and their rest offsets' mean.
 pub static LIVE: GpuPass = GpuPass {
     name: "solid.live",
@@ -309,7 +328,7 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         c.radius.to_bits(),
         c.elastic,
         MIN_MEMBERS,
-        0,
+        u32::from(c.melting),
     ];
     Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())
 }

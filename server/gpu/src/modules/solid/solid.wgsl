@@ -13,7 +13,7 @@ struct Solid {
     low: vec4<f32>,
     high: vec4<f32>,
     // The cluster radius (m) in x (as f32), the elastic materials' bits in y, the
-    // fewest members a cluster keeps (MIN_MEMBERS) in z.
+    // fewest members a cluster keeps (MIN_MEMBERS) in z, 1 in w where bodies melt.
     melt: vec4<u32>,
 }
 
