@@ -668,6 +668,31 @@ fn melting_passes_and_steps_match_the_cpu() {
     assert!(worst < 1e-5 && fraction < 1e-3, "positions {worst} m, liquid fractions {fraction} apart after 20 steps");
 }
 
+/// The Stefan slab (2 mm) 200 steps in, melting from its warm wall: heat's passes
+/// against the CPU's (conduction writing the walls' part, the enthalpy, the heat
+/// taken in), then 100 whole steps whose liquid fractions and heat taken in agree.
+#[test]
+fn stefan_passes_and_steps_match_the_cpu() {
+    let Some(gpu) = common::gpu("stefan_passes_and_steps_match_the_cpu") else { return };
+    let (cpu, _) = pair(gpu, "stefan", &[], 200);
+    let passes: Vec<&'static PassSpec> =
+        cpu.model().plan.passes().iter().copied().filter(|p| p.module == "heat").collect();
+    assert_eq!(passes.iter().map(|p| p.name).collect::<Vec<_>>(), ["heat.conduction", "heat.melt", "heat.input"]);
+    for pass in passes {
+        let (mut c, mut g) = pair(gpu, "stefan", &[], 200);
+        check_pass(&mut c, &mut g, pass, "stefan");
+    }
+    let (mut c, mut g) = pair(gpu, "stefan", &[], 200);
+    for _ in 0..100 {
+        c.step().unwrap();
+        g.step().unwrap();
+    }
+    for name in ["liquid_fraction", "heat_in", "enthalpy"] {
+        let (d, scale) = diff(&c.backend().download(&[name])[0], &g.backend().download(&[name])[0]);
+        assert!(scale > 0.0 && d <= 1e-4 * scale, "{name}: {d} apart (largest {scale})");
+    }
+}
+
 /// Whole steps with heat, dt changing from step to step (the integration reads the
 /// stage's dt from the core uniform `dt`): the slab's temperatures after 30 steps agree with
 /// the CPU's, and both follow the erf solution.

@@ -11,7 +11,7 @@ use floe_engine::attrs::PARTICLES;
 /// The fluid's force pass (with WCSPH's pressure terms) and conduction in one
 /// neighbour walk: conduction then costs little more than its arithmetic. Ten
 /// storage buffers: where a device allows fewer, the two passes run their own
-/// kernels.
+/// kernels, as they do where conduction also writes `heat_input`.
 pub static FORCES_AND_CONDUCTION: Fused = Fused {
     passes: &["fluid.forces", "heat.conduction"],
     kernel: GpuPass {
@@ -29,6 +29,6 @@ pub static FORCES_AND_CONDUCTION: Fused = Fused {
             [(U, "heat"), (R, "temperature"), (W, "heat_rate")],
         ),
         space: PARTICLES,
-        when: has_pressure_terms,
+        when: |m| has_pressure_terms(m) && !crate::modules::heat::has_input(m),
     },
 };

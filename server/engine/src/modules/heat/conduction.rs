@@ -21,6 +21,11 @@
 //! refinement at a fixed support ratio removes; [`Kernel::pair_lattice_scale`](crate::kernel::Kernel::pair_lattice_scale) divides it out,
 //! as the particle mass divides out the lattice's kernel sum.
 //!
+//! Where a fluid melts and heat enters through walls or sources, the pass also
+//! writes the part of `dT/dt` from walls and sources alone (`heat_input`), which
+//! [`super::phase::Input`] sums into the heat each particle took from outside:
+//! the energy balance of the Stefan problem (docs/ice.md).
+//!
 //! The sums run in the same order as the GPU's `conduction.wgsl`.
 
 use super::HeatConsts;
@@ -41,6 +46,10 @@ pub static CONDUCTION: PassSpec = PassSpec {
     accumulates: &[],
     tolerance: 1e-4,
 };
+
+/// The same where it also writes the part from walls and sources.
+pub static CONDUCTION_INPUT: PassSpec =
+    PassSpec { name: "heat.conduction", writes: &["heat_rate", "heat_input"], ..CONDUCTION };
 
 /// The conduction pass on the CPU, over the step's neighbour lists.
 #[derive(Debug)]
@@ -68,6 +77,8 @@ fn conduction<const MULTI: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let wall_t: Vec<Option<Real>> = walls.positions.iter().map(|&x| hc.wall_temperature(x)).collect();
     let rate_h = cx.attrs.handle::<Real>("heat_rate");
     let mut rate = cx.attrs.take(rate_h);
+    let input_h = cx.attrs.find::<Real>(super::phase::HEAT_INPUT.name);
+    let mut input = input_h.map(|h| cx.attrs.take(h));
     let attrs = &*cx.attrs;
     let (pos, rho, temp) = (
         attrs.get(attrs.handle::<Vec3>("x")),
@@ -76,37 +87,57 @@ fn conduction<const MULTI: bool, S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     );
     let mat: &[u32] = if MULTI { attrs.get(attrs.handle::<u32>("material")) } else { &[] };
     let material = |i: usize| if MULTI { mat[i] as usize } else { 0 };
-    rate.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (out, nb))| {
-        for (n, out) in out.iter_mut().enumerate() {
-            let i = c * CHUNK + n;
-            let (xi, rho_i, ti, ma) = (pos[i], rho[i], temp[i], material(i));
-            let mut sum = 0.0;
-            for &j in nb.fluid(n) {
-                let j = j as usize;
-                let r2 = sep.between(xi, pos[j]).length_squared();
-                if r2 == 0.0 {
-                    continue;
-                }
-                let mb = material(j);
-                let m = materials.get(mb).mass;
-                let f = k.pair_factor(r2.sqrt(), eps_h2);
-                sum += m / rho[j] * hc.pair_conductivity[ma * count + mb] * (ti - temp[j]) * f;
+    // dT/dt of particle `n` of chunk `c`, and its part from walls and sources.
+    let particle = |c: usize, n: usize, nb: &crate::cpu::neighbors::ChunkNeighbors| -> (Real, Real) {
+        let i = c * CHUNK + n;
+        let (xi, rho_i, ti, ma) = (pos[i], rho[i], temp[i], material(i));
+        let mut sum = 0.0;
+        for &j in nb.fluid(n) {
+            let j = j as usize;
+            let r2 = sep.between(xi, pos[j]).length_squared();
+            if r2 == 0.0 {
+                continue;
             }
-            let psi = &walls.psi[ma];
-            let rho0 = materials.get(ma).rest_density;
-            let k_wall = hc.pair_conductivity[ma * count + ma];
-            for &b in nb.walls(n) {
-                let b = b as usize;
-                let Some(tb) = wall_t[b] else { continue };
-                let r2 = sep.between(xi, walls.positions[b]).length_squared();
-                if r2 == 0.0 {
-                    continue;
-                }
-                let f = k.pair_factor(r2.sqrt(), eps_h2);
-                sum += psi[b] / rho0 * k_wall * 2.0 * (ti - tb) * f;
-            }
-            *out = (sum + hc.source(xi, rho_i, materials.get(ma).mass)) / (rho_i * hc.capacity[ma]);
+            let mb = material(j);
+            let m = materials.get(mb).mass;
+            let f = k.pair_factor(r2.sqrt(), eps_h2);
+            sum += m / rho[j] * hc.pair_conductivity[ma * count + mb] * (ti - temp[j]) * f;
         }
-    });
+        let psi = &walls.psi[ma];
+        let rho0 = materials.get(ma).rest_density;
+        let k_wall = hc.pair_conductivity[ma * count + ma];
+        let mut outside = 0.0;
+        for &b in nb.walls(n) {
+            let b = b as usize;
+            let Some(tb) = wall_t[b] else { continue };
+            let r2 = sep.between(xi, walls.positions[b]).length_squared();
+            if r2 == 0.0 {
+                continue;
+            }
+            let f = k.pair_factor(r2.sqrt(), eps_h2);
+            let term = psi[b] / rho0 * k_wall * 2.0 * (ti - tb) * f;
+            sum += term;
+            outside += term;
+        }
+        let source = hc.source(xi, rho_i, materials.get(ma).mass);
+        let heat = rho_i * hc.capacity[ma];
+        ((sum + source) / heat, (outside + source) / heat)
+    };
+    let chunks = rate.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate();
+    match input.as_mut() {
+        None => chunks.for_each(|(c, (out, nb))| {
+            for (n, out) in out.iter_mut().enumerate() {
+                *out = particle(c, n, nb).0;
+            }
+        }),
+        Some(input) => chunks.zip(input.par_chunks_mut(CHUNK)).for_each(|((c, (out, nb)), from)| {
+            for (n, (out, from)) in out.iter_mut().zip(from.iter_mut()).enumerate() {
+                (*out, *from) = particle(c, n, nb);
+            }
+        }),
+    }
+    if let (Some(h), Some(input)) = (input_h, input) {
+        cx.attrs.put(h, input);
+    }
     cx.attrs.put(rate_h, rate);
 }

@@ -65,6 +65,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("heat.buoyancy", &passes::Buoyancy),
         ("heat.integrate", &passes::Integrate),
         ("heat.melt", &phase::Melt),
+        ("heat.input", &phase::Input),
         ("heat.viscosity", &viscosity::Viscosity),
         ("heat.viscosity_shift", &viscosity::Shift),
     ],
@@ -303,6 +304,12 @@ impl HeatConsts {
         self.phases.iter().any(Option::is_some)
     }
 
+    /// Whether the heat walls and sources give is summed apart (`heat_in`): where a
+    /// fluid melts and there are walls held at a temperature or sources.
+    pub fn takes_input(&self) -> bool {
+        self.melts() && !(self.walls.is_empty() && self.sources.is_empty())
+    }
+
     /// Whether any material feels buoyancy.
     pub fn buoyant(&self) -> bool {
         self.expansion.iter().any(|&b| b != 0.0)
@@ -474,7 +481,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.zeros(&TEMPERATURE_CARRY);
     b.zeros(&HEAT_RATE);
     let consts = HeatConsts::new(scene, b.materials(), &b.kernel, b.quantities.role(MODULE.id));
-    b.pass(&conduction::CONDUCTION);
+    b.pass(if consts.takes_input() { &conduction::CONDUCTION_INPUT } else { &conduction::CONDUCTION });
     if consts.buoyant() {
         b.pass(&passes::BUOYANCY);
     }
@@ -509,6 +516,12 @@ fn melting(b: &mut ModelBuilder, consts: &HeatConsts, t: &[Real]) {
     b.attr(&crate::quantities::LIQUID_FRACTION, Column::F32(beta));
     b.pass(&phase::MELT);
     b.channel(LIQUID_FRACTION_CHANNEL);
+    if consts.takes_input() {
+        b.zeros(&phase::HEAT_INPUT);
+        b.zeros(&phase::HEAT_IN);
+        b.zeros(&phase::HEAT_IN_CARRY);
+        b.pass(&phase::INPUT);
+    }
 }
 
 /// Conductivities and expansion may change; buoyancy's pass comes and goes with it.
@@ -597,6 +610,13 @@ fn measures(sim: &crate::Simulation) -> Vec<Measure> {
         Measure::new("heat.max_temperature", hi, "K"),
         Measure::new("heat.total_heat", heat, "J"),
     ];
+    if model.layout.spec(phase::HEAT_IN.name).is_some() {
+        let cols = sim.backend().download(&[phase::HEAT_IN.name, "material"]);
+        if let [Column::F32(q), Column::U32(m)] = &cols[..] {
+            let mass = |m: u32| f64::from(model.materials.get(m as usize).mass);
+            out.push(Measure::new("heat.heat_in", q.iter().zip(m).map(|(&q, &m)| mass(m) * f64::from(q)).sum(), "J"));
+        }
+    }
     if c.melts() {
         out.push(Measure::new("heat.solid_mass", solid, "kg"));
         out.push(Measure::new("heat.melt_mass", melt, "kg"));

@@ -130,6 +130,57 @@ pub static ENTHALPY_CARRY: AttrSpec = AttrSpec {
     about: "Rounding lost from the enthalpy's last increments, subtracted from the next.",
 };
 
+/// The part of `dT/dt` from held walls and sources (K/s), where a fluid melts and
+/// heat enters from outside.
+pub static HEAT_INPUT: AttrSpec = AttrSpec {
+    name: "heat_input",
+    elem: Elem::F32,
+    unit: "K/s",
+    role: Role::Derived,
+    added_later: false,
+    space: PARTICLES,
+    module: "heat",
+    about: "The part of the temperature's rate from walls held at a temperature and from sources.",
+};
+
+/// The heat each particle took in from walls and sources since the start (J/kg).
+pub static HEAT_IN: AttrSpec = AttrSpec {
+    name: "heat_in",
+    elem: Elem::F32,
+    unit: "J/kg",
+    role: Role::State,
+    added_later: false,
+    space: PARTICLES,
+    module: "heat",
+    about: "Heat taken in from walls held at a temperature and from sources since the start, per kilogram.",
+};
+
+/// The rounding lost from `heat_in`'s last increments (J/kg).
+pub static HEAT_IN_CARRY: AttrSpec = AttrSpec {
+    name: "heat_in_carry",
+    elem: Elem::F32,
+    unit: "J/kg",
+    role: Role::State,
+    added_later: false,
+    space: PARTICLES,
+    module: "heat",
+    about: "Rounding lost from heat_in's last increments, subtracted from the next.",
+};
+
+/// `heat_in += c heat_input dt`, compensated: what a wall or a source gave each
+/// particle, summed apart from conduction between particles, so the energy
+/// balance (heat in = sensible + latent heat stored) is a check of the phase
+/// change's bookkeeping and of the conduction's antisymmetry, not an identity.
+pub static INPUT: PassSpec = PassSpec {
+    name: "heat.input",
+    module: "heat",
+    stage: Stage::Kick,
+    reads: &["heat_input", "material"],
+    writes: &[],
+    accumulates: &["heat_in", "heat_in_carry"],
+    tolerance: 1e-5,
+};
+
 /// The integration of scenes where a fluid melts: the temperature of the other
 /// particles, the enthalpy, temperature, liquid fraction and phase of those that
 /// melt or freeze.
@@ -240,6 +291,26 @@ impl CpuPass for Melt {
         a.put(handles.3, hcarry);
         a.put(handles.4, beta);
         a.put(handles.5, material);
+    }
+}
+
+/// The heat taken in from outside, on the CPU.
+#[derive(Debug)]
+pub struct Input;
+
+impl CpuPass for Input {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let dt = cx.dt;
+        let hc: &HeatConsts = cx.model.consts();
+        let a = &mut *cx.attrs;
+        let (hi, hc_) = (a.handle::<Real>(HEAT_IN.name), a.handle::<Real>(HEAT_IN_CARRY.name));
+        let (mut sum, mut carry) = (a.take(hi), a.take(hc_));
+        let input = a.get(a.handle::<Real>(HEAT_INPUT.name));
+        let material = a.get(a.handle::<u32>("material"));
+        let each = sum.par_iter_mut().zip(carry.par_iter_mut()).zip(input.par_iter().zip(material)).with_min_len(4096);
+        each.for_each(|((s, c), (&q, &m))| (*s, *c) = compensated_add(*s, *c, dt * q * hc.capacity[m as usize]));
+        a.put(hi, sum);
+        a.put(hc_, carry);
     }
 }
 

@@ -98,14 +98,22 @@ pub fn melted_depth(sim: &Simulation, spacing: f64) -> f64 {
 }
 
 /// Runs to the last of [`TIMES`], comparing the front at each: the largest
-/// relative error, the last one, and the front (mm) there.
+/// relative error, the last one, and the front (mm) there; and the energy
+/// balance at each: the heat the wall gave (`heat.heat_in`, summed apart) against
+/// the sensible and latent heat the slab gained (`heat.total_heat` since the
+/// start), the largest relative difference.
 pub fn case(sim: &mut Simulation, spacing: f64) -> Measured {
-    let mut worst = 0.0f64;
+    let measure = |s: &Simulation, name: &str| s.measures().into_iter().find(|m| m.name == name).map(|m| m.value);
+    let start = measure(sim, "heat.total_heat").unwrap_or(f64::NAN);
+    let (mut worst, mut balance) = (0.0f64, 0.0f64);
     let mut next = 0;
     let (wall, halted) = run_probed(sim, TIMES[TIMES.len() - 1], 0.0, |s| {
         if next < TIMES.len() && s.time() >= TIMES[next] {
             let (got, want) = (melted_depth(s, spacing), front(s.time()));
             worst = worst.max((got - want).abs() / want);
+            let gained = measure(s, "heat.total_heat").unwrap_or(f64::NAN) - start;
+            let given = measure(s, "heat.heat_in").unwrap_or(f64::NAN);
+            balance = balance.max((gained - given).abs() / given);
             next += 1;
         }
     });
@@ -116,6 +124,7 @@ pub fn case(sim: &mut Simulation, spacing: f64) -> Measured {
         ("front_error_last", (got - want).abs() / want),
         ("front_mm", 1e3 * got),
         ("front_reference_mm", 1e3 * want),
+        ("energy_balance", balance),
     ];
     (wall, halted, errors)
 }

@@ -10,8 +10,11 @@ fn pair_factor(r: f32) -> f32 {
     return r * kernel_dw_dr(r) / (r * r + heat.eps_h2);
 }
 
-// The sum over i's neighbours, and what it needs of i.
+// The sum over i's neighbours, and what it needs of i; the walls' part of the
+// sum and the sources' power density (for heat_input, conduction_input.wgsl).
 var<private> conduction_sum: f32;
+var<private> conduction_outside: f32;
+var<private> conduction_source: f32;
 var<private> conduction_ti: f32;
 var<private> conduction_ma: u32;
 
@@ -19,6 +22,7 @@ fn conduction_begin(i: u32) {
     conduction_ti = temperature[i];
     conduction_ma = material_of(pos[i]);
     conduction_sum = 0.0;
+    conduction_outside = 0.0;
 }
 
 fn conduction_pair(j: u32, r2: f32) {
@@ -50,7 +54,9 @@ fn conduction_wall(b: u32, r2: f32) {
     let mat = params.materials[ma];
     let k_wall = heat.pair[ma * 16u + ma].x;
     let f = pair_factor(sqrt(r2));
-    conduction_sum += w.w * mat.w / mat.x * k_wall * 2.0 * (conduction_ti - heat.wall_min[box].w) * f;
+    let term = w.w * mat.w / mat.x * k_wall * 2.0 * (conduction_ti - heat.wall_min[box].w) * f;
+    conduction_sum += term;
+    conduction_outside += term;
 }
 
 fn conduction_end(i: u32) {
@@ -70,5 +76,6 @@ fn conduction_end(i: u32) {
             source += lo.w;
         }
     }
+    conduction_source = source;
     heat_rate[i] = (conduction_sum + source) / (rho[i] * heat.material[ma].y);
 }

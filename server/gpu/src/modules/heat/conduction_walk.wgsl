@@ -1,4 +1,5 @@
-// Conduction walking its neighbours alone (walk.wgsl's hooks).
+// Conduction walking its neighbours alone (walk.wgsl's hooks); `conduction_done`
+// (conduction_plain.wgsl or conduction_input.wgsl) follows each particle's sum.
 
 @group(0) @binding(1) var<uniform> heat: Heat;
 @group(0) @binding(2) var<storage, read> pos: array<vec4<f32>>;
@@ -26,4 +27,5 @@ fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
 
 fn walk_end(i: u32) {
     conduction_end(i);
+    conduction_done(i);
 }

@@ -18,17 +18,54 @@ use floe_engine::modules::heat::{HeatConsts, MAX_BOXES};
 /// dT/dt from conduction, walls and sources.
 pub static CONDUCTION: GpuPass = GpuPass {
     name: "heat.conduction",
-    source: walk_kernel!(walls_if; "heat.wgsl", "conduction.wgsl", "conduction_walk.wgsl"),
+    source: walk_kernel!(walls_if; "heat.wgsl", "conduction.wgsl", "conduction_walk.wgsl", "conduction_plain.wgsl"),
+    entry: "main",
+    bindings: &CONDUCTION_BINDINGS,
+    space: PARTICLES,
+    when: |m| !has_input(m),
+};
+
+/// The conduction's bindings.
+const CONDUCTION_BINDINGS: [(crate::program::Access, &str); 8] = [
+    (U, "params"),
+    (U, "heat"),
+    (R, "x"),
+    (R, "rho"),
+    (R, "temperature"),
+    (R, "starts"),
+    (R, "walls"),
+    (W, "heat_rate"),
+];
+
+/// The same, writing also the part of dT/dt from walls and sources, where a
+/// fluid melts and heat enters from outside.
+pub static CONDUCTION_INPUT: GpuPass = GpuPass {
+    name: "heat.conduction",
+    source: walk_kernel!(walls_if; "heat.wgsl", "conduction.wgsl", "conduction_walk.wgsl", "conduction_input.wgsl"),
+    entry: "main",
+    bindings: &crate::program::join::<8, 1, 9>(CONDUCTION_BINDINGS, [(W, "heat_input")]),
+    space: PARTICLES,
+    when: has_input,
+};
+
+/// Whether the scene sums the heat walls and sources give (`heat_input`).
+pub fn has_input(model: &Model) -> bool {
+    model.layout.spec("heat_input").is_some()
+}
+
+/// The heat taken in from walls and sources, summed.
+pub static INPUT: GpuPass = GpuPass {
+    name: "heat.input",
+    source: particle_kernel!("heat.wgsl", "compensated.wgsl", "input.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
+        (U, "dt"),
         (U, "heat"),
         (R, "x"),
-        (R, "rho"),
-        (R, "temperature"),
-        (R, "starts"),
-        (R, "walls"),
-        (W, "heat_rate"),
+        (R, "heat_input"),
+        (W, "heat_in"),
+        (W, "heat_in_carry"),
     ],
     space: PARTICLES,
     when: always,

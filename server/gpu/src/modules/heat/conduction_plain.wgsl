@@ -1,0 +1,3 @@
+// Nothing more after a particle's conduction.
+
+fn conduction_done(i: u32) {}
