@@ -174,7 +174,7 @@ fn admin_store_options_go_before_or_after_the_subcommand() {
 #[test]
 fn bench_cases_come_from_the_modules() {
     let names: Vec<&str> = floe_engine::module::bench_cases().iter().map(|c| c.name).collect();
-    assert_eq!(names, ["heat", "avalanche", "snowfall", "solid", "bunny"]);
+    assert_eq!(names, ["heat", "avalanche", "snowfall", "solid", "bunny", "ice"]);
     let err = floe(&["bench", "--case", "nope"]).unwrap_err();
     assert_eq!(
         format!("{err:#}"),

@@ -43,6 +43,7 @@ async fn rest_mirrors_the_control_calls() {
                 "two_fluids",
                 "heated_cavity",
                 "heated_channel",
+                "stefan",
                 "layers",
                 "avalanche",
                 "power_law_channel",
@@ -53,6 +54,8 @@ async fn rest_mirrors_the_control_calls() {
                 "snow_roof",
                 "elastic_drop",
                 "bunny",
+                "ice_melting",
+                "ice_cube_in_glass",
                 "floating_blocks"
             ])
         )

@@ -67,10 +67,10 @@ fn unknown_cases_are_named() {
     assert!(
         format!("{err}").starts_with(
             "unknown case 'lid_driven_cavity'; cases are: hydrostatic, dam_break, poiseuille, taylor_green, \
-             conduction, layers_at_rest, layers_at_rest_ratio_100, heated_cavity, heated_cavity_ra1e5, heated_channel, \
+             conduction, stefan, layers_at_rest, layers_at_rest_ratio_100, heated_cavity, heated_cavity_ra1e5, heated_channel, \
              power_law_channel, bingham_channel, cross_channel, snowfall_open, snowfall_shelter, snowfall_coverage, \
              snowfall_release, solid_rest, solid_rigid, solid_drop, solid_solvers, solid_weighting, solid_orientation, \
-             solid_stiffness, stability"
+             ice_insulated, solid_stiffness, stability"
         ),
         "{err}"
     );

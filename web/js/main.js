@@ -5,6 +5,7 @@ import { OrbitCamera } from './camera.js';
 import { DEFAULT_CHANNELS, NONE, colourModes, colourValues, valueRange } from './colour.js';
 import { Credentials } from './credentials.js';
 import { orientationValues, orientedRadii, streamedChannels } from './ellipsoid.js';
+import { phaseChannels, phaseLooks, phaseValues } from './phase.js';
 import { bindKeys, fillHelp } from './help.js';
 import { acting, showError } from './notify.js';
 import { wallLines } from './outline.js';
@@ -166,8 +167,10 @@ function connect() {
   const channel = $('colour').value;
   const url = new URL(`/api/v1/scenes/${state.scene.scene_id}/ws`, location.href);
   url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
-  // The colour channel, and oriented particles' orientations where the scene streams them.
-  url.search = new URLSearchParams({ channels: streamedChannels(channel, state.scene.channels).join(','), max_fps: '60' });
+  // The colour channel, oriented particles' orientations where the scene streams them, and
+  // without a colour map the phases of a melting scene.
+  const channels = [...streamedChannels(channel, state.scene.channels), ...phaseChannels(channel, state.scene.channels)];
+  url.search = new URLSearchParams({ channels: channels.join(','), max_fps: '60' });
   const ws = new WebSocket(url, credentials.protocols());
   ws.binaryType = 'arraybuffer';
   state.socket = ws;
@@ -234,7 +237,11 @@ function showFrame(frame) {
     $('legend-min').textContent = lo.toPrecision(3);
     $('legend-max').textContent = hi.toPrecision(3);
   }
-  renderer.upload(frame.positions, values, renderer.radii ? orientationValues(frame, state.scene?.channels) : null);
+  const orientations = renderer.radii ? orientationValues(frame, state.scene?.channels) : null;
+  const looks = values ? null : phaseLooks(state.scene?.materials, LOOKS);
+  const phases = looks && phaseValues(frame, state.scene.materials, state.scene.channels);
+  if (phases) renderer.upload(frame.positions, phases, orientations, looks);
+  else renderer.upload(frame.positions, values, orientations);
 }
 
 /**

@@ -40,6 +40,9 @@ const shaded = (inputs, point) => `#version 300 es
 precision highp float;
 uniform bool u_coloured;
 uniform vec3 u_plain;
+// Phases (phase.js): each particle between u_plain (the solid's look) and u_other (water's).
+uniform bool u_blend;
+uniform vec3 u_other;
 in float v_t;
 out vec4 colour;
 ${inputs}
@@ -55,7 +58,7 @@ void main() {
   ${point}
   vec3 l = normalize(vec3(0.4, 0.7, 0.6));
   vec3 h = normalize(l + vec3(0.0, 0.0, 1.0));
-  vec3 base = u_coloured ? ramp(v_t) : u_plain;
+  vec3 base = u_blend ? mix(u_plain, u_other, v_t) : u_coloured ? ramp(v_t) : u_plain;
   float diffuse = max(dot(n, l), 0.0), specular = pow(max(dot(n, h), 0.0), 48.0);
   colour = vec4(base * (0.25 + 0.75 * diffuse) + vec3(0.35) * specular, 1.0);
 }`;
@@ -90,7 +93,7 @@ export class Renderer {
     this.gl = gl;
     this.canvas = canvas;
     this.spheres = programWith(gl, SPRITE_VERT, FRAG,
-      ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured', 'u_plain', 'u_scaled']);
+      ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured', 'u_plain', 'u_blend', 'u_other', 'u_scaled']);
     /** The scene's walls; `outline.set(wallLines(scene))` when the scene changes. */
     this.outline = new Outline(gl);
     /** The scene's floor; `floor.set(min, max)` when the scene changes. */
@@ -131,6 +134,8 @@ export class Renderer {
     this.radius = physicalRadius(this.spacing);
     this.range = [0, 1];
     this.coloured = false;
+    /** The two looks (rgb `from`, `to`) values mix between in place of a colour map (phase.js), or null. */
+    this.blend = null;
     /** How particles are drawn without a colour map (one of LOOKS). */
     this.look = LOOKS.water;
     /** `'surface'` or `'spheres'`. */
@@ -195,9 +200,10 @@ export class Renderer {
 
   /**
    * New particle data: positions (x,y,z interleaved), one value per particle (or null) and, in a
-   * scene of oriented particles, their quaternions (x,y,z,w interleaved; or null).
+   * scene of oriented particles, their quaternions (x,y,z,w interleaved; or null). With `blend`
+   * ({from, to} rgb) the values are fractions from one look to the other (phase.js), not a colour map.
    */
-  upload(positions, values, orientations = null) {
+  upload(positions, values, orientations = null, blend = null) {
     this.count = positions.length / 3;
     const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < positions.length; i += 3) {
@@ -212,7 +218,8 @@ export class Renderer {
     this.frame = { positions, values, orientations };
     this.drawable = null;
     this.buffered = null;
-    this.coloured = values != null;
+    this.coloured = values != null && blend == null;
+    this.blend = values != null ? blend : null;
     this.version += 1;
   }
 
@@ -290,9 +297,12 @@ export class Renderer {
     gl.uniformMatrix4fv(u.u_proj, false, proj);
     gl.uniformMatrix4fv(u.u_view, false, view);
     gl.uniform1f(u.u_viewport_h, h);
-    gl.uniform2f(u.u_range, this.range[0], this.range[1]);
+    const range = this.blend ? [0, 1] : this.range;
+    gl.uniform2f(u.u_range, range[0], range[1]);
     gl.uniform1i(u.u_coloured, this.coloured ? 1 : 0);
-    gl.uniform3fv(u.u_plain, this.look.rgb);
+    gl.uniform1i(u.u_blend, this.blend ? 1 : 0);
+    gl.uniform3fv(u.u_plain, this.blend ? this.blend.from : this.look.rgb);
+    gl.uniform3fv(u.u_other, this.blend ? this.blend.to : this.look.rgb);
     if (ellipsoids) {
       gl.uniform1f(u.u_radius, boundingRadius(this.radii));
       gl.uniform3fv(u.u_radii, this.radii);
@@ -316,7 +326,7 @@ export class Renderer {
     let e;
     try {
       e = programWith(gl, ELLIPSOID_VERT, ELLIPSOID_FRAG,
-        ['u_proj', 'u_view', 'u_radius', 'u_radii', 'u_viewport_h', 'u_range', 'u_coloured', 'u_plain']);
+        ['u_proj', 'u_view', 'u_radius', 'u_radii', 'u_viewport_h', 'u_range', 'u_coloured', 'u_plain', 'u_blend', 'u_other']);
     } catch (err) {
       console.warn(`oriented particles drawn as spheres: the ellipsoid shader failed: ${err.message}`);
       this.ellipsoids = false;

@@ -110,6 +110,15 @@ pub static MODULE: ModuleDef = ModuleDef {
             about: "The elastic Stanford bunny (6,537 particles at 1 cm; --particles rescales the spacing) dropped on the floor, simulated for --until seconds",
             kind: BenchKind::Run { preset: "bunny", measures: &[], size: BenchSize::Particles },
         },
+        BenchCase {
+            name: "ice",
+            about: "The melting ice bunny of ice_melting (17,037 particles at 1 cm, 6,537 of ice; --particles rescales the spacing), simulated for --until seconds: the fluid, the heat with its phase change and the shape matching with its blend, by pass",
+            kind: BenchKind::Run {
+                preset: "ice_melting",
+                measures: &["heat.solid_mass", "heat.melt_mass"],
+                size: BenchSize::Particles,
+            },
+        },
     ],
 };
 
