@@ -62,11 +62,15 @@ function rtf() {
   return v;
 }
 
-/** Fills the "Colour by" menu from a channel list, keeping the choice if it is still there. */
+/**
+ * Fills the "Colour by" menu from a channel list, keeping the choice if it is still there; a
+ * scene where ice melts starts on none, which draws its phases (phase.js).
+ */
 function showColourModes(channels) {
   const sel = $('colour'), was = sel.value;
   sel.replaceChildren(...colourModes(channels).map((m) => new Option(m.label, m.value)));
-  sel.value = [...sel.options].some((o) => o.value === was) ? was : sel.options[0].value;
+  const first = phaseChannels(NONE, channels).length > 0 ? NONE : sel.options[0].value;
+  sel.value = [...sel.options].some((o) => o.value === was) ? was : first;
   $('legend').hidden = sel.value === NONE;
 }
 
