@@ -341,6 +341,30 @@ mod tests {
     }
 
     #[test]
+    fn a_bad_melting_entry_is_named() {
+        let errors = |o: &[&str]| {
+            let o: Vec<String> = o.iter().map(|s| s.to_string()).collect();
+            crate::scene::load::from_preset("ice_cube_in_glass", &o).unwrap_err().to_string()
+        };
+        assert_eq!(
+            errors(&["heat.fluids[1].melting.into=\"lava\""]),
+            "heat.fluids[1].melting.into: no fluid named \"lava\" (the scene's: [\"water\", \"ice\"])"
+        );
+        assert_eq!(
+            errors(&["heat.fluids[1].melting.into=\"ice\""]),
+            "heat.fluids[1].melting.into: must name another fluid than the one that melts"
+        );
+        assert_eq!(
+            errors(&["heat.fluids[1].melting.latent_heat=-1"]),
+            "heat.fluids[1].melting.latent_heat: must be between 1 and 100000000, got -1"
+        );
+        // Oriented particles that melt are refused when the scene is built.
+        let oriented = crate::scene::load::from_preset("ice_cube_in_glass", &["solid.oriented={}".into()]).unwrap();
+        let e = crate::model::Model::build(&oriented).unwrap_err().to_string();
+        assert!(e.contains("solid.oriented: oriented particles do not melt yet"), "{e}");
+    }
+
+    #[test]
     fn a_particle_changes_phase_only_when_fully_melted_or_frozen() {
         assert_eq!(ICE.material(-1.0, 2), 0, "frozen melt is ice");
         assert_eq!(ICE.material(0.5 * ICE.latent, 0), 0, "half-melted ice is still ice");

@@ -33,8 +33,13 @@
 //! Validation ([`cases`]): VALIDATION.md section 8's rest shape, free rigid
 //! motion, drop volume, stiffness and solver tables, and orientation.
 //!
-//! Oriented particles ([`orient`]) are optional. Not yet here: the viewer's
-//! ellipsoids.
+//! Oriented particles ([`orient`]) are optional.
+//!
+//! Bodies that melt (the scene has the core's liquid fraction, written by the
+//! heat module): each solve starts by letting melted members leave their
+//! clusters, members that froze again rejoin ([`passes`]' `LEAVE`, `REJOIN`),
+//! and counting each cluster's live members and their rest centre (`LIVE`, in
+//! every scene); a member's move is blended by `1 - beta` (docs/ice.md).
 
 pub mod cases;
 pub mod clusters;
