@@ -176,7 +176,8 @@ fn run_preset(run: &PresetRun, overrides: &[String], backend: &Selected, profile
         "| {counted} | simulated s | steps | dt mean s | solver iterations/step | wall s | ms/step | M {counted}-steps/s | real-time factor | peak RSS bytes/{counted} |{heads}"
     );
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(found.len()));
-    let values: String = found.iter().map(|(_, m)| format!(" {:.4} |", m.map_or(f64::NAN, |m| m.value))).collect();
+    let values: String =
+        found.iter().map(|(_, m)| format!(" {} |", crate::figure::figure(m.map_or(f64::NAN, |m| m.value)))).collect();
     let memory = peak_rss().filter(|_| run.memory).map_or("-".into(), |b| format!("{:.0}", b as f64 / n as f64));
     println!(
         "| {n} | {:.3} | {steps} | {:.2e} | {} | {wall:.2} | {:.2} | {:.3} | {:.4} | {memory} |{values}",

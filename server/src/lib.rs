@@ -35,6 +35,7 @@ pub mod convert;
 pub mod default_scene;
 pub mod echo;
 pub mod entry;
+pub mod figure;
 pub mod fuzz;
 pub mod grpc;
 pub mod grpc_guard;

@@ -78,7 +78,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     );
     // The modules' own measures (the core's are on the line above).
     for m in summary.measures.iter().filter(|m| m.name.contains('.')) {
-        tracing::info!("{} = {:.4} {}", m.name, m.value, m.unit);
+        tracing::info!("{} = {} {}", m.name, crate::figure::figure(m.value), m.unit);
     }
     if let Some(path) = &args.summary {
         std::fs::write(path, serde_json::to_string_pretty(&summary)? + "\n")

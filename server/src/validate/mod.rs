@@ -170,7 +170,7 @@ fn describe(done: &Done) -> String {
         Done::Run(o) => {
             let primary = cases::all().iter().find(|c| c.name == o.case).map_or("", |c| c.primary_error);
             format!(
-                "{} {} spacing {:.4} m: {} particles, {} steps, {:.1} s, {} {:.4}{}",
+                "{} {} spacing {:.4} m: {} particles, {} steps, {:.1} s, {} {}{}",
                 o.case,
                 o.variant,
                 o.spacing,
@@ -178,7 +178,7 @@ fn describe(done: &Done) -> String {
                 o.steps,
                 o.wall_seconds,
                 primary,
-                o.error(primary).unwrap_or(f64::NAN),
+                crate::figure::figure(o.error(primary).unwrap_or(f64::NAN)),
                 o.halted.as_deref().map(|h| format!(" HALTED: {h}")).unwrap_or_default()
             )
         }
@@ -237,8 +237,10 @@ fn failures(cases: &[&Case], runs: &[Outcome], battery: &[StabilityOutcome], mod
             let v = finest.error(norm).unwrap_or(f64::NAN);
             if v.is_nan() || v > bound {
                 out.push(format!(
-                    "{}: {norm} = {v:.4} exceeds its bound {bound} (spacing {} m)",
-                    case.name, finest.spacing
+                    "{}: {norm} = {} exceeds its bound {bound} (spacing {} m)",
+                    case.name,
+                    crate::figure::figure(v),
+                    finest.spacing
                 ));
             }
         }

@@ -98,7 +98,7 @@ pub fn write(dir: &Path, r: &Report) -> anyhow::Result<()> {
         )?;
         writeln!(md, "|---|---:|---:|---:|---:|---:|{}---|---|", "---:|".repeat(norms.len()))?;
         for o in &runs {
-            let errs: Vec<String> = o.errors.iter().map(|(_, v)| format!("{v:.4}")).collect();
+            let errs: Vec<String> = o.errors.iter().map(|(_, v)| crate::figure::figure(*v)).collect();
             let solves: Vec<String> = o
                 .solves
                 .iter()
