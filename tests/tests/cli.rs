@@ -178,7 +178,7 @@ fn bench_cases_come_from_the_modules() {
     let err = floe(&["bench", "--case", "nope"]).unwrap_err();
     assert_eq!(
         format!("{err:#}"),
-        "no bench case nope; there are [\"heat\", \"avalanche\", \"snowfall\", \"solid\", \"bunny\"]"
+        "no bench case nope; there are [\"heat\", \"avalanche\", \"snowfall\", \"solid\", \"bunny\", \"ice\"]"
     );
     let err = floe(&["bench", "--backend", "cpu", "--case", "avalanche"]).unwrap_err();
     assert_eq!(format!("{err:#}"), "--case of a preset needs --until SECONDS (simulated time)");
