@@ -96,8 +96,9 @@ pub(super) static LEAVE: PassSpec = solve(
 /// A member rejoining a cluster (2) takes as its rest offset where it was at the
 /// end of the last step in the cluster's frame, `R^T (x - o)` with `o` the origin
 /// of the cluster's goals: its goal is where it froze, so it joins without a jolt
-/// (the original offset would pull melt that flowed and froze back to where it
-/// once was in the body, at up to 16 m/s in `ice_refreezing`).
+/// (the original offset pulls melt that flowed and froze back to where it once
+/// was in the body: the cube of `ice_cube_in_glass` melted as it fell and frozen
+/// by a heat sink over the whole glass halted at 16 m/s).
 pub(super) static REJOIN: PassSpec = solve(
     "solid.rejoin",
     &["solid_clusters_x", "solid_clusters_segment", "cluster_rotation", "cluster_centre"],
