@@ -358,7 +358,7 @@ fn validate(scene: &Scene, c: &mut Checker) {
             c.within(&format!("{p}.melting.latent_heat"), m.latent_heat, 1.0, 1e8);
         }
     }
-    validate_melts(scene, &heat, c);
+    phase::validate(scene, &heat, c);
     c.positive("heat.max_viscosity", heat.max_viscosity);
     crate::viscosity::validate_solver(c, "heat.viscous_solver", heat.viscous_solver);
     for (name, boxes) in [("regions", &heat.regions), ("walls", &heat.walls)] {
@@ -381,29 +381,6 @@ fn validate(scene: &Scene, c: &mut Checker) {
         if count > MAX_BOXES {
             let what = if name == "sources" { "sources and fluxes together" } else { "boxes" };
             c.fail(&format!("heat.{name}"), format!("at most {MAX_BOXES} {what}, got {count}"));
-        }
-    }
-}
-
-/// Each `melting.into` names another fluid of the scene, one that does not melt
-/// itself (its melt would have two phase changes).
-fn validate_melts(scene: &Scene, heat: &spec::Heat, c: &mut Checker) {
-    /// What this check reads of a fluid (the fluid module's section, as data).
-    #[derive(serde::Deserialize)]
-    struct Named {
-        name: String,
-    }
-    let names: Vec<String> =
-        scene.section::<Vec<Named>>("fluids").unwrap_or_default().into_iter().map(|f| f.name).collect();
-    for (i, m) in heat.fluids.iter().enumerate().filter_map(|(i, f)| f.melting.as_ref().map(|m| (i, m))) {
-        let path = format!("heat.fluids[{i}].melting.into");
-        match names.iter().position(|n| *n == m.into) {
-            None => c.fail(&path, format!("no fluid named {:?} (the scene's: {names:?})", m.into)),
-            Some(j) if j == i => c.fail(&path, "must name another fluid than the one that melts".into()),
-            Some(j) if heat.fluids.get(j).is_some_and(|f| f.melting.is_some()) => {
-                c.fail(&path, format!("names {:?}, which melts itself", m.into))
-            }
-            Some(_) => {}
         }
     }
 }
@@ -486,7 +463,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         b.pass(&passes::BUOYANCY);
     }
     if consts.melts() {
-        melting(b, &consts, &t);
+        phase::build(b, &consts, &t);
     } else {
         b.pass(&passes::INTEGRATE);
     }
@@ -497,31 +474,6 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.channel(TEMPERATURE_CHANNEL);
     b.set_consts(consts);
     Ok(())
-}
-
-/// The state of particles that melt or freeze: each one's enthalpy from its
-/// starting temperature, its liquid fraction, and the integration that changes
-/// their phase.
-fn melting(b: &mut ModelBuilder, consts: &HeatConsts, t: &[Real]) {
-    let material = match b.column("material") {
-        Some(Column::U32(m)) => m.clone(),
-        _ => unreachable!("a fluid that melts and its melt are two materials"),
-    };
-    let h: Vec<Real> =
-        t.iter().zip(&material).map(|(&t, &m)| consts.phases[m as usize].map_or(0.0, |p| p.initial(t))).collect();
-    let beta =
-        h.iter().zip(&material).map(|(&h, &m)| consts.phases[m as usize].map_or(0.0, |p| p.fraction(h))).collect();
-    b.attr(&phase::ENTHALPY, Column::F32(h));
-    b.zeros(&phase::ENTHALPY_CARRY);
-    b.attr(&crate::quantities::LIQUID_FRACTION, Column::F32(beta));
-    b.pass(&phase::MELT);
-    b.channel(LIQUID_FRACTION_CHANNEL);
-    if consts.takes_input() {
-        b.zeros(&phase::HEAT_INPUT);
-        b.zeros(&phase::HEAT_IN);
-        b.zeros(&phase::HEAT_IN_CARRY);
-        b.pass(&phase::INPUT);
-    }
 }
 
 /// Conductivities and expansion may change; buoyancy's pass comes and goes with it.

@@ -23,9 +23,13 @@
 //! Heat conducts with each material's own conductivity and capacity, so the total
 //! heat `sum m (c_s T_m + H)` (and `sum m c T` for particles that never change
 //! phase) changes only through walls and sources.
+//!
+//! Here too: the `melting` entries' check ([`validate`]), the melt's declaration
+//! ([`declare`]), the state and passes a scene that melts adds ([`build`]).
 
 use super::HeatConsts;
 use super::passes::compensated_add;
+use crate::attrs::Column;
 use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
 use crate::cpu::{CpuCx, CpuPass};
 use crate::materials::Material;
@@ -33,6 +37,7 @@ use crate::math::Real;
 use crate::model::{BuildError, ModelBuilder};
 use crate::plan::{PassSpec, Stage};
 use crate::scene::Scene;
+use crate::scene::validate::Checker;
 use rayon::prelude::*;
 
 /// A substance's phase change, as each of its two materials sees it.
@@ -106,66 +111,51 @@ impl PhaseChange {
     }
 }
 
+/// A per-particle f32 attribute of the module.
+const fn attr(name: &'static str, unit: &'static str, role: Role, about: &'static str) -> AttrSpec {
+    AttrSpec { name, elem: Elem::F32, unit, role, added_later: false, space: PARTICLES, module: "heat", about }
+}
+
 /// Specific enthalpy (J/kg), the state of particles that change phase.
-pub static ENTHALPY: AttrSpec = AttrSpec {
-    name: "enthalpy",
-    elem: Elem::F32,
-    unit: "J/kg",
-    role: Role::State,
-    added_later: false,
-    space: PARTICLES,
-    module: "heat",
-    about: "Specific enthalpy relative to the solid at its melting point (particles that melt or freeze).",
-};
+pub static ENTHALPY: AttrSpec = attr(
+    "enthalpy",
+    "J/kg",
+    Role::State,
+    "Specific enthalpy relative to the solid at its melting point (particles that melt or freeze).",
+);
 
 /// The rounding lost from the enthalpy's last increments (J/kg).
-pub static ENTHALPY_CARRY: AttrSpec = AttrSpec {
-    name: "enthalpy_carry",
-    elem: Elem::F32,
-    unit: "J/kg",
-    role: Role::State,
-    added_later: false,
-    space: PARTICLES,
-    module: "heat",
-    about: "Rounding lost from the enthalpy's last increments, subtracted from the next.",
-};
+pub static ENTHALPY_CARRY: AttrSpec = attr(
+    "enthalpy_carry",
+    "J/kg",
+    Role::State,
+    "Rounding lost from the enthalpy's last increments, subtracted from the next.",
+);
 
 /// The part of `dT/dt` from held walls and sources (K/s), where a fluid melts and
 /// heat enters from outside.
-pub static HEAT_INPUT: AttrSpec = AttrSpec {
-    name: "heat_input",
-    elem: Elem::F32,
-    unit: "K/s",
-    role: Role::Derived,
-    added_later: false,
-    space: PARTICLES,
-    module: "heat",
-    about: "The part of the temperature's rate from walls held at a temperature and from sources.",
-};
+pub static HEAT_INPUT: AttrSpec = attr(
+    "heat_input",
+    "K/s",
+    Role::Derived,
+    "The part of the temperature's rate from walls held at a temperature and from sources.",
+);
 
 /// The heat each particle took in from walls and sources since the start (J/kg).
-pub static HEAT_IN: AttrSpec = AttrSpec {
-    name: "heat_in",
-    elem: Elem::F32,
-    unit: "J/kg",
-    role: Role::State,
-    added_later: false,
-    space: PARTICLES,
-    module: "heat",
-    about: "Heat taken in from walls held at a temperature and from sources since the start, per kilogram.",
-};
+pub static HEAT_IN: AttrSpec = attr(
+    "heat_in",
+    "J/kg",
+    Role::State,
+    "Heat taken in from walls held at a temperature and from sources since the start, per kilogram.",
+);
 
 /// The rounding lost from `heat_in`'s last increments (J/kg).
-pub static HEAT_IN_CARRY: AttrSpec = AttrSpec {
-    name: "heat_in_carry",
-    elem: Elem::F32,
-    unit: "J/kg",
-    role: Role::State,
-    added_later: false,
-    space: PARTICLES,
-    module: "heat",
-    about: "Rounding lost from heat_in's last increments, subtracted from the next.",
-};
+pub static HEAT_IN_CARRY: AttrSpec = attr(
+    "heat_in_carry",
+    "J/kg",
+    Role::State,
+    "Rounding lost from heat_in's last increments, subtracted from the next.",
+);
 
 /// `heat_in += c heat_input dt`, compensated: what a wall or a source gave each
 /// particle, summed apart from conduction between particles, so the energy
@@ -235,6 +225,54 @@ pub fn declare(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         b.phase(i as u32, like as u32, &melt_name(&names[i]), rho);
     }
     Ok(())
+}
+
+/// Each `melting.into` names another fluid of the scene, one that does not melt
+/// itself (its melt would have two phase changes).
+pub fn validate(scene: &Scene, heat: &super::spec::Heat, c: &mut Checker) {
+    /// What this check reads of a fluid (the fluid module's section, as data).
+    #[derive(serde::Deserialize)]
+    struct Named {
+        name: String,
+    }
+    let names: Vec<String> =
+        scene.section::<Vec<Named>>("fluids").unwrap_or_default().into_iter().map(|f| f.name).collect();
+    for (i, m) in heat.fluids.iter().enumerate().filter_map(|(i, f)| f.melting.as_ref().map(|m| (i, m))) {
+        let path = format!("heat.fluids[{i}].melting.into");
+        match names.iter().position(|n| *n == m.into) {
+            None => c.fail(&path, format!("no fluid named {:?} (the scene's: {names:?})", m.into)),
+            Some(j) if j == i => c.fail(&path, "must name another fluid than the one that melts".into()),
+            Some(j) if heat.fluids.get(j).is_some_and(|f| f.melting.is_some()) => {
+                c.fail(&path, format!("names {:?}, which melts itself", m.into))
+            }
+            Some(_) => {}
+        }
+    }
+}
+
+/// The state of particles that melt or freeze: each one's enthalpy from its
+/// starting temperature, its liquid fraction, and the integration that changes
+/// their phase.
+pub fn build(b: &mut ModelBuilder, consts: &HeatConsts, t: &[Real]) {
+    let material = match b.column("material") {
+        Some(Column::U32(m)) => m.clone(),
+        _ => unreachable!("a fluid that melts and its melt are two materials"),
+    };
+    let h: Vec<Real> =
+        t.iter().zip(&material).map(|(&t, &m)| consts.phases[m as usize].map_or(0.0, |p| p.initial(t))).collect();
+    let beta =
+        h.iter().zip(&material).map(|(&h, &m)| consts.phases[m as usize].map_or(0.0, |p| p.fraction(h))).collect();
+    b.attr(&ENTHALPY, Column::F32(h));
+    b.zeros(&ENTHALPY_CARRY);
+    b.attr(&crate::quantities::LIQUID_FRACTION, Column::F32(beta));
+    b.pass(&MELT);
+    b.channel(super::LIQUID_FRACTION_CHANNEL);
+    if consts.takes_input() {
+        b.zeros(&HEAT_INPUT);
+        b.zeros(&HEAT_IN);
+        b.zeros(&HEAT_IN_CARRY);
+        b.pass(&INPUT);
+    }
 }
 
 /// The integration on the CPU.
