@@ -6,9 +6,10 @@
 //! parallel without a merge (~140 bytes per particle, a 1.5x speed-up over
 //! searching twice).
 //!
-//! A pass that walks the same rows many times in a step (DFSPH's solves) may keep
-//! each pair's kernel gradient beside its row ([`ChunkNeighbors::keep_gradients`]):
-//! 12 bytes per neighbour, allocated only by the schemes that ask for it.
+//! A pass that walks the same rows many times in a step (DFSPH's solves) may keep a
+//! value per pair beside its row ([`ChunkNeighbors::keep`]): the pair's kernel
+//! gradient (12 bytes) or its packed `dW/dr / r` (2 bytes,
+//! [`crate::kernel::GradientPacking`]), allocated only by the schemes that ask.
 
 use crate::math::{Real, Vec3};
 use crate::neighbors::Grid;
@@ -46,6 +47,8 @@ pub struct ChunkNeighbors {
     walls: Vec<u32>,
     fluid_grad: Vec<Vec3>,
     wall_grad: Vec<Vec3>,
+    fluid_packed: Vec<u16>,
+    wall_packed: Vec<u16>,
 }
 
 impl ChunkNeighbors {
@@ -59,6 +62,8 @@ impl ChunkNeighbors {
         self.walls.clear();
         self.fluid_grad.clear();
         self.wall_grad.clear();
+        self.fluid_packed.clear();
+        self.wall_packed.clear();
     }
 
     /// Appends the next particle's neighbours: particles of `pos` on `grid` and wall
@@ -94,36 +99,71 @@ impl ChunkNeighbors {
     }
 
     /// Keeps `fluid(k, j)` for every particle neighbour `j` of the chunk's `k`-th
-    /// particle and `wall(k, b)` for every wall neighbour `b`, in the rows' order: the
-    /// pairs' kernel gradients, for passes that walk the rows again within the step.
-    pub fn keep_gradients(&mut self, fluid: impl Fn(usize, usize) -> Vec3, wall: impl Fn(usize, usize) -> Vec3) {
+    /// particle and `wall(k, b)` for every wall neighbour `b`, in the rows' order, for
+    /// passes that walk the rows again within the step.
+    pub fn keep<T: PairValue>(&mut self, fluid: impl Fn(usize, usize) -> T, wall: impl Fn(usize, usize) -> T) {
         let rows = self.fluid_start.len() - 1;
-        self.fluid_grad.clear();
-        self.wall_grad.clear();
+        let (mut fluid_kept, mut wall_kept) = {
+            let (f, w) = T::columns_mut(self);
+            (std::mem::take(f), std::mem::take(w))
+        };
+        fluid_kept.clear();
+        wall_kept.clear();
         for k in 0..rows {
             let (f, w) = (
                 self.fluid_start[k] as usize..self.fluid_start[k + 1] as usize,
                 self.wall_start[k] as usize..self.wall_start[k + 1] as usize,
             );
-            self.fluid_grad.extend(self.fluid[f].iter().map(|&j| fluid(k, j as usize)));
-            self.wall_grad.extend(self.walls[w].iter().map(|&b| wall(k, b as usize)));
+            fluid_kept.extend(self.fluid[f].iter().map(|&j| fluid(k, j as usize)));
+            wall_kept.extend(self.walls[w].iter().map(|&b| wall(k, b as usize)));
         }
+        let (f, w) = T::columns_mut(self);
+        (*f, *w) = (fluid_kept, wall_kept);
     }
 
-    /// The kept gradients of the chunk's `k`-th particle's particle neighbours, in
-    /// the order of [`Self::fluid`] (see [`Self::keep_gradients`]).
+    /// The values kept for the chunk's `k`-th particle's particle neighbours, in the
+    /// order of [`Self::fluid`] (see [`Self::keep`]).
     #[inline(always)]
-    pub fn fluid_gradients(&self, k: usize) -> &[Vec3] {
-        debug_assert_eq!(self.fluid_grad.len(), self.fluid.len(), "gradients kept for this step's rows");
-        &self.fluid_grad[self.fluid_start[k] as usize..self.fluid_start[k + 1] as usize]
+    pub fn fluid_kept<T: PairValue>(&self, k: usize) -> &[T] {
+        let kept = T::columns(self).0;
+        debug_assert_eq!(kept.len(), self.fluid.len(), "values kept for this step's rows");
+        &kept[self.fluid_start[k] as usize..self.fluid_start[k + 1] as usize]
     }
 
-    /// The kept gradients of the chunk's `k`-th particle's wall neighbours, in the
+    /// The values kept for the chunk's `k`-th particle's wall neighbours, in the
     /// order of [`Self::walls`].
     #[inline(always)]
-    pub fn wall_gradients(&self, k: usize) -> &[Vec3] {
-        debug_assert_eq!(self.wall_grad.len(), self.walls.len(), "gradients kept for this step's rows");
-        &self.wall_grad[self.wall_start[k] as usize..self.wall_start[k + 1] as usize]
+    pub fn wall_kept<T: PairValue>(&self, k: usize) -> &[T] {
+        let kept = T::columns(self).1;
+        debug_assert_eq!(kept.len(), self.walls.len(), "values kept for this step's rows");
+        &kept[self.wall_start[k] as usize..self.wall_start[k + 1] as usize]
+    }
+}
+
+/// A value a pass may keep per pair ([`ChunkNeighbors::keep`]): each type has its
+/// own columns, so a scene that keeps one never allocates the other.
+pub trait PairValue: Copy + Sized {
+    /// The particle pairs' and wall pairs' columns.
+    fn columns(nb: &ChunkNeighbors) -> (&Vec<Self>, &Vec<Self>);
+    /// The same, to fill.
+    fn columns_mut(nb: &mut ChunkNeighbors) -> (&mut Vec<Self>, &mut Vec<Self>);
+}
+
+impl PairValue for Vec3 {
+    fn columns(nb: &ChunkNeighbors) -> (&Vec<Self>, &Vec<Self>) {
+        (&nb.fluid_grad, &nb.wall_grad)
+    }
+    fn columns_mut(nb: &mut ChunkNeighbors) -> (&mut Vec<Self>, &mut Vec<Self>) {
+        (&mut nb.fluid_grad, &mut nb.wall_grad)
+    }
+}
+
+impl PairValue for u16 {
+    fn columns(nb: &ChunkNeighbors) -> (&Vec<Self>, &Vec<Self>) {
+        (&nb.fluid_packed, &nb.wall_packed)
+    }
+    fn columns_mut(nb: &mut ChunkNeighbors) -> (&mut Vec<Self>, &mut Vec<Self>) {
+        (&mut nb.fluid_packed, &mut nb.wall_packed)
     }
 }
 

@@ -335,6 +335,11 @@ mod tests {
             "solver.delta_sph.delta: must be between 0 and 1, got 1.5\n\
              solver.delta_sph: works with solver.method = \"wcsph\" only"
         );
+        assert_eq!(
+            errors(&["solver.dfsph.compact_gradients=true", "solver.kernel=\"mueller\""]),
+            "solver.dfsph.compact_gradients: needs solver.kernel = \"cubic_spline\" \
+             (the spiky gradient over r is unbounded near r = 0)"
+        );
         // Several problems are reported together.
         let both = errors(&["particle_spacing=-1", "guard.max_compression=0"]);
         assert_eq!(both.lines().count(), 2, "{both}");

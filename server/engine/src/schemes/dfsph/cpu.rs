@@ -3,29 +3,110 @@
 //! order).
 //!
 //! The factor pass keeps every pair's kernel gradient beside the neighbour rows
-//! ([`crate::cpu::neighbors::ChunkNeighbors::keep_gradients`]) and the solves' passes
-//! read them back: the positions do not move between the factor and the drift, and
-//! a step iterates each solve several times (about 9 iterations of two passes per
-//! step on the dam break), so the gradients are evaluated once instead of once per
-//! pass.
+//! ([`crate::cpu::neighbors::ChunkNeighbors::keep`]) and the solves' passes read them
+//! back: the positions do not move between the factor and the drift, and a step
+//! iterates each solve several times (about 9 iterations of two passes per step on
+//! the dam break), so the kernel is evaluated once instead of once per pass. Whole
+//! gradients cost 12 bytes a pair; with `solver.dfsph.compact_gradients` each pair
+//! keeps its `dW/dr / r` in 2 bytes ([`GradientPacking`]) and the passes multiply it
+//! by the separation: half the memory (365 against 742 bytes a particle at 1M) at
+//! 1.3 times the solves' time (docs/benchmarks.md). The factor reads the kept values too, so its diagonal is
+//! that of the system the kicks apply.
 
-use super::{FULL_NEIGHBOURHOOD, WARM_START};
-use crate::cpu::neighbors::CHUNK;
+use super::{DfsphConsts, FULL_NEIGHBOURHOOD, WARM_START};
+use crate::cpu::neighbors::{CHUNK, PairValue};
 use crate::cpu::{CpuCx, CpuPass};
-use crate::kernel::Kernel;
+use crate::kernel::{GradientPacking, Kernel};
 use crate::math::{Real, Vec3};
+use crate::model::Model;
 use crate::periodic::Separation;
 use rayon::prelude::*;
 
-/// `grad W` for the separation `x` (zero for coinciding particles, as in the forces).
-#[inline(always)]
-fn gradient(k: &Kernel, x: Vec3) -> Vec3 {
-    let r2 = x.length_squared();
-    if r2 == 0.0 {
-        return Vec3::ZERO;
+/// What the factor pass keeps of each pair for the solves' passes.
+trait Kept: Copy + Sync {
+    /// The value kept per pair.
+    type Value: PairValue + Send + Sync;
+    /// The value for the separation `x_ij`.
+    fn keep(&self, x_ij: Vec3) -> Self::Value;
+    /// The pair's `grad_i W` from its kept value and, where the value needs it, its
+    /// separation (`x_ij` is not called otherwise, so its positions are not read).
+    fn gradient(&self, kept: Self::Value, x_ij: impl FnOnce() -> Vec3) -> Vec3;
+    /// `s grad_i W`, the scalar applied before the vector where that saves work.
+    fn scaled(&self, kept: Self::Value, x_ij: impl FnOnce() -> Vec3, s: Real) -> Vec3;
+    /// `w . grad_i W`.
+    fn dot(&self, kept: Self::Value, x_ij: impl FnOnce() -> Vec3, w: Vec3) -> Real;
+}
+
+/// Whole gradients (12 bytes a pair).
+#[derive(Clone, Copy)]
+struct Whole<'a>(&'a Kernel);
+
+impl Kept for Whole<'_> {
+    type Value = Vec3;
+    #[inline(always)]
+    fn keep(&self, x: Vec3) -> Vec3 {
+        // Zero for coinciding particles, as in the forces.
+        let r2 = x.length_squared();
+        if r2 == 0.0 {
+            return Vec3::ZERO;
+        }
+        let r = r2.sqrt();
+        x * (self.0.dw_dr(r) / r)
     }
-    let r = r2.sqrt();
-    x * (k.dw_dr(r) / r)
+    #[inline(always)]
+    fn gradient(&self, kept: Vec3, _: impl FnOnce() -> Vec3) -> Vec3 {
+        kept
+    }
+    #[inline(always)]
+    fn scaled(&self, kept: Vec3, _: impl FnOnce() -> Vec3, s: Real) -> Vec3 {
+        kept * s
+    }
+    #[inline(always)]
+    fn dot(&self, kept: Vec3, _: impl FnOnce() -> Vec3, w: Vec3) -> Real {
+        w.dot(kept)
+    }
+}
+
+/// Packed `dW/dr / r` (2 bytes a pair).
+#[derive(Clone, Copy)]
+struct Packed<'a>(&'a Kernel, GradientPacking);
+
+impl Kept for Packed<'_> {
+    type Value = u16;
+    #[inline(always)]
+    fn keep(&self, x: Vec3) -> u16 {
+        self.1.pack(self.0, x)
+    }
+    #[inline(always)]
+    fn gradient(&self, kept: u16, x_ij: impl FnOnce() -> Vec3) -> Vec3 {
+        x_ij() * self.1.unpack(kept)
+    }
+    #[inline(always)]
+    fn scaled(&self, kept: u16, x_ij: impl FnOnce() -> Vec3, s: Real) -> Vec3 {
+        x_ij() * (self.1.unpack(kept) * s)
+    }
+    #[inline(always)]
+    fn dot(&self, kept: u16, x_ij: impl FnOnce() -> Vec3, w: Vec3) -> Real {
+        self.1.unpack(kept) * w.dot(x_ij())
+    }
+}
+
+/// Runs `$body` with `$kept` the model's [`Kept`] and `$sep` its separation.
+macro_rules! with_kept {
+    ($model:expr, |$kept:ident, $sep:ident| $body:expr) => {{
+        let model: &Model = $model;
+        let compact = model.consts::<DfsphConsts>().settings.compact_gradients;
+        match model.kernel.gradient_packing().filter(|_| compact) {
+            Some(p) => {
+                let $kept = Packed(&model.kernel, p);
+                crate::with_separation!(&model.periodic, |$sep| $body)
+            }
+            None => {
+                let $kept = Whole(&model.kernel);
+                crate::with_separation!(&model.periodic, |$sep| $body)
+            }
+        }
+    }};
 }
 
 /// `alpha = 1 / (s . t + m_i^2 sum_j (m_i / m_j) |grad W_ij|^2)`, 0 for a particle
@@ -35,13 +116,13 @@ pub struct Factor;
 
 impl CpuPass for Factor {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        crate::with_separation!(&cx.model.periodic, |s| factor(cx, s))
+        with_kept!(cx.model, |kept, sep| factor(cx, kept, sep))
     }
 }
 
-fn factor<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+fn factor<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
     let model = cx.model;
-    let (k, walls, materials) = (&model.kernel, &model.wall_particles, &model.materials);
+    let (walls, materials) = (&model.wall_particles, &model.materials);
     let h = cx.attrs.handle::<Real>("alpha");
     let mut alpha = cx.attrs.take(h);
     let attrs = &*cx.attrs;
@@ -49,22 +130,23 @@ fn factor<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
     alpha.par_chunks_mut(CHUNK).zip(cx.nb.chunks.par_iter_mut()).enumerate().for_each(|(c, (out, nb))| {
-        nb.keep_gradients(
-            |n, j| gradient(k, sep.between(pos[c * CHUNK + n], pos[j])),
-            |n, b| gradient(k, sep.between(pos[c * CHUNK + n], walls.positions[b])),
+        nb.keep(
+            |n, j| kept.keep(sep.between(pos[c * CHUNK + n], pos[j])),
+            |n, b| kept.keep(sep.between(pos[c * CHUNK + n], walls.positions[b])),
         );
         for (n, a) in out.iter_mut().enumerate() {
-            let mi = material(c * CHUNK + n);
+            let (xi, mi) = (pos[c * CHUNK + n], material(c * CHUNK + n));
             let m_i = materials.get(mi).mass;
             let (mut fluid, mut sq) = (Vec3::ZERO, 0.0);
-            for (&j, &g) in nb.fluid(n).iter().zip(nb.fluid_gradients(n)) {
+            for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
+                let g = kept.gradient(v, || sep.between(xi, pos[j as usize]));
                 fluid += g * m_i;
                 sq += g.length_squared() * (m_i / materials.get(material(j as usize)).mass);
             }
             let psi = &walls.psi[mi];
             let mut wall = Vec3::ZERO;
-            for (&b, &g) in nb.walls(n).iter().zip(nb.wall_gradients(n)) {
-                wall += g * psi[b as usize];
+            for (&b, &v) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
+                wall += kept.gradient(v, || sep.between(xi, walls.positions[b as usize])) * psi[b as usize];
             }
             let d = (fluid + wall).length_squared() + m_i * m_i * sq;
             *a = if d > 0.0 { 1.0 / d } else { 0.0 };
@@ -109,11 +191,11 @@ pub struct Kick {
 
 impl CpuPass for Kick {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        kick(cx, self)
+        with_kept!(cx.model, |kept, sep| kick(cx, self, kept, sep))
     }
 }
 
-fn kick(cx: &mut CpuCx<'_>, pass: &Kick) {
+fn kick<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, pass: &Kick, kept: K, sep: S) {
     let model = cx.model;
     let (walls, materials) = (&model.wall_particles, &model.materials);
     let dt = cx.dt;
@@ -121,6 +203,7 @@ fn kick(cx: &mut CpuCx<'_>, pass: &Kick) {
     let (mut vel, mut kappa) = (cx.attrs.take(vh), cx.attrs.take(kh));
     let attrs = &*cx.attrs;
     let dp = attrs.get(attrs.handle::<Real>(pass.increment));
+    let pos = attrs.get(attrs.handle::<Vec3>("x"));
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
     let outputs = vel.par_chunks_mut(CHUNK).zip(kappa.par_chunks_mut(CHUNK));
@@ -130,17 +213,17 @@ fn kick(cx: &mut CpuCx<'_>, pass: &Kick) {
             kappa[n] += dp[i];
             let mi = material(i);
             let m_i = materials.get(mi).mass;
-            let own = m_i * dp[i];
+            let (own, xi) = (m_i * dp[i], pos[i]);
             let mut a = Vec3::ZERO;
-            for (&j, &g) in nb.fluid(n).iter().zip(nb.fluid_gradients(n)) {
+            for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
                 let j = j as usize;
                 let m_j = materials.get(material(j)).mass;
-                a += g * (own + m_j * m_j / m_i * dp[j]);
+                a += kept.scaled(v, || sep.between(xi, pos[j]), own + m_j * m_j / m_i * dp[j]);
             }
             let psi = &walls.psi[mi];
             let mut wall = Vec3::ZERO;
-            for (&b, &g) in nb.walls(n).iter().zip(nb.wall_gradients(n)) {
-                wall += g * psi[b as usize];
+            for (&b, &v) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
+                wall += kept.scaled(v, || sep.between(xi, walls.positions[b as usize]), psi[b as usize]);
             }
             *v -= (a + wall * dp[i]) * dt;
         }
@@ -160,14 +243,14 @@ pub struct Error {
 
 impl CpuPass for Error {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        match self.density {
-            true => error::<true>(cx),
-            false => error::<false>(cx),
-        }
+        with_kept!(cx.model, |kept, sep| match self.density {
+            true => error::<true, _, _>(cx, kept, sep),
+            false => error::<false, _, _>(cx, kept, sep),
+        })
     }
 }
 
-fn error<const DENSITY: bool>(cx: &mut CpuCx<'_>) {
+fn error<const DENSITY: bool, K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
     let model = cx.model;
     let (walls, materials) = (&model.wall_particles, &model.materials);
     let dt = cx.dt;
@@ -176,7 +259,7 @@ fn error<const DENSITY: bool>(cx: &mut CpuCx<'_>) {
     let handles = names.map(|n| cx.attrs.handle::<Real>(n));
     let [mut inc, mut err] = handles.map(|h| cx.attrs.take(h));
     let attrs = &*cx.attrs;
-    let vel = attrs.get(attrs.handle::<Vec3>("v"));
+    let (pos, vel) = (attrs.get(attrs.handle::<Vec3>("x")), attrs.get(attrs.handle::<Vec3>("v")));
     let (rho, alpha) = (attrs.get(attrs.handle::<Real>("rho")), attrs.get(attrs.handle::<Real>("alpha")));
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
@@ -184,16 +267,17 @@ fn error<const DENSITY: bool>(cx: &mut CpuCx<'_>) {
     outputs.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((inc, err), nb))| {
         for n in 0..inc.len() {
             let i = c * CHUNK + n;
-            let (vi, mi) = (vel[i], material(i));
+            let (xi, vi, mi) = (pos[i], vel[i], material(i));
             let m = materials.get(mi);
             let mut fluid = 0.0;
-            for (&j, &g) in nb.fluid(n).iter().zip(nb.fluid_gradients(n)) {
-                fluid += (vi - vel[j as usize]).dot(g);
+            for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
+                let j = j as usize;
+                fluid += kept.dot(v, || sep.between(xi, pos[j]), vi - vel[j]);
             }
             let psi = &walls.psi[mi];
             let mut wall = 0.0;
-            for (&b, &g) in nb.walls(n).iter().zip(nb.wall_gradients(n)) {
-                wall += psi[b as usize] * vi.dot(g);
+            for (&b, &v) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
+                wall += psi[b as usize] * kept.dot(v, || sep.between(xi, walls.positions[b as usize]), vi);
             }
             let rate = m.mass * fluid + wall;
             // Only compression is corrected: the error is clamped at zero, so each
