@@ -57,6 +57,30 @@ fn a_quick_report_has_every_run_and_its_plots() {
     }
 }
 
+/// `--set` changes every accuracy run before its variant's own overrides: the
+/// conduction case on DFSPH reports DFSPH's solves; a variant that sets the scheme
+/// itself keeps it.
+#[test]
+fn set_overrides_every_run_before_its_variant() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let args =
+        ["floe", "validate", "--bounds", "--case", "conduction", "--set", "solver.method=\"dfsph\"", "--out", out];
+    floe_server::execute(Cli::try_parse_from(args).unwrap()).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("report.json")).unwrap()).unwrap();
+    let runs = json["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 1);
+    assert!(runs[0]["solves"].get("dfsph.density").is_some(), "{}", runs[0]);
+    let conduction = floe_engine::validation::cases::all().into_iter().find(|c| c.name == "conduction").unwrap();
+    let wcsph = floe_engine::validation::cases::Variant { name: "wcsph", overrides: &["solver.method=\"wcsph\""] };
+    let extra = ["solver.method=\"dfsph\"".to_string()];
+    let run =
+        floe_engine::validation::cases::run(conduction, 0.002, &wcsph, &extra, &floe_engine::simulation::cpu_backend)
+            .unwrap();
+    assert!(run.solves.is_empty(), "the variant's scheme, WCSPH, has no solves: {:?}", run.solves);
+}
+
 #[test]
 fn unknown_cases_are_named() {
     let dir = tempfile::tempdir().unwrap();

@@ -100,7 +100,7 @@ pub fn validate(args: ValidateArgs) -> anyhow::Result<()> {
         }
     }
     jobs.extend(chosen_stability.iter().map(|&c| Job::Stability(c)));
-    let done = run_jobs(&jobs, args.jobs.max(1), mode == Mode::Full, &*backend.factory)?;
+    let done = run_jobs(&jobs, args.jobs.max(1), mode == Mode::Full, &args.overrides, &*backend.factory)?;
     let (mut runs, mut battery) = (Vec::new(), Vec::new());
     for d in done {
         match d {
@@ -130,7 +130,13 @@ pub fn validate(args: ValidateArgs) -> anyhow::Result<()> {
 /// Runs `jobs` on `workers` threads at once, each with a share of the cores (a small
 /// scene steps little faster on two cores than on one, so two at once take about
 /// half the time); prints each as it ends; returns the outcomes in job order.
-fn run_jobs(jobs: &[Job], workers: usize, full: bool, make: &BackendFactory) -> anyhow::Result<Vec<Done>> {
+fn run_jobs(
+    jobs: &[Job],
+    workers: usize,
+    full: bool,
+    overrides: &[String],
+    make: &BackendFactory,
+) -> anyhow::Result<Vec<Done>> {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let threads = (cores / workers).max(1);
     let next = AtomicUsize::new(0);
@@ -141,7 +147,7 @@ fn run_jobs(jobs: &[Job], workers: usize, full: bool, make: &BackendFactory) -> 
         loop {
             let k = next.fetch_add(1, Ordering::Relaxed);
             let Some(&job) = jobs.get(k) else { return Ok(()) };
-            let done = pool.install(|| run_job(job, full, make));
+            let done = pool.install(|| run_job(job, full, overrides, make));
             let line = done.as_ref().map_or_else(|e| format!("{e:#}"), describe);
             let mut n = finished.lock().expect("progress lock");
             *n += 1;
@@ -157,9 +163,9 @@ fn run_jobs(jobs: &[Job], workers: usize, full: bool, make: &BackendFactory) -> 
     results.into_iter().map(|r| r.into_inner().expect("result lock").expect("every job ran")).collect()
 }
 
-fn run_job(job: Job, full: bool, make: &BackendFactory) -> anyhow::Result<Done> {
+fn run_job(job: Job, full: bool, overrides: &[String], make: &BackendFactory) -> anyhow::Result<Done> {
     Ok(match job {
-        Job::Run(case, variant, spacing) => Done::Run(cases::run(case, spacing, variant, make)?),
+        Job::Run(case, variant, spacing) => Done::Run(cases::run(case, spacing, variant, overrides, make)?),
         Job::Stability(case) => Done::Stability(stability::run(case, full, if full { 5 } else { 3 }, make)?),
     })
 }

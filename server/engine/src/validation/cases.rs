@@ -105,9 +105,18 @@ impl Outcome {
     }
 }
 
-/// Runs `case` at `spacing` with `variant` on the backend `make` builds.
-pub fn run(case: &'static Case, spacing: f64, variant: &Variant, make: &BackendFactory) -> Result<Outcome, SceneError> {
+/// Runs `case` at `spacing` with `variant` on the backend `make` builds, `extra`
+/// overrides applied before the variant's own (so a variant that sets the same field
+/// keeps its value).
+pub fn run(
+    case: &'static Case,
+    spacing: f64,
+    variant: &Variant,
+    extra: &[String],
+    make: &BackendFactory,
+) -> Result<Outcome, SceneError> {
     let mut overrides = vec![format!("particle_spacing={spacing}")];
+    overrides.extend_from_slice(extra);
     overrides.extend(variant.overrides.iter().map(|s| s.to_string()));
     let scene = from_preset(case.preset, &overrides)?;
     let mut sim = Simulation::new(scene, make).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;

@@ -14,7 +14,7 @@ const SPACINGS: (&[f64], &[f64]) = (&[0.1, 1.0 / 15.0, 0.05], &[0.1, 1.0 / 15.0,
 
 /// The variants every case runs: the implicit solve (the default) and the explicit
 /// viscous force (bound by the explicit viscous step), with the default scheme
-/// (`--set solver.method=\"dfsph\"` runs them with DFSPH).
+/// (`floe validate --set 'solver.method="dfsph"'` runs them with DFSPH).
 const DEFAULT: &[Variant] =
     &[Variant { name: "implicit", overrides: &[] }, Variant { name: "explicit", overrides: &[EXPLICIT] }];
 
