@@ -80,7 +80,7 @@ fn closed_box(min: [f32; 3], max: [f32; 3]) -> Boundary {
 /// SPlisHSPlasH"; docs/validation/dam-break). The other presets keep WCSPH: at rest
 /// DFSPH's pressure beside the walls is 1.6-2.7 times the hydrostatic one
 /// (docs/validation/hydrostatic/NOTES.md), and it diverges on the periodic
-/// Taylor-Green vortex.
+/// Taylor-Green vortex (every case on both schemes: docs/validation/schemes/NOTES.md).
 pub fn dam_break() -> Scene {
     let a = DAM_BREAK_A;
     Scene {
