@@ -240,9 +240,9 @@ pub struct ValidateArgs {
     /// when given an unknown one), `stability`, or one stability case by name.
     #[arg(long = "case", value_name = "NAME")]
     pub cases: Vec<String>,
-    /// Override a scene field in every accuracy run, before each variant's own
-    /// overrides (repeatable), e.g. `--set 'solver.method="dfsph"'` to run the cases
-    /// on the other scheme; the stability battery is not changed.
+    /// Override a scene field in every run, before each variant's or stability
+    /// case's own overrides (repeatable), e.g. `--set 'solver.method="dfsph"'` to run
+    /// the cases on the other scheme (a case that sets the scheme itself keeps it).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub overrides: Vec<String>,
     /// Directory for report.md, report.json and the SVG plots.

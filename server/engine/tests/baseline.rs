@@ -152,7 +152,9 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     ("bunny", &["particle_spacing=0.0196"], 0x93e350edc95029d1),
     // Recorded when ice came to melt.
     ("stefan", &[], 0x3df1774be1ddeec0),
-    ("ice_cube_in_glass", &["particle_spacing=0.01"], 0x3a090f0234c896c0),
+    ("ice_cube_in_glass", &["particle_spacing=0.01", WCSPH], 0x3a090f0234c896c0),
+    // Recorded when the preset moved to DFSPH.
+    ("ice_cube_in_glass", &["particle_spacing=0.01"], 0x522896b53c7fc63d),
     ("ice_melting", &["particle_spacing=0.0196"], 0x146f9b1cb932e666),
 ];
 

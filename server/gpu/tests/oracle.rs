@@ -619,11 +619,14 @@ fn solid_passes_and_steps_match_the_cpu() {
 /// on water at 350 K, 500 steps in (some of it melting, some melted and gone
 /// from its clusters): every pass of heat and of the shape matching against the
 /// CPU's, then 20 whole steps on both, whose phases agree exactly and whose
-/// positions and liquid fractions agree closely.
+/// positions and liquid fractions agree closely. On WCSPH: the preset's DFSPH
+/// iterates its solves to a tolerance, which the backends may reach an iteration
+/// apart, and its own passes have their own oracle test.
 #[test]
 fn melting_passes_and_steps_match_the_cpu() {
     let Some(gpu) = common::gpu("melting_passes_and_steps_match_the_cpu") else { return };
     let o = [
+        "solver.method=\"wcsph\"",
         "particle_spacing=0.01",
         "heat.fluids[0].temperature=350",
         "heat.fluids[1].temperature=273.15",

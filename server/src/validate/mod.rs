@@ -166,7 +166,7 @@ fn run_jobs(
 fn run_job(job: Job, full: bool, overrides: &[String], make: &BackendFactory) -> anyhow::Result<Done> {
     Ok(match job {
         Job::Run(case, variant, spacing) => Done::Run(cases::run(case, spacing, variant, overrides, make)?),
-        Job::Stability(case) => Done::Stability(stability::run(case, full, if full { 5 } else { 3 }, make)?),
+        Job::Stability(case) => Done::Stability(stability::run(case, full, if full { 5 } else { 3 }, overrides, make)?),
     })
 }
 

@@ -96,10 +96,18 @@ pub struct StabilityOutcome {
     pub passed: bool,
 }
 
-/// Runs one trial of `case` with `extra` overrides on the backend `make` builds.
-pub fn trial(case: &StabilityCase, full: bool, extra: &[String], make: &BackendFactory) -> Result<Trial, SceneError> {
+/// Runs one trial of `case` on the backend `make` builds: `first` overrides before
+/// the case's own, `extra` after them.
+pub fn trial(
+    case: &StabilityCase,
+    full: bool,
+    first: &[String],
+    extra: &[String],
+    make: &BackendFactory,
+) -> Result<Trial, SceneError> {
     let spacing = if full { case.spacing.1 } else { case.spacing.0 };
     let mut overrides = vec![format!("particle_spacing={spacing}")];
+    overrides.extend_from_slice(first);
     overrides.extend(case.overrides.iter().map(|s| s.to_string()));
     overrides.extend_from_slice(extra);
     let scene = from_preset(case.preset, &overrides)?;
@@ -139,17 +147,19 @@ pub fn trial(case: &StabilityCase, full: bool, extra: &[String], make: &BackendF
     })
 }
 
-/// Runs `case` at its own settings, then bisects the CFL number (`iterations`
-/// halvings between the default 0.5 and 2) for the largest stable step.
+/// Runs `case` at its own settings (`overrides` applied before the case's own),
+/// then bisects the CFL number (`iterations` halvings between the default 0.5 and 2)
+/// for the largest stable step.
 pub fn run(
     case: &StabilityCase,
     full: bool,
     iterations: u32,
+    overrides: &[String],
     make: &BackendFactory,
 ) -> Result<StabilityOutcome, SceneError> {
-    let base = trial(case, full, &[], make)?;
+    let base = trial(case, full, overrides, &[], make)?;
     let stable = |t: &Trial| t.finished && !t.silent_explosion;
-    let at = |cfl: f64| trial(case, full, &[format!("solver.time_step.cfl={cfl}")], make);
+    let at = |cfl: f64| trial(case, full, overrides, &[format!("solver.time_step.cfl={cfl}")], make);
     let mut best: Option<(f64, f64)> = None;
     if stable(&base) {
         let top = at(2.0)?;

@@ -134,7 +134,10 @@ pub const CASES: &[Case] = &[
         spacings: (&[0.01, 0.0075], &[0.01, 0.0075, 0.005]),
         checked_at: Some(0.01),
         bounds: &[("heat_drift", 1e-6), ("solid_mass_rise_kg", 0.0), ("mass_error", 1e-6)],
-        variants: &[Variant { name: "default", overrides: &["heat.fluids[1].temperature=273.15"] }],
+        variants: &[
+            Variant { name: "default", overrides: &["heat.fluids[1].temperature=273.15"] },
+            Variant { name: "wcsph", overrides: &["heat.fluids[1].temperature=273.15", "solver.method=\"wcsph\""] },
+        ],
         measure: super::melting::insulated_case,
     },
     Case {

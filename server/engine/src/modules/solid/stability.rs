@@ -107,12 +107,12 @@ pub const STABILITY: &[StabilityCase] = &[
     },
     StabilityCase {
         name: "ice_refreezing",
-        what: "the cube 1 K above its melting point, without gravity, under a heat sink of 1e9 W/m^3: it melts in its first step, freezes again where it is by 0.3 s and its members rejoin their clusters",
+        what: "the cube 4 K above its melting point, without gravity, under a heat sink of 1e9 W/m^3: it melts in its first step, freezes again where it is by 0.35 s and its members rejoin their clusters",
         preset: "ice_cube_in_glass",
         spacing: (0.01, 0.0075),
         overrides: &[
             "gravity=[0,0,0]",
-            "heat.fluids[1].temperature=274.15",
+            "heat.fluids[1].temperature=277.15",
             r#"heat.sources=[{"min":[0.02,0.09,0.02],"max":[0.08,0.15,0.08],"power":-1e9}]"#,
         ],
         until: (0.35, 0.6),
