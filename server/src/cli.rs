@@ -348,6 +348,21 @@ pub struct ServeArgs {
     /// scene names only plain file names in it. Without it, scenes naming an asset are refused.
     #[arg(long, env = "FLOE_ASSETS_DIR", value_name = "DIR")]
     pub assets: Option<PathBuf>,
+    /// Joins a cluster as this worker (`floe-0`: lower-case letters, digits, '-'):
+    /// every worker names the same PostgreSQL `--database` and the same shared
+    /// `--data-dir`, and a proxy in front routes to them (docs/lab-admin.md).
+    #[arg(long, env = "FLOE_WORKER", value_name = "NAME", requires = "database")]
+    pub worker: Option<String>,
+    /// In a cluster, where the others and the proxy reach this worker's gRPC (default: `--grpc`).
+    #[arg(long, env = "FLOE_ADVERTISE_GRPC", value_name = "HOST:PORT", requires = "worker")]
+    pub advertise_grpc: Option<String>,
+    /// In a cluster, where the others and the proxy reach this worker's HTTP (default: `--http`).
+    #[arg(long, env = "FLOE_ADVERTISE_HTTP", value_name = "HOST:PORT", requires = "worker")]
+    pub advertise_http: Option<String>,
+    /// In a cluster, seconds a worker may be silent before the others take its
+    /// scenes (from their latest checkpoints); it stops stepping them after half of it.
+    #[arg(long, env = "FLOE_LEASE", value_name = "SECONDS", default_value_t = crate::cluster::DEFAULT_LEASE_SECONDS, value_parser = clap::value_parser!(u64).range(2..), requires = "worker")]
+    pub lease: u64,
 }
 
 impl ServeArgs {

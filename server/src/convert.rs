@@ -19,6 +19,14 @@ pub fn status(e: ServiceError) -> Status {
         ServiceError::PermissionDenied(_) => Code::PermissionDenied,
         ServiceError::Unavailable(_) => Code::Unavailable,
         ServiceError::Unauthenticated(_) => Code::Unauthenticated,
+        ServiceError::Elsewhere { ref worker, .. } => {
+            // UNAVAILABLE: retry, naming the worker in the `floe-worker` header.
+            let mut status = Status::unavailable(crate::echo::bounded(&e.to_string()));
+            if let Ok(value) = worker.parse() {
+                status.metadata_mut().insert(crate::cluster::WORKER_HEADER, value);
+            }
+            return status;
+        }
     };
     Status::new(code, crate::echo::bounded(&e.to_string()))
 }

@@ -47,6 +47,8 @@ type Reply<T> = Result<Response<T>, Status>;
 impl SceneService for Grpc {
     async fn create_scene(&self, request: Request<pb::CreateSceneRequest>) -> Reply<pb::SceneInfo> {
         let who = caller(&request)?;
+        let named =
+            request.metadata().get(crate::cluster::WORKER_HEADER).and_then(|v| v.to_str().ok()).map(String::from);
         let r = request.into_inner();
         let source = match r.source {
             Some(Source::Preset(name)) => SceneSource::Preset(name),
@@ -55,7 +57,7 @@ impl SceneService for Grpc {
             }
             None => return Err(Status::invalid_argument("source: give a preset name or a scene document")),
         };
-        let handle = self.registry.create(&who, source, r.overrides).await.map_err(status)?;
+        let handle = self.registry.create_routed(&who, source, r.overrides, named.as_deref()).await.map_err(status)?;
         Ok(Response::new(convert::scene_info(&handle.shared)))
     }
 

@@ -22,6 +22,8 @@
 //! - [`grpc_lab`]: `floe.v1.LabService` (checkpoints, share links, users, quotas).
 //! - [`quota`]: per-user quotas. [`metrics`]: Prometheus metrics.
 //! - [`store`]: the database and checkpoint files. [`admin`]: `floe admin`.
+//! - [`cluster`]: several workers sharing one database behind one proxy: placement,
+//!   heartbeats, leases and fencing.
 //! - [`echo`]: error messages bounded however large the request.
 //! - [`lab_bench`]: `floe bench --lab`, a lab server under load.
 //! - [`fuzz`]: `floe fuzz`, the parsers on generated and mutated inputs.
@@ -30,6 +32,7 @@ pub mod admin;
 pub mod auth;
 pub mod bench;
 pub mod cli;
+pub mod cluster;
 pub mod codec_bench;
 pub mod convert;
 pub mod default_scene;

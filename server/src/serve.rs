@@ -5,11 +5,13 @@
 
 use crate::auth::{AuthMode, Caller};
 use crate::cli::AuthChoice;
+use crate::cluster::Member;
 use crate::grpc::Grpc;
 use crate::grpc_guard::GuardLayer;
 use crate::grpc_lab::Lab;
 use crate::service::{Registry, SceneSource};
 use crate::store::Store;
+use crate::store::cluster::WorkerInfo;
 use floe_proto::pb::lab_service_server::LabServiceServer;
 use floe_proto::pb::scene_service_server::SceneServiceServer;
 use std::future::{Future, IntoFuture};
@@ -154,7 +156,10 @@ pub fn serve(args: crate::cli::ServeArgs) -> anyhow::Result<()> {
             .map_err(|e| anyhow::anyhow!("cannot listen for HTTP on {}: {e}", args.http))?;
         let listeners = Listeners { grpc, http };
         let location = args.store.location();
-        let store = Store::open(&location).await?;
+        if args.worker.is_some() && !location.database_url().starts_with("postgres") {
+            anyhow::bail!("--worker needs a PostgreSQL --database shared by every worker (postgres://...)");
+        }
+        let store = Store::open(&location, args.worker.as_deref()).await?;
         let mode = auth_mode(args.auth, store.db.users().await?.len(), &listeners)?;
         tracing::info!(
             "data in {} (database {}); {}",
@@ -172,9 +177,28 @@ pub fn serve(args: crate::cli::ServeArgs) -> anyhow::Result<()> {
         let choice = args.backend.into();
         let backend = tokio::task::spawn_blocking(move || floe_gpu::select::select(choice)).await??;
         let factory = backend.factory.clone();
-        let registry = Registry::open(args.options(mode), backend.factory, store).await?;
+        let member = match &args.worker {
+            Some(name) => {
+                let info = WorkerInfo {
+                    name: name.clone(),
+                    grpc: args.advertise_grpc.clone().unwrap_or(listeners.grpc.local_addr()?.to_string()),
+                    http: args.advertise_http.clone().unwrap_or(listeners.http.local_addr()?.to_string()),
+                    backend: backend.name.to_string(),
+                    max_scenes: args.max_scenes,
+                    max_particles: args.max_particles,
+                };
+                Some(Member::join(&store.db, info, Duration::from_secs(args.lease)).await?)
+            }
+            None => None,
+        };
+        let registry = Registry::open(args.options(mode), backend.factory, store, member).await?;
         let local = Caller::local();
-        if args.scene != "none" && mode == AuthMode::SingleUser && registry.list(&local).is_empty() {
+        // A cluster's workers start with none: each would make its own.
+        if args.worker.is_none()
+            && args.scene != "none"
+            && mode == AuthMode::SingleUser
+            && registry.list(&local).is_empty()
+        {
             let (preset, overrides) = if args.scene == "auto" {
                 let c = tokio::task::spawn_blocking(move || crate::default_scene::choose(&*factory)).await??;
                 tracing::info!(

@@ -84,7 +84,7 @@ pub async fn upgrade(
     let text = |h| headers.get(h).and_then(|v: &axum::http::HeaderValue| v.to_str().ok());
     if !origin::allowed(text(header::ORIGIN), text(header::HOST), registry.access().origins()) {
         let o = crate::echo::cap(text(header::ORIGIN).unwrap_or_default());
-        return Err(ApiError(
+        return Err(ApiError::new(
             StatusCode::FORBIDDEN,
             format!("origin {o} may not open a WebSocket here (the server's own origin or --allow-origin)"),
         ));
@@ -201,7 +201,7 @@ async fn control(
         }
         Err(e) => {
             let code = ApiError::from(e);
-            (error(&code.1), name, code.0.as_str().to_owned())
+            (error(&code.message), name, code.status.as_str().to_owned())
         }
     }
 }

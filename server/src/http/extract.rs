@@ -21,7 +21,7 @@ fn body_error(e: JsonRejection) -> ApiError {
         StatusCode::UNPROCESSABLE_ENTITY => StatusCode::BAD_REQUEST,
         other => other,
     };
-    ApiError(status, e.body_text())
+    ApiError::new(status, e.body_text())
 }
 
 impl<S: Send + Sync, T: DeserializeOwned> FromRequest<S> for Body<T> {
@@ -52,7 +52,7 @@ impl<S: Send + Sync> FromRequestParts<S> for SceneId {
 
     async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
         let Path(id) = Path::<u64>::from_request_parts(parts, state).await.map_err(|e| {
-            ApiError(StatusCode::BAD_REQUEST, format!("scene id: {}", crate::echo::cap(&e.body_text())))
+            ApiError::new(StatusCode::BAD_REQUEST, format!("scene id: {}", crate::echo::cap(&e.body_text())))
         })?;
         Ok(SceneId(id))
     }
@@ -67,7 +67,7 @@ impl<S: Send + Sync, T: DeserializeOwned> FromRequestParts<S> for Params<T> {
 
     async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
         let Query(value) =
-            Query::from_request_parts(parts, state).await.map_err(|e| ApiError(e.status(), e.body_text()))?;
+            Query::from_request_parts(parts, state).await.map_err(|e| ApiError::new(e.status(), e.body_text()))?;
         Ok(Params(value))
     }
 }
@@ -82,6 +82,6 @@ impl<S: Send + Sync> FromRequestParts<S> for Who {
 
     async fn from_request_parts(parts: &mut Parts, _: &S) -> Result<Self, ApiError> {
         let caller = parts.extensions.get::<crate::auth::Caller>().cloned();
-        caller.map(Who).ok_or_else(|| ApiError(StatusCode::UNAUTHORIZED, "the call was not authenticated".into()))
+        caller.map(Who).ok_or_else(|| ApiError::new(StatusCode::UNAUTHORIZED, "the call was not authenticated".into()))
     }
 }

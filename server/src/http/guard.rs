@@ -48,12 +48,12 @@ pub async fn bounded_head_and_json_errors(request: Request, next: Next) -> Respo
     let uri = request.uri().to_string().len();
     if uri > MAX_URI_BYTES {
         let m = format!("the URI is {uri} bytes; at most {MAX_URI_BYTES} are accepted");
-        return ApiError(StatusCode::URI_TOO_LONG, m).into_response();
+        return ApiError::new(StatusCode::URI_TOO_LONG, m).into_response();
     }
     let head: usize = request.headers().iter().map(|(k, v)| k.as_str().len() + v.len() + 4).sum();
     if head > MAX_HEADER_BYTES {
         let m = format!("the request headers are {head} bytes; at most {MAX_HEADER_BYTES} are accepted");
-        return ApiError(StatusCode::REQUEST_HEADER_FIELDS_TOO_LARGE, m).into_response();
+        return ApiError::new(StatusCode::REQUEST_HEADER_FIELDS_TOO_LARGE, m).into_response();
     }
     let (method, path) = (request.method().clone(), request.uri().path().to_owned());
     let response = next.run(request).await;
@@ -68,7 +68,7 @@ pub async fn bounded_head_and_json_errors(request: Request, next: Next) -> Respo
         StatusCode::METHOD_NOT_ALLOWED => format!("{method} is not allowed on {}", crate::echo::cap(&path)),
         s => s.canonical_reason().unwrap_or("error").to_owned(),
     };
-    let mut json = ApiError(status, message).into_response();
+    let mut json = ApiError::new(status, message).into_response();
     if let Some(allow) = response.headers().get(header::ALLOW) {
         json.headers_mut().insert(header::ALLOW, allow.clone());
     }

@@ -73,9 +73,9 @@ async fn revoke(
     Who(who): Who,
     Path((id, share)): Path<(String, String)>,
 ) -> ApiResult<SharesView> {
-    let id: u64 = id
-        .parse()
-        .map_err(|_| ApiError(StatusCode::BAD_REQUEST, format!("scene id: not a number: {}", crate::echo::cap(&id))))?;
+    let id: u64 = id.parse().map_err(|_| {
+        ApiError::new(StatusCode::BAD_REQUEST, format!("scene id: not a number: {}", crate::echo::cap(&id)))
+    })?;
     r.revoke_share(&who, id, &share).await?;
     Ok(Json(SharesView { scene_id: id, share_ids: r.shares(&who, id)? }))
 }
@@ -126,7 +126,7 @@ struct QuotaBody {
 }
 
 fn limit(name: &str) -> Result<Limit, ApiError> {
-    quota::limit_named(name).map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))
+    quota::limit_named(name).map_err(|m| ApiError::new(StatusCode::BAD_REQUEST, m))
 }
 
 async fn set_quota(
@@ -137,7 +137,8 @@ async fn set_quota(
 ) -> ApiResult<UserJson> {
     require_admin(&who)?;
     let l = limit(&quota)?;
-    let value = quota::check_value(l, b.value).map_err(|m| ApiError(StatusCode::BAD_REQUEST, format!("value: {m}")))?;
+    let value =
+        quota::check_value(l, b.value).map_err(|m| ApiError::new(StatusCode::BAD_REQUEST, format!("value: {m}")))?;
     Ok(Json(r.set_quota(&who, &name, l, Some(value)).await?.into()))
 }
 

@@ -69,7 +69,7 @@ pub fn router(registry: Arc<Registry>, web_root: std::path::PathBuf) -> Router {
         .route("/scenes/{id}/parameters", post(parameters))
         .route("/scenes/{id}/ws", get(crate::ws::upgrade))
         .merge(lab::routes())
-        .fallback(|| async { ApiError(StatusCode::NOT_FOUND, "no such API route".into()) })
+        .fallback(|| async { ApiError::new(StatusCode::NOT_FOUND, "no such API route".into()) })
         .layer(DefaultBodyLimit::max(MAX_BODY_BYTES));
     let guarded = Router::new()
         .nest("/api/v1", api)
@@ -83,15 +83,34 @@ pub fn router(registry: Arc<Registry>, web_root: std::path::PathBuf) -> Router {
 
 /// An error response: a status and a message naming what was wrong.
 #[derive(Debug)]
-pub struct ApiError(pub StatusCode, pub String);
+pub struct ApiError {
+    /// The HTTP status.
+    pub status: StatusCode,
+    /// What was wrong, naming the field.
+    pub message: String,
+    /// In a cluster, the worker the request is for (421 Misdirected Request): the
+    /// answer's `floe-worker` header and `worker` field, and the client retries at
+    /// `/w/WORKER/...` through the proxy.
+    pub worker: Option<String>,
+}
+
+impl ApiError {
+    /// An error with this status and message.
+    pub fn new(status: StatusCode, message: String) -> Self {
+        Self { status, message, worker: None }
+    }
+}
 
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
-        let body = Json(serde_json::json!({ "error": crate::echo::bounded(&self.1) }));
-        if self.0 == StatusCode::UNAUTHORIZED {
-            return (self.0, [(axum::http::header::WWW_AUTHENTICATE, "Bearer")], body).into_response();
+        let body = Json(serde_json::json!({ "error": crate::echo::bounded(&self.message), "worker": self.worker }));
+        if self.status == StatusCode::UNAUTHORIZED {
+            return (self.status, [(axum::http::header::WWW_AUTHENTICATE, "Bearer")], body).into_response();
         }
-        (self.0, body).into_response()
+        if let Some(worker) = &self.worker {
+            return (self.status, [(crate::cluster::WORKER_HEADER, worker.as_str())], body).into_response();
+        }
+        (self.status, body).into_response()
     }
 }
 
@@ -105,8 +124,15 @@ impl From<ServiceError> for ApiError {
             ServiceError::PermissionDenied(_) => StatusCode::FORBIDDEN,
             ServiceError::Unavailable(_) => StatusCode::SERVICE_UNAVAILABLE,
             ServiceError::Unauthenticated(_) => StatusCode::UNAUTHORIZED,
+            ServiceError::Elsewhere { ref worker, .. } => {
+                return ApiError {
+                    status: StatusCode::MISDIRECTED_REQUEST,
+                    worker: Some(worker.clone()),
+                    message: e.to_string(),
+                };
+            }
         };
-        ApiError(code, e.to_string())
+        ApiError::new(code, e.to_string())
     }
 }
 
@@ -339,8 +365,10 @@ struct CreateBody {
 async fn create(
     AxState(r): AxState<Arc<Registry>>,
     Who(who): Who,
+    headers: axum::http::HeaderMap,
     Body(b): Body<CreateBody>,
 ) -> Result<(StatusCode, Json<SceneView>), ApiError> {
+    let named = headers.get(crate::cluster::WORKER_HEADER).and_then(|v| v.to_str().ok());
     let source = match (b.preset, b.document) {
         (Some(p), None) => SceneSource::Preset(p),
         (None, Some(text)) => {
@@ -348,7 +376,7 @@ async fn create(
                 None | Some("toml") => Format::Toml,
                 Some("json") => Format::Json,
                 Some(other) => {
-                    return Err(ApiError(
+                    return Err(ApiError::new(
                         StatusCode::BAD_REQUEST,
                         format!("document_format: must be \"toml\" or \"json\", got {:?}", crate::echo::cap(other)),
                     ));
@@ -356,9 +384,14 @@ async fn create(
             };
             SceneSource::Document { text, format }
         }
-        _ => return Err(ApiError(StatusCode::BAD_REQUEST, "give exactly one of \"preset\" and \"document\"".into())),
+        _ => {
+            return Err(ApiError::new(
+                StatusCode::BAD_REQUEST,
+                "give exactly one of \"preset\" and \"document\"".into(),
+            ));
+        }
     };
-    let handle = r.create(&who, source, b.overrides).await?;
+    let handle = r.create_routed(&who, source, b.overrides, named).await?;
     Ok((StatusCode::CREATED, Json(SceneView::of(&handle.shared))))
 }
 
@@ -412,7 +445,7 @@ async fn step(
     SceneId(id): SceneId,
     Body(b): Body<StepBody>,
 ) -> ApiResult<SceneView> {
-    let (steps, until) = b.checked().map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))?;
+    let (steps, until) = b.checked().map_err(|m| ApiError::new(StatusCode::BAD_REQUEST, m))?;
     r.step(&who, id, steps, until).await?;
     Ok(Json(SceneView::of(&r.get(&who, id, Need::Watch)?.shared)))
 }
@@ -440,7 +473,7 @@ async fn run(
     SceneId(id): SceneId,
     body: Option<Body<RunBody>>,
 ) -> ApiResult<SceneView> {
-    let rtf = body.map(|b| b.0).unwrap_or_default().checked().map_err(|m| ApiError(StatusCode::BAD_REQUEST, m))?;
+    let rtf = body.map(|b| b.0).unwrap_or_default().checked().map_err(|m| ApiError::new(StatusCode::BAD_REQUEST, m))?;
     r.run(&who, id, rtf).await?;
     view(&r, &who, id)
 }

@@ -47,7 +47,11 @@ impl Registry {
         let _gate = self.run_gate.lock().await;
         if handle.shared.status().state != State::Running {
             let quotas = self.quotas_of(&owner);
-            let (running, particles) = self.running_of(&owner);
+            let (running, particles) = match (&self.member, &self.store) {
+                // Over the whole cluster: every worker records its runs in the database.
+                (Some(_), Some(store)) => store.db.running_of(&owner).await.map_err(unavailable)?,
+                _ => self.running_of(&owner),
+            };
             let (max_scenes, max_particles) = (quotas.get(Limit::RunningScenes), quotas.get(Limit::RunningParticles));
             if running >= max_scenes {
                 let detail = format!("{owner} runs {running} scenes; pause one first");
@@ -76,7 +80,7 @@ impl Registry {
 
     async fn record_state(&self, id: u64, state: &str, real_time_factor: f64) {
         if let Some(store) = &self.store
-            && let Err(e) = store.db.update_state(id, state, real_time_factor).await
+            && let Err(e) = store.db.update_state(id, self.lease().as_ref(), state, real_time_factor).await
         {
             tracing::warn!(scene = id, "run state not recorded: {e}");
         }
@@ -143,7 +147,7 @@ impl Registry {
         let status = handle.set_parameters(overrides).await?;
         if let Some(store) = &self.store {
             let tunables = persist::tunables_json(&handle.shared.scene_json());
-            store.db.update_tunables(id, &tunables).await.map_err(unavailable)?;
+            store.db.update_tunables(id, self.lease().as_ref(), &tunables).await.map_err(|e| self.db_error(id, e))?;
         }
         Ok(status)
     }
@@ -172,6 +176,14 @@ impl Registry {
         let mut since = lock.lock().await;
         let t0 = Instant::now();
         let saved = handle.save_at().await?;
+        // A worker that may have lost the scene writes nothing for it: its tenure
+        // must hold and the database must still place the scene here.
+        if let Some(lease) = self.lease() {
+            let held = self.tenure.holds() && store.db.holds(&lease, id).await.map_err(unavailable)?;
+            if !held {
+                return Err(self.db_error(id, crate::store::db::DbError::Fenced(id)));
+            }
+        }
         let checkpoints = store.checkpoints.clone();
         let written = tokio::task::spawn_blocking(move || checkpoints.write(id, saved.step, saved.time, &saved.state))
             .await

@@ -4,6 +4,7 @@
 
 use super::shared::{Shared, Status};
 use super::worker::Worker;
+use crate::cluster::Tenure;
 use floe_engine::Simulation;
 use floe_engine::quantize::PositionGrid;
 use floe_engine::simulation::BackendFactory;
@@ -106,14 +107,15 @@ pub struct SceneHandle {
 pub const MAX_STEPS_PER_REQUEST: u64 = 1_000_000;
 
 impl SceneHandle {
-    /// Starts the worker of a built (or restored) simulation owned by `owner`.
-    pub fn spawn(id: u64, owner: String, sim: Simulation, backend: Arc<BackendFactory>) -> Self {
+    /// Starts the worker of a built (or restored) simulation owned by `owner`, which
+    /// steps only while `tenure` holds.
+    pub fn spawn(id: u64, owner: String, sim: Simulation, backend: Arc<BackendFactory>, tenure: Arc<Tenure>) -> Self {
         let shared = Arc::new(Shared::new(id, owner, &sim));
         let (tx, rx) = mpsc::channel();
         let worker_shared = shared.clone();
         let worker = std::thread::Builder::new()
             .name(format!("scene-{id}"))
-            .spawn(move || Worker::new(sim, backend, worker_shared).run(rx))
+            .spawn(move || Worker::new(sim, backend, worker_shared, tenure).run(rx))
             .expect("spawn scene worker");
         Self { shared, commands: Mutex::new(tx), worker: Mutex::new(Some(worker)) }
     }

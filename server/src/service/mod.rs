@@ -9,11 +9,13 @@
 //! - [`pump`]: moves a subscription's frames to a transport until either side ends.
 //! - `control`: the calls with consequences beyond the scene (quotas, checkpoints,
 //!   share links, users); `persist`: bringing scenes back at start-up, checkpoints
-//!   while running, and shutdown.
+//!   while running, and shutdown; `membership`: a cluster worker's side (scenes
+//!   placed here taken up, scenes that moved dropped, draining).
 
 mod control;
 pub mod frames;
 pub mod handle;
+mod membership;
 pub mod options;
 mod persist;
 pub mod pump;
@@ -21,6 +23,7 @@ pub mod shared;
 mod worker;
 
 use crate::auth::{Access, AuthMode, Caller};
+use crate::cluster::{Member, Tenure};
 use crate::metrics::{Metrics, SceneSample, SceneSamples};
 use crate::quota::{Limit, QuotaSet, Quotas, StreamPermit};
 use crate::store::Store;
@@ -62,6 +65,15 @@ pub enum ServiceError {
     /// The database failed; the request may be retried.
     #[error("{0}")]
     Unavailable(String),
+    /// In a cluster: the scene (or a new scene) is for another worker; the request
+    /// goes there (through the proxy, naming the worker).
+    #[error("{message}")]
+    Elsewhere {
+        /// The worker's name.
+        worker: String,
+        /// What happened, for people.
+        message: String,
+    },
     /// No valid credential.
     #[error("{0}")]
     Unauthenticated(#[from] crate::auth::AuthError),
@@ -227,6 +239,13 @@ pub struct Registry {
     metrics: Arc<Metrics>,
     /// The database and checkpoints; `None` keeps scenes in memory only.
     store: Option<Store>,
+    /// This worker's membership of a cluster; `None` on a single server.
+    member: Option<Member>,
+    /// Scene threads step while it holds: the member's, or one that always holds.
+    tenure: Arc<Tenure>,
+    /// In a cluster, the worker holding each scene not held here (as of the last
+    /// maintenance tick), with its owner: where a call for it goes.
+    elsewhere: RwLock<BTreeMap<u64, (String, String)>>,
     /// Serialises the running-scene quota checks with the runs they admit.
     run_gate: tokio::sync::Mutex<()>,
 }
@@ -241,11 +260,17 @@ impl Registry {
     /// An empty registry kept in memory only (nothing survives the process), whose
     /// scenes run on the backends `backend` builds.
     pub fn new(options: Options, backend: Arc<BackendFactory>) -> Self {
-        Self::with_store(options, backend, None)
+        Self::with_store(options, backend, None, None)
     }
 
-    fn with_store(options: Options, backend: Arc<BackendFactory>, store: Option<Store>) -> Self {
+    fn with_store(
+        options: Options,
+        backend: Arc<BackendFactory>,
+        store: Option<Store>,
+        member: Option<Member>,
+    ) -> Self {
         let scenes = Arc::new(Scenes::default());
+        let tenure = member.as_ref().map_or_else(|| Arc::new(Tenure::forever()), |m| m.tenure.clone());
         let metrics = Arc::new(Metrics::new(scenes.clone()));
         Self {
             scenes,
@@ -256,6 +281,9 @@ impl Registry {
             options,
             backend,
             store,
+            member,
+            tenure,
+            elsewhere: RwLock::new(BTreeMap::new()),
             run_gate: tokio::sync::Mutex::new(()),
         }
     }
@@ -313,9 +341,24 @@ impl Registry {
 
     fn entry<T>(&self, caller: &Caller, id: u64, need: Need, f: impl FnOnce(&Entry) -> T) -> Result<T, ServiceError> {
         let scenes = self.scenes.0.read().expect("lock");
-        let e = scenes.get(&id).ok_or(ServiceError::NotFound(id))?;
+        let Some(e) = scenes.get(&id) else { return Err(self.not_here(caller, id, need)) };
         Self::check(caller, id, &e.handle.shared.owner, need)?;
         Ok(f(e))
+    }
+
+    /// The answer for a scene this server does not hold: where it is, to a caller who
+    /// may use it there; else not found.
+    fn not_here(&self, caller: &Caller, id: u64, need: Need) -> ServiceError {
+        match self.elsewhere.read().expect("lock").get(&id) {
+            Some((worker, owner)) => match Self::check(caller, id, owner, need) {
+                Ok(()) => ServiceError::Elsewhere {
+                    worker: worker.clone(),
+                    message: format!("scene {id} is on worker {worker}"),
+                },
+                Err(e) => e,
+            },
+            None => ServiceError::NotFound(id),
+        }
     }
 
     /// The scene with this id, if `caller` may do `need` to it.
@@ -342,21 +385,35 @@ impl Registry {
         source: SceneSource,
         overrides: Vec<String>,
     ) -> Result<Arc<SceneHandle>, ServiceError> {
+        self.create_routed(caller, source, overrides, None).await
+    }
+
+    /// [`Registry::create`] for a request that named the worker `named` (the
+    /// [`crate::cluster::WORKER_HEADER`]). In a cluster the scene is built here when
+    /// the request named this worker and it has room, or when placement picks this
+    /// worker; otherwise the answer is [`ServiceError::Elsewhere`], naming the worker
+    /// placement picked.
+    pub async fn create_routed(
+        &self,
+        caller: &Caller,
+        source: SceneSource,
+        overrides: Vec<String>,
+        named: Option<&str>,
+    ) -> Result<Arc<SceneHandle>, ServiceError> {
         let Caller::User { name: owner, .. } = caller else {
             return Err(ServiceError::PermissionDenied("a share link cannot create scenes".into()));
         };
         let max_scenes = self.options.limits.max_scenes;
-        if self.scenes.0.read().expect("lock").len() >= max_scenes {
+        if self.member.is_none() && self.scenes.0.read().expect("lock").len() >= max_scenes {
             return Err(ServiceError::ResourceExhausted(format!(
                 "the server holds its limit of {max_scenes} scenes; delete one first"
             )));
         }
-        let (server_max, backend, quotas) =
-            (self.options.limits.max_particles, self.backend.clone(), self.quotas.clone());
+        let (server_max, quotas) = (self.options.limits.max_particles, self.quotas.clone());
         let quota = self.quotas_of(owner).get(Limit::ParticlesPerScene);
         let who = owner.to_string();
         let assets = self.options.assets.clone();
-        let sim = tokio::task::spawn_blocking(move || {
+        let (scene, particles) = tokio::task::spawn_blocking(move || {
             let scene = match source {
                 SceneSource::Preset(name) => load::from_preset(&name, &overrides),
                 SceneSource::Document { text, format } => load::from_str(&text, format, &overrides),
@@ -376,13 +433,24 @@ impl Registry {
                 let detail = format!("{who}'s scenes may have at most {quota} particles; this one has {particles}");
                 return Err(quotas.refuse(Limit::ParticlesPerScene, quota, detail));
             }
+            Ok((scene, particles))
+        })
+        .await
+        .expect("scene load task")?;
+        self.place_here(particles, named).await?;
+        let backend = self.backend.clone();
+        let sim = tokio::task::spawn_blocking(move || {
             Simulation::new(scene, &*backend).map_err(|e| ServiceError::InvalidArgument(e.to_string()))
         })
         .await
         .expect("scene build task")?;
-        let id = self.next_id.fetch_add(1, Ordering::Relaxed);
+        let lease = self.member.as_ref().map(Member::lease);
+        let id = match (&self.store, &lease) {
+            (Some(store), Some(_)) => store.db.take_scene_id().await.map_err(unavailable)?,
+            _ => self.next_id.fetch_add(1, Ordering::Relaxed),
+        };
         if let Some(store) = &self.store {
-            store.db.insert_scene(&persist::row(id, owner, &sim)).await.map_err(unavailable)?;
+            store.db.insert_scene(&persist::row(id, owner, &sim, particles, lease)).await.map_err(unavailable)?;
         }
         tracing::info!(scene = id, owner = %owner, name = %sim.scene().name, particles = sim.particle_count(), "scene created");
         Ok(self.insert(id, owner.to_string(), sim))
@@ -390,7 +458,7 @@ impl Registry {
 
     /// Starts the worker of scene `id` and lists it.
     fn insert(&self, id: u64, owner: String, sim: Simulation) -> Arc<SceneHandle> {
-        let handle = Arc::new(SceneHandle::spawn(id, owner, sim, self.backend.clone()));
+        let handle = Arc::new(SceneHandle::spawn(id, owner, sim, self.backend.clone(), self.tenure.clone()));
         let entry = Entry {
             handle: handle.clone(),
             cache: Arc::new(FrameCache::default()),
@@ -405,7 +473,7 @@ impl Registry {
     pub async fn delete(&self, caller: &Caller, id: u64) -> Result<Arc<SceneHandle>, ServiceError> {
         self.entry(caller, id, Need::Steer, |_| ())?;
         if let Some(store) = &self.store {
-            store.db.delete_scene(id).await.map_err(unavailable)?;
+            store.db.delete_scene(id, self.lease().as_ref()).await.map_err(|e| self.db_error(id, e))?;
         }
         let entry = self.scenes.0.write().expect("lock").remove(&id).ok_or(ServiceError::NotFound(id))?;
         let handle = entry.handle.clone();

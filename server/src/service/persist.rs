@@ -4,8 +4,10 @@
 //! checkpoints everything.
 
 use super::{Options, Registry, State, unavailable};
+use crate::cluster::Member;
 use crate::store::Store;
 use crate::store::checkpoint::{Checkpoints, Meta};
+use crate::store::cluster::Lease;
 use crate::store::db::SceneRow;
 use floe_engine::Simulation;
 use floe_engine::scene::tunable;
@@ -17,7 +19,7 @@ use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 /// The database row of a new scene.
-pub(super) fn row(id: u64, owner: &str, sim: &Simulation) -> SceneRow {
+pub(super) fn row(id: u64, owner: &str, sim: &Simulation, particles: u64, lease: Option<Lease>) -> SceneRow {
     let spec = serde_json::to_string(sim.scene()).expect("scenes serialise");
     SceneRow {
         id,
@@ -27,6 +29,8 @@ pub(super) fn row(id: u64, owner: &str, sim: &Simulation) -> SceneRow {
         spec,
         state: "paused".into(),
         real_time_factor: 0.0,
+        particles,
+        lease,
     }
 }
 
@@ -68,11 +72,22 @@ fn tunable_overrides(tunables: &str) -> Result<Vec<String>, String> {
 
 /// Where a recovered scene came from.
 #[derive(Debug)]
-enum Recovered {
+pub(super) enum Recovered {
     /// Its newest checkpoint that verified.
     Checkpoint(Meta),
     /// Rebuilt at t = 0 from its recorded scene (no checkpoint verified).
     Spec,
+}
+
+impl std::fmt::Display for Recovered {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Recovered::Checkpoint(m) => {
+                write!(f, "at step {} (t = {:.6} s) from checkpoint {}", m.step, m.time, m.sequence)
+            }
+            Recovered::Spec => write!(f, "at t = 0, rebuilt from its recorded settings (no checkpoint verified)"),
+        }
+    }
 }
 
 /// The scene a database row describes, with its recorded live settings.
@@ -86,7 +101,7 @@ fn recorded_scene(row: &SceneRow) -> Result<Scene, String> {
 /// a restore of the snapshot it holds, of this very scene), with the live settings
 /// recorded since; else rebuilt from its recorded scene at t = 0. Each checkpoint
 /// passed over is logged with the reason.
-fn recover(
+pub(super) fn recover(
     row: &SceneRow,
     checkpoints: &Checkpoints,
     backend: &BackendFactory,
@@ -122,38 +137,36 @@ fn recover(
 
 impl Registry {
     /// A registry over `store`: every scene recorded there comes back, paused, at its
-    /// newest checkpoint that verifies; checkpoint directories of scenes no longer
-    /// recorded (a crash mid-delete) are removed.
-    pub async fn open(options: Options, backend: Arc<BackendFactory>, store: Store) -> anyhow::Result<Arc<Self>> {
+    /// newest checkpoint that verifies (in a cluster, every scene placed on this
+    /// worker); checkpoint directories of scenes no longer recorded (a crash
+    /// mid-delete) are removed.
+    pub async fn open(
+        options: Options,
+        backend: Arc<BackendFactory>,
+        store: Store,
+        member: Option<Member>,
+    ) -> anyhow::Result<Arc<Self>> {
         let rows = store.db.scenes().await?;
         let next = store.db.next_scene_id().await?;
-        let registry = Self::with_store(options, backend, Some(store));
+        let held = match &member {
+            Some(m) => store.db.scenes_held(&m.lease()).await?,
+            None => rows.clone(),
+        };
+        let registry = Self::with_store(options, backend, Some(store), member);
         let store = registry.store.as_ref().expect("just given");
         registry.reload_directory(store).await.map_err(|e| anyhow::anyhow!("{e}"))?;
         registry.next_id.store(next.max(rows.last().map_or(1, |r| r.id + 1)), Ordering::Relaxed);
-        for row in &rows {
+        let lease = registry.lease();
+        for row in &held {
             let (r, checkpoints, backend) = (row.clone(), store.checkpoints.clone(), registry.backend.clone());
             let recovered =
                 tokio::task::spawn_blocking(move || recover(&r, &checkpoints, &*backend)).await.expect("recovery task");
             match recovered {
                 Ok((sim, from)) => {
-                    match from {
-                        Recovered::Checkpoint(m) => tracing::info!(
-                            scene = row.id,
-                            owner = %row.owner,
-                            "scene restored paused at step {} (t = {:.6} s) from checkpoint {} (was {})",
-                            m.step, m.time, m.sequence, row.state
-                        ),
-                        Recovered::Spec => tracing::info!(
-                            scene = row.id,
-                            owner = %row.owner,
-                            "scene rebuilt at t = 0 from its recorded settings: no checkpoint verified (was {})",
-                            row.state
-                        ),
-                    }
+                    tracing::info!(scene = row.id, owner = %row.owner, "scene restored paused {from} (was {})", row.state);
                     registry.insert(row.id, row.owner.clone(), sim);
                     if row.state != "paused" {
-                        store.db.update_state(row.id, "paused", 0.0).await?;
+                        store.db.update_state(row.id, lease.as_ref(), "paused", 0.0).await?;
                     }
                 }
                 Err(e) => tracing::error!(scene = row.id, "scene could not be brought back, kept in the database: {e}"),
@@ -181,6 +194,11 @@ impl Registry {
                 () = &mut stop => break,
             }
             let elapsed = std::mem::replace(&mut last, Instant::now()).elapsed();
+            if self.member.is_some()
+                && let Err(e) = self.cluster_tick(store).await
+            {
+                tracing::warn!("cluster: {e}");
+            }
             match store.db.directory_version().await {
                 Ok(v) if v != self.access.directory().version => {
                     if self.reload_directory(store).await.is_ok() {

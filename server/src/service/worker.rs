@@ -4,6 +4,7 @@
 
 use super::handle::{Command, CommandError, MAX_STEPS_PER_REQUEST, Saved};
 use super::shared::{Event, Published, Shared, State, Status};
+use crate::cluster::Tenure;
 use floe_engine::simulation::BackendFactory;
 use floe_engine::{Halted, Simulation};
 use std::sync::Arc;
@@ -23,6 +24,9 @@ pub(super) struct Worker {
     /// Builds the backend of a reset or restored simulation.
     backend: Arc<BackendFactory>,
     shared: Arc<Shared>,
+    /// Stepping stops while it does not hold (a cluster worker that may have lost
+    /// its scenes); always held on a single server.
+    tenure: Arc<Tenure>,
     running: Option<f64>,
     last_publish: Option<Instant>,
     last_measure: Option<Instant>,
@@ -31,11 +35,12 @@ pub(super) struct Worker {
 }
 
 impl Worker {
-    pub(super) fn new(sim: Simulation, backend: Arc<BackendFactory>, shared: Arc<Shared>) -> Self {
+    pub(super) fn new(sim: Simulation, backend: Arc<BackendFactory>, shared: Arc<Shared>, tenure: Arc<Tenure>) -> Self {
         Self {
             sim,
             backend,
             shared,
+            tenure,
             running: None,
             last_publish: None,
             last_measure: None,
@@ -124,6 +129,10 @@ impl Worker {
                 None => {}
             }
             if let Some(rtf) = self.running {
+                if !self.tenure.holds() {
+                    std::thread::sleep(Duration::from_millis(10));
+                    continue;
+                }
                 if rtf > 0.0 {
                     // Pace: sleep while simulated time is ahead of wall time * factor.
                     let ahead = (self.sim.time() - run_start.1) / rtf - run_start.0.elapsed().as_secs_f64();
@@ -206,7 +215,8 @@ impl Worker {
                 Some(t) => self.sim.time() >= t || taken >= MAX_STEPS_PER_REQUEST,
                 None => taken >= steps,
             };
-            let stop = self.shared.cancel.load(Ordering::Relaxed) || abandoned.load(Ordering::Relaxed);
+            let stop =
+                self.shared.cancel.load(Ordering::Relaxed) || abandoned.load(Ordering::Relaxed) || !self.tenure.holds();
             if done || stop || !self.step_once() {
                 break;
             }

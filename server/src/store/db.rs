@@ -12,9 +12,12 @@ use std::future::Future;
 use std::pin::Pin;
 use std::time::{SystemTime, UNIX_EPOCH};
 
+pub use super::cluster::Lease;
+
 /// The migrations, in order; a released one is never edited (its checksum is
 /// recorded in the database), a change of schema is a new file.
-const MIGRATIONS: &[(i64, &str, &str)] = &[(1, "lab", include_str!("migrations/0001_lab.sql"))];
+const MIGRATIONS: &[(i64, &str, &str)] =
+    &[(1, "lab", include_str!("migrations/0001_lab.sql")), (2, "cluster", include_str!("migrations/0002_cluster.sql"))];
 
 /// The migrations built into this binary.
 #[derive(Debug)]
@@ -48,6 +51,9 @@ pub enum DbError {
     /// No user has that name.
     #[error("no user named '{0}'")]
     NoUser(String),
+    /// The worker no longer holds the scene (it moved to another worker).
+    #[error("scene {0} is no longer held by this worker")]
+    Fenced(u64),
 }
 
 /// A user as stored.
@@ -76,6 +82,10 @@ pub struct SceneRow {
     pub state: String,
     /// The real-time factor of the last run.
     pub real_time_factor: f64,
+    /// Particles (placement and the cluster's running quotas count them).
+    pub particles: u64,
+    /// The worker holding it in a cluster; `None` on a single server.
+    pub lease: Option<Lease>,
 }
 
 /// Everything the server keeps in memory to authenticate and apply quotas, read at once.
@@ -96,15 +106,15 @@ pub struct DirectoryRows {
 /// A connection pool with the schema migrated.
 #[derive(Debug, Clone)]
 pub struct Database {
-    pool: AnyPool,
+    pub(super) pool: AnyPool,
 }
 
-fn now() -> i64 {
+pub(super) fn now() -> i64 {
     SystemTime::now().duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs() as i64)
 }
 
 /// Scene ids are u64 in the API and BIGINT (i64) in SQL; ids stay far below 2^63.
-fn id(v: u64) -> i64 {
+pub(super) fn id(v: u64) -> i64 {
     i64::try_from(v).expect("scene ids stay below 2^63")
 }
 
@@ -276,8 +286,8 @@ impl Database {
     pub async fn insert_scene(&self, s: &SceneRow) -> Result<(), DbError> {
         let mut tx = self.pool.begin().await?;
         sqlx::query(
-            "INSERT INTO scenes (id, owner, name, spec, tunables, state, real_time_factor, created_at, updated_at) \
-             VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $8)",
+            "INSERT INTO scenes (id, owner, name, spec, tunables, state, real_time_factor, created_at, updated_at, \
+             particles, worker, epoch) VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $8, $9, $10, $11)",
         )
         .bind(id(s.id))
         .bind(&s.owner)
@@ -287,6 +297,9 @@ impl Database {
         .bind(&s.state)
         .bind(s.real_time_factor)
         .bind(now())
+        .bind(id(s.particles))
+        .bind(s.lease.as_ref().map(|l| l.worker.clone()))
+        .bind(s.lease.as_ref().map_or(0, |l| l.epoch))
         .execute(&mut *tx)
         .await?;
         sqlx::query("UPDATE meta SET value = $1 WHERE name = 'next_scene_id' AND value < $1")
@@ -297,34 +310,36 @@ impl Database {
         Ok(())
     }
 
-    /// Records a scene's live settings.
-    pub async fn update_tunables(&self, scene: u64, tunables: &str) -> Result<(), DbError> {
-        sqlx::query("UPDATE scenes SET tunables = $1, updated_at = $2 WHERE id = $3")
-            .bind(tunables)
-            .bind(now())
-            .bind(id(scene))
-            .execute(&self.pool)
-            .await?;
-        Ok(())
+    /// Records a scene's live settings; with a lease, only while it holds the scene.
+    pub async fn update_tunables(&self, scene: u64, lease: Option<&Lease>, tunables: &str) -> Result<(), DbError> {
+        let sql = format!("UPDATE scenes SET tunables = $1, updated_at = $2 WHERE {}", held_at(3));
+        let query = sqlx::query(&sql).bind(tunables).bind(now());
+        let done = bind_held(query, scene, lease).execute(&self.pool).await?;
+        held(scene, lease, done.rows_affected())
     }
 
-    /// Records a scene's run state.
-    pub async fn update_state(&self, scene: u64, state: &str, real_time_factor: f64) -> Result<(), DbError> {
-        sqlx::query("UPDATE scenes SET state = $1, real_time_factor = $2, updated_at = $3 WHERE id = $4")
-            .bind(state)
-            .bind(real_time_factor)
-            .bind(now())
-            .bind(id(scene))
-            .execute(&self.pool)
-            .await?;
-        Ok(())
+    /// Records a scene's run state; with a lease, only while it holds the scene.
+    pub async fn update_state(
+        &self,
+        scene: u64,
+        lease: Option<&Lease>,
+        state: &str,
+        real_time_factor: f64,
+    ) -> Result<(), DbError> {
+        let sql = format!("UPDATE scenes SET state = $1, real_time_factor = $2, updated_at = $3 WHERE {}", held_at(4));
+        let query = sqlx::query(&sql).bind(state).bind(real_time_factor).bind(now());
+        let done = bind_held(query, scene, lease).execute(&self.pool).await?;
+        held(scene, lease, done.rows_affected())
     }
 
-    /// Forgets a scene and its share links.
-    pub async fn delete_scene(&self, scene: u64) -> Result<(), DbError> {
+    /// Forgets a scene and its share links; with a lease, only while it holds the scene.
+    pub async fn delete_scene(&self, scene: u64, lease: Option<&Lease>) -> Result<(), DbError> {
         let mut tx = self.pool.begin().await?;
         let shares = sqlx::query("DELETE FROM shares WHERE scene_id = $1").bind(id(scene)).execute(&mut *tx).await?;
-        sqlx::query("DELETE FROM scenes WHERE id = $1").bind(id(scene)).execute(&mut *tx).await?;
+        let sql = format!("DELETE FROM scenes WHERE {}", held_at(1));
+        let gone = bind_held(sqlx::query(&sql), scene, lease).execute(&mut *tx).await?;
+        // A fenced delete returns before the commit: the share links stay too.
+        held(scene, lease, gone.rows_affected())?;
         tx.commit().await?;
         if shares.rows_affected() > 0 {
             self.bump_directory().await?;
@@ -335,23 +350,8 @@ impl Database {
     /// Every scene, by id.
     pub async fn scenes(&self) -> Result<Vec<SceneRow>, DbError> {
         let rows =
-            sqlx::query("SELECT id, owner, name, spec, tunables, state, real_time_factor FROM scenes ORDER BY id")
-                .fetch_all(&self.pool)
-                .await?;
-        rows.iter()
-            .map(|r| {
-                Ok(SceneRow {
-                    id: r.try_get::<i64, _>("id")? as u64,
-                    owner: r.try_get("owner")?,
-                    name: r.try_get("name")?,
-                    spec: r.try_get("spec")?,
-                    tunables: r.try_get("tunables")?,
-                    state: r.try_get("state")?,
-                    real_time_factor: r.try_get("real_time_factor")?,
-                })
-            })
-            .collect::<Result<_, sqlx::Error>>()
-            .map_err(DbError::from)
+            sqlx::query(&format!("SELECT {SCENE_COLUMNS} FROM scenes ORDER BY id")).fetch_all(&self.pool).await?;
+        rows.iter().map(scene_row).collect::<Result<_, sqlx::Error>>().map_err(DbError::from)
     }
 
     /// Adds a share link of `scene` with this token hash.
@@ -380,6 +380,47 @@ impl Database {
         }
         Ok(removed)
     }
+}
+
+/// The columns [`scene_row`] reads.
+pub(super) const SCENE_COLUMNS: &str =
+    "id, owner, name, spec, tunables, state, real_time_factor, particles, worker, epoch";
+
+/// A scene row read with [`SCENE_COLUMNS`].
+pub(super) fn scene_row(r: &AnyRow) -> Result<SceneRow, sqlx::Error> {
+    let worker: Option<String> = r.try_get("worker")?;
+    Ok(SceneRow {
+        id: r.try_get::<i64, _>("id")? as u64,
+        owner: r.try_get("owner")?,
+        name: r.try_get("name")?,
+        spec: r.try_get("spec")?,
+        tunables: r.try_get("tunables")?,
+        state: r.try_get("state")?,
+        real_time_factor: r.try_get("real_time_factor")?,
+        particles: r.try_get::<i64, _>("particles")? as u64,
+        lease: worker.map(|worker| Ok::<_, sqlx::Error>(Lease { worker, epoch: r.try_get("epoch")? })).transpose()?,
+    })
+}
+
+/// The condition of a write for a scene that holds, with a lease, only while that
+/// lease holds the scene: parameters `$n` (scene id), `$n+1` (worker, NULL without
+/// a lease) and `$n+2` (epoch), bound by [`bind_held`].
+fn held_at(n: usize) -> String {
+    format!("id = ${n} AND (${w} IS NULL OR (worker = ${w} AND epoch = ${e}))", w = n + 1, e = n + 2)
+}
+
+/// Binds [`held_at`]'s parameters.
+fn bind_held<'q>(
+    query: sqlx::query::Query<'q, sqlx::Any, sqlx::any::AnyArguments<'q>>,
+    scene: u64,
+    lease: Option<&Lease>,
+) -> sqlx::query::Query<'q, sqlx::Any, sqlx::any::AnyArguments<'q>> {
+    query.bind(id(scene)).bind(lease.map(|l| l.worker.clone())).bind(lease.map_or(0, |l| l.epoch))
+}
+
+/// A fenced write's outcome: with a lease, nothing written means the scene moved.
+fn held(scene: u64, lease: Option<&Lease>, rows: u64) -> Result<(), DbError> {
+    if lease.is_some() && rows == 0 { Err(DbError::Fenced(scene)) } else { Ok(()) }
 }
 
 fn user_row(r: &AnyRow) -> Result<UserRow, DbError> {

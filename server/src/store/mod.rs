@@ -6,12 +6,15 @@
 //!   floe.db, floe.db-wal, floe.db-shm   (SQLite; absent with --database postgres://...)
 //!   checkpoints/<scene id>/checkpoint-<sequence>.bin
 //!   lock                                 (held by the serving process)
+//!   lock-<worker>                        (in a cluster: held by each worker)
 //! ```
 //!
 //! - [`db`]: users, token hashes, quotas, scenes and share links.
 //! - [`checkpoint`]: checkpoint files, written atomically, checked by checksum.
+//! - [`cluster`]: a cluster's workers, leases and placements, fenced by epoch.
 
 pub mod checkpoint;
+pub mod cluster;
 pub mod db;
 
 pub use checkpoint::Checkpoints;
@@ -73,7 +76,8 @@ fn sqlite_url(path: &Path) -> String {
 
 /// The database and checkpoints of a serving process, which holds the data
 /// directory's lock: two servers on one directory would overwrite each other's
-/// checkpoints.
+/// checkpoints. A cluster's workers share the directory, each holding its own
+/// name's lock, and write only the checkpoints of the scenes they hold.
 #[derive(Debug)]
 pub struct Store {
     /// The database.
@@ -84,10 +88,14 @@ pub struct Store {
 }
 
 impl Store {
-    /// Opens (creating) the data directory and the database, and takes the lock.
-    pub async fn open(location: &Location) -> anyhow::Result<Self> {
+    /// Opens (creating) the data directory and the database, and takes the lock: the
+    /// directory's, or in a cluster (`worker`), that worker name's.
+    pub async fn open(location: &Location, worker: Option<&str>) -> anyhow::Result<Self> {
         let db = location.open_database().await?;
-        let lock_path = location.data_dir.join("lock");
+        let lock_path = match worker {
+            Some(name) => location.data_dir.join(format!("lock-{name}")),
+            None => location.data_dir.join("lock"),
+        };
         let lock = std::fs::OpenOptions::new()
             .create(true)
             .truncate(false)
@@ -95,13 +103,23 @@ impl Store {
             .open(&lock_path)
             .map_err(|e| anyhow::anyhow!("cannot open {}: {e}", lock_path.display()))?;
         if lock.try_lock().is_err() {
-            anyhow::bail!(
-                "the data directory {} is in use by another floe serve; give each server its own --data-dir",
-                location.data_dir.display()
-            );
+            match worker {
+                Some(name) => anyhow::bail!(
+                    "worker {name} is already running on {}; give each worker its own --worker name",
+                    location.data_dir.display()
+                ),
+                None => anyhow::bail!(
+                    "the data directory {} is in use by another floe serve; give each server its own --data-dir",
+                    location.data_dir.display()
+                ),
+            }
         }
         let checkpoints = Checkpoints::open(location.data_dir.join("checkpoints"))?;
-        checkpoints.remove_partial_writes();
+        // In a shared directory another worker may be mid-write: a temporary file left
+        // by a crash is overwritten by the next checkpoint of its scene instead.
+        if worker.is_none() {
+            checkpoints.remove_partial_writes();
+        }
         Ok(Self { db, checkpoints, _lock: lock })
     }
 }

@@ -96,9 +96,9 @@ pub struct Lab {
 /// A registry over the data in `dir` (SQLite), authenticating with tokens.
 async fn lab_registry(dir: &std::path::Path, options: Options) -> Arc<Registry> {
     let location = Location { data_dir: dir.to_path_buf(), database: None };
-    let store = Store::open(&location).await.unwrap();
+    let store = Store::open(&location, None).await.unwrap();
     let options = Options { auth: AuthMode::Tokens, ..options };
-    Registry::open(options, Arc::new(floe_engine::simulation::cpu_backend), store).await.unwrap()
+    Registry::open(options, Arc::new(floe_engine::simulation::cpu_backend), store, None).await.unwrap()
 }
 
 impl Lab {

@@ -1,0 +1,146 @@
+//! A cluster worker's side of the registry: where new scenes go, taking up the
+//! scenes placed on this worker (from their checkpoints on the shared directory),
+//! dropping those that moved (writing nothing for them), handing every scene over
+//! while draining, and knowing where the others' scenes are.
+
+use super::{Registry, ServiceError, State, persist, unavailable};
+use crate::cluster::{Beat, Member, placement};
+use crate::store::Store;
+use crate::store::cluster::Lease;
+use crate::store::db::DbError;
+use std::collections::BTreeMap;
+
+impl Registry {
+    /// This worker's lease in a cluster; `None` on a single server.
+    pub(super) fn lease(&self) -> Option<Lease> {
+        self.member.as_ref().map(Member::lease)
+    }
+
+    /// A database failure of a write for scene `id`: fenced (the scene moved while
+    /// this worker was silent) or the database's own.
+    pub(super) fn db_error(&self, id: u64, e: DbError) -> ServiceError {
+        match e {
+            DbError::Fenced(_) => {
+                tracing::warn!(scene = id, "scene moved to another worker: this worker writes nothing more for it");
+                ServiceError::Unavailable(format!("scene {id} moved to another worker; retry to reach it there"))
+            }
+            e => unavailable(e),
+        }
+    }
+
+    /// In a cluster, whether a new scene of `particles` is built here: yes when the
+    /// request named this worker and it has room, or placement picks it; else the
+    /// worker placement picks, as [`ServiceError::Elsewhere`]. Always yes on a single server.
+    pub(super) async fn place_here(&self, particles: u64, named: Option<&str>) -> Result<(), ServiceError> {
+        let (Some(member), Some(store)) = (&self.member, &self.store) else { return Ok(()) };
+        let workers = store.db.workers().await.map_err(unavailable)?;
+        let candidates: Vec<_> = workers.iter().map(|w| w.candidate()).collect();
+        let me = &member.info.name;
+        let mine = candidates.iter().find(|c| &c.name == me);
+        if named == Some(me.as_str())
+            && mine.is_some_and(|c| placement::choose(std::slice::from_ref(c), particles, None).is_ok())
+        {
+            return Ok(());
+        }
+        match placement::choose(&candidates, particles, None) {
+            Ok(c) if &c.name == me => Ok(()),
+            Ok(c) => Err(ServiceError::Elsewhere {
+                worker: c.name.clone(),
+                message: format!("a new scene of {particles} particles goes to worker {}", c.name),
+            }),
+            Err(why) => Err(ServiceError::ResourceExhausted(format!("the cluster has no room: {why}"))),
+        }
+    }
+
+    /// One cluster tick: the heartbeat (on losing the scenes, drops them all), the
+    /// eviction of silent workers, taking up scenes placed here and dropping those
+    /// that moved, handing scenes over while draining, and where the others' are.
+    pub(super) async fn cluster_tick(&self, store: &Store) -> anyhow::Result<()> {
+        let member = self.member.as_ref().expect("a cluster worker");
+        let draining = match member.beat(&store.db).await? {
+            Beat::Member { draining } => draining,
+            Beat::Rejoined => {
+                self.drop_scenes(&self.held_ids()).await;
+                false
+            }
+        };
+        member.evict_silent(&store.db).await?;
+        if draining {
+            self.hand_over_all(store).await;
+        }
+        let lease = member.lease();
+        let held = store.db.scenes_held(&lease).await?;
+        let gone: Vec<u64> = self.held_ids().into_iter().filter(|id| !held.iter().any(|r| r.id == *id)).collect();
+        self.drop_scenes(&gone).await;
+        for row in held.iter().filter(|r| !self.held_ids().contains(&r.id)) {
+            self.take_up(store, row).await;
+        }
+        let elsewhere: BTreeMap<u64, (String, String)> = store
+            .db
+            .scenes()
+            .await?
+            .into_iter()
+            .filter_map(|r| r.lease.filter(|l| l.worker != lease.worker).map(|l| (r.id, (l.worker, r.owner))))
+            .collect();
+        *self.elsewhere.write().expect("lock") = elsewhere;
+        Ok(())
+    }
+
+    fn held_ids(&self) -> Vec<u64> {
+        self.scenes.0.read().expect("lock").keys().copied().collect()
+    }
+
+    /// Brings a scene placed here back from its newest checkpoint, paused.
+    async fn take_up(&self, store: &Store, row: &crate::store::db::SceneRow) {
+        let (r, checkpoints, backend) = (row.clone(), store.checkpoints.clone(), self.backend.clone());
+        let recovered = tokio::task::spawn_blocking(move || persist::recover(&r, &checkpoints, &*backend))
+            .await
+            .expect("recovery task");
+        match recovered {
+            Ok((sim, from)) => {
+                tracing::info!(scene = row.id, owner = %row.owner, "scene taken up: {from}");
+                self.insert(row.id, row.owner.clone(), sim);
+            }
+            Err(e) => tracing::error!(scene = row.id, "scene placed here could not be brought back: {e}"),
+        }
+    }
+
+    /// Stops the threads of scenes this worker no longer holds, writing nothing for
+    /// them; their streams end, and their clients find them on their new worker.
+    async fn drop_scenes(&self, ids: &[u64]) {
+        let entries: Vec<_> = {
+            let mut scenes = self.scenes.0.write().expect("lock");
+            ids.iter().filter_map(|id| scenes.remove(id)).collect()
+        };
+        for e in &entries {
+            tracing::warn!(scene = e.handle.shared.id, "scene dropped: another worker holds it now");
+        }
+        tokio::task::spawn_blocking(move || entries.iter().for_each(|e| e.handle.delete()))
+            .await
+            .expect("scene stop task");
+    }
+
+    /// Draining: pauses and checkpoints each scene, then moves it to the worker
+    /// placement picks among the others; a scene no other worker has room for stays.
+    async fn hand_over_all(&self, store: &Store) {
+        let lease = self.lease().expect("a cluster worker");
+        for id in self.held_ids() {
+            let Some(handle) = self.scenes.0.read().expect("lock").get(&id).map(|e| e.handle.clone()) else { continue };
+            if handle.shared.status().state == State::Running {
+                let _ = handle.pause().await;
+            }
+            if let Err(e) = self.write_checkpoint(id).await {
+                tracing::error!(scene = id, "not handed over, its checkpoint failed: {e}");
+                continue;
+            }
+            match store.db.hand_over(&lease, id, handle.shared.particles as u64).await {
+                Ok(Some(to)) => {
+                    tracing::info!(scene = id, to = %to.worker, "scene handed over (draining)");
+                    self.drop_scenes(&[id]).await;
+                }
+                Ok(None) => tracing::warn!(scene = id, "draining: no other worker has room for this scene"),
+                Err(e) => tracing::error!(scene = id, "draining: {e}"),
+            }
+        }
+    }
+}

@@ -1,0 +1,414 @@
+//! The database's cluster rows: workers with their epochs and heartbeats, and each
+//! scene's placement (the worker and epoch holding it). Every statement is portable
+//! SQL, so the rules are tested on SQLite as well as PostgreSQL, though a cluster
+//! runs on PostgreSQL only (its workers are on several machines).
+//!
+//! Fencing: a worker's epoch is new at each start and unique over the cluster. A
+//! scene is held by `(worker, epoch)`, and every write for it names both, so a
+//! worker whose scenes were moved while it was silent (stopped, cut off) writes
+//! nothing for them: its writes match no row. Its heartbeat matches no row either
+//! once others have declared it gone, which is how it learns.
+
+use super::Database;
+use super::db::{DbError, SCENE_COLUMNS, SceneRow, id, now, scene_row};
+use crate::cluster::placement::{self, Candidate};
+use sqlx::Row;
+
+/// What a worker holds a scene by: its name and its epoch.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Lease {
+    /// Worker name.
+    pub worker: String,
+    /// The worker's epoch when it took the scene.
+    pub epoch: i64,
+}
+
+/// What a worker says about itself when it joins.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorkerInfo {
+    /// Worker name (`--worker`).
+    pub name: String,
+    /// Where its gRPC is reached.
+    pub grpc: String,
+    /// Where its HTTP is reached.
+    pub http: String,
+    /// `gpu` or `cpu`.
+    pub backend: String,
+    /// Its `--max-scenes`.
+    pub max_scenes: u64,
+    /// Its `--max-particles`, a budget over all its scenes.
+    pub max_particles: u64,
+}
+
+/// A worker as recorded, with what it holds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorkerRow {
+    /// What it said when it joined.
+    pub info: WorkerInfo,
+    /// Its epoch now.
+    pub epoch: i64,
+    /// Heartbeats so far this epoch.
+    pub beats: i64,
+    /// Taking no new scenes, handing its own to others.
+    pub draining: bool,
+    /// Scenes it holds.
+    pub scenes: u64,
+    /// Particles over those scenes.
+    pub particles: u64,
+}
+
+impl WorkerRow {
+    /// The worker as placement sees it.
+    pub fn candidate(&self) -> Candidate {
+        Candidate {
+            name: self.info.name.clone(),
+            backend: self.info.backend.clone(),
+            max_scenes: self.info.max_scenes,
+            max_particles: self.info.max_particles,
+            scenes: self.scenes,
+            particles: self.particles,
+            draining: self.draining,
+        }
+    }
+
+    /// Its lease on scenes.
+    pub fn lease(&self) -> Lease {
+        Lease { worker: self.info.name.clone(), epoch: self.epoch }
+    }
+}
+
+/// A scene moved off a silent or draining worker.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Moved {
+    /// Scene id.
+    pub scene: u64,
+    /// Where it went.
+    pub to: Lease,
+}
+
+const WORKERS: &str = "SELECT w.name, w.epoch, w.grpc, w.http, w.backend, w.max_scenes, w.max_particles, w.beats, \
+     w.draining, COUNT(s.id) AS scenes, CAST(COALESCE(SUM(s.particles), 0) AS BIGINT) AS particles \
+     FROM workers w LEFT JOIN scenes s ON s.worker = w.name AND s.epoch = w.epoch \
+     GROUP BY w.name, w.epoch, w.grpc, w.http, w.backend, w.max_scenes, w.max_particles, w.beats, w.draining \
+     ORDER BY w.name";
+
+fn worker_row(r: &sqlx::any::AnyRow) -> Result<WorkerRow, sqlx::Error> {
+    Ok(WorkerRow {
+        info: WorkerInfo {
+            name: r.try_get("name")?,
+            grpc: r.try_get("grpc")?,
+            http: r.try_get("http")?,
+            backend: r.try_get("backend")?,
+            max_scenes: r.try_get::<i64, _>("max_scenes")? as u64,
+            max_particles: r.try_get::<i64, _>("max_particles")? as u64,
+        },
+        epoch: r.try_get("epoch")?,
+        beats: r.try_get("beats")?,
+        draining: r.try_get::<i64, _>("draining")? != 0,
+        scenes: r.try_get::<i64, _>("scenes")? as u64,
+        particles: r.try_get::<i64, _>("particles")? as u64,
+    })
+}
+
+fn size(v: u64) -> i64 {
+    i64::try_from(v).unwrap_or(i64::MAX)
+}
+
+impl Database {
+    /// Joins the cluster as `info.name` with a new epoch, which it returns. The scenes
+    /// recorded on a previous process of the same name become this one's (that
+    /// process is gone: a name is one process, `floe serve` takes a lock on it).
+    pub async fn register_worker(&self, info: &WorkerInfo) -> Result<Lease, DbError> {
+        let mut tx = self.pool.begin().await?;
+        sqlx::query("UPDATE meta SET value = value + 1 WHERE name = 'next_epoch'").execute(&mut *tx).await?;
+        let epoch: i64 = sqlx::query("SELECT value - 1 AS epoch FROM meta WHERE name = 'next_epoch'")
+            .fetch_one(&mut *tx)
+            .await?
+            .try_get("epoch")?;
+        sqlx::query(
+            "INSERT INTO workers (name, epoch, grpc, http, backend, max_scenes, max_particles, beats, draining, \
+             started_at) VALUES ($1, $2, $3, $4, $5, $6, $7, 0, 0, $8) \
+             ON CONFLICT (name) DO UPDATE SET epoch = excluded.epoch, grpc = excluded.grpc, http = excluded.http, \
+             backend = excluded.backend, max_scenes = excluded.max_scenes, max_particles = excluded.max_particles, \
+             beats = 0, draining = 0, started_at = excluded.started_at",
+        )
+        .bind(&info.name)
+        .bind(epoch)
+        .bind(&info.grpc)
+        .bind(&info.http)
+        .bind(&info.backend)
+        .bind(size(info.max_scenes))
+        .bind(size(info.max_particles))
+        .bind(now())
+        .execute(&mut *tx)
+        .await?;
+        sqlx::query("UPDATE scenes SET epoch = $1 WHERE worker = $2")
+            .bind(epoch)
+            .bind(&info.name)
+            .execute(&mut *tx)
+            .await?;
+        tx.commit().await?;
+        Ok(Lease { worker: info.name.clone(), epoch })
+    }
+
+    /// One heartbeat of `lease`'s worker: `Some(draining)` while the cluster still
+    /// counts it, `None` once it was declared gone (its scenes are others' now).
+    pub async fn heartbeat(&self, lease: &Lease) -> Result<Option<bool>, DbError> {
+        let done = sqlx::query("UPDATE workers SET beats = beats + 1 WHERE name = $1 AND epoch = $2")
+            .bind(&lease.worker)
+            .bind(lease.epoch)
+            .execute(&self.pool)
+            .await?;
+        if done.rows_affected() == 0 {
+            return Ok(None);
+        }
+        let row = sqlx::query("SELECT draining FROM workers WHERE name = $1 AND epoch = $2")
+            .bind(&lease.worker)
+            .bind(lease.epoch)
+            .fetch_optional(&self.pool)
+            .await?;
+        Ok(row.map(|r| r.try_get::<i64, _>("draining")).transpose()?.map(|d| d != 0))
+    }
+
+    /// Every worker up, by name, with the scenes and particles it holds.
+    pub async fn workers(&self) -> Result<Vec<WorkerRow>, DbError> {
+        let rows = sqlx::query(WORKERS).fetch_all(&self.pool).await?;
+        Ok(rows.iter().map(worker_row).collect::<Result<_, _>>()?)
+    }
+
+    /// Marks a worker draining (or not): it takes no new scenes and hands its own to
+    /// others. False when no worker has that name.
+    pub async fn set_draining(&self, worker: &str, draining: bool) -> Result<bool, DbError> {
+        let done = sqlx::query("UPDATE workers SET draining = $1 WHERE name = $2")
+            .bind(i64::from(draining))
+            .bind(worker)
+            .execute(&self.pool)
+            .await?;
+        Ok(done.rows_affected() > 0)
+    }
+
+    /// Takes the next scene id (ids are never reused, over the whole cluster).
+    pub async fn take_scene_id(&self) -> Result<u64, DbError> {
+        let mut tx = self.pool.begin().await?;
+        sqlx::query("UPDATE meta SET value = value + 1 WHERE name = 'next_scene_id'").execute(&mut *tx).await?;
+        let row =
+            sqlx::query("SELECT value - 1 AS id FROM meta WHERE name = 'next_scene_id'").fetch_one(&mut *tx).await?;
+        tx.commit().await?;
+        Ok(row.try_get::<i64, _>("id")? as u64)
+    }
+
+    /// The scenes `lease` holds, by id.
+    pub async fn scenes_held(&self, lease: &Lease) -> Result<Vec<SceneRow>, DbError> {
+        let rows =
+            sqlx::query(&format!("SELECT {SCENE_COLUMNS} FROM scenes WHERE worker = $1 AND epoch = $2 ORDER BY id"))
+                .bind(&lease.worker)
+                .bind(lease.epoch)
+                .fetch_all(&self.pool)
+                .await?;
+        Ok(rows.iter().map(scene_row).collect::<Result<_, _>>()?)
+    }
+
+    /// One scene's row, if it exists.
+    pub async fn scene(&self, scene: u64) -> Result<Option<SceneRow>, DbError> {
+        let row = sqlx::query(&format!("SELECT {SCENE_COLUMNS} FROM scenes WHERE id = $1"))
+            .bind(id(scene))
+            .fetch_optional(&self.pool)
+            .await?;
+        Ok(row.as_ref().map(scene_row).transpose()?)
+    }
+
+    /// Whether `lease` still holds `scene` (checked before its checkpoint is written).
+    pub async fn holds(&self, lease: &Lease, scene: u64) -> Result<bool, DbError> {
+        let row = sqlx::query("SELECT id FROM scenes WHERE id = $1 AND worker = $2 AND epoch = $3")
+            .bind(id(scene))
+            .bind(&lease.worker)
+            .bind(lease.epoch)
+            .fetch_optional(&self.pool)
+            .await?;
+        Ok(row.is_some())
+    }
+
+    /// Scenes and particles `owner` runs over the whole cluster.
+    pub async fn running_of(&self, owner: &str) -> Result<(u64, u64), DbError> {
+        let row = sqlx::query(
+            "SELECT COUNT(id) AS scenes, CAST(COALESCE(SUM(particles), 0) AS BIGINT) AS particles FROM scenes \
+             WHERE owner = $1 AND state = 'running'",
+        )
+        .bind(owner)
+        .fetch_one(&self.pool)
+        .await?;
+        Ok((row.try_get::<i64, _>("scenes")? as u64, row.try_get::<i64, _>("particles")? as u64))
+    }
+
+    /// Scenes `owner` has over the whole cluster.
+    pub async fn scenes_of(&self, owner: &str) -> Result<u64, DbError> {
+        let row = sqlx::query("SELECT COUNT(id) AS scenes FROM scenes WHERE owner = $1")
+            .bind(owner)
+            .fetch_one(&self.pool)
+            .await?;
+        Ok(row.try_get::<i64, _>("scenes")? as u64)
+    }
+
+    /// Declares the worker `gone` (as of its epoch) out of the cluster: its scenes are
+    /// left without a worker, for [`Database::place_orphans`]. False if the worker has
+    /// a newer epoch since (it restarted) or another worker evicted it first: the
+    /// delete of its row decides.
+    pub async fn evict(&self, gone: &Lease) -> Result<bool, DbError> {
+        let deleted = sqlx::query("DELETE FROM workers WHERE name = $1 AND epoch = $2")
+            .bind(&gone.worker)
+            .bind(gone.epoch)
+            .execute(&self.pool)
+            .await?;
+        Ok(deleted.rows_affected() > 0)
+    }
+
+    /// Moves `scene` from `from` (a draining worker) to a worker placement picks,
+    /// paused; `None` when no other worker can take it or `from` no longer holds it.
+    pub async fn hand_over(&self, from: &Lease, scene: u64, particles: u64) -> Result<Option<Lease>, DbError> {
+        let workers = self.workers().await?;
+        let others: Vec<Candidate> =
+            workers.iter().filter(|w| w.info.name != from.worker).map(WorkerRow::candidate).collect();
+        let Ok(to) = placement::choose(&others, particles, None) else { return Ok(None) };
+        let to = workers.iter().find(|w| w.info.name == to.name).expect("chosen among them").lease();
+        let done = sqlx::query(
+            "UPDATE scenes SET worker = $1, epoch = $2, state = 'paused', real_time_factor = 0 \
+             WHERE id = $3 AND worker = $4 AND epoch = $5",
+        )
+        .bind(&to.worker)
+        .bind(to.epoch)
+        .bind(id(scene))
+        .bind(&from.worker)
+        .bind(from.epoch)
+        .execute(&self.pool)
+        .await?;
+        Ok((done.rows_affected() > 0).then_some(to))
+    }
+
+    /// Places every scene whose worker is no longer up (evicted, or a single server's
+    /// scene in a database turned cluster) on a worker that is, one at a time so
+    /// each placement sees the ones before it.
+    pub async fn place_orphans(&self) -> Result<Vec<Moved>, DbError> {
+        let rows = sqlx::query(&format!(
+            "SELECT {SCENE_COLUMNS} FROM scenes s WHERE NOT EXISTS \
+             (SELECT 1 FROM workers w WHERE w.name = s.worker AND w.epoch = s.epoch) ORDER BY id"
+        ))
+        .fetch_all(&self.pool)
+        .await?;
+        let orphans: Vec<SceneRow> = rows.iter().map(scene_row).collect::<Result<_, _>>()?;
+        let mut moved = Vec::new();
+        for scene in orphans {
+            let workers = self.workers().await?;
+            let candidates: Vec<Candidate> = workers.iter().map(WorkerRow::candidate).collect();
+            let to = match placement::choose(&candidates, scene.particles, None) {
+                Ok(c) => workers.iter().find(|w| w.info.name == c.name).expect("chosen among them").lease(),
+                Err(why) => {
+                    tracing::warn!(scene = scene.id, "scene waits for a worker: {why}");
+                    continue;
+                }
+            };
+            let done = sqlx::query(
+                "UPDATE scenes SET worker = $1, epoch = $2, state = 'paused', real_time_factor = 0 \
+                 WHERE id = $3 AND worker IS NOT DISTINCT FROM $4 AND epoch = $5",
+            )
+            .bind(&to.worker)
+            .bind(to.epoch)
+            .bind(id(scene.id))
+            .bind(scene.lease.as_ref().map(|l| l.worker.clone()))
+            .bind(scene.lease.as_ref().map_or(0, |l| l.epoch))
+            .execute(&self.pool)
+            .await?;
+            if done.rows_affected() > 0 {
+                moved.push(Moved { scene: scene.id, to });
+            }
+        }
+        Ok(moved)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn info(name: &str, max_particles: u64) -> WorkerInfo {
+        WorkerInfo {
+            name: name.into(),
+            grpc: format!("{name}:50051"),
+            http: format!("{name}:8080"),
+            backend: "cpu".into(),
+            max_scenes: 8,
+            max_particles,
+        }
+    }
+
+    fn scene(id: u64, particles: u64, lease: &Lease) -> SceneRow {
+        SceneRow {
+            id,
+            owner: "ada".into(),
+            name: format!("s{id}"),
+            spec: "{}".into(),
+            tunables: "{}".into(),
+            state: "running".into(),
+            real_time_factor: 1.0,
+            particles,
+            lease: Some(lease.clone()),
+        }
+    }
+
+    /// The cluster's rules on one database; `floe serve`'s cluster test runs them
+    /// on PostgreSQL with real workers.
+    #[tokio::test]
+    async fn leases_fence_writes_and_evicted_scenes_move_paused() {
+        let dir = tempfile::tempdir().unwrap();
+        let db = Database::open(&format!("sqlite://{}?mode=rwc", dir.path().join("c.db").display())).await.unwrap();
+        let a = db.register_worker(&info("a", 1000)).await.unwrap();
+        let b = db.register_worker(&info("b", 1000)).await.unwrap();
+        let c = db.register_worker(&info("c", 2000)).await.unwrap();
+        assert!(a.epoch < b.epoch && b.epoch < c.epoch, "epochs are unique over the cluster");
+        let first = db.take_scene_id().await.unwrap();
+        assert_eq!(db.take_scene_id().await.unwrap(), first + 1);
+        db.insert_scene(&scene(first, 600, &a)).await.unwrap();
+        db.insert_scene(&scene(first + 1, 300, &a)).await.unwrap();
+        assert_eq!(db.running_of("ada").await.unwrap(), (2, 900));
+        let rows = db.workers().await.unwrap();
+        assert_eq!((rows[0].scenes, rows[0].particles), (2, 900));
+        assert_eq!(db.heartbeat(&a).await.unwrap(), Some(false));
+
+        // b evicts a: a's scenes go, paused, one by one to the most free budget.
+        assert!(db.evict(&a).await.unwrap());
+        assert!(!db.evict(&a).await.unwrap(), "evicted once");
+        let moved = db.place_orphans().await.unwrap();
+        assert_eq!(moved.len(), 2);
+        assert_eq!(moved[0], Moved { scene: first, to: c.clone() }, "c has the most free share");
+        assert_eq!(moved[1].to, b, "then b: 0.7 left free against c's 0.55");
+        let row = db.scene(first).await.unwrap().unwrap();
+        assert_eq!((row.state.as_str(), row.lease.as_ref()), ("paused", Some(&c)));
+
+        // The late worker a: its heartbeat and every write for the moved scenes fail.
+        assert_eq!(db.heartbeat(&a).await.unwrap(), None, "a learns it was evicted");
+        assert!(!db.holds(&a, first).await.unwrap());
+        assert!(matches!(db.update_state(first, Some(&a), "running", 1.0).await, Err(DbError::Fenced(_))));
+        assert!(matches!(db.update_tunables(first, Some(&a), "{}").await, Err(DbError::Fenced(_))));
+        assert!(matches!(db.delete_scene(first, Some(&a)).await, Err(DbError::Fenced(_))));
+        assert!(db.scene(first).await.unwrap().is_some(), "a fenced delete deletes nothing");
+        assert_eq!(db.scene(first).await.unwrap().unwrap().state, "paused");
+        db.update_state(first, Some(&c), "running", 2.0).await.unwrap();
+
+        // a joins again: a new epoch, holding nothing.
+        let a2 = db.register_worker(&info("a", 1000)).await.unwrap();
+        assert!(a2.epoch > c.epoch && db.scenes_held(&a2).await.unwrap().is_empty());
+
+        // c drains: its scene goes to the other worker with room, not to c itself.
+        assert!(db.set_draining("c", true).await.unwrap());
+        assert_eq!(db.heartbeat(&c).await.unwrap(), Some(true));
+        let to = db.hand_over(&c, first, 600).await.unwrap().unwrap();
+        assert_eq!(to, a2, "a2 is left 0.4 free, b 0.1");
+        assert_eq!(db.hand_over(&c, first, 600).await.unwrap(), None, "c no longer holds it");
+        assert!(!db.set_draining("nobody", true).await.unwrap());
+
+        // A worker restarting under its name takes back its own scenes.
+        let b2 = db.register_worker(&info("b", 1000)).await.unwrap();
+        assert_eq!(db.scenes_held(&b2).await.unwrap().iter().map(|r| r.id).collect::<Vec<_>>(), [first + 1]);
+        assert!(matches!(db.update_state(first + 1, Some(&b), "paused", 0.0).await, Err(DbError::Fenced(_))));
+        db.close().await;
+    }
+}
