@@ -10,7 +10,7 @@
 
 use floe_client::Client;
 use floe_engine::Simulation;
-use floe_server::lab_bench::process::{Data, ServerProcess, add_user};
+use floe_server::lab_bench::process::{Data, ServerProcess, add_user, fresh_database};
 use floe_server::store::Checkpoints;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -136,22 +136,6 @@ async fn kill_9_and_damaged_checkpoints_on_postgres() {
         }
         return eprintln!("SKIPPED kill_9_and_damaged_checkpoints_on_postgres: FLOE_TEST_DATABASE_URL is not set");
     };
-    let url = fresh_database(&base, "crash").await;
+    let url = fresh_database(&base, "crash").await.unwrap();
     crash_and_recover(Some(&url)).await;
-}
-
-/// A new, empty database on the server `base` names; its URL.
-async fn fresh_database(base: &str, purpose: &str) -> String {
-    use sqlx::Connection;
-    let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap().subsec_nanos();
-    let name = format!("floe_{purpose}_{}_{nanos}", std::process::id());
-    let mut conn = sqlx::PgConnection::connect(base).await.unwrap();
-    sqlx::Executor::execute(&mut conn, format!("CREATE DATABASE {name}").as_str()).await.unwrap();
-    conn.close().await.unwrap();
-    let (prefix, query) = base.split_once('?').map_or((base, None), |(p, q)| (p, Some(q)));
-    let server = &prefix[..prefix.rfind('/').expect("a database URL with a path")];
-    match query {
-        Some(q) => format!("{server}/{name}?{q}"),
-        None => format!("{server}/{name}"),
-    }
 }

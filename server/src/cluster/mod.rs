@@ -93,8 +93,8 @@ impl Member {
     }
 
     /// One heartbeat: extends the tenure while the cluster counts this worker; when
-    /// it was declared gone, ends the tenure and joins again (the caller drops every
-    /// scene it held, writing nothing).
+    /// it was declared gone, ends the tenure and joins again with a new lease (the
+    /// caller drops every scene it held, writing nothing).
     pub async fn beat(&self, db: &Database) -> anyhow::Result<Beat> {
         let sent = Instant::now();
         let lease = self.lease();
@@ -110,9 +110,10 @@ impl Member {
                     epoch = lease.epoch,
                     "declared gone by the cluster (silent past the lease): dropping every scene, joining again"
                 );
+                // The tenure starts again at the next heartbeat, after the scenes
+                // held before are dropped.
                 let fresh = db.register_worker(&self.info).await?;
                 *self.lease.write().expect("lock") = fresh;
-                self.tenure.extend(sent, self.lease_time / 2);
                 Ok(Beat::Rejoined)
             }
         }

@@ -90,6 +90,16 @@ impl ServerProcess {
         Ok(std::fs::read_to_string(&self.log)?)
     }
 
+    /// Sends a signal (`STOP`, `CONT`, ...) by name.
+    pub fn signal(&self, name: &str) -> anyhow::Result<()> {
+        let pid = self.child.id().to_string();
+        anyhow::ensure!(
+            Command::new("kill").args([&format!("-{name}"), &pid]).status()?.success(),
+            "kill -{name} {pid} failed"
+        );
+        Ok(())
+    }
+
     /// SIGTERM and wait; whether it exited successfully.
     pub fn terminate(mut self) -> anyhow::Result<bool> {
         let pid = self.child.id().to_string();
@@ -130,4 +140,20 @@ pub fn cpu_seconds(path: &str) -> Option<f64> {
     let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
     let ticks: u64 = fields.get(11)?.parse::<u64>().ok()? + fields.get(12)?.parse::<u64>().ok()?;
     Some(ticks as f64 / 100.0)
+}
+
+/// A new, empty database on the PostgreSQL server `base` names (a test's own); its URL.
+pub async fn fresh_database(base: &str, purpose: &str) -> anyhow::Result<String> {
+    use sqlx::Connection;
+    let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH)?.subsec_nanos();
+    let name = format!("floe_{purpose}_{}_{nanos}", std::process::id());
+    let mut conn = sqlx::PgConnection::connect(base).await?;
+    sqlx::Executor::execute(&mut conn, format!("CREATE DATABASE {name}").as_str()).await?;
+    conn.close().await?;
+    let (prefix, query) = base.split_once('?').map_or((base, None), |(p, q)| (p, Some(q)));
+    let server = &prefix[..prefix.rfind('/').context("a database URL with a path")?];
+    Ok(match query {
+        Some(q) => format!("{server}/{name}?{q}"),
+        None => format!("{server}/{name}"),
+    })
 }

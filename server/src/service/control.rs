@@ -170,7 +170,8 @@ impl Registry {
         let store = self.store()?;
         let (handle, lock) = {
             let scenes = self.scenes.0.read().expect("lock");
-            let e = scenes.get(&id).ok_or(ServiceError::NotFound(id))?;
+            // Dropped since the call found it: moved to another worker, or deleted.
+            let e = scenes.get(&id).ok_or_else(|| self.not_here(&crate::auth::Caller::local(), id, Need::Watch))?;
             (e.handle.clone(), e.checkpoint.clone())
         };
         let mut since = lock.lock().await;

@@ -8,7 +8,6 @@ use crate::cluster::{Beat, Member, placement};
 use crate::store::Store;
 use crate::store::cluster::Lease;
 use crate::store::db::DbError;
-use std::collections::BTreeMap;
 
 impl Registry {
     /// This worker's lease in a cluster; `None` on a single server.
@@ -60,30 +59,44 @@ impl Registry {
         let draining = match member.beat(&store.db).await? {
             Beat::Member { draining } => draining,
             Beat::Rejoined => {
+                self.locate(store, &member.lease()).await?;
                 self.drop_scenes(&self.held_ids()).await;
                 false
             }
         };
         member.evict_silent(&store.db).await?;
-        if draining {
-            self.hand_over_all(store).await;
-        }
         let lease = member.lease();
-        let held = store.db.scenes_held(&lease).await?;
-        let gone: Vec<u64> = self.held_ids().into_iter().filter(|id| !held.iter().any(|r| r.id == *id)).collect();
+        let rows = self.locate(store, &lease).await?;
+        if draining {
+            // What it holds now is read again at the next tick.
+            self.hand_over_all(store).await;
+            return Ok(());
+        }
+        // Dropped: scenes whose row names another holder. A scene without a row was
+        // created here after the rows were read (a deleted one is gone already).
+        let local = self.held_ids();
+        let gone: Vec<u64> =
+            rows.iter().filter(|r| local.contains(&r.id) && r.lease.as_ref() != Some(&lease)).map(|r| r.id).collect();
         self.drop_scenes(&gone).await;
-        for row in held.iter().filter(|r| !self.held_ids().contains(&r.id)) {
+        for row in rows.iter().filter(|r| r.lease.as_ref() == Some(&lease) && !local.contains(&r.id)) {
             self.take_up(store, row).await;
         }
-        let elsewhere: BTreeMap<u64, (String, String)> = store
-            .db
-            .scenes()
-            .await?
-            .into_iter()
-            .filter_map(|r| r.lease.filter(|l| l.worker != lease.worker).map(|l| (r.id, (l.worker, r.owner))))
-            .collect();
-        *self.elsewhere.write().expect("lock") = elsewhere;
         Ok(())
+    }
+
+    /// Records where every scene not held by `lease` is, before any is dropped: a
+    /// call for a dropped scene then finds where it went, never "not found". Returns
+    /// every scene's row.
+    async fn locate(&self, store: &Store, lease: &Lease) -> anyhow::Result<Vec<crate::store::db::SceneRow>> {
+        let rows = store.db.scenes().await?;
+        *self.elsewhere.write().expect("lock") = rows
+            .iter()
+            .filter_map(|r| {
+                let l = r.lease.as_ref().filter(|l| l.worker != lease.worker)?;
+                Some((r.id, (l.worker.clone(), r.owner.clone())))
+            })
+            .collect();
+        Ok(rows)
     }
 
     fn held_ids(&self) -> Vec<u64> {
@@ -136,6 +149,7 @@ impl Registry {
             match store.db.hand_over(&lease, id, handle.shared.particles as u64).await {
                 Ok(Some(to)) => {
                     tracing::info!(scene = id, to = %to.worker, "scene handed over (draining)");
+                    self.elsewhere.write().expect("lock").insert(id, (to.worker, handle.shared.owner.clone()));
                     self.drop_scenes(&[id]).await;
                 }
                 Ok(None) => tracing::warn!(scene = id, "draining: no other worker has room for this scene"),

@@ -1,0 +1,202 @@
+//! Three `floe serve --worker` processes on one PostgreSQL database and one shared
+//! data directory: new scenes spread over the workers by placement, a call for a
+//! scene on another worker names that worker, the running-scene quota counts every
+//! worker's scenes; kill -9 a worker and its scene is back, paused, on another,
+//! stepping on bit for bit from its last checkpoint; a worker stopped (SIGSTOP) past
+//! its lease and continued writes nothing for the scene that moved.
+//! Needs `FLOE_TEST_DATABASE_URL` (tests/run-all.sh starts a server;
+//! `FLOE_REQUIRE_POSTGRES=1` makes its absence a failure rather than a skip).
+
+use floe_client::{Client, ClientError};
+use floe_engine::Simulation;
+use floe_server::lab_bench::process::{Data, ServerProcess, fresh_database};
+use floe_server::store::Checkpoints;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// The lease of the test's workers (s): short, so a failover is seconds away.
+const LEASE: u64 = 3;
+
+struct Worker {
+    name: &'static str,
+    process: ServerProcess,
+}
+
+fn start(data: &Data, name: &str, log: PathBuf) -> ServerProcess {
+    let floe = Path::new(env!("CARGO_BIN_EXE_floe"));
+    let lease = LEASE.to_string();
+    let args = [
+        "--scene",
+        "none",
+        "--backend",
+        "cpu",
+        "--auth",
+        "off",
+        "--checkpoint-every",
+        "1",
+        "--worker",
+        name,
+        "--lease",
+        &lease,
+        "--quota",
+        "running_scenes=2",
+    ];
+    ServerProcess::start(floe, data, &args, log).unwrap()
+}
+
+/// The worker a refused call names in its `floe-worker` metadata.
+fn named_worker(e: &ClientError) -> Option<String> {
+    let ClientError::Status(s) = e else { return None };
+    (s.code() == tonic::Code::Unavailable)
+        .then(|| s.metadata().get("floe-worker")?.to_str().ok().map(str::to_owned))
+        .flatten()
+}
+
+/// The state `steps` steps on from a snapshot, stepped in this process.
+fn stepped_on(snapshot: &[u8], steps: u32) -> Vec<u8> {
+    let mut sim = Simulation::restore(snapshot).unwrap();
+    for _ in 0..steps {
+        sim.step().unwrap();
+    }
+    sim.snapshot()
+}
+
+/// Polls `f` every 100 ms until it gives a value, for at most `limit`.
+async fn within<T>(limit: Duration, what: &str, mut f: impl AsyncFnMut() -> Option<T>) -> T {
+    let t0 = Instant::now();
+    loop {
+        if let Some(v) = f().await {
+            return v;
+        }
+        assert!(t0.elapsed() < limit, "not within {limit:?}: {what}");
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+}
+
+/// Which live worker holds `scene` (asking each directly), with a client on it.
+async fn holder(workers: &[&Worker], scene: u64) -> Option<(&'static str, Client)> {
+    for w in workers {
+        let mut c = Client::connect(&w.process.grpc).await.ok()?;
+        if c.get(scene).await.is_ok() {
+            return Some((w.name, c));
+        }
+    }
+    None
+}
+
+#[tokio::test(flavor = "multi_thread")]
+async fn three_workers_place_fail_over_and_fence() {
+    let Some(base) = std::env::var("FLOE_TEST_DATABASE_URL").ok().filter(|u| !u.is_empty()) else {
+        if std::env::var_os("FLOE_REQUIRE_POSTGRES").is_some() {
+            panic!("FLOE_REQUIRE_POSTGRES is set but FLOE_TEST_DATABASE_URL is not");
+        }
+        return eprintln!("SKIPPED three_workers_place_fail_over_and_fence: FLOE_TEST_DATABASE_URL is not set");
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let data = Data { dir: dir.path().join("shared"), database: Some(fresh_database(&base, "cluster").await.unwrap()) };
+    let names = ["w1", "w2", "w3"];
+    let workers: Vec<Worker> = names
+        .iter()
+        .map(|&name| Worker { name, process: start(&data, name, dir.path().join(format!("{name}.log"))) })
+        .collect();
+    let address = |name: &str| workers.iter().find(|w| w.name == name).unwrap().process.grpc.clone();
+
+    // Three equal scenes created through w1: each goes where placement says (w1 is
+    // told to send the second and third on), so one lands on each worker.
+    let mut first = Client::connect(&address("w1")).await.unwrap();
+    let mut placed = Vec::new();
+    for spacing in ["0.05", "0.05", "0.05"] {
+        let overrides = [format!("particle_spacing={spacing}")];
+        let overrides: Vec<&str> = overrides.iter().map(String::as_str).collect();
+        let (worker, info) = match first.create_preset("dam_break", &overrides).await {
+            Ok(info) => ("w1".to_string(), info),
+            Err(e) => {
+                let to = named_worker(&e).unwrap_or_else(|| panic!("not a redirect: {e}"));
+                let mut c = Client::connect(&address(&to)).await.unwrap();
+                (to, c.create_preset("dam_break", &overrides).await.unwrap())
+            }
+        };
+        placed.push((info.scene_id, worker));
+    }
+    let on: Vec<&str> = placed.iter().map(|p| p.1.as_str()).collect();
+    assert_eq!(on, ["w1", "w2", "w3"], "equal scenes spread over equal workers: {placed:?}");
+    let [(a, _), (b, _), (c, _)] = [placed[0].clone(), placed[1].clone(), placed[2].clone()];
+
+    // A call for B through w1 names w2 (once w1's tick has seen B).
+    let named =
+        within(Duration::from_secs(5), "w1 names B's worker", async || named_worker(&first.get(b).await.err()?)).await;
+    assert_eq!(named, "w2");
+
+    // The running-scene quota (2) counts scenes on every worker.
+    let mut on_w2 = Client::connect(&address("w2")).await.unwrap();
+    let mut on_w3 = Client::connect(&address("w3")).await.unwrap();
+    first.run(a, 0.0).await.unwrap();
+    on_w3.run(c, 0.0).await.unwrap();
+    let e = on_w2.run(b, 0.0).await.unwrap_err();
+    let ClientError::Status(s) = &e else { panic!("{e}") };
+    assert_eq!(s.code(), tonic::Code::ResourceExhausted, "{s:?}");
+    first.pause(a).await.unwrap();
+
+    // B stepped by hand to 20 (checkpointed before the answer), then kill -9 w2.
+    on_w2.step(b, 20).await.unwrap();
+    let b_at_20 = on_w2.snapshot(b).await.unwrap();
+    let mut workers = workers;
+    let w2 = workers.remove(1);
+    w2.process.kill().unwrap();
+    let t0 = Instant::now();
+    let live: Vec<&Worker> = workers.iter().collect();
+    let (to, mut on_new) =
+        within(Duration::from_secs(3 * LEASE + 5), "B back on a live worker", async || holder(&live, b).await).await;
+    eprintln!("B is back on {to} {:.1} s after w2's kill -9", t0.elapsed().as_secs_f64());
+    let info = on_new.get(b).await.unwrap();
+    assert_eq!(info.state, floe_proto::pb::SceneState::Paused as i32, "a moved scene comes back paused");
+    assert_eq!(info.steps, 20, "from its last checkpoint");
+    on_new.step(b, 10).await.unwrap();
+    assert!(on_new.snapshot(b).await.unwrap() == stepped_on(&b_at_20, 10), "B did not step on bit for bit");
+    for w in &live {
+        let ids: Vec<u64> =
+            Client::connect(&w.process.grpc).await.unwrap().list().await.unwrap().iter().map(|s| s.scene_id).collect();
+        assert_eq!(
+            ids.iter().filter(|&&id| id == b).count(),
+            u64::from(w.name == to) as usize,
+            "B is on one worker only"
+        );
+    }
+
+    // w3 (running C) stopped past its lease: C moves to w1, paused. Continued, w3
+    // writes nothing for C.
+    let w3 = workers.iter().find(|w| w.name == "w3").unwrap();
+    let w1 = workers.iter().find(|w| w.name == "w1").unwrap();
+    w3.process.signal("STOP").unwrap();
+    let mut on_w1 = within(Duration::from_secs(3 * LEASE + 5), "C on w1", async || holder(&[w1], c).await).await.1;
+    assert_eq!(on_w1.get(c).await.unwrap().state, floe_proto::pb::SceneState::Paused as i32);
+    let files = || {
+        Checkpoints::open(data.dir.join("checkpoints"))
+            .unwrap()
+            .files(c)
+            .into_iter()
+            .map(|(seq, path)| (seq, std::fs::metadata(path).unwrap().modified().unwrap()))
+            .collect::<Vec<_>>()
+    };
+    let before = files();
+    // A call sent to w3 while it is stopped: it meets w3 as it wakes, before or
+    // after w3 learns it lost C, and is refused either way (the pause would write a
+    // checkpoint).
+    let mut late = Client::connect(&w3.process.grpc).await.unwrap();
+    let late_pause = tokio::spawn(async move { late.pause(c).await });
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    w3.process.signal("CONT").unwrap();
+    let refused = late_pause.await.unwrap().unwrap_err();
+    let ClientError::Status(s) = &refused else { panic!("{refused}") };
+    assert_eq!(s.code(), tonic::Code::Unavailable, "{s:?}");
+    let log = within(Duration::from_secs(10), "w3 learns it was evicted", async || {
+        let log = std::fs::read_to_string(&w3.process.log).unwrap();
+        log.contains("declared gone by the cluster").then_some(log)
+    })
+    .await;
+    tokio::time::sleep(Duration::from_secs(2)).await;
+    assert_eq!(files(), before, "the late worker wrote a checkpoint of a scene that moved:\n{log}");
+    assert!(holder(&[w3], c).await.is_none(), "the late worker dropped C");
+    assert_eq!(on_w1.get(c).await.unwrap().state, floe_proto::pb::SceneState::Paused as i32);
+    on_w1.step(c, 2).await.unwrap();
+}
