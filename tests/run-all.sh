@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # All of Floe's tests: Rust (unit, physics, validation, service end to end, the lab
 # server on SQLite and on a throwaway PostgreSQL cluster), the JavaScript frame
-# decoder against the golden frames, the viewer in headless Chromium, and the
-# Python client against a real server. Installs missing system packages first
+# decoder against the golden frames, the viewer in headless Chromium, the
+# Python client against a real server, a cluster of workers behind nginx, and the
+# Kubernetes manifests against the API's schemas. Installs missing system packages first
 # (scripts/install-deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,3 +29,7 @@ cargo build -q -p floe-tests --example floe_traced
 node --test tests/browser/
 echo "== Python client (client/python) against floe serve"
 bash client/python/scripts/test.sh
+echo "== a cluster of three workers behind nginx (tests/cluster.sh)"
+bash tests/cluster.sh
+echo "== Kubernetes manifests against the API's schemas, offline (scripts/validate-k8s.sh)"
+bash scripts/validate-k8s.sh

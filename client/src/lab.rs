@@ -1,29 +1,29 @@
 //! The lab calls of [`Client`]: checkpoints, read-only share links, every scene's
 //! statistics, the calling user, and (admins) users and quotas.
 
-use crate::{Client, ClientError};
+use crate::{Client, ClientError, routed};
 use floe_proto::pb;
 
 impl Client {
     /// Writes a checkpoint of a scene now.
     pub async fn checkpoint(&mut self, scene_id: u64) -> Result<pb::CheckpointInfo, ClientError> {
-        Ok(self.lab.checkpoint(pb::SceneRef { scene_id }).await?.into_inner())
+        routed!(self.routes, self.lab, checkpoint, Some(scene_id), false, pb::SceneRef { scene_id })
     }
 
     /// Creates a read-only share link of a scene; its token is shown once.
     pub async fn share(&mut self, scene_id: u64) -> Result<pb::ShareLink, ClientError> {
-        Ok(self.lab.share_scene(pb::SceneRef { scene_id }).await?.into_inner())
+        routed!(self.routes, self.lab, share_scene, Some(scene_id), false, pb::SceneRef { scene_id })
     }
 
     /// The ids of a scene's share links.
     pub async fn shares(&mut self, scene_id: u64) -> Result<Vec<String>, ClientError> {
-        Ok(self.lab.list_shares(pb::SceneRef { scene_id }).await?.into_inner().share_ids)
+        Ok(routed!(self.routes, self.lab, list_shares, Some(scene_id), true, pb::SceneRef { scene_id })?.share_ids)
     }
 
     /// Revokes a share link; returns the ids left.
     pub async fn revoke_share(&mut self, scene_id: u64, share_id: &str) -> Result<Vec<String>, ClientError> {
         let req = pb::RevokeShareRequest { scene_id, share_id: share_id.into() };
-        Ok(self.lab.revoke_share(req).await?.into_inner().share_ids)
+        Ok(routed!(self.routes, self.lab, revoke_share, Some(scene_id), false, req)?.share_ids)
     }
 
     /// Statistics of every scene the caller can see.

@@ -17,11 +17,13 @@
 //!
 //! - [`Client`]: the calls ([`lab`]: checkpoints, share links, users and quotas).
 //!   [`Frames`]: a decoded frame stream. [`recording`]: frames to and from files.
+//! - [`route`]: following a scene to its worker in a cluster.
 //! - [`cli`]: the `floectl` command line; [`top`]: `floectl top`'s table.
 
 pub mod cli;
 pub mod lab;
 pub mod recording;
+pub mod route;
 pub mod top;
 
 use floe_proto::pb::lab_service_client::LabServiceClient;
@@ -121,6 +123,8 @@ type Authed = InterceptedService<Channel, Bearer>;
 pub struct Client {
     inner: SceneServiceClient<Authed>,
     lab: LabServiceClient<Authed>,
+    /// Each scene's worker in a cluster.
+    routes: route::Routes,
 }
 
 /// Largest message the client accepts (bytes): snapshots of large scenes.
@@ -156,6 +160,7 @@ impl Client {
         Ok(Self {
             inner: SceneServiceClient::new(authed.clone()).max_decoding_message_size(MAX_MESSAGE_BYTES),
             lab: LabServiceClient::new(authed),
+            routes: route::Routes::default(),
         })
     }
 
@@ -180,12 +185,18 @@ impl Client {
             document_format: format.into(),
             overrides: overrides.iter().map(|s| s.to_string()).collect(),
         };
-        Ok(self.inner.create_scene(req).await?.into_inner())
+        let info: SceneInfo = routed!(self.routes, self.inner, create_scene, None, false, req)?;
+        // The worker that built it holds it; the next new scene is placed afresh.
+        self.routes.forget(None);
+        if !info.worker.is_empty() {
+            self.routes.remember(Some(info.scene_id), info.worker.clone());
+        }
+        Ok(info)
     }
 
     /// One scene.
     pub async fn get(&mut self, scene_id: u64) -> Result<SceneInfo, ClientError> {
-        Ok(self.inner.get_scene(pb::SceneRef { scene_id }).await?.into_inner())
+        routed!(self.routes, self.inner, get_scene, Some(scene_id), true, pb::SceneRef { scene_id })
     }
 
     /// Every scene.
@@ -195,60 +206,82 @@ impl Client {
 
     /// Deletes a scene.
     pub async fn delete(&mut self, scene_id: u64) -> Result<SceneInfo, ClientError> {
-        Ok(self.inner.delete_scene(pb::SceneRef { scene_id }).await?.into_inner())
+        routed!(self.routes, self.inner, delete_scene, Some(scene_id), false, pb::SceneRef { scene_id })
     }
 
     /// Steps a paused scene `steps` times.
     pub async fn step(&mut self, scene_id: u64, steps: u64) -> Result<SceneInfo, ClientError> {
-        Ok(self.inner.step(pb::StepRequest { scene_id, steps, until_time: 0.0 }).await?.into_inner())
+        routed!(
+            self.routes,
+            self.inner,
+            step,
+            Some(scene_id),
+            false,
+            pb::StepRequest { scene_id, steps, until_time: 0.0 }
+        )
     }
 
     /// Steps a paused scene until simulated time `t` (s).
     pub async fn step_until(&mut self, scene_id: u64, t: f64) -> Result<SceneInfo, ClientError> {
-        Ok(self.inner.step(pb::StepRequest { scene_id, steps: 0, until_time: t }).await?.into_inner())
+        routed!(
+            self.routes,
+            self.inner,
+            step,
+            Some(scene_id),
+            false,
+            pb::StepRequest { scene_id, steps: 0, until_time: t }
+        )
     }
 
     /// Runs continuously at `real_time_factor` (0: as fast as possible).
     pub async fn run(&mut self, scene_id: u64, real_time_factor: f64) -> Result<SceneInfo, ClientError> {
-        Ok(self.inner.run(pb::RunRequest { scene_id, real_time_factor }).await?.into_inner())
+        routed!(self.routes, self.inner, run, Some(scene_id), false, pb::RunRequest { scene_id, real_time_factor })
     }
 
     /// Pauses.
     pub async fn pause(&mut self, scene_id: u64) -> Result<SceneInfo, ClientError> {
-        Ok(self.inner.pause(pb::SceneRef { scene_id }).await?.into_inner())
+        routed!(self.routes, self.inner, pause, Some(scene_id), false, pb::SceneRef { scene_id })
     }
 
     /// Puts a paused or halted scene back at t = 0 with its current settings.
     pub async fn reset(&mut self, scene_id: u64) -> Result<SceneInfo, ClientError> {
-        Ok(self.inner.reset(pb::SceneRef { scene_id }).await?.into_inner())
+        routed!(self.routes, self.inner, reset, Some(scene_id), false, pb::SceneRef { scene_id })
     }
 
     /// Throughput and streaming statistics.
     pub async fn stats(&mut self, scene_id: u64) -> Result<SceneStats, ClientError> {
-        Ok(self.inner.get_stats(pb::SceneRef { scene_id }).await?.into_inner())
+        routed!(self.routes, self.inner, get_stats, Some(scene_id), true, pb::SceneRef { scene_id })
     }
 
     /// Changes tunable settings (`key=value` overrides, e.g. `gravity=[0,-1,0]`).
     pub async fn set_parameters(&mut self, scene_id: u64, overrides: &[&str]) -> Result<SceneInfo, ClientError> {
         let overrides = overrides.iter().map(|s| s.to_string()).collect();
-        Ok(self.inner.set_parameters(pb::SetParametersRequest { scene_id, overrides }).await?.into_inner())
+        routed!(
+            self.routes,
+            self.inner,
+            set_parameters,
+            Some(scene_id),
+            false,
+            pb::SetParametersRequest { scene_id, overrides }
+        )
     }
 
     /// The full state as bytes.
     pub async fn snapshot(&mut self, scene_id: u64) -> Result<Vec<u8>, ClientError> {
-        Ok(self.inner.snapshot(pb::SceneRef { scene_id }).await?.into_inner().state)
+        Ok(routed!(self.routes, self.inner, snapshot, Some(scene_id), true, pb::SceneRef { scene_id })?.state)
     }
 
     /// Restores a paused scene from [`Client::snapshot`] bytes.
     pub async fn restore(&mut self, scene_id: u64, state: Vec<u8>) -> Result<SceneInfo, ClientError> {
-        Ok(self.inner.restore(pb::RestoreRequest { scene_id, state }).await?.into_inner())
+        routed!(self.routes, self.inner, restore, Some(scene_id), false, pb::RestoreRequest { scene_id, state })
     }
 
     /// A stream of decoded frames. The scene's channel list is read first, so frames
     /// convert to [`Particles`] with every channel under its name ([`Frames::particles`]).
+    /// In a cluster the stream follows the scene when it moves to another worker.
     pub async fn frames(&mut self, scene_id: u64, r: FrameRequest) -> Result<Frames, ClientError> {
         let scene = self.get(scene_id).await?;
-        let req = pb::StreamFramesRequest {
+        let request = pb::StreamFramesRequest {
             scene_id,
             channels: Vec::new(),
             max_fps: r.max_fps,
@@ -258,13 +291,13 @@ impl Client {
             channel_names: r.channels,
             particle_set: r.set,
         };
-        let stream = self.inner.stream_frames(req).await?.into_inner();
-        Ok(Frames { stream, decoder: Decoder::new(Limits::default()), scene })
+        let stream = routed!(self.routes, self.inner, stream_frames, Some(scene_id), true, request.clone())?;
+        Ok(Frames { stream, decoder: Decoder::new(Limits::default()), scene, client: self.clone(), request })
     }
 
     /// The scene's events (halted, deleted).
     pub async fn events(&mut self, scene_id: u64) -> Result<tonic::Streaming<pb::SceneEvent>, ClientError> {
-        Ok(self.inner.stream_events(pb::SceneRef { scene_id }).await?.into_inner())
+        routed!(self.routes, self.inner, stream_events, Some(scene_id), true, pb::SceneRef { scene_id })
     }
 }
 
@@ -275,6 +308,9 @@ pub struct Frames {
     decoder: Decoder,
     /// The scene, for its channels' and sets' names.
     scene: SceneInfo,
+    /// To subscribe again when the scene moves to another worker.
+    client: Client,
+    request: pb::StreamFramesRequest,
 }
 
 impl Frames {
@@ -286,15 +322,50 @@ impl Frames {
         })
     }
 
-    /// The next frame as the server encoded it (for recording).
+    /// The next frame as the server encoded it (for recording). A stream that breaks
+    /// (its worker stopped) or ends while the scene lives on (it moved to another
+    /// worker) is opened again where the scene is now, starting with a whole frame.
     pub async fn next_raw(&mut self) -> Result<Option<Vec<u8>>, ClientError> {
-        Ok(self.stream.message().await?.map(|f| f.data))
+        loop {
+            let lost = match self.stream.message().await {
+                Ok(Some(f)) => return Ok(Some(f.data)),
+                Ok(None) => None,
+                Err(status) if answered(&status) => return Err(status.into()),
+                Err(status) => Some(status),
+            };
+            let scene_id = self.request.scene_id;
+            match self.client.get(scene_id).await {
+                Ok(_) => {}
+                Err(ClientError::Status(s)) if lost.is_none() && s.code() == tonic::Code::NotFound => return Ok(None),
+                Err(e) => return Err(lost.map_or(e, ClientError::Status)),
+            }
+            let client = &mut self.client;
+            self.stream =
+                routed!(client.routes, client.inner, stream_frames, Some(scene_id), true, self.request.clone())?;
+            self.decoder = Decoder::new(Limits::default());
+        }
     }
 
     /// `frame`'s positions and channels under the scene's names.
     pub fn particles(&self, frame: Frame) -> Particles {
         particles(frame, Some(&self.scene))
     }
+}
+
+/// Whether a stream's error is the server's answer (the request or the caller was
+/// refused), not a lost connection.
+fn answered(status: &tonic::Status) -> bool {
+    use tonic::Code;
+    matches!(
+        status.code(),
+        Code::NotFound
+            | Code::InvalidArgument
+            | Code::PermissionDenied
+            | Code::Unauthenticated
+            | Code::ResourceExhausted
+            | Code::FailedPrecondition
+            | Code::OutOfRange
+    )
 }
 
 /// `frame`'s positions and channels, each channel under its name in `scene`'s channel

@@ -34,6 +34,28 @@ pub enum AdminCommand {
     /// A user's quota overrides (the defaults are `floe serve --quota`).
     #[command(subcommand)]
     Quota(QuotaCommand),
+    /// A cluster's workers: list them, drain one for maintenance (its scenes move to
+    /// the others, paused, from a checkpoint taken then), or let it take scenes again.
+    #[command(subcommand)]
+    Worker(WorkerCommand),
+}
+
+/// `floe admin worker`.
+#[derive(Debug, Subcommand)]
+pub enum WorkerCommand {
+    /// Every worker up, with its addresses, epoch, scenes and particles.
+    List,
+    /// Takes no new scenes and hands each of its scenes to another worker within a
+    /// few seconds; stop it once `list` shows it holds none.
+    Drain {
+        /// Worker name.
+        name: String,
+    },
+    /// Takes scenes again.
+    Undrain {
+        /// Worker name.
+        name: String,
+    },
 }
 
 /// `floe admin user`.
@@ -163,6 +185,34 @@ async fn run(db: &Database, command: AdminCommand) -> anyhow::Result<()> {
                 db.set_quota(&name, limit.name(), Some(value as i64)).await?;
                 eprintln!("{name}: {}={value}", limit.name());
             }
+        }
+        AdminCommand::Worker(WorkerCommand::List) => {
+            println!(
+                "{:<16} {:>6} {:>7} {:>12} {:<9} {:<22} http",
+                "worker", "epoch", "scenes", "particles", "state", "grpc"
+            );
+            for w in db.workers().await? {
+                let particles = format!("{}/{}", w.particles, w.info.max_particles);
+                let state = if w.draining { "draining" } else { "up" };
+                println!(
+                    "{:<16} {:>6} {:>7} {particles:>12} {state:<9} {:<22} {}",
+                    w.info.name, w.epoch, w.scenes, w.info.grpc, w.info.http
+                );
+            }
+        }
+        AdminCommand::Worker(WorkerCommand::Drain { name }) => {
+            anyhow::ensure!(db.set_draining(&name, true).await?, "no worker named '{}' is up", crate::echo::cap(&name));
+            eprintln!(
+                "{name} drains: it hands its scenes to the other workers; stop it once `floe admin worker list` shows 0 scenes"
+            );
+        }
+        AdminCommand::Worker(WorkerCommand::Undrain { name }) => {
+            anyhow::ensure!(
+                db.set_draining(&name, false).await?,
+                "no worker named '{}' is up",
+                crate::echo::cap(&name)
+            );
+            eprintln!("{name} takes scenes again");
         }
         AdminCommand::Quota(QuotaCommand::Unset { name, quotas }) => {
             for limit in quotas {

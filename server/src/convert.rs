@@ -53,7 +53,7 @@ fn state(s: State) -> pb::SceneState {
 }
 
 /// The `SceneInfo` of a scene.
-pub fn scene_info(shared: &Shared) -> pb::SceneInfo {
+pub fn scene_info(shared: &Shared, worker: &str) -> pb::SceneInfo {
     let s = shared.status();
     pb::SceneInfo {
         scene_id: shared.id,
@@ -105,6 +105,7 @@ pub fn scene_info(shared: &Shared) -> pb::SceneInfo {
             })
             .collect(),
         owner: shared.owner.clone(),
+        worker: worker.to_owned(),
     }
 }
 
@@ -191,4 +192,23 @@ pub fn scene_event(scene_id: u64, e: Event) -> pb::SceneEvent {
         Event::Deleted => pb::scene_event::Kind::Deleted(pb::Deleted {}),
     };
     pb::SceneEvent { scene_id, kind: Some(kind) }
+}
+
+/// The `SceneInfo` of a scene held by another worker of the cluster: what the
+/// database records of it.
+pub fn placed_info(p: &crate::service::Placed) -> pb::SceneInfo {
+    let state = match p.state.as_str() {
+        "running" => pb::SceneState::Running,
+        "halted" => pb::SceneState::Halted,
+        _ => pb::SceneState::Paused,
+    };
+    pb::SceneInfo {
+        scene_id: p.id,
+        name: p.name.clone(),
+        state: state as i32,
+        particles: p.particles,
+        owner: p.owner.clone(),
+        worker: p.worker.clone(),
+        ..Default::default()
+    }
 }

@@ -58,25 +58,32 @@ impl SceneService for Grpc {
             None => return Err(Status::invalid_argument("source: give a preset name or a scene document")),
         };
         let handle = self.registry.create_routed(&who, source, r.overrides, named.as_deref()).await.map_err(status)?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+        Ok(Response::new(convert::scene_info(&handle.shared, self.registry.worker_name())))
     }
 
     async fn get_scene(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneInfo> {
         let who = caller(&request)?;
         let handle = self.registry.get(&who, request.into_inner().scene_id, Need::Watch).map_err(status)?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+        Ok(Response::new(convert::scene_info(&handle.shared, self.registry.worker_name())))
     }
 
     async fn list_scenes(&self, request: Request<pb::ListScenesRequest>) -> Reply<pb::ListScenesResponse> {
         let who = caller(&request)?;
-        let scenes = self.registry.list(&who).iter().map(|h| convert::scene_info(&h.shared)).collect();
+        let mut scenes: Vec<_> = self
+            .registry
+            .list(&who)
+            .iter()
+            .map(|h| convert::scene_info(&h.shared, self.registry.worker_name()))
+            .collect();
+        scenes.extend(self.registry.placed_elsewhere(&who).iter().map(convert::placed_info));
+        scenes.sort_by_key(|s| s.scene_id);
         Ok(Response::new(pb::ListScenesResponse { scenes }))
     }
 
     async fn delete_scene(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneInfo> {
         let who = caller(&request)?;
         let handle = self.registry.delete(&who, request.into_inner().scene_id).await.map_err(status)?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+        Ok(Response::new(convert::scene_info(&handle.shared, self.registry.worker_name())))
     }
 
     async fn step(&self, request: Request<pb::StepRequest>) -> Reply<pb::SceneInfo> {
@@ -188,6 +195,6 @@ impl Grpc {
     /// The `SceneInfo` of a scene after a call changed it.
     fn info(&self, who: &Caller, id: u64) -> Reply<pb::SceneInfo> {
         let handle = self.registry.get(who, id, Need::Watch).map_err(status)?;
-        Ok(Response::new(convert::scene_info(&handle.shared)))
+        Ok(Response::new(convert::scene_info(&handle.shared, self.registry.worker_name())))
     }
 }

@@ -9,7 +9,7 @@
 
 use floe_client::{Client, ClientError};
 use floe_engine::Simulation;
-use floe_server::lab_bench::process::{Data, ServerProcess, fresh_database};
+use floe_server::lab_bench::process::{Data, ServerProcess, admin, fresh_database};
 use floe_server::store::Checkpoints;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -154,13 +154,14 @@ async fn three_workers_place_fail_over_and_fence() {
     on_new.step(b, 10).await.unwrap();
     assert!(on_new.snapshot(b).await.unwrap() == stepped_on(&b_at_20, 10), "B did not step on bit for bit");
     for w in &live {
-        let ids: Vec<u64> =
-            Client::connect(&w.process.grpc).await.unwrap().list().await.unwrap().iter().map(|s| s.scene_id).collect();
-        assert_eq!(
-            ids.iter().filter(|&&id| id == b).count(),
-            u64::from(w.name == to) as usize,
-            "B is on one worker only"
-        );
+        let mut on = Client::connect(&w.process.grpc).await.unwrap();
+        assert_eq!(on.get(b).await.is_ok(), w.name == to, "B is held by {to} only");
+        let listed = within(Duration::from_secs(5), "every list names B's worker", async || {
+            let list = on.list().await.ok()?;
+            list.into_iter().find(|s| s.scene_id == b && s.worker == to)
+        })
+        .await;
+        assert_eq!(listed.worker, to);
     }
 
     // w3 (running C) stopped past its lease: C moves to w1, paused. Continued, w3
@@ -199,4 +200,24 @@ async fn three_workers_place_fail_over_and_fence() {
     assert!(holder(&[w3], c).await.is_none(), "the late worker dropped C");
     assert_eq!(on_w1.get(c).await.unwrap().state, floe_proto::pb::SceneState::Paused as i32);
     on_w1.step(c, 2).await.unwrap();
+
+    // Draining w1 for maintenance moves its scenes to w3 (joined again, holding
+    // nothing), paused, stepping on bit for bit from where they were.
+    let a_before = on_w1.snapshot(a).await.unwrap();
+    let c_before = on_w1.snapshot(c).await.unwrap();
+    let out = admin(Path::new(env!("CARGO_BIN_EXE_floe")), &data, &["worker", "drain", "w1"]).unwrap();
+    assert!(out.is_empty(), "drain prints its message on stderr: {out}");
+    for (scene, before) in [(a, a_before), (c, c_before)] {
+        let mut on_w3 =
+            within(Duration::from_secs(15), "a drained scene on w3", async || holder(&[w3], scene).await).await.1;
+        assert_eq!(on_w3.get(scene).await.unwrap().state, floe_proto::pb::SceneState::Paused as i32);
+        on_w3.step(scene, 3).await.unwrap();
+        assert!(
+            on_w3.snapshot(scene).await.unwrap() == stepped_on(&before, 3),
+            "scene {scene} changed on its way to w3"
+        );
+    }
+    let listed = admin(Path::new(env!("CARGO_BIN_EXE_floe")), &data, &["worker", "list"]).unwrap();
+    let w1_row = listed.lines().find(|l| l.starts_with("w1 ")).unwrap_or_else(|| panic!("{listed}"));
+    assert!(w1_row.contains("draining"), "{listed}");
 }

@@ -13,13 +13,16 @@ import { PlotPanel } from './plots.js';
 import { Recorder } from './recorder.js';
 import { LOOKS, Renderer } from './render.js';
 import { Replay } from './replay.js';
+import { Routes } from './route.js';
 import { FPS as OTHER_FPS, OtherSets } from './sets.js';
 import { sliders } from './tunables.js';
 
 const $ = (id) => document.getElementById(id);
 const credentials = new Credentials(sessionStorage);
 const askedScene = credentials.readFragment(location, history);
-const api = (path, init) => fetch(`/api/v1${path}`, {
+// In a cluster, each scene's worker (js/route.js); on a single server every path stays /api/v1.
+const routes = new Routes();
+const api = (path, init) => routes.fetch(fetch, path, {
   headers: { 'content-type': 'application/json', ...credentials.headers() }, ...init,
 }).then(async (r) => {
   const body = await r.json().catch(() => ({}));
@@ -81,6 +84,7 @@ function showColourModes(channels) {
  */
 async function refreshScenes(select, reopen = false) {
   const scenes = await api('/scenes');
+  routes.learn(scenes);
   if (replay.active) return;
   const sel = $('scenes');
   sel.replaceChildren(...scenes.map((s) => new Option(`${s.scene_id}: ${s.name} (${s.particles} particles)`, s.scene_id)));
@@ -88,7 +92,11 @@ async function refreshScenes(select, reopen = false) {
   const id = [select, state.scene?.scene_id].find(known) ?? scenes[0]?.scene_id;
   if (id != null) {
     sel.value = id;
-    if (reopen || id !== state.scene?.scene_id) open(scenes.find((s) => s.scene_id === Number(id)));
+    if (reopen || id !== state.scene?.scene_id) {
+      const listed = scenes.find((s) => s.scene_id === Number(id));
+      // Another worker's scene is listed by name only: its worker gives the rest.
+      open(listed.channels ? listed : await api(`/scenes/${listed.scene_id}`));
+    }
   } else {
     close();
     state.scene = null;
@@ -169,7 +177,7 @@ function frameCamera() {
 function connect() {
   if (!state.wantOpen || !state.scene) return;
   const channel = $('colour').value;
-  const url = new URL(`/api/v1/scenes/${state.scene.scene_id}/ws`, location.href);
+  const url = new URL(routes.url(`/scenes/${state.scene.scene_id}/ws`), location.href);
   url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
   // The colour channel, oriented particles' orientations where the scene streams them, and
   // without a colour map the phases of a melting scene.

@@ -145,10 +145,16 @@ impl From<crate::service::CommandError> for ApiError {
 type ApiResult<T> = Result<Json<T>, ApiError>;
 
 /// A scene as JSON.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Default, Serialize)]
 pub struct SceneView {
     /// Scene id.
     pub scene_id: u64,
+    /// In a cluster's scene list, the worker holding it: calls for it go to
+    /// `/w/WORKER/api/v1/...` through the proxy. Absent on a single server. A list
+    /// from one worker gives the others' scenes with their id, name, owner, state,
+    /// particles and worker only.
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub worker: String,
     /// Name.
     pub name: String,
     /// The user who created it.
@@ -277,6 +283,7 @@ impl SceneView {
         let s = shared.status();
         Self {
             scene_id: shared.id,
+            worker: String::new(),
             name: shared.name.clone(),
             owner: shared.owner.clone(),
             state: state_name(s.state),
@@ -347,7 +354,24 @@ async fn presets() -> Json<Vec<&'static str>> {
 }
 
 async fn list(AxState(r): AxState<Arc<Registry>>, Who(who): Who) -> Json<Vec<SceneView>> {
-    Json(r.list(&who).iter().map(|h| SceneView::of(&h.shared)).collect())
+    let here = r.worker_name();
+    let mut views: Vec<SceneView> =
+        r.list(&who).iter().map(|h| SceneView { worker: here.to_owned(), ..SceneView::of(&h.shared) }).collect();
+    views.extend(r.placed_elsewhere(&who).into_iter().map(|p| SceneView {
+        scene_id: p.id,
+        worker: p.worker,
+        name: p.name,
+        owner: p.owner,
+        state: match p.state.as_str() {
+            "running" => "running",
+            "halted" => "halted",
+            _ => "paused",
+        },
+        particles: usize::try_from(p.particles).unwrap_or(usize::MAX),
+        ..SceneView::default()
+    }));
+    views.sort_by_key(|v| v.scene_id);
+    Json(views)
 }
 
 /// `POST /scenes` body.
@@ -392,7 +416,7 @@ async fn create(
         }
     };
     let handle = r.create_routed(&who, source, b.overrides, named).await?;
-    Ok((StatusCode::CREATED, Json(SceneView::of(&handle.shared))))
+    Ok((StatusCode::CREATED, Json(SceneView { worker: r.worker_name().to_owned(), ..SceneView::of(&handle.shared) })))
 }
 
 /// The view of a scene the caller may watch.

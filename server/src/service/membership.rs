@@ -3,7 +3,8 @@
 //! dropping those that moved (writing nothing for them), handing every scene over
 //! while draining, and knowing where the others' scenes are.
 
-use super::{Registry, ServiceError, State, persist, unavailable};
+use super::{Need, Placed, Registry, ServiceError, State, persist, unavailable};
+use crate::auth::Caller;
 use crate::cluster::{Beat, Member, placement};
 use crate::store::Store;
 use crate::store::cluster::Lease;
@@ -88,12 +89,23 @@ impl Registry {
     /// call for a dropped scene then finds where it went, never "not found". Returns
     /// every scene's row.
     async fn locate(&self, store: &Store, lease: &Lease) -> anyhow::Result<Vec<crate::store::db::SceneRow>> {
+        // Read before the scenes, so a scene created meanwhile is never taken as missing.
+        let newest = store.db.next_scene_id().await?.saturating_sub(1);
         let rows = store.db.scenes().await?;
+        self.newest_known.store(newest, std::sync::atomic::Ordering::Relaxed);
         *self.elsewhere.write().expect("lock") = rows
             .iter()
             .filter_map(|r| {
                 let l = r.lease.as_ref().filter(|l| l.worker != lease.worker)?;
-                Some((r.id, (l.worker.clone(), r.owner.clone())))
+                let placed = Placed {
+                    id: r.id,
+                    worker: l.worker.clone(),
+                    owner: r.owner.clone(),
+                    name: r.name.clone(),
+                    state: r.state.clone(),
+                    particles: r.particles,
+                };
+                Some((r.id, placed))
             })
             .collect();
         Ok(rows)
@@ -149,12 +161,32 @@ impl Registry {
             match store.db.hand_over(&lease, id, handle.shared.particles as u64).await {
                 Ok(Some(to)) => {
                     tracing::info!(scene = id, to = %to.worker, "scene handed over (draining)");
-                    self.elsewhere.write().expect("lock").insert(id, (to.worker, handle.shared.owner.clone()));
+                    let placed = Placed {
+                        id,
+                        worker: to.worker,
+                        owner: handle.shared.owner.clone(),
+                        name: handle.shared.name.clone(),
+                        state: "paused".into(),
+                        particles: handle.shared.particles as u64,
+                    };
+                    self.elsewhere.write().expect("lock").insert(id, placed);
                     self.drop_scenes(&[id]).await;
                 }
                 Ok(None) => tracing::warn!(scene = id, "draining: no other worker has room for this scene"),
                 Err(e) => tracing::error!(scene = id, "draining: {e}"),
             }
         }
+    }
+
+    /// This worker's name in a cluster; empty on a single server.
+    pub fn worker_name(&self) -> &str {
+        self.member.as_ref().map_or("", |m| m.info.name.as_str())
+    }
+
+    /// The scenes of the cluster that `caller` may watch and other workers hold, as
+    /// of the last tick, by id.
+    pub fn placed_elsewhere(&self, caller: &Caller) -> Vec<Placed> {
+        let map = self.elsewhere.read().expect("lock");
+        map.values().filter(|p| Self::check(caller, p.id, &p.owner, Need::Watch).is_ok()).cloned().collect()
     }
 }

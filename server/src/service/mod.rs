@@ -95,6 +95,23 @@ fn unavailable(e: impl std::fmt::Display) -> ServiceError {
     ServiceError::Unavailable(format!("the server's database failed: {e}"))
 }
 
+/// A scene another worker of the cluster holds, as the database records it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Placed {
+    /// Scene id.
+    pub id: u64,
+    /// The worker holding it.
+    pub worker: String,
+    /// The user who created it.
+    pub owner: String,
+    /// Scene name.
+    pub name: String,
+    /// `paused`, `running` or `halted` as last recorded.
+    pub state: String,
+    /// Particles.
+    pub particles: u64,
+}
+
 /// Where a new scene comes from.
 #[derive(Debug, Clone)]
 pub enum SceneSource {
@@ -243,9 +260,11 @@ pub struct Registry {
     member: Option<Member>,
     /// Scene threads step while it holds: the member's, or one that always holds.
     tenure: Arc<Tenure>,
-    /// In a cluster, the worker holding each scene not held here (as of the last
-    /// maintenance tick), with its owner: where a call for it goes.
-    elsewhere: RwLock<BTreeMap<u64, (String, String)>>,
+    /// In a cluster, each scene not held here, as of the last maintenance tick:
+    /// where a call for it goes, and what lists show of it.
+    elsewhere: RwLock<BTreeMap<u64, Placed>>,
+    /// In a cluster, the largest scene id the database knew at the last tick.
+    newest_known: AtomicU64,
     /// Serialises the running-scene quota checks with the runs they admit.
     run_gate: tokio::sync::Mutex<()>,
 }
@@ -284,6 +303,7 @@ impl Registry {
             member,
             tenure,
             elsewhere: RwLock::new(BTreeMap::new()),
+            newest_known: AtomicU64::new(0),
             run_gate: tokio::sync::Mutex::new(()),
         }
     }
@@ -350,13 +370,18 @@ impl Registry {
     /// may use it there; else not found.
     fn not_here(&self, caller: &Caller, id: u64, need: Need) -> ServiceError {
         match self.elsewhere.read().expect("lock").get(&id) {
-            Some((worker, owner)) => match Self::check(caller, id, owner, need) {
+            Some(p) => match Self::check(caller, id, &p.owner, need) {
                 Ok(()) => ServiceError::Elsewhere {
-                    worker: worker.clone(),
-                    message: format!("scene {id} is on worker {worker}"),
+                    worker: p.worker.clone(),
+                    message: format!("scene {id} is on worker {}", p.worker),
                 },
                 Err(e) => e,
             },
+            // Newer than every scene of the last tick: another worker may have just
+            // created it; the next tick says where (or that it does not exist).
+            None if self.member.is_some() && id > self.newest_known.load(Ordering::Relaxed) => {
+                ServiceError::Unavailable(format!("scene {id} is not known to this worker yet; retry"))
+            }
             None => ServiceError::NotFound(id),
         }
     }

@@ -16,6 +16,7 @@ from ._proto import scenes_pb2_grpc as pb_grpc
 from .errors import Unavailable, from_rpc
 from .frames import Decoder
 from .messages import SceneInfo, SceneStats
+from .route import Routes, scene_of
 from .streams import EventStream, FrameStream
 
 #: Where :func:`connect` goes without an address: ``FLOE_SERVER`` or this (as floectl).
@@ -75,12 +76,24 @@ class Client:
         self._channel = channel
         self._stub = pb_grpc.SceneServiceStub(channel)
         self._metadata = (("authorization", f"Bearer {token}"),) if token else ()
+        # In a cluster, each scene's worker (floe_client.route).
+        self._routes = Routes()
 
     def _call(self, method: str, request: Any) -> Any:
+        target = scene_of(request)
+        stub = getattr(self._stub, method)
         try:
-            return getattr(self._stub, method)(request, metadata=self._metadata)
+            reply = self._routes.call(
+                target, method in _READS, lambda extra: stub(request, metadata=self._metadata + extra)
+            )
         except grpc.RpcError as e:
             raise from_rpc(e) from None
+        if method == "CreateScene":
+            # The worker that built it holds it; the next new scene is placed afresh.
+            self._routes.forget(None)
+            if reply.worker:
+                self._routes.remember(reply.scene_id, reply.worker)
+        return reply
 
     def close(self) -> None:
         """Closes the connection (its streams end)."""
@@ -212,15 +225,28 @@ class Client:
             decimation=decimation,
             particle_set=particle_set,
         )
-        return FrameStream(self._stream("StreamFrames", request), Decoder(scene=info))
+        return FrameStream(
+            self._stream("StreamFrames", request), Decoder(scene=info), reopen=lambda: self._reopen(request)
+        )
 
     def events(self, scene: SceneLike) -> EventStream:
         """Events of a scene: Halted (with the reason), ParameterChanged, Deleted."""
         return EventStream(self._stream("StreamEvents", pb.SceneRef(scene_id=_id(scene))))
 
     def _stream(self, method: str, request: Any) -> Any:
-        # A refused stream raises when first read; the stream maps that error.
-        return getattr(self._stub, method)(request, metadata=self._metadata)
+        # A refused stream raises when first read; the stream maps that error. In a cluster it
+        # is opened on the scene's worker as last known (the stream follows it when it moves).
+        return getattr(self._stub, method)(request, metadata=self._metadata + self._routes.metadata(request.scene_id))
+
+    def _reopen(self, request: pb.StreamFramesRequest) -> Any:
+        """A frame stream opened again where the scene is now (after its worker stopped or
+        it moved); raises NotFound if the scene is gone."""
+        self.get(request.scene_id)
+        return self._stream("StreamFrames", request)
+
+
+#: Calls that change nothing: sent again while a scene's worker is being found.
+_READS = frozenset({"GetScene", "GetStats", "Snapshot"})
 
 
 def connect(address: str | None = None, *, token: str | None = None, timeout: float = 10.0) -> Client:

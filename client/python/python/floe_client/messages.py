@@ -99,6 +99,10 @@ class SceneInfo:
     sets: tuple[ParticleSet, ...] = ()
     #: The settings ``set_parameters`` may change.
     tunables: tuple[Tunable, ...] = ()
+    #: In a cluster, the worker holding the scene (the client follows it there); "" on a
+    #: single server. A list gives the other workers' scenes by id, name, state, particles
+    #: and worker only: ``get`` gives the rest.
+    worker: str = ""
 
     @classmethod
     def from_message(cls, m: pb.SceneInfo) -> SceneInfo:
@@ -129,6 +133,7 @@ class SceneInfo:
                 )
                 for t in m.tunables
             ),
+            worker=m.worker,
         )
 
 

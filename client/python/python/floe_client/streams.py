@@ -5,16 +5,30 @@ a context manager that closes it.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any, Generic, TypeVar
 
 import grpc
 
 from . import messages
-from .errors import from_rpc
+from .errors import FloeError, NotFound, from_rpc
 from .frames import Decoder, Frame
 
 T = TypeVar("T")
+
+#: Codes a server answers a stream with (the request or the caller was refused), as
+#: opposed to a lost connection.
+_ANSWERS = frozenset(
+    {
+        grpc.StatusCode.NOT_FOUND,
+        grpc.StatusCode.INVALID_ARGUMENT,
+        grpc.StatusCode.PERMISSION_DENIED,
+        grpc.StatusCode.UNAUTHENTICATED,
+        grpc.StatusCode.RESOURCE_EXHAUSTED,
+        grpc.StatusCode.FAILED_PRECONDITION,
+        grpc.StatusCode.OUT_OF_RANGE,
+    }
+)
 
 
 class _Stream(Generic[T]):
@@ -57,9 +71,10 @@ class FrameStream(_Stream[Frame]):
     :attr:`skipped`, and never slows the solver.
     """
 
-    def __init__(self, call: Any, decoder: Decoder) -> None:
+    def __init__(self, call: Any, decoder: Decoder, reopen: Callable[[], Any] | None = None) -> None:
         super().__init__(call)
         self._decoder = decoder
+        self._reopen = reopen
         #: Frames skipped so far because this reader was slower than the scene.
         self.skipped = 0
 
@@ -68,10 +83,34 @@ class FrameStream(_Stream[Frame]):
 
     def next_raw(self) -> bytes:
         """The next frame as the server encoded it, undecoded (to record it). Once read raw,
-        a stream's later identity-ordered frames decode only from the next keyframe."""
-        message = self._next_message()
-        self.skipped += message.skipped
-        return bytes(message.data)
+        a stream's later identity-ordered frames decode only from the next keyframe.
+
+        In a cluster, a stream that breaks (its worker stopped) or ends while the scene lives
+        on (it moved to another worker) is opened again where the scene is now, starting
+        with a whole frame."""
+        while True:
+            try:
+                message = self._next_message()
+            except StopIteration:
+                if self._closed or self._reopen is None or not self._moved():
+                    raise
+                continue
+            except FloeError as e:
+                if self._reopen is None or e.code in _ANSWERS or not self._moved():
+                    raise
+                continue
+            self.skipped += message.skipped
+            return bytes(message.data)
+
+    def _moved(self) -> bool:
+        """Opens the stream again where the scene is; False if the scene is gone."""
+        assert self._reopen is not None
+        try:
+            self._call = self._reopen()
+        except NotFound:
+            return False
+        self._decoder.reset()
+        return True
 
 
 class EventStream(_Stream[messages.Event]):

@@ -57,7 +57,7 @@ class CreateSceneRequest(_message.Message):
     def __init__(self, preset: _Optional[str] = ..., document: _Optional[str] = ..., document_format: _Optional[str] = ..., overrides: _Optional[_Iterable[str]] = ...) -> None: ...
 
 class SceneInfo(_message.Message):
-    __slots__ = ("scene_id", "name", "state", "sim_time", "steps", "particles", "bounds_min", "bounds_max", "halt_reason", "scene_json", "backend", "channels", "sets", "tunables", "materials", "owner")
+    __slots__ = ("scene_id", "name", "state", "sim_time", "steps", "particles", "bounds_min", "bounds_max", "halt_reason", "scene_json", "backend", "channels", "sets", "tunables", "materials", "owner", "worker")
     SCENE_ID_FIELD_NUMBER: _ClassVar[int]
     NAME_FIELD_NUMBER: _ClassVar[int]
     STATE_FIELD_NUMBER: _ClassVar[int]
@@ -74,6 +74,7 @@ class SceneInfo(_message.Message):
     TUNABLES_FIELD_NUMBER: _ClassVar[int]
     MATERIALS_FIELD_NUMBER: _ClassVar[int]
     OWNER_FIELD_NUMBER: _ClassVar[int]
+    WORKER_FIELD_NUMBER: _ClassVar[int]
     scene_id: int
     name: str
     state: SceneState
@@ -90,7 +91,8 @@ class SceneInfo(_message.Message):
     tunables: _containers.RepeatedCompositeFieldContainer[Tunable]
     materials: _containers.RepeatedCompositeFieldContainer[MaterialDescription]
     owner: str
-    def __init__(self, scene_id: _Optional[int] = ..., name: _Optional[str] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., bounds_min: _Optional[_Iterable[float]] = ..., bounds_max: _Optional[_Iterable[float]] = ..., halt_reason: _Optional[str] = ..., scene_json: _Optional[str] = ..., backend: _Optional[str] = ..., channels: _Optional[_Iterable[_Union[ChannelDescription, _Mapping]]] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., tunables: _Optional[_Iterable[_Union[Tunable, _Mapping]]] = ..., materials: _Optional[_Iterable[_Union[MaterialDescription, _Mapping]]] = ..., owner: _Optional[str] = ...) -> None: ...
+    worker: str
+    def __init__(self, scene_id: _Optional[int] = ..., name: _Optional[str] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., bounds_min: _Optional[_Iterable[float]] = ..., bounds_max: _Optional[_Iterable[float]] = ..., halt_reason: _Optional[str] = ..., scene_json: _Optional[str] = ..., backend: _Optional[str] = ..., channels: _Optional[_Iterable[_Union[ChannelDescription, _Mapping]]] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., tunables: _Optional[_Iterable[_Union[Tunable, _Mapping]]] = ..., materials: _Optional[_Iterable[_Union[MaterialDescription, _Mapping]]] = ..., owner: _Optional[str] = ..., worker: _Optional[str] = ...) -> None: ...
 
 class ChannelDescription(_message.Message):
     __slots__ = ("name", "tag", "unit", "components", "set", "exact", "about", "module")
