@@ -38,6 +38,9 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     if args.lab {
         return lab(&args);
     }
+    if args.cluster {
+        return cluster(&args);
+    }
     if args.list {
         println!("| case | module benchmark |\n|---|---|");
         for c in floe_engine::module::bench_cases() {
@@ -280,5 +283,19 @@ fn lab(args: &BenchArgs) -> anyhow::Result<()> {
     };
     let report = tokio::runtime::Runtime::new()?.block_on(crate::lab_bench::run(&cfg))?;
     crate::lab_bench::print(&cfg, &report);
+    Ok(())
+}
+
+/// `floe bench --cluster`: a cluster under load through its proxy (see [`crate::lab_bench::cluster`]).
+fn cluster(args: &BenchArgs) -> anyhow::Result<()> {
+    let cfg = crate::lab_bench::cluster::ClusterLoad {
+        floe: std::env::current_exe()?,
+        seconds: args.seconds,
+        viewers: args.viewers,
+        scripts: args.scripts,
+        script_rate: args.script_rate,
+    };
+    let report = tokio::runtime::Runtime::new()?.block_on(crate::lab_bench::cluster::run(&cfg))?;
+    crate::lab_bench::cluster::print(&cfg, &report);
     Ok(())
 }

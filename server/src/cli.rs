@@ -153,6 +153,7 @@ pub struct PlanArgs {
 
 /// `floe bench`.
 #[derive(Debug, Args)]
+#[command(group(clap::ArgGroup::new("load").args(["lab", "cluster"])))]
 pub struct BenchArgs {
     /// Fluid particle counts to measure (approximate: the dam break is scaled to them).
     #[arg(long, value_delimiter = ',', default_value = "30000,120000")]
@@ -198,20 +199,28 @@ pub struct BenchArgs {
     /// users; the solver's steps/s alone and under load, lost calls, memory.
     #[arg(long, conflicts_with_all = ["codec", "solve"])]
     pub lab: bool,
-    /// `--lab`: seconds under load.
-    #[arg(long, default_value = "60", requires = "lab")]
+    /// A cluster under load instead: deploy/local/cluster.sh's three workers (this
+    /// binary, CPU backend) behind nginx, three dam breaks at real time, viewers and
+    /// scripted users through the proxy; lost calls and the proxy hop's added latency
+    /// (each scripted user's reads alternate between the proxy and its scene's worker).
+    #[arg(long, conflicts_with_all = ["codec", "solve", "lab"])]
+    pub cluster: bool,
+    /// `--lab`, `--cluster`: seconds under load.
+    #[arg(long, default_value = "60", requires = "load")]
     pub seconds: u64,
-    /// `--lab`: viewers streaming the running scene through share links.
-    #[arg(long, default_value = "50", requires = "lab")]
+    /// `--lab`: viewers streaming the running scene through share links; `--cluster`:
+    /// viewers streaming the running scenes through the proxy.
+    #[arg(long, default_value = "50", requires = "load")]
     pub viewers: usize,
     /// `--lab`: how many of the viewers never read their stream.
     #[arg(long, default_value = "10", requires = "lab")]
     pub idle_viewers: usize,
-    /// `--lab`: scripted users, each stepping, tuning and querying a scene of their own.
-    #[arg(long, default_value = "10", requires = "lab")]
+    /// `--lab`: scripted users, each stepping, tuning and querying a scene of their own;
+    /// `--cluster`: each reading a scene of their own.
+    #[arg(long, default_value = "10", requires = "load")]
     pub scripts: usize,
-    /// `--lab`: calls per second of each scripted user.
-    #[arg(long, default_value = "20", requires = "lab")]
+    /// `--lab`, `--cluster`: calls per second of each scripted user.
+    #[arg(long, default_value = "20", requires = "load")]
     pub script_rate: f64,
 }
 

@@ -9,7 +9,9 @@
 //! memory over the loaded phase.
 //!
 //! - [`process`]: the server process, its users, its memory.
+//! - [`cluster`]: `floe bench --cluster`, a cluster of workers under load through its proxy.
 
+pub mod cluster;
 pub mod process;
 
 use floe_client::{Client, FrameRequest};
@@ -72,7 +74,7 @@ pub struct LoadReport {
 }
 
 /// A call made by a scripted user waits this long for its answer before it counts as lost.
-const CALL_TIMEOUT: Duration = Duration::from_secs(10);
+pub(crate) const CALL_TIMEOUT: Duration = Duration::from_secs(10);
 
 /// Runs the load and stops the server.
 pub async fn run(cfg: &LoadConfig) -> anyhow::Result<LoadReport> {
