@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # The cluster through its proxy: deploy/local/cluster.sh starts PostgreSQL, nginx and
 # three workers on loopback (a 3 s lease, the CPU backend), then the Rust client's test
-# (server/tests/cluster_proxy.rs) and the Python client's (client/python/tests/
-# test_cluster.py) run against the proxy's addresses. Needs target/debug/floe and the
-# Python client's virtualenv (tests/run-all.sh builds both first).
+# (server/tests/cluster_proxy.rs), the Python client's (client/python/tests/
+# test_cluster.py) and the viewer's in headless Chromium (tests/browser/
+# cluster.test.mjs) run against the proxy's addresses. Needs target/debug/floe, the
+# Python client's virtualenv and tests/browser's packages (tests/run-all.sh makes
+# all three first).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 dir=$(mktemp -d)
@@ -11,5 +13,7 @@ trap 'deploy/local/cluster.sh stop "$dir" >/dev/null 2>&1 || true; rm -rf "$dir"
 eval "$(FLOE_BIN=target/debug/floe FLOE_LEASE=3 FLOE_BACKEND=cpu FLOE_CHECKPOINT_EVERY=1 \
   deploy/local/cluster.sh start "$dir" 3)"
 export FLOE_REQUIRE_CLUSTER=1
-cargo test -q -p floe-server --test cluster_proxy
 target/python-venv/bin/python -m pytest -q client/python/tests/test_cluster.py
+node --test tests/browser/cluster.test.mjs
+# Last: it kill -9s a worker.
+cargo test -q -p floe-server --test cluster_proxy

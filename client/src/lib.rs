@@ -201,7 +201,7 @@ impl Client {
 
     /// Every scene.
     pub async fn list(&mut self) -> Result<Vec<SceneInfo>, ClientError> {
-        Ok(self.inner.list_scenes(pb::ListScenesRequest {}).await?.into_inner().scenes)
+        Ok(routed!(self.routes, self.inner, list_scenes, None, true, pb::ListScenesRequest {})?.scenes)
     }
 
     /// Deletes a scene.

@@ -246,7 +246,7 @@ class Client:
 
 
 #: Calls that change nothing: sent again while a scene's worker is being found.
-_READS = frozenset({"GetScene", "GetStats", "Snapshot"})
+_READS = frozenset({"GetScene", "GetStats", "Snapshot", "ListScenes"})
 
 
 def connect(address: str | None = None, *, token: str | None = None, timeout: float = 10.0) -> Client:
