@@ -7,8 +7,14 @@ Skipped without the cluster's addresses, unless FLOE_REQUIRE_CLUSTER=1.
 
 from __future__ import annotations
 
+import glob
 import json
 import os
+import pathlib
+import shlex
+import shutil
+import signal
+import subprocess
 import time
 import urllib.error
 import urllib.request
@@ -65,3 +71,65 @@ def test_calls_follow_scenes_to_their_workers() -> None:
             assert (answer[0], answer[1]["worker"]) == (421, worker), answer
         for i in ids:
             c.delete(i)
+
+
+def _as_postgres(*args: str) -> None:
+    """Runs a PostgreSQL command as the postgres user when root (PostgreSQL refuses root)."""
+    prefix = ["runuser", "-u", "postgres", "--"] if os.geteuid() == 0 else []
+    subprocess.run([*prefix, *args], check=True, capture_output=True)
+
+
+def test_restarting_postgresql_and_the_proxy_loses_no_scene() -> None:
+    """PostgreSQL down for longer than the workers' lease, then nginx restarted: every scene
+    is still on its worker, steps on, and no worker was evicted."""
+    assert PROXY_GRPC and PROXY_HTTP, "FLOE_REQUIRE_CLUSTER is set but FLOE_PROXY_GRPC is not"
+    cluster = pathlib.Path(os.environ["FLOE_CLUSTER_DIR"])
+    pg_ctl = sorted(glob.glob("/usr/lib/postgresql/*/bin/pg_ctl"))[-1]
+    with floe_client.connect(PROXY_GRPC) as c:
+        created = [c.create_preset("hydrostatic", {"particle_spacing": 0.1}) for _ in range(3)]
+        ids = [s.scene_id for s in created]
+        c.run(ids[0], 1.0)
+        before = {s.scene_id: s.worker for s in created}
+
+        data = cluster / "pg" / "data"
+        # The server's own options (port, socket directory), as it was started with them:
+        # postmaster.opts is its command line, binary and data directory first.
+        options = shlex.split((data / "postmaster.opts").read_text())[3:]
+        _as_postgres(pg_ctl, "-D", str(data), "-m", "fast", "-w", "stop")
+        time.sleep(6)  # twice the test cluster's lease (3 s)
+        log = str(cluster / "pg" / "server.log")
+        _as_postgres(pg_ctl, "-D", str(data), "-l", log, "-o", shlex.join(options), "-w", "start")
+
+        nginx_dir = cluster / "nginx"
+        old = int((nginx_dir / "nginx.pid").read_text())
+        os.kill(old, signal.SIGTERM)
+        while pathlib.Path(f"/proc/{old}").exists():
+            time.sleep(0.1)
+        nginx = shutil.which("nginx") or "/usr/sbin/nginx"
+        proxy = subprocess.Popen([nginx, "-p", str(nginx_dir), "-c", str(nginx_dir / "nginx.conf")])
+        (nginx_dir / "nginx.pid").write_text(f"{proxy.pid}\n")
+        deadline = time.monotonic() + 20
+        while True:
+            try:
+                listed = {s.scene_id: s.worker for s in c.list() if s.scene_id in ids}
+                if listed == before:
+                    break
+            except floe_client.errors.FloeError:
+                pass
+            assert time.monotonic() < deadline, f"scenes {before} not all back on their workers"
+            time.sleep(0.5)
+        # A worker steps again once its heartbeat reaches the database (a step before is refused).
+        for i in ids[1:]:
+            deadline = time.monotonic() + 20
+            while True:
+                try:
+                    assert c.step(i, 2).steps == 2
+                    break
+                except floe_client.errors.Unavailable:
+                    assert time.monotonic() < deadline, f"scene {i} does not step again"
+                    time.sleep(0.5)
+        c.pause(ids[0])
+        for i in ids:
+            c.delete(i)
+    logs = "".join(p.read_text() for p in cluster.glob("worker-*.log"))
+    assert "evicted" not in logs, "a worker was evicted over a database outage"

@@ -56,6 +56,8 @@ pub struct Member {
     pub tenure: Arc<Tenure>,
     lease: RwLock<Lease>,
     heard: Mutex<HashMap<String, Heard>>,
+    /// When this worker last looked at the others' heartbeats.
+    watched: Mutex<Option<Instant>>,
 }
 
 /// What a heartbeat learnt.
@@ -84,7 +86,14 @@ impl Member {
         let tenure = Arc::new(Tenure::ended());
         tenure.extend(sent, lease_time / 2);
         tracing::info!(worker = %info.name, epoch = lease.epoch, "joined the cluster");
-        Ok(Self { info, lease_time, tenure, lease: RwLock::new(lease), heard: Mutex::new(HashMap::new()) })
+        Ok(Self {
+            info,
+            lease_time,
+            tenure,
+            lease: RwLock::new(lease),
+            heard: Mutex::new(HashMap::new()),
+            watched: Mutex::new(None),
+        })
     }
 
     /// The lease its scenes are held by now.
@@ -128,6 +137,13 @@ impl Member {
         {
             let workers = db.workers().await?;
             let mut heard = self.heard.lock().expect("lock");
+            // Silence counts only while this worker was watching: after a gap (the
+            // database was unreachable, this process was stopped) everyone starts
+            // afresh, or all the others would look silent at once.
+            let last = self.watched.lock().expect("lock").replace(now);
+            if last.is_none_or(|t| now.duration_since(t) > self.lease_time / 2) {
+                heard.clear();
+            }
             heard.retain(|name, _| workers.iter().any(|w| &w.info.name == name));
             for w in workers.iter().filter(|w| w.info.name != me.worker) {
                 let h =

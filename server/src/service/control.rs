@@ -43,6 +43,7 @@ impl Registry {
     /// owner's running-scene and running-particle quotas allow one more.
     pub async fn run(&self, caller: &Caller, id: u64, real_time_factor: f64) -> Result<Status, ServiceError> {
         let handle = self.get(caller, id, Need::Steer)?;
+        self.tenured()?;
         let owner = handle.shared.owner.clone();
         let _gate = self.run_gate.lock().await;
         if handle.shared.status().state != State::Running {
@@ -117,6 +118,7 @@ impl Registry {
     /// checkpoint the maintenance loop writes it instead, at its first tick after that.
     pub async fn step(&self, caller: &Caller, id: u64, steps: u64, until: Option<f64>) -> Result<Status, ServiceError> {
         let (handle, since) = self.entry(caller, id, Need::Steer, |e| (e.handle.clone(), e.checkpoint.clone()))?;
+        self.tenured()?;
         let before = handle.shared.status().steps;
         let kept = self.store.is_some();
         // Marked before stepping: a caller who leaves mid-way drops this call, and the

@@ -16,6 +16,18 @@ impl Registry {
         self.member.as_ref().map(Member::lease)
     }
 
+    /// Refuses to step or run while this cluster worker's tenure does not hold (it
+    /// has not reached the database for half its lease: its scenes may be moving).
+    pub(super) fn tenured(&self) -> Result<(), ServiceError> {
+        if self.tenure.holds() {
+            return Ok(());
+        }
+        Err(ServiceError::Unavailable(
+            "this worker has not reached the cluster's database within half its lease, so it steps nothing; retry"
+                .into(),
+        ))
+    }
+
     /// A database failure of a write for scene `id`: fenced (the scene moved while
     /// this worker was silent) or the database's own.
     pub(super) fn db_error(&self, id: u64, e: DbError) -> ServiceError {

@@ -127,6 +127,10 @@ impl Database {
         let pool = AnyPoolOptions::new()
             // SQLite serialises writers anyway; one connection avoids busy waits.
             .max_connections(if sqlite { 1 } else { 8 })
+            // A PostgreSQL server that went away fails a call within seconds, so the
+            // maintenance loop (heartbeats) comes round and retries, instead of one
+            // call waiting out the default 30 s while the server is back.
+            .acquire_timeout(std::time::Duration::from_secs(if sqlite { 30 } else { 3 }))
             .after_connect(move |conn, _| {
                 Box::pin(async move {
                     if sqlite {
