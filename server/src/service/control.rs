@@ -188,9 +188,12 @@ impl Registry {
             }
         }
         let checkpoints = store.checkpoints.clone();
-        let written = tokio::task::spawn_blocking(move || checkpoints.write(id, saved.step, saved.time, &saved.state))
-            .await
-            .expect("checkpoint task");
+        let tenure = self.tenure.clone();
+        let written = tokio::task::spawn_blocking(move || {
+            checkpoints.write(id, saved.step, saved.time, &saved.state, || tenure.holds())
+        })
+        .await
+        .expect("checkpoint task");
         self.metrics.checkpointed(written.is_ok(), t0.elapsed().as_secs_f64());
         let meta = written.map_err(|e| {
             tracing::error!(scene = id, "checkpoint failed: {e}");

@@ -47,6 +47,9 @@ pub enum CheckpointError {
         /// The cause.
         source: std::io::Error,
     },
+    /// Not written: the scene is no longer this worker's (its tenure lapsed).
+    #[error("the checkpoint of scene {0} was withdrawn: this worker may no longer hold the scene")]
+    Withdrawn(u64),
     /// The file is not a whole, undamaged checkpoint.
     #[error("{path}: {reason}")]
     Damaged {
@@ -134,8 +137,17 @@ impl Checkpoints {
     }
 
     /// Writes a checkpoint of `scene` atomically and keeps only the newest [`KEPT`].
-    /// Returns what was written.
-    pub fn write(&self, scene: u64, step: u64, time: f64, payload: &[u8]) -> Result<Meta, CheckpointError> {
+    /// `held` is asked once more just before the file takes its name: false (a
+    /// cluster worker's tenure lapsed while it wrote) removes it unnamed. Returns
+    /// what was written.
+    pub fn write(
+        &self,
+        scene: u64,
+        step: u64,
+        time: f64,
+        payload: &[u8],
+        held: impl Fn() -> bool,
+    ) -> Result<Meta, CheckpointError> {
         let dir = self.dir(scene);
         fs::create_dir_all(&dir).map_err(io(&dir))?;
         let sequence = self.files(scene).first().map_or(1, |f| f.0 + 1);
@@ -146,6 +158,10 @@ impl Checkpoints {
             let mut f = fs::File::create(&temp).map_err(io(&temp))?;
             f.write_all(&encode(&meta, payload)).map_err(io(&temp))?;
             f.sync_all().map_err(io(&temp))?;
+        }
+        if !held() {
+            let _ = fs::remove_file(&temp);
+            return Err(CheckpointError::Withdrawn(scene));
         }
         fs::rename(&temp, &path).map_err(io(&path))?;
         sync_dir(&dir)?;
@@ -221,12 +237,16 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let c = Checkpoints::open(dir.path().to_path_buf()).unwrap();
         for step in [10, 20, 30] {
-            c.write(4, step, step as f64, &step.to_le_bytes()).unwrap();
+            c.write(4, step, step as f64, &step.to_le_bytes(), || true).unwrap();
         }
         let files = c.files(4);
         assert_eq!(files.iter().map(|f| f.0).collect::<Vec<_>>(), [3, 2]);
         let (meta, payload) = Checkpoints::read(&files[0].1).unwrap();
         assert_eq!((meta.step, payload), (30, 30u64.to_le_bytes().to_vec()));
+        let withdrawn = c.write(4, 40, 40.0, b"late", || false).unwrap_err();
+        assert!(matches!(withdrawn, CheckpointError::Withdrawn(4)), "{withdrawn}");
+        assert_eq!(c.files(4).iter().map(|f| f.0).collect::<Vec<_>>(), [3, 2], "a withdrawn checkpoint leaves nothing");
+        assert_eq!(std::fs::read_dir(c.dir(4)).unwrap().count(), 2, "nor a temporary file");
         c.remove(4).unwrap();
         assert!(c.files(4).is_empty());
     }
