@@ -82,15 +82,19 @@ impl Routes {
                 self.remember(attempt.target, worker);
                 attempt.hops <= MOST_HOPS
             }
-            None if attempt.reads && attempt.started.elapsed() < FOLLOW_FOR => {
-                // The named worker did not answer (it stopped): the cluster still names
-                // it until its lease runs out, so the hops start again.
-                attempt.hops = 0;
+            None => {
+                // No worker answered (the named one stopped): the next call asks any
+                // worker again. A read waits for the cluster to move the scene (which
+                // names the stopped worker until its lease runs out, so the hops start
+                // again); a change returns the error for its caller to retry.
                 self.forget(attempt.target);
+                if !attempt.reads || attempt.started.elapsed() >= FOLLOW_FOR {
+                    return false;
+                }
+                attempt.hops = 0;
                 tokio::time::sleep(Duration::from_millis(250)).await;
                 true
             }
-            None => false,
         }
     }
 }
@@ -141,6 +145,8 @@ mod tests {
         assert!(!routes.again(&mut Routes::attempt(Some(3), true), &Status::not_found("no scene")).await);
         // A worker gone: a change is not sent again; a read is, forgetting the worker.
         assert!(!routes.again(&mut Routes::attempt(Some(3), false), &Status::unavailable("502")).await);
+        assert!(routes.worker(Some(3)).is_none(), "a change that found no worker forgets it too");
+        routes.remember(Some(3), "w2".into());
         assert!(routes.again(&mut Routes::attempt(Some(3), true), &Status::unavailable("502")).await);
         assert!(routes.worker(Some(3)).is_none());
     }

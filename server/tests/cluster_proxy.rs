@@ -73,7 +73,9 @@ async fn every_call_and_stream_through_the_proxy() {
     assert_eq!(info.state, floe_proto::pb::SceneState::Paused as i32, "a moved scene comes back paused");
     eprintln!("scene {victim} on {now} {:.1} s after floe-2's kill -9", t0.elapsed().as_secs_f64());
     // The same stream, reopened by the client on the new worker, shows the steps taken there.
-    let stepped = c.step(victim, 3).await.unwrap().steps;
+    // A change is not repeated by the client on a bare UNAVAILABLE (the proxy may have
+    // sent it to the dead worker once more): the caller retries, as users do.
+    let stepped = within_retries(async || c.step(victim, 3).await).await.steps;
     let t1 = Instant::now();
     loop {
         let frame = tokio::time::timeout(Duration::from_secs(30), frames.next()).await.expect("no frame within 30 s");
@@ -85,5 +87,21 @@ async fn every_call_and_stream_through_the_proxy() {
     }
     for &id in &ids {
         c.delete(id).await.unwrap();
+    }
+}
+
+/// `f` until it succeeds, for at most 10 s, retrying only UNAVAILABLE.
+async fn within_retries<T>(mut f: impl AsyncFnMut() -> Result<T, floe_client::ClientError>) -> T {
+    let t0 = Instant::now();
+    loop {
+        match f().await {
+            Ok(v) => return v,
+            Err(floe_client::ClientError::Status(s))
+                if s.code() == tonic::Code::Unavailable && t0.elapsed() < Duration::from_secs(10) =>
+            {
+                tokio::time::sleep(Duration::from_millis(250)).await;
+            }
+            Err(e) => panic!("{e}"),
+        }
     }
 }

@@ -57,9 +57,15 @@ def test_calls_follow_scenes_to_their_workers() -> None:
         assert len(set(placed.values())) >= 2, f"new scenes spread over the workers: {placed}"
 
         # REST: the list names each worker; /w/WORKER/ reaches it; another worker says where.
-        status, listed = rest("/api/v1/scenes")
-        assert status == 200
-        assert {s["scene_id"]: s.get("worker") for s in listed if s["scene_id"] in ids} == placed
+        # (each worker learns of the others' new scenes at its next tick, within a second)
+        deadline = time.monotonic() + 5
+        while True:
+            status, listed = rest("/api/v1/scenes")
+            assert status == 200
+            if {s["scene_id"]: s.get("worker") for s in listed if s["scene_id"] in ids} == placed:
+                break
+            assert time.monotonic() < deadline, f"the REST list does not name every scene's worker: {listed}"
+            time.sleep(0.2)
         for i, worker in placed.items():
             status, scene = rest(f"/w/{worker}/api/v1/scenes/{i}")
             assert (status, scene["steps"]) == (200, 3)

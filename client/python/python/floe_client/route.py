@@ -68,17 +68,16 @@ class Routes:
                     self.remember(target, worker)
                     if hops <= MOST_HOPS:
                         continue
-                elif (
-                    reads
-                    and e.code() == grpc.StatusCode.UNAVAILABLE  # type: ignore[attr-defined]
-                    and time.monotonic() - started < FOLLOW_FOR
-                ):
-                    # The named worker did not answer (it stopped): the cluster names it
-                    # until its lease runs out, so the hops start again.
-                    hops = 0
+                elif e.code() == grpc.StatusCode.UNAVAILABLE:  # type: ignore[attr-defined]
+                    # No worker answered (the named one stopped): the next call asks any
+                    # worker again. A read waits for the cluster to move the scene (which
+                    # names the stopped worker until its lease runs out, so the hops start
+                    # again); a change raises for its caller to retry.
                     self.forget(target)
-                    time.sleep(0.25)
-                    continue
+                    if reads and time.monotonic() - started < FOLLOW_FOR:
+                        hops = 0
+                        time.sleep(0.25)
+                        continue
                 raise
 
 
