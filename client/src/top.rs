@@ -1,6 +1,7 @@
 //! `floectl top`: a live table of the scenes (every scene, for an admin), refreshed
 //! every second: state, size, steps/s, simulated time, viewers, frame bandwidth and
-//! frames dropped since the previous refresh.
+//! frames dropped since the previous refresh. Through a cluster's proxy, every
+//! worker's scenes with a worker column and a summary line per worker.
 
 use floe_proto::pb::{SceneState, SceneStats};
 
@@ -10,11 +11,22 @@ fn state(s: &SceneStats) -> String {
 
 /// The table for `now`, with rates from `before` (the previous refresh, `seconds` ago).
 pub fn table(now: &[SceneStats], before: Option<(&[SceneStats], f64)>) -> String {
+    let cluster = now.iter().any(|s| !s.worker.is_empty());
+    let worker = |w: &str| if cluster { format!("{:<10} ", clip(w, 10)) } else { String::new() };
     let mut out = format!(
-        "{:>5}  {:<12} {:<16} {:<8} {:>10} {:>9} {:>10} {:>5} {:>10} {:>8}\n",
-        "scene", "owner", "name", "state", "particles", "steps/s", "sim t (s)", "subs", "frames kB/s", "dropped"
+        "{:>5}  {}{:<12} {:<16} {:<8} {:>10} {:>9} {:>10} {:>5} {:>10} {:>8}\n",
+        "scene",
+        worker("worker"),
+        "owner",
+        "name",
+        "state",
+        "particles",
+        "steps/s",
+        "sim t (s)",
+        "subs",
+        "frames kB/s",
+        "dropped"
     );
-    let (mut total_particles, mut total_rate) = (0, 0.0);
     for s in now {
         let prev = before.and_then(|(b, dt)| b.iter().find(|p| p.scene_id == s.scene_id).map(|p| (p, dt)));
         let kbps = prev.map_or("-".to_string(), |(p, dt)| {
@@ -23,8 +35,9 @@ pub fn table(now: &[SceneStats], before: Option<(&[SceneStats], f64)>) -> String
         let dropped =
             prev.map_or("-".to_string(), |(p, _)| s.dropped_frames.saturating_sub(p.dropped_frames).to_string());
         out += &format!(
-            "{:>5}  {:<12} {:<16} {:<8} {:>10} {:>9.1} {:>10.4} {:>5} {:>10} {:>8}\n",
+            "{:>5}  {}{:<12} {:<16} {:<8} {:>10} {:>9.1} {:>10.4} {:>5} {:>10} {:>8}\n",
             s.scene_id,
+            worker(&s.worker),
             clip(&s.owner, 12),
             clip(&s.name, 16),
             state(s),
@@ -35,17 +48,29 @@ pub fn table(now: &[SceneStats], before: Option<(&[SceneStats], f64)>) -> String
             kbps,
             dropped
         );
-        total_particles += s.particles;
-        if s.state == SceneState::Running as i32 {
-            total_rate += s.steps_per_second * s.particles as f64;
+    }
+    if cluster {
+        let workers: std::collections::BTreeSet<&str> = now.iter().map(|s| s.worker.as_str()).collect();
+        for w in workers {
+            out += &format!("{w}: {}\n", summary(now.iter().filter(|s| s.worker == *w)));
         }
     }
-    out += &format!(
-        "{} scenes, {total_particles} particles, {:.2} M particle-steps/s running\n",
-        now.len(),
-        total_rate / 1e6
-    );
+    out += &summary(now.iter());
+    out += "\n";
     out
+}
+
+/// "N scenes, P particles, R M particle-steps/s running" over `scenes`.
+fn summary<'a>(scenes: impl Iterator<Item = &'a SceneStats>) -> String {
+    let (mut count, mut particles, mut rate) = (0, 0, 0.0);
+    for s in scenes {
+        count += 1;
+        particles += s.particles;
+        if s.state == SceneState::Running as i32 {
+            rate += s.steps_per_second * s.particles as f64;
+        }
+    }
+    format!("{count} scenes, {particles} particles, {:.2} M particle-steps/s running", rate / 1e6)
 }
 
 fn clip(s: &str, n: usize) -> String {
@@ -80,5 +105,24 @@ mod tests {
         );
         assert!(t.ends_with("1 scenes, 1000 particles, 0.25 M particle-steps/s running\n"), "{t}");
         assert!(table(&[stats(0, 0)], None).lines().nth(1).unwrap().ends_with("-        -"));
+    }
+
+    #[test]
+    fn a_cluster_shows_each_scenes_worker_and_each_workers_totals() {
+        let stats = |id, worker: &str, particles| SceneStats {
+            scene_id: id,
+            state: SceneState::Running as i32,
+            particles,
+            steps_per_second: 100.0,
+            worker: worker.into(),
+            ..SceneStats::default()
+        };
+        let t = table(&[stats(1, "w2", 1000), stats(2, "w1", 3000), stats(3, "w2", 2000)], None);
+        let lines: Vec<&str> = t.lines().collect();
+        assert_eq!(lines[0].split_whitespace().take(3).collect::<Vec<_>>(), ["scene", "worker", "owner"]);
+        assert_eq!(lines[1].split_whitespace().take(2).collect::<Vec<_>>(), ["1", "w2"]);
+        assert_eq!(lines[4], "w1: 1 scenes, 3000 particles, 0.30 M particle-steps/s running");
+        assert_eq!(lines[5], "w2: 2 scenes, 3000 particles, 0.30 M particle-steps/s running");
+        assert_eq!(lines[6], "3 scenes, 6000 particles, 0.60 M particle-steps/s running");
     }
 }

@@ -122,8 +122,8 @@ fn sets(shared: &Shared) -> Vec<pb::ParticleSet> {
     shared.sets.iter().enumerate().map(set).collect()
 }
 
-/// The `SceneStats` of a scene.
-pub fn scene_stats(shared: &Shared) -> pb::SceneStats {
+/// The `SceneStats` of a scene this worker (`worker`, empty on a single server) holds.
+pub fn scene_stats(shared: &Shared, worker: &str) -> pb::SceneStats {
     let s = shared.status();
     pb::SceneStats {
         scene_id: shared.id,
@@ -145,6 +145,7 @@ pub fn scene_stats(shared: &Shared) -> pb::SceneStats {
         name: shared.name.clone(),
         owner: shared.owner.clone(),
         frame_bytes: shared.frame_bytes.load(Ordering::Relaxed),
+        worker: worker.to_string(),
     }
 }
 
@@ -194,20 +195,46 @@ pub fn scene_event(scene_id: u64, e: Event) -> pb::SceneEvent {
     pb::SceneEvent { scene_id, kind: Some(kind) }
 }
 
-/// The `SceneInfo` of a scene held by another worker of the cluster: what the
-/// database records of it.
-pub fn placed_info(p: &crate::service::Placed) -> pb::SceneInfo {
-    let state = match p.state.as_str() {
+/// A scene state as the database records it.
+fn recorded_state(state: &str) -> pb::SceneState {
+    match state {
         "running" => pb::SceneState::Running,
         "halted" => pb::SceneState::Halted,
         _ => pb::SceneState::Paused,
-    };
+    }
+}
+
+/// The `SceneInfo` of a scene held by another worker of the cluster: what the
+/// database records of it.
+pub fn placed_info(p: &crate::service::Placed) -> pb::SceneInfo {
     pb::SceneInfo {
         scene_id: p.id,
         name: p.name.clone(),
-        state: state as i32,
+        state: recorded_state(&p.state) as i32,
         particles: p.particles,
         owner: p.owner.clone(),
+        worker: p.worker.clone(),
+        ..Default::default()
+    }
+}
+
+/// The `SceneStats` of a scene held by another worker of the cluster: its figures
+/// as that worker published them with its last heartbeat (zero before the first).
+pub fn placed_stats(p: &crate::service::Placed) -> pb::SceneStats {
+    let live = p.live.clone().unwrap_or_default();
+    pb::SceneStats {
+        scene_id: p.id,
+        state: recorded_state(&p.state) as i32,
+        sim_time: live.sim_time,
+        steps: live.steps,
+        particles: p.particles,
+        steps_per_second: live.steps_per_second,
+        subscribers: u32::try_from(live.subscribers).unwrap_or(u32::MAX),
+        dropped_frames: live.dropped_frames,
+        frames_published: live.frames_published,
+        name: p.name.clone(),
+        owner: p.owner.clone(),
+        frame_bytes: live.frame_bytes,
         worker: p.worker.clone(),
         ..Default::default()
     }

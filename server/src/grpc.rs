@@ -140,7 +140,7 @@ impl SceneService for Grpc {
     async fn get_stats(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneStats> {
         let who = caller(&request)?;
         let handle = self.registry.get(&who, request.into_inner().scene_id, Need::Watch).map_err(status)?;
-        Ok(Response::new(convert::scene_stats(&handle.shared)))
+        Ok(Response::new(convert::scene_stats(&handle.shared, self.registry.worker_name())))
     }
 
     async fn set_parameters(&self, request: Request<pb::SetParametersRequest>) -> Reply<pb::SceneInfo> {

@@ -80,7 +80,11 @@ impl LabService for Lab {
 
     async fn list_stats(&self, request: Request<pb::ListScenesRequest>) -> Reply<pb::SceneStatsList> {
         let who = caller(&request)?;
-        let scenes = self.registry.list(&who).iter().map(|h| convert::scene_stats(&h.shared)).collect();
+        let worker = self.registry.worker_name();
+        let mut scenes: Vec<_> =
+            self.registry.list(&who).iter().map(|h| convert::scene_stats(&h.shared, worker)).collect();
+        scenes.extend(self.registry.placed_elsewhere(&who).iter().map(convert::placed_stats));
+        scenes.sort_by_key(|s| s.scene_id);
         Ok(Response::new(pb::SceneStatsList { scenes }))
     }
 

@@ -1,5 +1,6 @@
 //! Three `floe serve --worker` processes on one PostgreSQL database and one shared
-//! data directory: new scenes spread over the workers by placement, a call for a
+//! data directory: new scenes created at once spread over the workers by placement,
+//! any worker lists every scene's figures and every worker's totals, a call for a
 //! scene on another worker names that worker, the running-scene quota counts every
 //! worker's scenes; kill -9 a worker and its scene is back, paused, on another,
 //! stepping on bit for bit from its last checkpoint; a worker stopped (SIGSTOP) past
@@ -84,6 +85,42 @@ async fn holder(workers: &[&Worker], scene: u64) -> Option<(&'static str, Client
     None
 }
 
+/// Creates an equal scene through the worker `through`, following placement's
+/// answer to the worker it names with the `floe-worker` header (as the clients do
+/// through the proxy); the scene's id and the worker that built it.
+async fn create(address: &impl Fn(&str) -> String, through: &str) -> (u64, String) {
+    use floe_proto::pb::{self, scene_service_client::SceneServiceClient};
+    let request = || pb::CreateSceneRequest {
+        source: Some(pb::create_scene_request::Source::Preset("dam_break".into())),
+        document_format: String::new(),
+        overrides: vec!["particle_spacing=0.05".into()],
+    };
+    let connect = async |to: &str| {
+        SceneServiceClient::new(tonic::transport::Endpoint::from_shared(address(to)).unwrap().connect().await.unwrap())
+    };
+    let mut client = connect(through).await;
+    match client.create_scene(request()).await {
+        Ok(info) => (info.into_inner().scene_id, through.to_string()),
+        Err(s) => {
+            let to = named_worker(&ClientError::Status(s.clone())).unwrap_or_else(|| panic!("not a redirect: {s:?}"));
+            let mut named = tonic::Request::new(request());
+            named.metadata_mut().insert("floe-worker", to.parse().unwrap());
+            let mut client = connect(&to).await;
+            (client.create_scene(named).await.unwrap().into_inner().scene_id, to)
+        }
+    }
+}
+
+/// The body of `GET path` from `http` (`HOST:PORT`).
+async fn get(http: &str, path: &str) -> String {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let mut s = tokio::net::TcpStream::connect(http).await.unwrap();
+    s.write_all(format!("GET {path} HTTP/1.1\r\nhost: {http}\r\nconnection: close\r\n\r\n").as_bytes()).await.unwrap();
+    let mut raw = String::new();
+    s.read_to_string(&mut raw).await.unwrap();
+    raw.split_once("\r\n\r\n").expect("a complete answer").1.to_string()
+}
+
 #[tokio::test(flavor = "multi_thread")]
 async fn three_workers_place_fail_over_and_fence() {
     let Some(base) = std::env::var("FLOE_TEST_DATABASE_URL").ok().filter(|u| !u.is_empty()) else {
@@ -99,28 +136,25 @@ async fn three_workers_place_fail_over_and_fence() {
         .iter()
         .map(|&name| Worker { name, process: start(&data, name, dir.path().join(format!("{name}.log"))) })
         .collect();
-    let address = |name: &str| workers.iter().find(|w| w.name == name).unwrap().process.grpc.clone();
+    let addresses: Vec<(&str, String)> = workers.iter().map(|w| (w.name, w.process.grpc.clone())).collect();
+    let address = move |name: &str| addresses.iter().find(|w| w.0 == name).unwrap().1.clone();
 
-    // Three equal scenes created through w1: each goes where placement says (w1 is
-    // told to send the second and third on), so one lands on each worker.
-    let mut first = Client::connect(&address("w1")).await.unwrap();
-    let mut placed = Vec::new();
-    for spacing in ["0.05", "0.05", "0.05"] {
-        let overrides = [format!("particle_spacing={spacing}")];
-        let overrides: Vec<&str> = overrides.iter().map(String::as_str).collect();
-        let (worker, info) = match first.create_preset("dam_break", &overrides).await {
-            Ok(info) => ("w1".to_string(), info),
-            Err(e) => {
-                let to = named_worker(&e).unwrap_or_else(|| panic!("not a redirect: {e}"));
-                let mut c = Client::connect(&address(&to)).await.unwrap();
-                (to, c.create_preset("dam_break", &overrides).await.unwrap())
-            }
-        };
-        placed.push((info.scene_id, worker));
+    // Six equal scenes created at once, two through each worker, each following
+    // placement's answer to the worker it names: placements take turns and reserve
+    // room, so two land on each worker. A, B and C: the first on w1, w2 and w3.
+    let mut creations = tokio::task::JoinSet::new();
+    for through in ["w1", "w2", "w3", "w1", "w2", "w3"] {
+        let address = address.clone();
+        creations.spawn(async move { create(&address, through).await });
     }
-    let on: Vec<&str> = placed.iter().map(|p| p.1.as_str()).collect();
-    assert_eq!(on, ["w1", "w2", "w3"], "equal scenes spread over equal workers: {placed:?}");
-    let [(a, _), (b, _), (c, _)] = [placed[0].clone(), placed[1].clone(), placed[2].clone()];
+    let mut placed: Vec<(u64, String)> = creations.join_all().await;
+    placed.sort();
+    let mut on: Vec<&str> = placed.iter().map(|p| p.1.as_str()).collect();
+    on.sort_unstable();
+    assert_eq!(on, ["w1", "w1", "w2", "w2", "w3", "w3"], "equal scenes spread over equal workers: {placed:?}");
+    let first_on = |w: &str| placed.iter().find(|p| p.1 == w).unwrap().0;
+    let (a, b, c) = (first_on("w1"), first_on("w2"), first_on("w3"));
+    let mut first = Client::connect(&address("w1")).await.unwrap();
 
     // A call for B through w1 names w2 (once w1's tick has seen B).
     let named =
@@ -135,6 +169,30 @@ async fn three_workers_place_fail_over_and_fence() {
     let e = on_w2.run(b, 0.0).await.unwrap_err();
     let ClientError::Status(s) = &e else { panic!("{e}") };
     assert_eq!(s.code(), tonic::Code::ResourceExhausted, "{s:?}");
+
+    // Any worker lists every scene with its worker and its figures as published with
+    // its worker's last heartbeat (C runs on w3), and its /metrics has every worker's
+    // totals.
+    let stats = within(Duration::from_secs(5), "w1's stats show C running on w3", async || {
+        let stats = first.all_stats().await.ok()?;
+        let c_stats = stats.iter().find(|s| s.scene_id == c)?;
+        (c_stats.steps > 0 && c_stats.steps_per_second > 0.0).then_some(stats)
+    })
+    .await;
+    let mut listed: Vec<(u64, &str)> = stats.iter().map(|s| (s.scene_id, s.worker.as_str())).collect();
+    listed.sort_unstable();
+    assert_eq!(listed, placed.iter().map(|p| (p.0, p.1.as_str())).collect::<Vec<_>>());
+    let http = workers[0].process.http.clone();
+    let wanted: Vec<String> = names
+        .iter()
+        .map(|w| format!("floe_cluster_scenes{{worker=\"{w}\"}} 2"))
+        .chain([r#"floe_cluster_running_scenes{worker="w3"} 1"#.to_string()])
+        .collect();
+    within(Duration::from_secs(5), "every worker's totals in w1's /metrics", async || {
+        let metrics = get(&http, "/metrics").await;
+        wanted.iter().all(|line| metrics.lines().any(|l| l == line)).then_some(())
+    })
+    .await;
     first.pause(a).await.unwrap();
 
     // B stepped by hand to 20 (checkpointed before the answer), then kill -9 w2.

@@ -103,11 +103,12 @@ impl Member {
 
     /// One heartbeat: extends the tenure while the cluster counts this worker; when
     /// it was declared gone, ends the tenure and joins again with a new lease (the
-    /// caller drops every scene it held, writing nothing).
-    pub async fn beat(&self, db: &Database) -> anyhow::Result<Beat> {
+    /// caller drops every scene it held, writing nothing). `live` (JSON) is what
+    /// its scenes are doing, for the others to show.
+    pub async fn beat(&self, db: &Database, live: &str) -> anyhow::Result<Beat> {
         let sent = Instant::now();
         let lease = self.lease();
-        match db.heartbeat(&lease).await? {
+        match db.heartbeat(&lease, live).await? {
             Some(draining) => {
                 self.tenure.extend(sent, self.lease_time / 2);
                 Ok(Beat::Member { draining })

@@ -5,9 +5,10 @@
 
 use super::{Need, Placed, Registry, ServiceError, State, persist, unavailable};
 use crate::auth::Caller;
-use crate::cluster::{Beat, Member, placement};
+use crate::cluster::{Beat, Member};
+use crate::metrics::{SceneSamples, WorkerSample};
 use crate::store::Store;
-use crate::store::cluster::Lease;
+use crate::store::cluster::{Lease, Placement};
 use crate::store::db::DbError;
 
 impl Registry {
@@ -41,26 +42,19 @@ impl Registry {
     }
 
     /// In a cluster, whether a new scene of `particles` is built here: yes when the
-    /// request named this worker and it has room, or placement picks it; else the
-    /// worker placement picks, as [`ServiceError::Elsewhere`]. Always yes on a single server.
+    /// request named this worker and room waits reserved for it or it has room, or
+    /// placement picks it; else the worker placement picks (its room reserved), as
+    /// [`ServiceError::Elsewhere`]. Always yes on a single server.
     pub(super) async fn place_here(&self, particles: u64, named: Option<&str>) -> Result<(), ServiceError> {
         let (Some(member), Some(store)) = (&self.member, &self.store) else { return Ok(()) };
-        let workers = store.db.workers().await.map_err(unavailable)?;
-        let candidates: Vec<_> = workers.iter().map(|w| w.candidate()).collect();
         let me = &member.info.name;
-        let mine = candidates.iter().find(|c| &c.name == me);
-        if named == Some(me.as_str())
-            && mine.is_some_and(|c| placement::choose(std::slice::from_ref(c), particles, None).is_ok())
-        {
-            return Ok(());
-        }
-        match placement::choose(&candidates, particles, None) {
-            Ok(c) if &c.name == me => Ok(()),
-            Ok(c) => Err(ServiceError::Elsewhere {
-                worker: c.name.clone(),
-                message: format!("a new scene of {particles} particles goes to worker {}", c.name),
+        match store.db.place(particles, named.filter(|n| n == me)).await.map_err(unavailable)? {
+            Placement::On(w) if &w == me => Ok(()),
+            Placement::On(w) => Err(ServiceError::Elsewhere {
+                message: format!("a new scene of {particles} particles goes to worker {w}"),
+                worker: w,
             }),
-            Err(why) => Err(ServiceError::ResourceExhausted(format!("the cluster has no room: {why}"))),
+            Placement::Refused(why) => Err(ServiceError::ResourceExhausted(format!("the cluster has no room: {why}"))),
         }
     }
 
@@ -69,7 +63,8 @@ impl Registry {
     /// that moved, handing scenes over while draining, and where the others' are.
     pub(super) async fn cluster_tick(&self, store: &Store) -> anyhow::Result<()> {
         let member = self.member.as_ref().expect("a cluster worker");
-        let draining = match member.beat(&store.db).await? {
+        let live = serde_json::to_string(&self.scenes.samples()).expect("scene figures serialize");
+        let draining = match member.beat(&store.db, &live).await? {
             Beat::Member { draining } => draining,
             Beat::Rejoined => {
                 self.locate(store, &member.lease()).await?;
@@ -98,12 +93,18 @@ impl Registry {
     }
 
     /// Records where every scene not held by `lease` is, before any is dropped: a
-    /// call for a dropped scene then finds where it went, never "not found". Returns
-    /// every scene's row.
+    /// call for a dropped scene then finds where it went, never "not found"; and what
+    /// every worker published of its scenes, for lists and `/metrics`. Returns every
+    /// scene's row.
     async fn locate(&self, store: &Store, lease: &Lease) -> anyhow::Result<Vec<crate::store::db::SceneRow>> {
         // Read before the scenes, so a scene created meanwhile is never taken as missing.
         let newest = store.db.next_scene_id().await?.saturating_sub(1);
         let rows = store.db.scenes().await?;
+        let workers: Vec<WorkerSample> = store.db.workers().await?.iter().map(worker_sample).collect();
+        let live = |id: u64, worker: &str| {
+            let w = workers.iter().find(|w| w.name == worker)?;
+            w.scenes.iter().find(|s| s.id == id).cloned()
+        };
         self.newest_known.store(newest, std::sync::atomic::Ordering::Relaxed);
         *self.elsewhere.write().expect("lock") = rows
             .iter()
@@ -116,10 +117,12 @@ impl Registry {
                     name: r.name.clone(),
                     state: r.state.clone(),
                     particles: r.particles,
+                    live: live(r.id, &l.worker),
                 };
                 Some((r.id, placed))
             })
             .collect();
+        self.metrics.cluster().set(workers);
         Ok(rows)
     }
 
@@ -180,6 +183,7 @@ impl Registry {
                         name: handle.shared.name.clone(),
                         state: "paused".into(),
                         particles: handle.shared.particles as u64,
+                        live: None,
                     };
                     self.elsewhere.write().expect("lock").insert(id, placed);
                     self.drop_scenes(&[id]).await;
@@ -200,5 +204,16 @@ impl Registry {
     pub fn placed_elsewhere(&self, caller: &Caller) -> Vec<Placed> {
         let map = self.elsewhere.read().expect("lock");
         map.values().filter(|p| Self::check(caller, p.id, &p.owner, Need::Watch).is_ok()).cloned().collect()
+    }
+}
+
+/// A worker's row as `/metrics` shows it: what it published with its last heartbeat
+/// (nothing, if that does not read: a worker of another version).
+fn worker_sample(w: &crate::store::cluster::WorkerRow) -> WorkerSample {
+    WorkerSample {
+        name: w.info.name.clone(),
+        draining: w.draining,
+        max_particles: w.info.max_particles,
+        scenes: serde_json::from_str(&w.live).unwrap_or_default(),
     }
 }

@@ -110,6 +110,8 @@ pub struct Placed {
     pub state: String,
     /// Particles.
     pub particles: u64,
+    /// Its figures as its worker published them with its last heartbeat.
+    pub live: Option<crate::metrics::SceneSample>,
 }
 
 /// Where a new scene comes from.

@@ -55,18 +55,23 @@ pub struct WorkerRow {
     pub scenes: u64,
     /// Particles over those scenes.
     pub particles: u64,
+    /// Placements on it whose scenes have no row yet: how many, and their particles.
+    pub reserved: (u64, u64),
+    /// Its scenes' figures as of its last heartbeat (JSON, what it published).
+    pub live: String,
 }
 
 impl WorkerRow {
-    /// The worker as placement sees it.
+    /// The worker as placement sees it: the room reserved for scenes on their way
+    /// counts as taken.
     pub fn candidate(&self) -> Candidate {
         Candidate {
             name: self.info.name.clone(),
             backend: self.info.backend.clone(),
             max_scenes: self.info.max_scenes,
             max_particles: self.info.max_particles,
-            scenes: self.scenes,
-            particles: self.particles,
+            scenes: self.scenes + self.reserved.0,
+            particles: self.particles + self.reserved.1,
             draining: self.draining,
         }
     }
@@ -87,10 +92,19 @@ pub struct Moved {
 }
 
 const WORKERS: &str = "SELECT w.name, w.epoch, w.grpc, w.http, w.backend, w.max_scenes, w.max_particles, w.beats, \
-     w.draining, COUNT(s.id) AS scenes, CAST(COALESCE(SUM(s.particles), 0) AS BIGINT) AS particles \
+     w.draining, w.live, COUNT(s.id) AS scenes, CAST(COALESCE(SUM(s.particles), 0) AS BIGINT) AS particles \
      FROM workers w LEFT JOIN scenes s ON s.worker = w.name AND s.epoch = w.epoch \
-     GROUP BY w.name, w.epoch, w.grpc, w.http, w.backend, w.max_scenes, w.max_particles, w.beats, w.draining \
+     GROUP BY w.name, w.epoch, w.grpc, w.http, w.backend, w.max_scenes, w.max_particles, w.beats, w.draining, w.live \
      ORDER BY w.name";
+
+/// The reservations still counting, by worker.
+const RESERVED: &str = "SELECT r.worker, COUNT(r.id) AS scenes, CAST(COALESCE(SUM(r.particles), 0) AS BIGINT) \
+     AS particles FROM reservations r JOIN workers w ON w.name = r.worker AND w.epoch = r.epoch \
+     WHERE w.beats < r.until_beats GROUP BY r.worker";
+
+/// How many of its own heartbeats (about a second each) a worker's reservation
+/// lasts if its scene never arrives: long enough to build a large scene.
+pub const RESERVED_BEATS: i64 = 30;
 
 fn worker_row(r: &sqlx::any::AnyRow) -> Result<WorkerRow, sqlx::Error> {
     Ok(WorkerRow {
@@ -107,7 +121,32 @@ fn worker_row(r: &sqlx::any::AnyRow) -> Result<WorkerRow, sqlx::Error> {
         draining: r.try_get::<i64, _>("draining")? != 0,
         scenes: r.try_get::<i64, _>("scenes")? as u64,
         particles: r.try_get::<i64, _>("particles")? as u64,
+        reserved: (0, 0),
+        live: r.try_get("live")?,
     })
+}
+
+/// Every worker up, with the room reserved on it, on one connection (a pool's or
+/// a placement's transaction).
+async fn workers_on(c: &mut sqlx::AnyConnection) -> Result<Vec<WorkerRow>, DbError> {
+    let mut workers: Vec<WorkerRow> =
+        sqlx::query(WORKERS).fetch_all(&mut *c).await?.iter().map(worker_row).collect::<Result<_, _>>()?;
+    for r in sqlx::query(RESERVED).fetch_all(&mut *c).await? {
+        let name: String = r.try_get("worker")?;
+        if let Some(w) = workers.iter_mut().find(|w| w.info.name == name) {
+            w.reserved = (r.try_get::<i64, _>("scenes")? as u64, r.try_get::<i64, _>("particles")? as u64);
+        }
+    }
+    Ok(workers)
+}
+
+/// Where [`Database::place`] put a new scene.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Placement {
+    /// On this worker, whose room is reserved until the scene's row is inserted.
+    On(String),
+    /// No worker can take it; each one's reason.
+    Refused(String),
 }
 
 fn size(v: u64) -> i64 {
@@ -151,12 +190,14 @@ impl Database {
         Ok(Lease { worker: info.name.clone(), epoch })
     }
 
-    /// One heartbeat of `lease`'s worker: `Some(draining)` while the cluster still
-    /// counts it, `None` once it was declared gone (its scenes are others' now).
-    pub async fn heartbeat(&self, lease: &Lease) -> Result<Option<bool>, DbError> {
-        let done = sqlx::query("UPDATE workers SET beats = beats + 1 WHERE name = $1 AND epoch = $2")
+    /// One heartbeat of `lease`'s worker, publishing its scenes' figures `live`
+    /// (JSON): `Some(draining)` while the cluster still counts it, `None` once it was
+    /// declared gone (its scenes are others' now).
+    pub async fn heartbeat(&self, lease: &Lease, live: &str) -> Result<Option<bool>, DbError> {
+        let done = sqlx::query("UPDATE workers SET beats = beats + 1, live = $3 WHERE name = $1 AND epoch = $2")
             .bind(&lease.worker)
             .bind(lease.epoch)
+            .bind(live)
             .execute(&self.pool)
             .await?;
         if done.rows_affected() == 0 {
@@ -170,10 +211,66 @@ impl Database {
         Ok(row.map(|r| r.try_get::<i64, _>("draining")).transpose()?.map(|d| d != 0))
     }
 
-    /// Every worker up, by name, with the scenes and particles it holds.
+    /// Every worker up, by name, with the scenes and particles it holds and the room
+    /// reserved on it.
     pub async fn workers(&self) -> Result<Vec<WorkerRow>, DbError> {
-        let rows = sqlx::query(WORKERS).fetch_all(&self.pool).await?;
-        Ok(rows.iter().map(worker_row).collect::<Result<_, _>>()?)
+        workers_on(&mut *self.pool.acquire().await?).await
+    }
+
+    /// Places a new scene of `particles` by [`placement::choose`], counting the room
+    /// reserved for scenes on their way, and reserves its room on the chosen worker
+    /// until its row is inserted ([`Database::insert_scene`]) or for
+    /// [`RESERVED_BEATS`] of that worker's heartbeats. Placements take turns (each
+    /// first updates one row of `meta`), so simultaneous ones see each other.
+    ///
+    /// With `named` (a creation that followed a placement to that worker), that
+    /// worker takes it when a reservation of this size waits there, or it has room;
+    /// otherwise placement chooses among all.
+    pub async fn place(&self, particles: u64, named: Option<&str>) -> Result<Placement, DbError> {
+        let mut tx = self.pool.begin().await?;
+        sqlx::query("UPDATE meta SET value = value + 1 WHERE name = 'next_reservation'").execute(&mut *tx).await?;
+        let reservation: i64 = sqlx::query("SELECT value - 1 AS id FROM meta WHERE name = 'next_reservation'")
+            .fetch_one(&mut *tx)
+            .await?
+            .try_get("id")?;
+        sqlx::query(
+            "DELETE FROM reservations WHERE NOT EXISTS (SELECT 1 FROM workers w WHERE w.name = reservations.worker \
+             AND w.epoch = reservations.epoch AND w.beats < reservations.until_beats)",
+        )
+        .execute(&mut *tx)
+        .await?;
+        let workers = workers_on(&mut tx).await?;
+        let named = named.and_then(|n| workers.iter().find(|w| w.info.name == n));
+        if let Some(w) = named {
+            let waiting =
+                sqlx::query("SELECT id FROM reservations WHERE worker = $1 AND epoch = $2 AND particles = $3")
+                    .bind(&w.info.name)
+                    .bind(w.epoch)
+                    .bind(size(particles))
+                    .fetch_optional(&mut *tx)
+                    .await?;
+            if waiting.is_some() {
+                tx.commit().await?;
+                return Ok(Placement::On(w.info.name.clone()));
+            }
+        }
+        let candidates: Vec<Candidate> = workers.iter().map(WorkerRow::candidate).collect();
+        let fits = |w: &WorkerRow| placement::choose(&[w.candidate()], particles, None).is_ok();
+        let chosen = match (named, placement::choose(&candidates, particles, None)) {
+            (Some(w), _) if fits(w) => w,
+            (_, Ok(c)) => workers.iter().find(|w| w.info.name == c.name).expect("chosen among them"),
+            (_, Err(why)) => return Ok(Placement::Refused(why)),
+        };
+        sqlx::query("INSERT INTO reservations (id, worker, epoch, particles, until_beats) VALUES ($1, $2, $3, $4, $5)")
+            .bind(reservation)
+            .bind(&chosen.info.name)
+            .bind(chosen.epoch)
+            .bind(size(particles))
+            .bind(chosen.beats + RESERVED_BEATS)
+            .execute(&mut *tx)
+            .await?;
+        tx.commit().await?;
+        Ok(Placement::On(chosen.info.name.clone()))
     }
 
     /// Marks a worker draining (or not): it takes no new scenes and hands its own to
@@ -371,7 +468,7 @@ mod tests {
         assert_eq!(db.running_of("ada").await.unwrap(), (2, 900));
         let rows = db.workers().await.unwrap();
         assert_eq!((rows[0].scenes, rows[0].particles), (2, 900));
-        assert_eq!(db.heartbeat(&a).await.unwrap(), Some(false));
+        assert_eq!(db.heartbeat(&a, "[]").await.unwrap(), Some(false));
 
         // b evicts a: a's scenes go, paused, one by one to the most free budget.
         assert!(db.evict(&a).await.unwrap());
@@ -384,7 +481,7 @@ mod tests {
         assert_eq!((row.state.as_str(), row.lease.as_ref()), ("paused", Some(&c)));
 
         // The late worker a: its heartbeat and every write for the moved scenes fail.
-        assert_eq!(db.heartbeat(&a).await.unwrap(), None, "a learns it was evicted");
+        assert_eq!(db.heartbeat(&a, "[]").await.unwrap(), None, "a learns it was evicted");
         assert!(!db.holds(&a, first).await.unwrap());
         assert!(matches!(db.update_state(first, Some(&a), "running", 1.0).await, Err(DbError::Fenced(_))));
         assert!(matches!(db.update_tunables(first, Some(&a), "{}").await, Err(DbError::Fenced(_))));
@@ -399,7 +496,7 @@ mod tests {
 
         // c drains: its scene goes to the other worker with room, not to c itself.
         assert!(db.set_draining("c", true).await.unwrap());
-        assert_eq!(db.heartbeat(&c).await.unwrap(), Some(true));
+        assert_eq!(db.heartbeat(&c, "[]").await.unwrap(), Some(true));
         let to = db.hand_over(&c, first, 600).await.unwrap().unwrap();
         assert_eq!(to, a2, "a2 is left 0.4 free, b 0.1");
         assert_eq!(db.hand_over(&c, first, 600).await.unwrap(), None, "c no longer holds it");
@@ -409,6 +506,43 @@ mod tests {
         let b2 = db.register_worker(&info("b", 1000)).await.unwrap();
         assert_eq!(db.scenes_held(&b2).await.unwrap().iter().map(|r| r.id).collect::<Vec<_>>(), [first + 1]);
         assert!(matches!(db.update_state(first + 1, Some(&b), "paused", 0.0).await, Err(DbError::Fenced(_))));
+        db.close().await;
+    }
+
+    /// Placements made one after another before any scene's row exists spread, as
+    /// simultaneous creations through several workers do; a creation that followed
+    /// its placement takes the room reserved for it; a row takes its reservation's
+    /// place; a reservation whose scene never comes lapses after its worker's beats.
+    #[tokio::test]
+    async fn placements_reserve_room_until_their_scene_arrives() {
+        let dir = tempfile::tempdir().unwrap();
+        let db = Database::open(&format!("sqlite://{}?mode=rwc", dir.path().join("r.db").display())).await.unwrap();
+        let a = db.register_worker(&info("a", 1000)).await.unwrap();
+        db.register_worker(&info("b", 1000)).await.unwrap();
+        let on = |w: &str| Placement::On(w.into());
+        assert_eq!(db.place(400, None).await.unwrap(), on("a"), "equal: the first name");
+        assert_eq!(db.place(400, None).await.unwrap(), on("b"), "a's room is reserved");
+        assert_eq!(db.place(400, None).await.unwrap(), on("a"));
+        assert_eq!(db.place(400, None).await.unwrap(), on("b"));
+        let full = db.place(400, None).await.unwrap();
+        assert!(
+            matches!(&full, Placement::Refused(why) if why.contains("b has 200 of its 1000 particles free")),
+            "{full:?}"
+        );
+        // The creation that followed its placement to b: room waits there.
+        assert_eq!(db.place(400, Some("b")).await.unwrap(), on("b"));
+        // Its row takes the reservation's place: a's room stays as it was.
+        let id = db.take_scene_id().await.unwrap();
+        db.insert_scene(&scene(id, 400, &a)).await.unwrap();
+        let rows = db.workers().await.unwrap();
+        assert_eq!((rows[0].scenes, rows[0].particles, rows[0].reserved), (1, 400, (1, 400)));
+        // A reservation lapses after RESERVED_BEATS of its worker's heartbeats.
+        for _ in 0..RESERVED_BEATS {
+            db.heartbeat(&a, "[]").await.unwrap();
+        }
+        let rows = db.workers().await.unwrap();
+        assert_eq!((rows[0].reserved, rows[1].reserved), ((0, 0), (2, 800)));
+        assert_eq!(db.place(600, None).await.unwrap(), on("a"));
         db.close().await;
     }
 }

@@ -16,8 +16,11 @@ pub use super::cluster::Lease;
 
 /// The migrations, in order; a released one is never edited (its checksum is
 /// recorded in the database), a change of schema is a new file.
-const MIGRATIONS: &[(i64, &str, &str)] =
-    &[(1, "lab", include_str!("migrations/0001_lab.sql")), (2, "cluster", include_str!("migrations/0002_cluster.sql"))];
+const MIGRATIONS: &[(i64, &str, &str)] = &[
+    (1, "lab", include_str!("migrations/0001_lab.sql")),
+    (2, "cluster", include_str!("migrations/0002_cluster.sql")),
+    (3, "cluster_live", include_str!("migrations/0003_cluster_live.sql")),
+];
 
 /// The migrations built into this binary.
 #[derive(Debug)]
@@ -310,6 +313,18 @@ impl Database {
             .bind(id(s.id + 1))
             .execute(&mut *tx)
             .await?;
+        if let Some(lease) = &s.lease {
+            // The room its placement reserved is the scene's own now.
+            sqlx::query(
+                "DELETE FROM reservations WHERE id = (SELECT MIN(id) FROM reservations WHERE worker = $1 \
+                 AND epoch = $2 AND particles = $3)",
+            )
+            .bind(&lease.worker)
+            .bind(lease.epoch)
+            .bind(id(s.particles))
+            .execute(&mut *tx)
+            .await?;
+        }
         tx.commit().await?;
         Ok(())
     }

@@ -24,19 +24,19 @@ _sym_db = _symbol_database.Default()
 
 
 
-DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x14\x66loe/v1/scenes.proto\x12\x07\x66loe.v1\"\x1c\n\x08SceneRef\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\"p\n\x12\x43reateSceneRequest\x12\x10\n\x06preset\x18\x01 \x01(\tH\x00\x12\x12\n\x08\x64ocument\x18\x02 \x01(\tH\x00\x12\x17\n\x0f\x64ocument_format\x18\x03 \x01(\t\x12\x11\n\toverrides\x18\x04 \x03(\tB\x08\n\x06source\"\xac\x03\n\tSceneInfo\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x0c\n\x04name\x18\x02 \x01(\t\x12\"\n\x05state\x18\x03 \x01(\x0e\x32\x13.floe.v1.SceneState\x12\x10\n\x08sim_time\x18\x04 \x01(\x01\x12\r\n\x05steps\x18\x05 \x01(\x04\x12\x11\n\tparticles\x18\x06 \x01(\x04\x12\x12\n\nbounds_min\x18\x07 \x03(\x02\x12\x12\n\nbounds_max\x18\x08 \x03(\x02\x12\x13\n\x0bhalt_reason\x18\t \x01(\t\x12\x12\n\nscene_json\x18\n \x01(\t\x12\x0f\n\x07\x62\x61\x63kend\x18\x0b \x01(\t\x12-\n\x08\x63hannels\x18\x0c \x03(\x0b\x32\x1b.floe.v1.ChannelDescription\x12\"\n\x04sets\x18\r \x03(\x0b\x32\x14.floe.v1.ParticleSet\x12\"\n\x08tunables\x18\x0e \x03(\x0b\x32\x10.floe.v1.Tunable\x12/\n\tmaterials\x18\x0f \x03(\x0b\x32\x1c.floe.v1.MaterialDescription\x12\r\n\x05owner\x18\x14 \x01(\t\x12\x0e\n\x06worker\x18\x15 \x01(\t\"\x8c\x01\n\x12\x43hannelDescription\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\x0b\n\x03tag\x18\x02 \x01(\r\x12\x0c\n\x04unit\x18\x03 \x01(\t\x12\x12\n\ncomponents\x18\x04 \x01(\r\x12\x0b\n\x03set\x18\x05 \x01(\t\x12\r\n\x05\x65xact\x18\x06 \x01(\x08\x12\r\n\x05\x61\x62out\x18\x07 \x01(\t\x12\x0e\n\x06module\x18\x08 \x01(\t\"u\n\x0bParticleSet\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\r\n\x05\x63ount\x18\x02 \x01(\x04\x12\r\n\x05index\x18\x03 \x01(\r\x12\x0c\n\x04grid\x18\x04 \x01(\x08\x12\x0c\n\x04look\x18\x05 \x01(\t\x12\x0f\n\x07surface\x18\x06 \x01(\t\x12\r\n\x05shade\x18\x07 \x01(\t\"U\n\x13MaterialDescription\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\x0c\n\x04kind\x18\x02 \x01(\t\x12\x14\n\x0crest_density\x18\x03 \x01(\x02\x12\x0c\n\x04look\x18\x04 \x01(\t\"x\n\x07Tunable\x12\x0c\n\x04path\x18\x01 \x01(\t\x12\x0c\n\x04unit\x18\x02 \x01(\t\x12\x10\n\x03min\x18\x03 \x01(\x01H\x00\x88\x01\x01\x12\x10\n\x03max\x18\x04 \x01(\x01H\x01\x88\x01\x01\x12\r\n\x05\x61\x62out\x18\x05 \x01(\t\x12\x0e\n\x06module\x18\x06 \x01(\tB\x06\n\x04_minB\x06\n\x04_max\"\x13\n\x11ListScenesRequest\"8\n\x12ListScenesResponse\x12\"\n\x06scenes\x18\x01 \x03(\x0b\x32\x12.floe.v1.SceneInfo\";\n\x14SetParametersRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x11\n\toverrides\x18\x02 \x03(\t\"0\n\rSceneSnapshot\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\r\n\x05state\x18\x02 \x01(\x0c\"1\n\x0eRestoreRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\r\n\x05state\x18\x02 \x01(\x0c\"B\n\x0bStepRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\r\n\x05steps\x18\x02 \x01(\x04\x12\x12\n\nuntil_time\x18\x03 \x01(\x01\"8\n\nRunRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x18\n\x10real_time_factor\x18\x02 \x01(\x01\"\xdd\x02\n\nSceneStats\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\"\n\x05state\x18\x02 \x01(\x0e\x32\x13.floe.v1.SceneState\x12\x10\n\x08sim_time\x18\x03 \x01(\x01\x12\r\n\x05steps\x18\x04 \x01(\x04\x12\x11\n\tparticles\x18\x05 \x01(\x04\x12\x18\n\x10steps_per_second\x18\x06 \x01(\x01\x12\n\n\x02\x64t\x18\x07 \x01(\x01\x12\x13\n\x0bsubscribers\x18\x08 \x01(\r\x12\x16\n\x0e\x64ropped_frames\x18\t \x01(\x04\x12\x18\n\x10\x66rames_published\x18\n \x01(\x04\x12\"\n\x04sets\x18\x0b \x03(\x0b\x32\x14.floe.v1.ParticleSet\x12\"\n\x08measures\x18\x0c \x03(\x0b\x32\x10.floe.v1.Measure\x12\x0c\n\x04name\x18\r \x01(\t\x12\r\n\x05owner\x18\x0e \x01(\t\x12\x13\n\x0b\x66rame_bytes\x18\x0f \x01(\x04\"4\n\x07Measure\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x01\x12\x0c\n\x04unit\x18\x03 \x01(\t\"\xd6\x01\n\x13StreamFramesRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\"\n\x08\x63hannels\x18\x02 \x03(\x0e\x32\x10.floe.v1.Channel\x12\x0f\n\x07max_fps\x18\x03 \x01(\x01\x12\x15\n\rposition_bits\x18\x04 \x01(\r\x12 \n\x04mode\x18\x05 \x01(\x0e\x32\x12.floe.v1.FrameMode\x12\x12\n\ndecimation\x18\x06 \x01(\r\x12\x15\n\rchannel_names\x18\x07 \x03(\t\x12\x14\n\x0cparticle_set\x18\x08 \x01(\t\"8\n\x05\x46rame\x12\x0c\n\x04\x64\x61ta\x18\x01 \x01(\x0c\x12\x10\n\x08sequence\x18\x02 \x01(\x04\x12\x0f\n\x07skipped\x18\x03 \x01(\x04\"\xa6\x01\n\nSceneEvent\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12!\n\x06halted\x18\x02 \x01(\x0b\x32\x0f.floe.v1.HaltedH\x00\x12#\n\x07\x64\x65leted\x18\x03 \x01(\x0b\x32\x10.floe.v1.DeletedH\x00\x12\x36\n\x11parameter_changed\x18\x04 \x01(\x0b\x32\x19.floe.v1.ParameterChangedH\x00\x42\x06\n\x04kind\"%\n\x10ParameterChanged\x12\x11\n\toverrides\x18\x01 \x03(\t\"\\\n\x06Halted\x12\x0c\n\x04step\x18\x01 \x01(\x04\x12\x10\n\x08sim_time\x18\x02 \x01(\x01\x12\x0e\n\x06reason\x18\x03 \x01(\t\x12\x15\n\x08particle\x18\x04 \x01(\rH\x00\x88\x01\x01\x42\x0b\n\t_particle\"\t\n\x07\x44\x65leted\"T\n\x0e\x43heckpointInfo\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x10\n\x08sequence\x18\x02 \x01(\x04\x12\x0c\n\x04step\x18\x03 \x01(\x04\x12\x10\n\x08sim_time\x18\x04 \x01(\x01\">\n\tShareLink\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x10\n\x08share_id\x18\x02 \x01(\t\x12\r\n\x05token\x18\x03 \x01(\t\"0\n\tShareList\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x11\n\tshare_ids\x18\x02 \x03(\t\"8\n\x12RevokeShareRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x10\n\x08share_id\x18\x02 \x01(\t\"5\n\x0eSceneStatsList\x12#\n\x06scenes\x18\x01 \x03(\x0b\x32\x13.floe.v1.SceneStats\"\x0f\n\rWhoAmIRequest\"=\n\nQuotaValue\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x04\x12\x12\n\noverridden\x18\x03 \x01(\x08\"\xa5\x01\n\x08UserInfo\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\r\n\x05\x61\x64min\x18\x02 \x01(\x08\x12#\n\x06quotas\x18\x03 \x03(\x0b\x32\x13.floe.v1.QuotaValue\x12\x0e\n\x06scenes\x18\x04 \x01(\x04\x12\x16\n\x0erunning_scenes\x18\x05 \x01(\x04\x12\x19\n\x11running_particles\x18\x06 \x01(\x04\x12\x14\n\x0copen_streams\x18\x07 \x01(\x04\"\x12\n\x10ListUsersRequest\"5\n\x11ListUsersResponse\x12 \n\x05users\x18\x01 \x03(\x0b\x32\x11.floe.v1.UserInfo\"=\n\x0fSetQuotaRequest\x12\x0c\n\x04user\x18\x01 \x01(\t\x12\r\n\x05quota\x18\x02 \x01(\t\x12\r\n\x05value\x18\x03 \x01(\x04*\x8b\x01\n\nSceneState\x12\x1b\n\x17SCENE_STATE_UNSPECIFIED\x10\x00\x12\x16\n\x12SCENE_STATE_PAUSED\x10\x01\x12\x17\n\x13SCENE_STATE_RUNNING\x10\x02\x12\x16\n\x12SCENE_STATE_HALTED\x10\x03\x12\x17\n\x13SCENE_STATE_DELETED\x10\x04*c\n\x07\x43hannel\x12\x17\n\x13\x43HANNEL_UNSPECIFIED\x10\x00\x12\x14\n\x10\x43HANNEL_VELOCITY\x10\x01\x12\x13\n\x0f\x43HANNEL_DENSITY\x10\x02\x12\x14\n\x10\x43HANNEL_PRESSURE\x10\x03*>\n\tFrameMode\x12\x18\n\x14\x46RAME_MODE_UNORDERED\x10\x00\x12\x17\n\x13\x46RAME_MODE_IDENTITY\x10\x01\x32\xa1\x06\n\x0cSceneService\x12>\n\x0b\x43reateScene\x12\x1b.floe.v1.CreateSceneRequest\x1a\x12.floe.v1.SceneInfo\x12\x31\n\x08GetScene\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.SceneInfo\x12\x45\n\nListScenes\x12\x1a.floe.v1.ListScenesRequest\x1a\x1b.floe.v1.ListScenesResponse\x12\x34\n\x0b\x44\x65leteScene\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.SceneInfo\x12\x30\n\x04Step\x12\x14.floe.v1.StepRequest\x1a\x12.floe.v1.SceneInfo\x12.\n\x03Run\x12\x13.floe.v1.RunRequest\x1a\x12.floe.v1.SceneInfo\x12.\n\x05Pause\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.SceneInfo\x12.\n\x05Reset\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.SceneInfo\x12\x32\n\x08GetStats\x12\x11.floe.v1.SceneRef\x1a\x13.floe.v1.SceneStats\x12\x42\n\rSetParameters\x12\x1d.floe.v1.SetParametersRequest\x1a\x12.floe.v1.SceneInfo\x12\x35\n\x08Snapshot\x12\x11.floe.v1.SceneRef\x1a\x16.floe.v1.SceneSnapshot\x12\x36\n\x07Restore\x12\x17.floe.v1.RestoreRequest\x1a\x12.floe.v1.SceneInfo\x12>\n\x0cStreamFrames\x12\x1c.floe.v1.StreamFramesRequest\x1a\x0e.floe.v1.Frame0\x01\x12\x38\n\x0cStreamEvents\x12\x11.floe.v1.SceneRef\x1a\x13.floe.v1.SceneEvent0\x01\x32\xe4\x03\n\nLabService\x12\x38\n\nCheckpoint\x12\x11.floe.v1.SceneRef\x1a\x17.floe.v1.CheckpointInfo\x12\x33\n\nShareScene\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.ShareLink\x12\x33\n\nListShares\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.ShareList\x12>\n\x0bRevokeShare\x12\x1b.floe.v1.RevokeShareRequest\x1a\x12.floe.v1.ShareList\x12@\n\tListStats\x12\x1a.floe.v1.ListScenesRequest\x1a\x17.floe.v1.SceneStatsList\x12\x33\n\x06WhoAmI\x12\x16.floe.v1.WhoAmIRequest\x1a\x11.floe.v1.UserInfo\x12\x42\n\tListUsers\x12\x19.floe.v1.ListUsersRequest\x1a\x1a.floe.v1.ListUsersResponse\x12\x37\n\x08SetQuota\x12\x18.floe.v1.SetQuotaRequest\x1a\x11.floe.v1.UserInfob\x06proto3')
+DESCRIPTOR = _descriptor_pool.Default().AddSerializedFile(b'\n\x14\x66loe/v1/scenes.proto\x12\x07\x66loe.v1\"\x1c\n\x08SceneRef\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\"p\n\x12\x43reateSceneRequest\x12\x10\n\x06preset\x18\x01 \x01(\tH\x00\x12\x12\n\x08\x64ocument\x18\x02 \x01(\tH\x00\x12\x17\n\x0f\x64ocument_format\x18\x03 \x01(\t\x12\x11\n\toverrides\x18\x04 \x03(\tB\x08\n\x06source\"\xac\x03\n\tSceneInfo\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x0c\n\x04name\x18\x02 \x01(\t\x12\"\n\x05state\x18\x03 \x01(\x0e\x32\x13.floe.v1.SceneState\x12\x10\n\x08sim_time\x18\x04 \x01(\x01\x12\r\n\x05steps\x18\x05 \x01(\x04\x12\x11\n\tparticles\x18\x06 \x01(\x04\x12\x12\n\nbounds_min\x18\x07 \x03(\x02\x12\x12\n\nbounds_max\x18\x08 \x03(\x02\x12\x13\n\x0bhalt_reason\x18\t \x01(\t\x12\x12\n\nscene_json\x18\n \x01(\t\x12\x0f\n\x07\x62\x61\x63kend\x18\x0b \x01(\t\x12-\n\x08\x63hannels\x18\x0c \x03(\x0b\x32\x1b.floe.v1.ChannelDescription\x12\"\n\x04sets\x18\r \x03(\x0b\x32\x14.floe.v1.ParticleSet\x12\"\n\x08tunables\x18\x0e \x03(\x0b\x32\x10.floe.v1.Tunable\x12/\n\tmaterials\x18\x0f \x03(\x0b\x32\x1c.floe.v1.MaterialDescription\x12\r\n\x05owner\x18\x14 \x01(\t\x12\x0e\n\x06worker\x18\x15 \x01(\t\"\x8c\x01\n\x12\x43hannelDescription\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\x0b\n\x03tag\x18\x02 \x01(\r\x12\x0c\n\x04unit\x18\x03 \x01(\t\x12\x12\n\ncomponents\x18\x04 \x01(\r\x12\x0b\n\x03set\x18\x05 \x01(\t\x12\r\n\x05\x65xact\x18\x06 \x01(\x08\x12\r\n\x05\x61\x62out\x18\x07 \x01(\t\x12\x0e\n\x06module\x18\x08 \x01(\t\"u\n\x0bParticleSet\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\r\n\x05\x63ount\x18\x02 \x01(\x04\x12\r\n\x05index\x18\x03 \x01(\r\x12\x0c\n\x04grid\x18\x04 \x01(\x08\x12\x0c\n\x04look\x18\x05 \x01(\t\x12\x0f\n\x07surface\x18\x06 \x01(\t\x12\r\n\x05shade\x18\x07 \x01(\t\"U\n\x13MaterialDescription\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\x0c\n\x04kind\x18\x02 \x01(\t\x12\x14\n\x0crest_density\x18\x03 \x01(\x02\x12\x0c\n\x04look\x18\x04 \x01(\t\"x\n\x07Tunable\x12\x0c\n\x04path\x18\x01 \x01(\t\x12\x0c\n\x04unit\x18\x02 \x01(\t\x12\x10\n\x03min\x18\x03 \x01(\x01H\x00\x88\x01\x01\x12\x10\n\x03max\x18\x04 \x01(\x01H\x01\x88\x01\x01\x12\r\n\x05\x61\x62out\x18\x05 \x01(\t\x12\x0e\n\x06module\x18\x06 \x01(\tB\x06\n\x04_minB\x06\n\x04_max\"\x13\n\x11ListScenesRequest\"8\n\x12ListScenesResponse\x12\"\n\x06scenes\x18\x01 \x03(\x0b\x32\x12.floe.v1.SceneInfo\";\n\x14SetParametersRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x11\n\toverrides\x18\x02 \x03(\t\"0\n\rSceneSnapshot\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\r\n\x05state\x18\x02 \x01(\x0c\"1\n\x0eRestoreRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\r\n\x05state\x18\x02 \x01(\x0c\"B\n\x0bStepRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\r\n\x05steps\x18\x02 \x01(\x04\x12\x12\n\nuntil_time\x18\x03 \x01(\x01\"8\n\nRunRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x18\n\x10real_time_factor\x18\x02 \x01(\x01\"\xed\x02\n\nSceneStats\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\"\n\x05state\x18\x02 \x01(\x0e\x32\x13.floe.v1.SceneState\x12\x10\n\x08sim_time\x18\x03 \x01(\x01\x12\r\n\x05steps\x18\x04 \x01(\x04\x12\x11\n\tparticles\x18\x05 \x01(\x04\x12\x18\n\x10steps_per_second\x18\x06 \x01(\x01\x12\n\n\x02\x64t\x18\x07 \x01(\x01\x12\x13\n\x0bsubscribers\x18\x08 \x01(\r\x12\x16\n\x0e\x64ropped_frames\x18\t \x01(\x04\x12\x18\n\x10\x66rames_published\x18\n \x01(\x04\x12\"\n\x04sets\x18\x0b \x03(\x0b\x32\x14.floe.v1.ParticleSet\x12\"\n\x08measures\x18\x0c \x03(\x0b\x32\x10.floe.v1.Measure\x12\x0c\n\x04name\x18\r \x01(\t\x12\r\n\x05owner\x18\x0e \x01(\t\x12\x13\n\x0b\x66rame_bytes\x18\x0f \x01(\x04\x12\x0e\n\x06worker\x18\x10 \x01(\t\"4\n\x07Measure\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x01\x12\x0c\n\x04unit\x18\x03 \x01(\t\"\xd6\x01\n\x13StreamFramesRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\"\n\x08\x63hannels\x18\x02 \x03(\x0e\x32\x10.floe.v1.Channel\x12\x0f\n\x07max_fps\x18\x03 \x01(\x01\x12\x15\n\rposition_bits\x18\x04 \x01(\r\x12 \n\x04mode\x18\x05 \x01(\x0e\x32\x12.floe.v1.FrameMode\x12\x12\n\ndecimation\x18\x06 \x01(\r\x12\x15\n\rchannel_names\x18\x07 \x03(\t\x12\x14\n\x0cparticle_set\x18\x08 \x01(\t\"8\n\x05\x46rame\x12\x0c\n\x04\x64\x61ta\x18\x01 \x01(\x0c\x12\x10\n\x08sequence\x18\x02 \x01(\x04\x12\x0f\n\x07skipped\x18\x03 \x01(\x04\"\xa6\x01\n\nSceneEvent\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12!\n\x06halted\x18\x02 \x01(\x0b\x32\x0f.floe.v1.HaltedH\x00\x12#\n\x07\x64\x65leted\x18\x03 \x01(\x0b\x32\x10.floe.v1.DeletedH\x00\x12\x36\n\x11parameter_changed\x18\x04 \x01(\x0b\x32\x19.floe.v1.ParameterChangedH\x00\x42\x06\n\x04kind\"%\n\x10ParameterChanged\x12\x11\n\toverrides\x18\x01 \x03(\t\"\\\n\x06Halted\x12\x0c\n\x04step\x18\x01 \x01(\x04\x12\x10\n\x08sim_time\x18\x02 \x01(\x01\x12\x0e\n\x06reason\x18\x03 \x01(\t\x12\x15\n\x08particle\x18\x04 \x01(\rH\x00\x88\x01\x01\x42\x0b\n\t_particle\"\t\n\x07\x44\x65leted\"T\n\x0e\x43heckpointInfo\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x10\n\x08sequence\x18\x02 \x01(\x04\x12\x0c\n\x04step\x18\x03 \x01(\x04\x12\x10\n\x08sim_time\x18\x04 \x01(\x01\">\n\tShareLink\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x10\n\x08share_id\x18\x02 \x01(\t\x12\r\n\x05token\x18\x03 \x01(\t\"0\n\tShareList\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x11\n\tshare_ids\x18\x02 \x03(\t\"8\n\x12RevokeShareRequest\x12\x10\n\x08scene_id\x18\x01 \x01(\x04\x12\x10\n\x08share_id\x18\x02 \x01(\t\"5\n\x0eSceneStatsList\x12#\n\x06scenes\x18\x01 \x03(\x0b\x32\x13.floe.v1.SceneStats\"\x0f\n\rWhoAmIRequest\"=\n\nQuotaValue\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\r\n\x05value\x18\x02 \x01(\x04\x12\x12\n\noverridden\x18\x03 \x01(\x08\"\xa5\x01\n\x08UserInfo\x12\x0c\n\x04name\x18\x01 \x01(\t\x12\r\n\x05\x61\x64min\x18\x02 \x01(\x08\x12#\n\x06quotas\x18\x03 \x03(\x0b\x32\x13.floe.v1.QuotaValue\x12\x0e\n\x06scenes\x18\x04 \x01(\x04\x12\x16\n\x0erunning_scenes\x18\x05 \x01(\x04\x12\x19\n\x11running_particles\x18\x06 \x01(\x04\x12\x14\n\x0copen_streams\x18\x07 \x01(\x04\"\x12\n\x10ListUsersRequest\"5\n\x11ListUsersResponse\x12 \n\x05users\x18\x01 \x03(\x0b\x32\x11.floe.v1.UserInfo\"=\n\x0fSetQuotaRequest\x12\x0c\n\x04user\x18\x01 \x01(\t\x12\r\n\x05quota\x18\x02 \x01(\t\x12\r\n\x05value\x18\x03 \x01(\x04*\x8b\x01\n\nSceneState\x12\x1b\n\x17SCENE_STATE_UNSPECIFIED\x10\x00\x12\x16\n\x12SCENE_STATE_PAUSED\x10\x01\x12\x17\n\x13SCENE_STATE_RUNNING\x10\x02\x12\x16\n\x12SCENE_STATE_HALTED\x10\x03\x12\x17\n\x13SCENE_STATE_DELETED\x10\x04*c\n\x07\x43hannel\x12\x17\n\x13\x43HANNEL_UNSPECIFIED\x10\x00\x12\x14\n\x10\x43HANNEL_VELOCITY\x10\x01\x12\x13\n\x0f\x43HANNEL_DENSITY\x10\x02\x12\x14\n\x10\x43HANNEL_PRESSURE\x10\x03*>\n\tFrameMode\x12\x18\n\x14\x46RAME_MODE_UNORDERED\x10\x00\x12\x17\n\x13\x46RAME_MODE_IDENTITY\x10\x01\x32\xa1\x06\n\x0cSceneService\x12>\n\x0b\x43reateScene\x12\x1b.floe.v1.CreateSceneRequest\x1a\x12.floe.v1.SceneInfo\x12\x31\n\x08GetScene\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.SceneInfo\x12\x45\n\nListScenes\x12\x1a.floe.v1.ListScenesRequest\x1a\x1b.floe.v1.ListScenesResponse\x12\x34\n\x0b\x44\x65leteScene\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.SceneInfo\x12\x30\n\x04Step\x12\x14.floe.v1.StepRequest\x1a\x12.floe.v1.SceneInfo\x12.\n\x03Run\x12\x13.floe.v1.RunRequest\x1a\x12.floe.v1.SceneInfo\x12.\n\x05Pause\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.SceneInfo\x12.\n\x05Reset\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.SceneInfo\x12\x32\n\x08GetStats\x12\x11.floe.v1.SceneRef\x1a\x13.floe.v1.SceneStats\x12\x42\n\rSetParameters\x12\x1d.floe.v1.SetParametersRequest\x1a\x12.floe.v1.SceneInfo\x12\x35\n\x08Snapshot\x12\x11.floe.v1.SceneRef\x1a\x16.floe.v1.SceneSnapshot\x12\x36\n\x07Restore\x12\x17.floe.v1.RestoreRequest\x1a\x12.floe.v1.SceneInfo\x12>\n\x0cStreamFrames\x12\x1c.floe.v1.StreamFramesRequest\x1a\x0e.floe.v1.Frame0\x01\x12\x38\n\x0cStreamEvents\x12\x11.floe.v1.SceneRef\x1a\x13.floe.v1.SceneEvent0\x01\x32\xe4\x03\n\nLabService\x12\x38\n\nCheckpoint\x12\x11.floe.v1.SceneRef\x1a\x17.floe.v1.CheckpointInfo\x12\x33\n\nShareScene\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.ShareLink\x12\x33\n\nListShares\x12\x11.floe.v1.SceneRef\x1a\x12.floe.v1.ShareList\x12>\n\x0bRevokeShare\x12\x1b.floe.v1.RevokeShareRequest\x1a\x12.floe.v1.ShareList\x12@\n\tListStats\x12\x1a.floe.v1.ListScenesRequest\x1a\x17.floe.v1.SceneStatsList\x12\x33\n\x06WhoAmI\x12\x16.floe.v1.WhoAmIRequest\x1a\x11.floe.v1.UserInfo\x12\x42\n\tListUsers\x12\x19.floe.v1.ListUsersRequest\x1a\x1a.floe.v1.ListUsersResponse\x12\x37\n\x08SetQuota\x12\x18.floe.v1.SetQuotaRequest\x1a\x11.floe.v1.UserInfob\x06proto3')
 
 _globals = globals()
 _builder.BuildMessageAndEnumDescriptors(DESCRIPTOR, _globals)
 _builder.BuildTopDescriptorsAndMessages(DESCRIPTOR, 'floe.v1.scenes_pb2', _globals)
 if not _descriptor._USE_C_DESCRIPTORS:
   DESCRIPTOR._loaded_options = None
-  _globals['_SCENESTATE']._serialized_start=3140
-  _globals['_SCENESTATE']._serialized_end=3279
-  _globals['_CHANNEL']._serialized_start=3281
-  _globals['_CHANNEL']._serialized_end=3380
-  _globals['_FRAMEMODE']._serialized_start=3382
-  _globals['_FRAMEMODE']._serialized_end=3444
+  _globals['_SCENESTATE']._serialized_start=3156
+  _globals['_SCENESTATE']._serialized_end=3295
+  _globals['_CHANNEL']._serialized_start=3297
+  _globals['_CHANNEL']._serialized_end=3396
+  _globals['_FRAMEMODE']._serialized_start=3398
+  _globals['_FRAMEMODE']._serialized_end=3460
   _globals['_SCENEREF']._serialized_start=33
   _globals['_SCENEREF']._serialized_end=61
   _globals['_CREATESCENEREQUEST']._serialized_start=63
@@ -66,45 +66,45 @@ if not _descriptor._USE_C_DESCRIPTORS:
   _globals['_RUNREQUEST']._serialized_start=1388
   _globals['_RUNREQUEST']._serialized_end=1444
   _globals['_SCENESTATS']._serialized_start=1447
-  _globals['_SCENESTATS']._serialized_end=1796
-  _globals['_MEASURE']._serialized_start=1798
-  _globals['_MEASURE']._serialized_end=1850
-  _globals['_STREAMFRAMESREQUEST']._serialized_start=1853
-  _globals['_STREAMFRAMESREQUEST']._serialized_end=2067
-  _globals['_FRAME']._serialized_start=2069
-  _globals['_FRAME']._serialized_end=2125
-  _globals['_SCENEEVENT']._serialized_start=2128
-  _globals['_SCENEEVENT']._serialized_end=2294
-  _globals['_PARAMETERCHANGED']._serialized_start=2296
-  _globals['_PARAMETERCHANGED']._serialized_end=2333
-  _globals['_HALTED']._serialized_start=2335
-  _globals['_HALTED']._serialized_end=2427
-  _globals['_DELETED']._serialized_start=2429
-  _globals['_DELETED']._serialized_end=2438
-  _globals['_CHECKPOINTINFO']._serialized_start=2440
-  _globals['_CHECKPOINTINFO']._serialized_end=2524
-  _globals['_SHARELINK']._serialized_start=2526
-  _globals['_SHARELINK']._serialized_end=2588
-  _globals['_SHARELIST']._serialized_start=2590
-  _globals['_SHARELIST']._serialized_end=2638
-  _globals['_REVOKESHAREREQUEST']._serialized_start=2640
-  _globals['_REVOKESHAREREQUEST']._serialized_end=2696
-  _globals['_SCENESTATSLIST']._serialized_start=2698
-  _globals['_SCENESTATSLIST']._serialized_end=2751
-  _globals['_WHOAMIREQUEST']._serialized_start=2753
-  _globals['_WHOAMIREQUEST']._serialized_end=2768
-  _globals['_QUOTAVALUE']._serialized_start=2770
-  _globals['_QUOTAVALUE']._serialized_end=2831
-  _globals['_USERINFO']._serialized_start=2834
-  _globals['_USERINFO']._serialized_end=2999
-  _globals['_LISTUSERSREQUEST']._serialized_start=3001
-  _globals['_LISTUSERSREQUEST']._serialized_end=3019
-  _globals['_LISTUSERSRESPONSE']._serialized_start=3021
-  _globals['_LISTUSERSRESPONSE']._serialized_end=3074
-  _globals['_SETQUOTAREQUEST']._serialized_start=3076
-  _globals['_SETQUOTAREQUEST']._serialized_end=3137
-  _globals['_SCENESERVICE']._serialized_start=3447
-  _globals['_SCENESERVICE']._serialized_end=4248
-  _globals['_LABSERVICE']._serialized_start=4251
-  _globals['_LABSERVICE']._serialized_end=4735
+  _globals['_SCENESTATS']._serialized_end=1812
+  _globals['_MEASURE']._serialized_start=1814
+  _globals['_MEASURE']._serialized_end=1866
+  _globals['_STREAMFRAMESREQUEST']._serialized_start=1869
+  _globals['_STREAMFRAMESREQUEST']._serialized_end=2083
+  _globals['_FRAME']._serialized_start=2085
+  _globals['_FRAME']._serialized_end=2141
+  _globals['_SCENEEVENT']._serialized_start=2144
+  _globals['_SCENEEVENT']._serialized_end=2310
+  _globals['_PARAMETERCHANGED']._serialized_start=2312
+  _globals['_PARAMETERCHANGED']._serialized_end=2349
+  _globals['_HALTED']._serialized_start=2351
+  _globals['_HALTED']._serialized_end=2443
+  _globals['_DELETED']._serialized_start=2445
+  _globals['_DELETED']._serialized_end=2454
+  _globals['_CHECKPOINTINFO']._serialized_start=2456
+  _globals['_CHECKPOINTINFO']._serialized_end=2540
+  _globals['_SHARELINK']._serialized_start=2542
+  _globals['_SHARELINK']._serialized_end=2604
+  _globals['_SHARELIST']._serialized_start=2606
+  _globals['_SHARELIST']._serialized_end=2654
+  _globals['_REVOKESHAREREQUEST']._serialized_start=2656
+  _globals['_REVOKESHAREREQUEST']._serialized_end=2712
+  _globals['_SCENESTATSLIST']._serialized_start=2714
+  _globals['_SCENESTATSLIST']._serialized_end=2767
+  _globals['_WHOAMIREQUEST']._serialized_start=2769
+  _globals['_WHOAMIREQUEST']._serialized_end=2784
+  _globals['_QUOTAVALUE']._serialized_start=2786
+  _globals['_QUOTAVALUE']._serialized_end=2847
+  _globals['_USERINFO']._serialized_start=2850
+  _globals['_USERINFO']._serialized_end=3015
+  _globals['_LISTUSERSREQUEST']._serialized_start=3017
+  _globals['_LISTUSERSREQUEST']._serialized_end=3035
+  _globals['_LISTUSERSRESPONSE']._serialized_start=3037
+  _globals['_LISTUSERSRESPONSE']._serialized_end=3090
+  _globals['_SETQUOTAREQUEST']._serialized_start=3092
+  _globals['_SETQUOTAREQUEST']._serialized_end=3153
+  _globals['_SCENESERVICE']._serialized_start=3463
+  _globals['_SCENESERVICE']._serialized_end=4264
+  _globals['_LABSERVICE']._serialized_start=4267
+  _globals['_LABSERVICE']._serialized_end=4751
 # @@protoc_insertion_point(module_scope)

@@ -213,7 +213,7 @@ class RunRequest(_message.Message):
     def __init__(self, scene_id: _Optional[int] = ..., real_time_factor: _Optional[float] = ...) -> None: ...
 
 class SceneStats(_message.Message):
-    __slots__ = ("scene_id", "state", "sim_time", "steps", "particles", "steps_per_second", "dt", "subscribers", "dropped_frames", "frames_published", "sets", "measures", "name", "owner", "frame_bytes")
+    __slots__ = ("scene_id", "state", "sim_time", "steps", "particles", "steps_per_second", "dt", "subscribers", "dropped_frames", "frames_published", "sets", "measures", "name", "owner", "frame_bytes", "worker")
     SCENE_ID_FIELD_NUMBER: _ClassVar[int]
     STATE_FIELD_NUMBER: _ClassVar[int]
     SIM_TIME_FIELD_NUMBER: _ClassVar[int]
@@ -229,6 +229,7 @@ class SceneStats(_message.Message):
     NAME_FIELD_NUMBER: _ClassVar[int]
     OWNER_FIELD_NUMBER: _ClassVar[int]
     FRAME_BYTES_FIELD_NUMBER: _ClassVar[int]
+    WORKER_FIELD_NUMBER: _ClassVar[int]
     scene_id: int
     state: SceneState
     sim_time: float
@@ -244,7 +245,8 @@ class SceneStats(_message.Message):
     name: str
     owner: str
     frame_bytes: int
-    def __init__(self, scene_id: _Optional[int] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., steps_per_second: _Optional[float] = ..., dt: _Optional[float] = ..., subscribers: _Optional[int] = ..., dropped_frames: _Optional[int] = ..., frames_published: _Optional[int] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., measures: _Optional[_Iterable[_Union[Measure, _Mapping]]] = ..., name: _Optional[str] = ..., owner: _Optional[str] = ..., frame_bytes: _Optional[int] = ...) -> None: ...
+    worker: str
+    def __init__(self, scene_id: _Optional[int] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., steps_per_second: _Optional[float] = ..., dt: _Optional[float] = ..., subscribers: _Optional[int] = ..., dropped_frames: _Optional[int] = ..., frames_published: _Optional[int] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., measures: _Optional[_Iterable[_Union[Measure, _Mapping]]] = ..., name: _Optional[str] = ..., owner: _Optional[str] = ..., frame_bytes: _Optional[int] = ..., worker: _Optional[str] = ...) -> None: ...
 
 class Measure(_message.Message):
     __slots__ = ("name", "value", "unit")

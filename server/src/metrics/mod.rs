@@ -6,7 +6,12 @@
 //! particles, simulated time, subscribers, frames published, frame bytes sent,
 //! dropped frames, and backend time per pass (`pass` label). Per call: requests by
 //! transport, method and code, and latency. Quota refusals by quota. Checkpoints
-//! by outcome, and the time they take.
+//! by outcome, and the time they take. In a cluster, every worker's totals
+//! ([`cluster`]).
+
+mod cluster;
+
+pub use cluster::{ClusterSamples, WorkerSample};
 
 use prometheus_client::collector::Collector;
 use prometheus_client::encoding::{DescriptorEncoder, EncodeLabelSet, EncodeMetric};
@@ -17,8 +22,9 @@ use prometheus_client::metrics::gauge::ConstGauge;
 use prometheus_client::metrics::histogram::{Histogram, exponential_buckets};
 use std::sync::Arc;
 
-/// One scene's figures at scrape time.
-#[derive(Debug, Clone, Default)]
+/// One scene's figures at scrape time (and, in a cluster, as each worker publishes
+/// its scenes' with its heartbeat).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SceneSample {
     /// Scene id.
     pub id: u64,
@@ -44,7 +50,8 @@ pub struct SceneSample {
     pub dropped_frames: u64,
     /// Whether it is running.
     pub running: bool,
-    /// Backend time per pass: label, seconds, calls.
+    /// Backend time per pass: label, seconds, calls (not published to the cluster).
+    #[serde(skip)]
     pub passes: Vec<(&'static str, f64, u64)>,
 }
 
@@ -96,6 +103,7 @@ pub struct Metrics {
     quota_refusals: Family<Quota, Counter>,
     checkpoints: Family<Outcome, Counter>,
     checkpoint_seconds: Histogram,
+    cluster: Arc<ClusterSamples>,
 }
 
 impl Metrics {
@@ -117,7 +125,14 @@ impl Metrics {
             checkpoint_seconds.clone(),
         );
         registry.register_collector(Box::new(SceneCollector(scenes)));
-        Self { registry, calls, latency, quota_refusals, checkpoints, checkpoint_seconds }
+        let cluster = Arc::new(ClusterSamples::default());
+        registry.register_collector(Box::new(cluster::ClusterCollector(cluster.clone())));
+        Self { registry, calls, latency, quota_refusals, checkpoints, checkpoint_seconds, cluster }
+    }
+
+    /// The cluster's workers, as shown (set at each cluster tick).
+    pub fn cluster(&self) -> &ClusterSamples {
+        &self.cluster
     }
 
     /// Records one call: `transport` (grpc, http, ws), its method or route, its result
@@ -244,6 +259,35 @@ mod tests {
             r#"floe_requests_total{transport="grpc",method="SceneService/Step",code="OK"} 1"#,
             r#"floe_quota_refusals_total{quota="running_scenes"} 1"#,
             r#"floe_request_duration_seconds_count{transport="grpc",method="SceneService/Step"} 1"#,
+        ] {
+            assert!(text.lines().any(|l| l == line), "no line {line} in\n{text}");
+        }
+        assert!(!text.contains("floe_cluster"), "a single server has no cluster series");
+    }
+
+    #[test]
+    fn cluster_totals_come_per_worker() {
+        let m = Metrics::new(Arc::new(One));
+        let scene =
+            |particles, running| SceneSample { particles, running, steps_per_second: 10.0, ..One.samples()[0].clone() };
+        m.cluster().set(vec![
+            WorkerSample {
+                name: "w1".into(),
+                draining: false,
+                max_particles: 1000,
+                scenes: vec![scene(100, true), scene(50, false)],
+            },
+            WorkerSample { name: "w2".into(), draining: true, max_particles: 2000, scenes: vec![] },
+        ]);
+        let text = m.render();
+        for line in [
+            r#"floe_cluster_scenes{worker="w1"} 2"#,
+            r#"floe_cluster_running_scenes{worker="w1"} 1"#,
+            r#"floe_cluster_particles{worker="w1"} 150"#,
+            r#"floe_cluster_particle_steps_per_second{worker="w1"} 1000.0"#,
+            r#"floe_cluster_scenes{worker="w2"} 0"#,
+            r#"floe_cluster_worker_draining{worker="w2"} 1"#,
+            r#"floe_cluster_worker_max_particles{worker="w2"} 2000"#,
         ] {
             assert!(text.lines().any(|l| l == line), "no line {line} in\n{text}");
         }
