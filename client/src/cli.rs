@@ -45,6 +45,10 @@ pub enum Command {
         /// Field overrides, e.g. --set particle_spacing=0.02 (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         overrides: Vec<String>,
+        /// The backend the scene must run on (a cluster places it on a worker that
+        /// runs it); any when not given.
+        #[arg(long, value_parser = ["gpu", "cpu"])]
+        backend: Option<String>,
     },
     /// List the scenes.
     List,
@@ -241,8 +245,9 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
     }
     let mut floe = Client::connect_with_token(&cli.server, cli.token.as_deref()).await?;
     match cli.command {
-        Command::Create { scene, overrides } => {
+        Command::Create { scene, overrides, backend } => {
             let o: Vec<&str> = overrides.iter().map(String::as_str).collect();
+            floe.set_backend(backend.as_deref().unwrap_or_default());
             let path = Path::new(&scene);
             // A name with a scene file's extension is a file even when it is missing, so the
             // error names the file rather than an unknown preset.

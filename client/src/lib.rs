@@ -125,6 +125,8 @@ pub struct Client {
     lab: LabServiceClient<Authed>,
     /// Each scene's worker in a cluster.
     routes: route::Routes,
+    /// The backend new scenes ask for; empty: any.
+    backend: String,
 }
 
 /// Largest message the client accepts (bytes): snapshots of large scenes.
@@ -161,7 +163,15 @@ impl Client {
             inner: SceneServiceClient::new(authed.clone()).max_decoding_message_size(MAX_MESSAGE_BYTES),
             lab: LabServiceClient::new(authed),
             routes: route::Routes::default(),
+            backend: String::new(),
         })
+    }
+
+    /// Scenes this client creates from now on must run on `backend`: `"gpu"`,
+    /// `"cpu"`, or `""` for any (the default). A single server refuses a backend it
+    /// does not run; a cluster places the scene on a worker that runs it.
+    pub fn set_backend(&mut self, backend: &str) {
+        self.backend = backend.to_owned();
     }
 
     /// Creates a scene from a preset with `key=value` overrides.
@@ -184,6 +194,7 @@ impl Client {
             source: Some(source),
             document_format: format.into(),
             overrides: overrides.iter().map(|s| s.to_string()).collect(),
+            backend: self.backend.clone(),
         };
         let info: SceneInfo = routed!(self.routes, self.inner, create_scene, None, false, req)?;
         // The worker that built it holds it; the next new scene is placed afresh.

@@ -394,6 +394,8 @@ impl ServeArgs {
             origins: self.allow_origins.clone(),
             checkpoint_every: std::time::Duration::from_secs(self.checkpoint_every),
             assets: self.assets.clone(),
+            // `floe serve` sets the backend it chose at start-up.
+            ..Default::default()
         }
     }
 }

@@ -6,7 +6,7 @@
 use crate::auth::Caller;
 use crate::convert::{self, status};
 use crate::service::{MAX_STEPS_PER_REQUEST, Need};
-use crate::service::{Registry, SceneSource};
+use crate::service::{Placing, Registry, SceneSource};
 use floe_proto::pb::scene_service_server::SceneService;
 use floe_proto::pb::{self, create_scene_request::Source};
 use std::pin::Pin;
@@ -57,7 +57,8 @@ impl SceneService for Grpc {
             }
             None => return Err(Status::invalid_argument("source: give a preset name or a scene document")),
         };
-        let handle = self.registry.create_routed(&who, source, r.overrides, named.as_deref()).await.map_err(status)?;
+        let placing = Placing { worker: named.as_deref(), backend: Some(&r.backend) };
+        let handle = self.registry.create_routed(&who, source, r.overrides, placing).await.map_err(status)?;
         Ok(Response::new(convert::scene_info(&handle.shared, self.registry.worker_name())))
     }
 

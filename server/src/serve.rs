@@ -191,7 +191,8 @@ pub fn serve(args: crate::cli::ServeArgs) -> anyhow::Result<()> {
             }
             None => None,
         };
-        let registry = Registry::open(args.options(mode), backend.factory, store, member).await?;
+        let options = crate::service::Options { backend: backend.name, ..args.options(mode) };
+        let registry = Registry::open(options, backend.factory, store, member).await?;
         let local = Caller::local();
         // A cluster's workers start with none: each would make its own.
         if args.worker.is_none()

@@ -94,6 +94,7 @@ async fn create(address: &impl Fn(&str) -> String, through: &str) -> (u64, Strin
         source: Some(pb::create_scene_request::Source::Preset("dam_break".into())),
         document_format: String::new(),
         overrides: vec!["particle_spacing=0.05".into()],
+        backend: String::new(),
     };
     let connect = async |to: &str| {
         SceneServiceClient::new(tonic::transport::Endpoint::from_shared(address(to)).unwrap().connect().await.unwrap())
@@ -155,6 +156,14 @@ async fn three_workers_place_fail_over_and_fence() {
     let first_on = |w: &str| placed.iter().find(|p| p.1 == w).unwrap().0;
     let (a, b, c) = (first_on("w1"), first_on("w2"), first_on("w3"));
     let mut first = Client::connect(&address("w1")).await.unwrap();
+
+    // A scene asking for a backend no worker runs is refused, naming what they run.
+    let mut on_gpu = Client::connect(&address("w1")).await.unwrap();
+    on_gpu.set_backend("gpu");
+    let e = on_gpu.create_preset("dam_break", &["particle_spacing=0.05"]).await.unwrap_err();
+    let ClientError::Status(s) = &e else { panic!("{e}") };
+    assert_eq!(s.code(), tonic::Code::FailedPrecondition, "{s:?}");
+    assert_eq!(s.message(), "backend: no worker of this cluster runs the gpu backend (they run cpu)");
 
     // A call for B through w1 names w2 (once w1's tick has seen B).
     let named =

@@ -30,6 +30,7 @@ fn preset(name: &str, overrides: &[&str]) -> pb::CreateSceneRequest {
         source: Some(Source::Preset(name.into())),
         document_format: String::new(),
         overrides: overrides.iter().map(|s| s.to_string()).collect(),
+        backend: String::new(),
     }
 }
 
@@ -121,6 +122,7 @@ async fn bad_requests_get_clear_errors() {
         source: Some(Source::Document("particle_spacing = \"wide\"".into())),
         document_format: "toml".into(),
         overrides: vec![],
+        backend: String::new(),
     };
     let e = s.client.create_scene(doc).await.unwrap_err();
     assert_eq!(e.code(), Code::InvalidArgument);
@@ -131,9 +133,23 @@ async fn bad_requests_get_clear_errors() {
         source: Some(Source::Document("#".repeat(9 << 20))),
         document_format: "toml".into(),
         overrides: vec![],
+        backend: String::new(),
     };
     let e = s.client.create_scene(huge).await.unwrap_err();
     assert_eq!(e.code(), Code::OutOfRange, "{e:?}");
+
+    // A backend this server does not run, or none that exists.
+    let on = |backend: &str| pb::CreateSceneRequest {
+        backend: backend.into(),
+        ..preset("dam_break", &["particle_spacing=0.1"])
+    };
+    let e = s.client.create_scene(on("gpu")).await.unwrap_err();
+    assert_eq!(e.code(), Code::FailedPrecondition);
+    assert_eq!(e.message(), "backend: this server runs its scenes on the cpu backend, not gpu");
+    let e = s.client.create_scene(on("tpu")).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert_eq!(e.message(), "backend: must be \"gpu\", \"cpu\" or empty (any), got \"tpu\"");
+    assert_eq!(s.client.create_scene(on("cpu")).await.unwrap().into_inner().particles, 100);
 
     let info = s.client.create_scene(preset("dam_break", &["particle_spacing=0.05"])).await.unwrap().into_inner();
     let e = s.client.step(pb::StepRequest { scene_id: info.scene_id, steps: 0, until_time: 0.0 }).await.unwrap_err();

@@ -26,6 +26,7 @@ async fn a_subscriber_that_never_reads_does_not_slow_stepping() {
         source: Some(Source::Preset("hydrostatic".into())),
         document_format: String::new(),
         overrides: vec!["particle_spacing=0.025".into()],
+        backend: String::new(),
     };
     let id = client.create_scene(req).await.unwrap().into_inner().scene_id;
     client.run(pb::RunRequest { scene_id: id, real_time_factor: 0.0 }).await.unwrap();

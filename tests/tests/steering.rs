@@ -19,6 +19,7 @@ fn preset(name: &str, overrides: &[&str]) -> pb::CreateSceneRequest {
         source: Some(Source::Preset(name.into())),
         document_format: String::new(),
         overrides: overrides.iter().map(|s| s.to_string()).collect(),
+        backend: String::new(),
     }
 }
 
@@ -181,6 +182,7 @@ async fn a_scene_without_fluids_is_told_what_its_file_lacks() {
         source: Some(Source::Document(document)),
         document_format: "toml".into(),
         overrides: vec![],
+        backend: String::new(),
     };
     let e = client.create_scene(request).await.unwrap_err();
     assert_eq!((e.code(), e.message()), (Code::InvalidArgument, "fluids: at least one fluid is required"));

@@ -34,7 +34,12 @@ fn scene(heights: &str) -> String {
 }
 
 fn document(text: String) -> pb::CreateSceneRequest {
-    pb::CreateSceneRequest { source: Some(Source::Document(text)), document_format: "toml".into(), overrides: vec![] }
+    pb::CreateSceneRequest {
+        source: Some(Source::Document(text)),
+        document_format: "toml".into(),
+        overrides: vec![],
+        backend: String::new(),
+    }
 }
 
 /// A 3 x 2 grayscale 8-bit PNG: row 0 black, grey, white; row 1 white.
@@ -111,6 +116,7 @@ async fn assets_come_only_from_the_assets_directory() {
         source: Some(Source::Preset("dam_break".into())),
         document_format: String::new(),
         overrides: vec!["particle_spacing=0.1".into()],
+        backend: String::new(),
     };
     let plain = c.create_scene(preset).await.unwrap().into_inner();
     let a = http(with.http, "GET", &format!("/api/v1/scenes/{}/terrain", plain.scene_id), &[], "").await;

@@ -83,6 +83,10 @@ def test_bad_input_raises_with_the_code_and_the_field(client: floe_client.Client
         client.create_file("scene.yaml")
     with pytest.raises(TypeError):
         client.create_preset("dam_break", "particle_spacing=0.05")
+    # The test server runs the CPU backend.
+    with pytest.raises(floe_client.FailedPrecondition, match="runs its scenes on the cpu backend, not gpu") as e:
+        client.create_preset("dam_break", ["particle_spacing=0.1"], backend="gpu")
+    assert e.value.field == "backend"
 
 
 def test_bad_step_and_run_arguments_name_the_field(client: floe_client.Client, scene: floe_client.SceneInfo) -> None:

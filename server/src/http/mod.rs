@@ -4,7 +4,7 @@
 //! | method | path | does |
 //! |---|---|---|
 //! | GET | `/api/v1/presets` | preset names |
-//! | GET, POST | `/api/v1/scenes` | list; create (`{"preset": "dam_break", "overrides": [...]}` or `{"document": "...", "document_format": "toml"}`) |
+//! | GET, POST | `/api/v1/scenes` | list; create (`{"preset": "dam_break", "overrides": [...]}` or `{"document": "...", "document_format": "toml"}`; optional `"backend": "gpu"` or `"cpu"`) |
 //! | GET, DELETE | `/api/v1/scenes/{id}` | get; delete |
 //! | POST | `/api/v1/scenes/{id}/step` | `{"steps": 10}` or `{"until_time": 0.5}` |
 //! | POST | `/api/v1/scenes/{id}/reset` | back to t = 0 with the current settings |
@@ -32,7 +32,7 @@
 
 use crate::auth::Caller;
 use crate::service::{MAX_STEPS_PER_REQUEST, Need, Shared, State};
-use crate::service::{Registry, SceneSource, ServiceError};
+use crate::service::{Placing, Registry, SceneSource, ServiceError};
 use axum::extract::{DefaultBodyLimit, State as AxState};
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
@@ -384,6 +384,9 @@ struct CreateBody {
     document_format: Option<String>,
     #[serde(default)]
     overrides: Vec<String>,
+    /// `gpu`, `cpu`, or none (any).
+    #[serde(default)]
+    backend: Option<String>,
 }
 
 async fn create(
@@ -415,7 +418,8 @@ async fn create(
             ));
         }
     };
-    let handle = r.create_routed(&who, source, b.overrides, named).await?;
+    let placing = Placing { worker: named, backend: b.backend.as_deref() };
+    let handle = r.create_routed(&who, source, b.overrides, placing).await?;
     Ok((StatusCode::CREATED, Json(SceneView { worker: r.worker_name().to_owned(), ..SceneView::of(&handle.shared) })))
 }
 

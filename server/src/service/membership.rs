@@ -41,20 +41,48 @@ impl Registry {
         }
     }
 
-    /// In a cluster, whether a new scene of `particles` is built here: yes when the
+    /// The backend a new scene asks for, checked: `None` for any. A single server
+    /// refuses one it does not run; a cluster's placement looks for a worker that does.
+    pub(super) fn asked_backend<'a>(&self, asked: Option<&'a str>) -> Result<Option<&'a str>, ServiceError> {
+        let Some(asked) = asked.filter(|b| !b.is_empty()) else { return Ok(None) };
+        if !matches!(asked, "cpu" | "gpu") {
+            return Err(ServiceError::InvalidArgument(format!(
+                "backend: must be \"gpu\", \"cpu\" or empty (any), got {:?}",
+                crate::echo::cap(asked)
+            )));
+        }
+        let runs = self.options.backend;
+        if self.member.is_none() && asked != runs {
+            return Err(ServiceError::FailedPrecondition(format!(
+                "backend: this server runs its scenes on the {runs} backend, not {asked}"
+            )));
+        }
+        Ok(Some(asked))
+    }
+
+    /// In a cluster, whether a new scene of `particles` on `backend` is built here: yes when the
     /// request named this worker and room waits reserved for it or it has room, or
     /// placement picks it; else the worker placement picks (its room reserved), as
     /// [`ServiceError::Elsewhere`]. Always yes on a single server.
-    pub(super) async fn place_here(&self, particles: u64, named: Option<&str>) -> Result<(), ServiceError> {
+    pub(super) async fn place_here(
+        &self,
+        particles: u64,
+        named: Option<&str>,
+        backend: Option<&str>,
+    ) -> Result<(), ServiceError> {
         let (Some(member), Some(store)) = (&self.member, &self.store) else { return Ok(()) };
         let me = &member.info.name;
-        match store.db.place(particles, named.filter(|n| n == me)).await.map_err(unavailable)? {
+        match store.db.place(particles, named.filter(|n| n == me), backend).await.map_err(unavailable)? {
             Placement::On(w) if &w == me => Ok(()),
             Placement::On(w) => Err(ServiceError::Elsewhere {
                 message: format!("a new scene of {particles} particles goes to worker {w}"),
                 worker: w,
             }),
             Placement::Refused(why) => Err(ServiceError::ResourceExhausted(format!("the cluster has no room: {why}"))),
+            Placement::Unserved(runs) => Err(ServiceError::FailedPrecondition(format!(
+                "backend: no worker of this cluster runs the {} backend (they run {runs})",
+                backend.unwrap_or_default()
+            ))),
         }
     }
 

@@ -114,6 +114,16 @@ pub struct Placed {
     pub live: Option<crate::metrics::SceneSample>,
 }
 
+/// Where a new scene should be built.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Placing<'a> {
+    /// The worker the request named ([`crate::cluster::WORKER_HEADER`]): a creation
+    /// that followed placement's answer.
+    pub worker: Option<&'a str>,
+    /// The backend the scene must run on (`gpu`, `cpu`); `None` or empty: any.
+    pub backend: Option<&'a str>,
+}
+
 /// Where a new scene comes from.
 #[derive(Debug, Clone)]
 pub enum SceneSource {
@@ -165,6 +175,9 @@ pub struct Options {
     pub checkpoint_every: Duration,
     /// Directory of the terrain assets scenes may name (`--assets`); none: refused.
     pub assets: Option<std::path::PathBuf>,
+    /// The backend scenes run on (`cpu` or `gpu`), what a scene asking for one is
+    /// checked against.
+    pub backend: &'static str,
 }
 
 impl Default for Options {
@@ -176,6 +189,7 @@ impl Default for Options {
             origins: Vec::new(),
             checkpoint_every: Duration::from_secs(DEFAULT_CHECKPOINT_SECONDS),
             assets: None,
+            backend: "cpu",
         }
     }
 }
@@ -412,24 +426,24 @@ impl Registry {
         source: SceneSource,
         overrides: Vec<String>,
     ) -> Result<Arc<SceneHandle>, ServiceError> {
-        self.create_routed(caller, source, overrides, None).await
+        self.create_routed(caller, source, overrides, Placing::default()).await
     }
 
-    /// [`Registry::create`] for a request that named the worker `named` (the
-    /// [`crate::cluster::WORKER_HEADER`]). In a cluster the scene is built here when
-    /// the request named this worker and it has room, or when placement picks this
-    /// worker; otherwise the answer is [`ServiceError::Elsewhere`], naming the worker
-    /// placement picked.
+    /// [`Registry::create`] placed as `placing` asks: on its backend, and in a
+    /// cluster built here when the request named this worker and it has room, or
+    /// when placement picks this worker; otherwise the answer is
+    /// [`ServiceError::Elsewhere`], naming the worker placement picked.
     pub async fn create_routed(
         &self,
         caller: &Caller,
         source: SceneSource,
         overrides: Vec<String>,
-        named: Option<&str>,
+        placing: Placing<'_>,
     ) -> Result<Arc<SceneHandle>, ServiceError> {
         let Caller::User { name: owner, .. } = caller else {
             return Err(ServiceError::PermissionDenied("a share link cannot create scenes".into()));
         };
+        let backend = self.asked_backend(placing.backend)?;
         let max_scenes = self.options.limits.max_scenes;
         if self.member.is_none() && self.scenes.0.read().expect("lock").len() >= max_scenes {
             return Err(ServiceError::ResourceExhausted(format!(
@@ -464,7 +478,7 @@ impl Registry {
         })
         .await
         .expect("scene load task")?;
-        self.place_here(particles, named).await?;
+        self.place_here(particles, placing.worker, backend).await?;
         let backend = self.backend.clone();
         let sim = tokio::task::spawn_blocking(move || {
             Simulation::new(scene, &*backend).map_err(|e| ServiceError::InvalidArgument(e.to_string()))

@@ -145,8 +145,10 @@ async fn workers_on(c: &mut sqlx::AnyConnection) -> Result<Vec<WorkerRow>, DbErr
 pub enum Placement {
     /// On this worker, whose room is reserved until the scene's row is inserted.
     On(String),
-    /// No worker can take it; each one's reason.
+    /// No worker can take it now; each one's reason.
     Refused(String),
+    /// No worker of the cluster runs the backend it asks for; the backends they run.
+    Unserved(String),
 }
 
 fn size(v: u64) -> i64 {
@@ -226,7 +228,12 @@ impl Database {
     /// With `named` (a creation that followed a placement to that worker), that
     /// worker takes it when a reservation of this size waits there, or it has room;
     /// otherwise placement chooses among all.
-    pub async fn place(&self, particles: u64, named: Option<&str>) -> Result<Placement, DbError> {
+    pub async fn place(
+        &self,
+        particles: u64,
+        named: Option<&str>,
+        backend: Option<&str>,
+    ) -> Result<Placement, DbError> {
         let mut tx = self.pool.begin().await?;
         sqlx::query("UPDATE meta SET value = value + 1 WHERE name = 'next_reservation'").execute(&mut *tx).await?;
         let reservation: i64 = sqlx::query("SELECT value - 1 AS id FROM meta WHERE name = 'next_reservation'")
@@ -249,14 +256,21 @@ impl Database {
                     .bind(size(particles))
                     .fetch_optional(&mut *tx)
                     .await?;
-            if waiting.is_some() {
+            if waiting.is_some() && backend.is_none_or(|b| b == w.info.backend) {
                 tx.commit().await?;
                 return Ok(Placement::On(w.info.name.clone()));
             }
         }
+        if let Some(b) = backend
+            && !workers.is_empty()
+            && workers.iter().all(|w| w.info.backend != b)
+        {
+            let runs: std::collections::BTreeSet<&str> = workers.iter().map(|w| w.info.backend.as_str()).collect();
+            return Ok(Placement::Unserved(runs.into_iter().collect::<Vec<_>>().join(", ")));
+        }
         let candidates: Vec<Candidate> = workers.iter().map(WorkerRow::candidate).collect();
-        let fits = |w: &WorkerRow| placement::choose(&[w.candidate()], particles, None).is_ok();
-        let chosen = match (named, placement::choose(&candidates, particles, None)) {
+        let fits = |w: &WorkerRow| placement::choose(&[w.candidate()], particles, backend).is_ok();
+        let chosen = match (named, placement::choose(&candidates, particles, backend)) {
             (Some(w), _) if fits(w) => w,
             (_, Ok(c)) => workers.iter().find(|w| w.info.name == c.name).expect("chosen among them"),
             (_, Err(why)) => return Ok(Placement::Refused(why)),
@@ -520,17 +534,18 @@ mod tests {
         let a = db.register_worker(&info("a", 1000)).await.unwrap();
         db.register_worker(&info("b", 1000)).await.unwrap();
         let on = |w: &str| Placement::On(w.into());
-        assert_eq!(db.place(400, None).await.unwrap(), on("a"), "equal: the first name");
-        assert_eq!(db.place(400, None).await.unwrap(), on("b"), "a's room is reserved");
-        assert_eq!(db.place(400, None).await.unwrap(), on("a"));
-        assert_eq!(db.place(400, None).await.unwrap(), on("b"));
-        let full = db.place(400, None).await.unwrap();
+        assert_eq!(db.place(400, None, None).await.unwrap(), on("a"), "equal: the first name");
+        assert_eq!(db.place(400, None, None).await.unwrap(), on("b"), "a's room is reserved");
+        assert_eq!(db.place(400, None, None).await.unwrap(), on("a"));
+        assert_eq!(db.place(400, None, None).await.unwrap(), on("b"));
+        let full = db.place(400, None, None).await.unwrap();
         assert!(
             matches!(&full, Placement::Refused(why) if why.contains("b has 200 of its 1000 particles free")),
             "{full:?}"
         );
         // The creation that followed its placement to b: room waits there.
-        assert_eq!(db.place(400, Some("b")).await.unwrap(), on("b"));
+        assert_eq!(db.place(400, Some("b"), None).await.unwrap(), on("b"));
+        assert_eq!(db.place(10, None, Some("gpu")).await.unwrap(), Placement::Unserved("cpu".into()));
         // Its row takes the reservation's place: a's room stays as it was.
         let id = db.take_scene_id().await.unwrap();
         db.insert_scene(&scene(id, 400, &a)).await.unwrap();
@@ -542,7 +557,7 @@ mod tests {
         }
         let rows = db.workers().await.unwrap();
         assert_eq!((rows[0].reserved, rows[1].reserved), ((0, 0), (2, 800)));
-        assert_eq!(db.place(600, None).await.unwrap(), on("a"));
+        assert_eq!(db.place(600, None, None).await.unwrap(), on("a"));
         db.close().await;
     }
 }

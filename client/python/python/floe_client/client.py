@@ -107,26 +107,34 @@ class Client:
 
     # Creating scenes.
 
-    def create_preset(self, preset: str, overrides: Overrides = ()) -> SceneInfo:
-        """A scene from a built-in preset ("dam_break", "hydrostatic") with overrides."""
-        return self._create(pb.CreateSceneRequest(preset=preset, overrides=_overrides(overrides)))
+    # Every create call takes ``backend``: "gpu" or "cpu" for a scene that must run
+    # on it ("" for any). A single server refuses a backend it does not run
+    # (FailedPrecondition); a cluster places the scene on a worker that runs it.
 
-    def create_document(self, text: str, format: str = "toml", overrides: Overrides = ()) -> SceneInfo:
+    def create_preset(self, preset: str, overrides: Overrides = (), *, backend: str = "") -> SceneInfo:
+        """A scene from a built-in preset ("dam_break", "hydrostatic") with overrides."""
+        return self._create(pb.CreateSceneRequest(preset=preset, overrides=_overrides(overrides), backend=backend))
+
+    def create_document(
+        self, text: str, format: str = "toml", overrides: Overrides = (), *, backend: str = ""
+    ) -> SceneInfo:
         """A scene from a scene document (``format``: "toml" or "json"; see ``floe schema``)."""
-        request = pb.CreateSceneRequest(document=text, document_format=format, overrides=_overrides(overrides))
+        request = pb.CreateSceneRequest(
+            document=text, document_format=format, overrides=_overrides(overrides), backend=backend
+        )
         return self._create(request)
 
-    def create_file(self, path: str | os.PathLike[str], overrides: Overrides = ()) -> SceneInfo:
+    def create_file(self, path: str | os.PathLike[str], overrides: Overrides = (), *, backend: str = "") -> SceneInfo:
         """A scene from a ``.toml`` or ``.json`` scene file."""
         path = pathlib.Path(path)
         format = {".toml": "toml", ".json": "json"}.get(path.suffix.lower())
         if format is None:
             raise ValueError(f"{path}: a scene file ends in .toml or .json")
-        return self.create_document(path.read_text(), format, overrides)
+        return self.create_document(path.read_text(), format, overrides, backend=backend)
 
-    def create_dict(self, scene: Mapping[str, Any], overrides: Overrides = ()) -> SceneInfo:
+    def create_dict(self, scene: Mapping[str, Any], overrides: Overrides = (), *, backend: str = "") -> SceneInfo:
         """A scene from a dict shaped like a scene document (sent as JSON)."""
-        return self.create_document(json.dumps(scene), "json", overrides)
+        return self.create_document(json.dumps(scene), "json", overrides, backend=backend)
 
     def _create(self, request: pb.CreateSceneRequest) -> SceneInfo:
         return SceneInfo.from_message(self._call("CreateScene", request))

@@ -45,16 +45,18 @@ class SceneRef(_message.Message):
     def __init__(self, scene_id: _Optional[int] = ...) -> None: ...
 
 class CreateSceneRequest(_message.Message):
-    __slots__ = ("preset", "document", "document_format", "overrides")
+    __slots__ = ("preset", "document", "document_format", "overrides", "backend")
     PRESET_FIELD_NUMBER: _ClassVar[int]
     DOCUMENT_FIELD_NUMBER: _ClassVar[int]
     DOCUMENT_FORMAT_FIELD_NUMBER: _ClassVar[int]
     OVERRIDES_FIELD_NUMBER: _ClassVar[int]
+    BACKEND_FIELD_NUMBER: _ClassVar[int]
     preset: str
     document: str
     document_format: str
     overrides: _containers.RepeatedScalarFieldContainer[str]
-    def __init__(self, preset: _Optional[str] = ..., document: _Optional[str] = ..., document_format: _Optional[str] = ..., overrides: _Optional[_Iterable[str]] = ...) -> None: ...
+    backend: str
+    def __init__(self, preset: _Optional[str] = ..., document: _Optional[str] = ..., document_format: _Optional[str] = ..., overrides: _Optional[_Iterable[str]] = ..., backend: _Optional[str] = ...) -> None: ...
 
 class SceneInfo(_message.Message):
     __slots__ = ("scene_id", "name", "state", "sim_time", "steps", "particles", "bounds_min", "bounds_max", "halt_reason", "scene_json", "backend", "channels", "sets", "tunables", "materials", "owner", "worker")
