@@ -246,7 +246,12 @@ async fn three_workers_place_fail_over_and_fence() {
             .map(|(seq, path)| (seq, std::fs::metadata(path).unwrap().modified().unwrap()))
             .collect::<Vec<_>>()
     };
-    let before = files();
+    // w1 checkpoints C as it takes it up, in C's new placement generation.
+    let before = within(Duration::from_secs(5), "w1's first checkpoint of C", async || {
+        let files = files();
+        (files.first()?.0.0 >= 1).then_some(files)
+    })
+    .await;
     // A call sent to w3 while it is stopped: it meets w3 as it wakes, before or
     // after w3 learns it lost C, and is refused either way (the pause would write a
     // checkpoint).

@@ -181,16 +181,18 @@ impl Registry {
         let saved = handle.save_at().await?;
         // A worker that may have lost the scene writes nothing for it: its tenure
         // must hold and the database must still place the scene here.
-        if let Some(lease) = self.lease() {
-            let held = self.tenure.holds() && store.db.holds(&lease, id).await.map_err(unavailable)?;
-            if !held {
-                return Err(self.db_error(id, crate::store::db::DbError::Fenced(id)));
-            }
-        }
+        let lease = self.lease();
+        let generation = store.db.generation(id, lease.as_ref()).await.map_err(unavailable)?;
+        let generation = match generation {
+            Some(g) if self.tenure.holds() => g,
+            // A single server's scene without a row is being deleted.
+            _ if lease.is_none() => return Err(self.not_here(&crate::auth::Caller::local(), id, Need::Watch)),
+            _ => return Err(self.db_error(id, crate::store::db::DbError::Fenced(id))),
+        };
         let checkpoints = store.checkpoints.clone();
         let tenure = self.tenure.clone();
         let written = tokio::task::spawn_blocking(move || {
-            checkpoints.write(id, saved.step, saved.time, &saved.state, || tenure.holds())
+            checkpoints.write(id, generation, saved.step, saved.time, &saved.state, || tenure.holds())
         })
         .await
         .expect("checkpoint task");

@@ -158,7 +158,9 @@ impl Registry {
         self.scenes.0.read().expect("lock").keys().copied().collect()
     }
 
-    /// Brings a scene placed here back from its newest checkpoint, paused.
+    /// Brings a scene placed here back from its newest checkpoint, paused, and
+    /// checkpoints it at once in its new generation: from then on no file its
+    /// previous worker may still name ranks above this worker's.
     async fn take_up(&self, store: &Store, row: &crate::store::db::SceneRow) {
         let (r, checkpoints, backend) = (row.clone(), store.checkpoints.clone(), self.backend.clone());
         let recovered = tokio::task::spawn_blocking(move || persist::recover(&r, &checkpoints, &*backend))
@@ -168,6 +170,9 @@ impl Registry {
             Ok((sim, from)) => {
                 tracing::info!(scene = row.id, owner = %row.owner, "scene taken up: {from}");
                 self.insert(row.id, row.owner.clone(), sim);
+                if let Err(e) = self.write_checkpoint(row.id).await {
+                    tracing::warn!(scene = row.id, "the first checkpoint after taking the scene up failed: {e}");
+                }
             }
             Err(e) => tracing::error!(scene = row.id, "scene placed here could not be brought back: {e}"),
         }

@@ -31,6 +31,7 @@ pub(super) fn row(id: u64, owner: &str, sim: &Simulation, particles: u64, lease:
         real_time_factor: 0.0,
         particles,
         lease,
+        generation: 0,
     }
 }
 

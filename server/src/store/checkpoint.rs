@@ -9,6 +9,12 @@
 //! over its final name, and the directory fsynced, so after a crash (kill -9, power
 //! loss) a checkpoint file is either whole or absent. Damage found later (a bad disk, a
 //! truncated copy) fails the checksum and the previous checkpoint is used.
+//!
+//! A file's name carries the scene's placement generation (the database counts the
+//! scene's moves between cluster workers) before its sequence, and files rank by
+//! both: a worker that lost a scene while stopped and names a file after it resumes
+//! names one of an older generation, which never ranks above those of the scene's
+//! new worker (which writes one as soon as it takes the scene up).
 
 use sha2::{Digest, Sha256};
 use std::fs;
@@ -121,28 +127,35 @@ impl Checkpoints {
         self.root.join(scene.to_string())
     }
 
-    /// The checkpoint files of `scene`, newest first, with their sequence numbers.
-    pub fn files(&self, scene: u64) -> Vec<(u64, PathBuf)> {
+    /// The checkpoint files of `scene`, newest first, each with its rank: its
+    /// placement generation and sequence (a name without a generation, as written
+    /// before generations were, is of generation 0).
+    pub fn files(&self, scene: u64) -> Vec<((u64, u64), PathBuf)> {
         let Ok(entries) = fs::read_dir(self.dir(scene)) else { return Vec::new() };
-        let mut files: Vec<(u64, PathBuf)> = entries
+        let mut files: Vec<((u64, u64), PathBuf)> = entries
             .filter_map(|e| e.ok())
             .filter_map(|e| {
                 let name = e.file_name().into_string().ok()?;
-                let seq = name.strip_prefix("checkpoint-")?.strip_suffix(".bin")?.parse().ok()?;
-                Some((seq, e.path()))
+                let rank = name.strip_prefix("checkpoint-")?.strip_suffix(".bin")?;
+                let rank = match rank.split_once('-') {
+                    Some((generation, seq)) => (generation.parse().ok()?, seq.parse().ok()?),
+                    None => (0, rank.parse().ok()?),
+                };
+                Some((rank, e.path()))
             })
             .collect();
         files.sort_by_key(|f| std::cmp::Reverse(f.0));
         files
     }
 
-    /// Writes a checkpoint of `scene` atomically and keeps only the newest [`KEPT`].
-    /// `held` is asked once more just before the file takes its name: false (a
-    /// cluster worker's tenure lapsed while it wrote) removes it unnamed. Returns
-    /// what was written.
+    /// Writes a checkpoint of `scene` in placement generation `generation`
+    /// atomically and keeps only the newest [`KEPT`]. `held` is asked once more just
+    /// before the file takes its name: false (a cluster worker's tenure lapsed while
+    /// it wrote) removes it unnamed. Returns what was written.
     pub fn write(
         &self,
         scene: u64,
+        generation: u64,
         step: u64,
         time: f64,
         payload: &[u8],
@@ -150,10 +163,10 @@ impl Checkpoints {
     ) -> Result<Meta, CheckpointError> {
         let dir = self.dir(scene);
         fs::create_dir_all(&dir).map_err(io(&dir))?;
-        let sequence = self.files(scene).first().map_or(1, |f| f.0 + 1);
+        let sequence = self.files(scene).iter().map(|f| f.0.1).max().map_or(1, |s| s + 1);
         let meta = Meta { scene, sequence, step, time };
-        let path = dir.join(format!("checkpoint-{sequence:010}.bin"));
-        let temp = dir.join(format!("checkpoint-{sequence:010}.tmp"));
+        let path = dir.join(format!("checkpoint-{generation:06}-{sequence:010}.bin"));
+        let temp = dir.join(format!("checkpoint-{generation:06}-{sequence:010}.tmp"));
         {
             let mut f = fs::File::create(&temp).map_err(io(&temp))?;
             f.write_all(&encode(&meta, payload)).map_err(io(&temp))?;
@@ -237,17 +250,40 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let c = Checkpoints::open(dir.path().to_path_buf()).unwrap();
         for step in [10, 20, 30] {
-            c.write(4, step, step as f64, &step.to_le_bytes(), || true).unwrap();
+            c.write(4, 0, step, step as f64, &step.to_le_bytes(), || true).unwrap();
         }
         let files = c.files(4);
-        assert_eq!(files.iter().map(|f| f.0).collect::<Vec<_>>(), [3, 2]);
+        assert_eq!(files.iter().map(|f| f.0).collect::<Vec<_>>(), [(0, 3), (0, 2)]);
         let (meta, payload) = Checkpoints::read(&files[0].1).unwrap();
         assert_eq!((meta.step, payload), (30, 30u64.to_le_bytes().to_vec()));
-        let withdrawn = c.write(4, 40, 40.0, b"late", || false).unwrap_err();
+        let withdrawn = c.write(4, 0, 40, 40.0, b"late", || false).unwrap_err();
         assert!(matches!(withdrawn, CheckpointError::Withdrawn(4)), "{withdrawn}");
-        assert_eq!(c.files(4).iter().map(|f| f.0).collect::<Vec<_>>(), [3, 2], "a withdrawn checkpoint leaves nothing");
+        let ranks = c.files(4).iter().map(|f| f.0).collect::<Vec<_>>();
+        assert_eq!(ranks, [(0, 3), (0, 2)], "a withdrawn checkpoint leaves nothing");
         assert_eq!(std::fs::read_dir(c.dir(4)).unwrap().count(), 2, "nor a temporary file");
         c.remove(4).unwrap();
         assert!(c.files(4).is_empty());
+    }
+
+    /// A scene moved (generation 1) while its old worker was stopped: the old
+    /// worker's file named after it resumes ranks below the new worker's and is the
+    /// first removed; a name from before generations reads as generation 0.
+    #[test]
+    fn a_late_file_of_an_older_generation_never_ranks_first() {
+        let dir = tempfile::tempdir().unwrap();
+        let c = Checkpoints::open(dir.path().to_path_buf()).unwrap();
+        std::fs::create_dir_all(c.dir(5)).unwrap();
+        std::fs::write(
+            c.dir(5).join("checkpoint-0000000001.bin"),
+            encode(&Meta { scene: 5, sequence: 1, step: 10, time: 0.1 }, b"a"),
+        )
+        .unwrap();
+        c.write(5, 1, 10, 0.1, b"taken up", || true).unwrap();
+        c.write(5, 0, 12, 0.12, b"late", || true).unwrap();
+        let files = c.files(5);
+        assert_eq!(files.iter().map(|f| f.0).collect::<Vec<_>>(), [(1, 2), (0, 3)]);
+        assert_eq!(Checkpoints::read(&files[0].1).unwrap().1, b"taken up");
+        c.write(5, 1, 20, 0.2, b"on", || true).unwrap();
+        assert_eq!(c.files(5).iter().map(|f| f.0).collect::<Vec<_>>(), [(1, 4), (1, 2)], "the late file went first");
     }
 }

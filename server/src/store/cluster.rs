@@ -183,7 +183,7 @@ impl Database {
         .bind(now())
         .execute(&mut *tx)
         .await?;
-        sqlx::query("UPDATE scenes SET epoch = $1 WHERE worker = $2")
+        sqlx::query("UPDATE scenes SET epoch = $1, generation = generation + 1 WHERE worker = $2")
             .bind(epoch)
             .bind(&info.name)
             .execute(&mut *tx)
@@ -328,17 +328,6 @@ impl Database {
         Ok(row.as_ref().map(scene_row).transpose()?)
     }
 
-    /// Whether `lease` still holds `scene` (checked before its checkpoint is written).
-    pub async fn holds(&self, lease: &Lease, scene: u64) -> Result<bool, DbError> {
-        let row = sqlx::query("SELECT id FROM scenes WHERE id = $1 AND worker = $2 AND epoch = $3")
-            .bind(id(scene))
-            .bind(&lease.worker)
-            .bind(lease.epoch)
-            .fetch_optional(&self.pool)
-            .await?;
-        Ok(row.is_some())
-    }
-
     /// Scenes and particles `owner` runs over the whole cluster.
     pub async fn running_of(&self, owner: &str) -> Result<(u64, u64), DbError> {
         let row = sqlx::query(
@@ -382,7 +371,8 @@ impl Database {
         let Ok(to) = placement::choose(&others, particles, None) else { return Ok(None) };
         let to = workers.iter().find(|w| w.info.name == to.name).expect("chosen among them").lease();
         let done = sqlx::query(
-            "UPDATE scenes SET worker = $1, epoch = $2, state = 'paused', real_time_factor = 0 \
+            "UPDATE scenes SET worker = $1, epoch = $2, state = 'paused', real_time_factor = 0, \
+             generation = generation + 1 \
              WHERE id = $3 AND worker = $4 AND epoch = $5",
         )
         .bind(&to.worker)
@@ -418,7 +408,8 @@ impl Database {
                 }
             };
             let done = sqlx::query(
-                "UPDATE scenes SET worker = $1, epoch = $2, state = 'paused', real_time_factor = 0 \
+                "UPDATE scenes SET worker = $1, epoch = $2, state = 'paused', real_time_factor = 0, \
+             generation = generation + 1 \
                  WHERE id = $3 AND worker IS NOT DISTINCT FROM $4 AND epoch = $5",
             )
             .bind(&to.worker)
@@ -462,6 +453,7 @@ mod tests {
             real_time_factor: 1.0,
             particles,
             lease: Some(lease.clone()),
+            generation: 0,
         }
     }
 
@@ -492,11 +484,12 @@ mod tests {
         assert_eq!(moved[0], Moved { scene: first, to: c.clone() }, "c has the most free share");
         assert_eq!(moved[1].to, b, "then b: 0.7 left free against c's 0.55");
         let row = db.scene(first).await.unwrap().unwrap();
-        assert_eq!((row.state.as_str(), row.lease.as_ref()), ("paused", Some(&c)));
+        assert_eq!((row.state.as_str(), row.lease.as_ref(), row.generation), ("paused", Some(&c), 1));
+        assert_eq!(db.generation(first, Some(&c)).await.unwrap(), Some(1));
 
         // The late worker a: its heartbeat and every write for the moved scenes fail.
         assert_eq!(db.heartbeat(&a, "[]").await.unwrap(), None, "a learns it was evicted");
-        assert!(!db.holds(&a, first).await.unwrap());
+        assert_eq!(db.generation(first, Some(&a)).await.unwrap(), None);
         assert!(matches!(db.update_state(first, Some(&a), "running", 1.0).await, Err(DbError::Fenced(_))));
         assert!(matches!(db.update_tunables(first, Some(&a), "{}").await, Err(DbError::Fenced(_))));
         assert!(matches!(db.delete_scene(first, Some(&a)).await, Err(DbError::Fenced(_))));

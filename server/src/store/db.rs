@@ -89,6 +89,8 @@ pub struct SceneRow {
     pub particles: u64,
     /// The worker holding it in a cluster; `None` on a single server.
     pub lease: Option<Lease>,
+    /// How many times it moved between workers (its checkpoints' generation).
+    pub generation: u64,
 }
 
 /// Everything the server keeps in memory to authenticate and apply quotas, read at once.
@@ -329,6 +331,14 @@ impl Database {
         Ok(())
     }
 
+    /// The placement generation of `scene` (its checkpoints carry it) while `lease`
+    /// holds it; `None` once it moved or is gone. Asked before each checkpoint.
+    pub async fn generation(&self, scene: u64, lease: Option<&Lease>) -> Result<Option<u64>, DbError> {
+        let sql = format!("SELECT generation FROM scenes WHERE {}", held_at(1));
+        let row = bind_held(sqlx::query(&sql), scene, lease).fetch_optional(&self.pool).await?;
+        Ok(row.map(|r| r.try_get::<i64, _>("generation")).transpose()?.map(|g| g as u64))
+    }
+
     /// Records a scene's live settings; with a lease, only while it holds the scene.
     pub async fn update_tunables(&self, scene: u64, lease: Option<&Lease>, tunables: &str) -> Result<(), DbError> {
         let sql = format!("UPDATE scenes SET tunables = $1, updated_at = $2 WHERE {}", held_at(3));
@@ -403,7 +413,7 @@ impl Database {
 
 /// The columns [`scene_row`] reads.
 pub(super) const SCENE_COLUMNS: &str =
-    "id, owner, name, spec, tunables, state, real_time_factor, particles, worker, epoch";
+    "id, owner, name, spec, tunables, state, real_time_factor, particles, worker, epoch, generation";
 
 /// A scene row read with [`SCENE_COLUMNS`].
 pub(super) fn scene_row(r: &AnyRow) -> Result<SceneRow, sqlx::Error> {
@@ -418,6 +428,7 @@ pub(super) fn scene_row(r: &AnyRow) -> Result<SceneRow, sqlx::Error> {
         real_time_factor: r.try_get("real_time_factor")?,
         particles: r.try_get::<i64, _>("particles")? as u64,
         lease: worker.map(|worker| Ok::<_, sqlx::Error>(Lease { worker, epoch: r.try_get("epoch")? })).transpose()?,
+        generation: r.try_get::<i64, _>("generation")? as u64,
     })
 }
 

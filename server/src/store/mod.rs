@@ -4,7 +4,7 @@
 //! ```text
 //! DATA_DIR/
 //!   floe.db, floe.db-wal, floe.db-shm   (SQLite; absent with --database postgres://...)
-//!   checkpoints/<scene id>/checkpoint-<sequence>.bin
+//!   checkpoints/<scene id>/checkpoint-<generation>-<sequence>.bin
 //!   lock                                 (held by the serving process)
 //!   lock-<worker>                        (in a cluster: held by each worker)
 //! ```

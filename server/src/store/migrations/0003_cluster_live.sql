@@ -17,3 +17,8 @@ CREATE TABLE reservations (
 );
 
 INSERT INTO meta (name, value) VALUES ('next_reservation', 1);
+
+-- How many times a scene moved between workers. Its checkpoint files carry it in
+-- their names and rank by it first, so a file a stopped worker names after the
+-- scene moved never ranks above the new worker's.
+ALTER TABLE scenes ADD COLUMN generation BIGINT NOT NULL DEFAULT 0;
