@@ -3,7 +3,8 @@
 # three workers on loopback (a 3 s lease, the CPU backend), then the Rust client's test
 # (server/tests/cluster_proxy.rs), the Python client's (client/python/tests/
 # test_cluster.py) and the viewer's in headless Chromium (tests/browser/
-# cluster.test.mjs) run against the proxy's addresses. Needs target/debug/floe, the
+# cluster.test.mjs, and cluster_failover.test.mjs across a worker's death) run
+# against the proxy's addresses. Needs target/debug/floe, the
 # Python client's virtualenv and tests/browser's packages (tests/run-all.sh makes
 # all three first).
 set -euo pipefail
@@ -15,5 +16,6 @@ eval "$(FLOE_BIN=target/debug/floe FLOE_LEASE=3 FLOE_BACKEND=cpu FLOE_CHECKPOINT
 export FLOE_REQUIRE_CLUSTER=1
 target/python-venv/bin/python -m pytest -q client/python/tests/test_cluster.py
 node --test tests/browser/cluster.test.mjs
-# Last: it kill -9s a worker.
+# These two kill -9 a worker each: floe-2, then floe-3.
 cargo test -q -p floe-server --test cluster_proxy
+node --test tests/browser/cluster_failover.test.mjs

@@ -196,9 +196,13 @@ async fn control(
     }
     .await;
     match result {
-        Ok(()) => {
-            (json(serde_json::json!({ "type": "status", "scene": SceneView::of(&handle.shared) })), name, "200".into())
-        }
+        Ok(()) => (
+            json(
+                serde_json::json!({ "type": "status", "scene": SceneView::of(&handle.shared, registry.worker_name()) }),
+            ),
+            name,
+            "200".into(),
+        ),
         Err(e) => {
             let code = ApiError::from(e);
             (error(&code.message), name, code.status.as_str().to_owned())
@@ -314,7 +318,9 @@ async fn session(
         waiting: std::collections::VecDeque::new(),
         heard: Instant::now(),
     };
-    let hello = json(serde_json::json!({ "type": "status", "scene": SceneView::of(&s.handle.shared) }));
+    let hello = json(
+        serde_json::json!({ "type": "status", "scene": SceneView::of(&s.handle.shared, s.registry.worker_name()) }),
+    );
     if s.socket.send(hello).await.is_err() {
         return;
     }

@@ -278,12 +278,12 @@ pub fn state_name(s: State) -> &'static str {
 }
 
 impl SceneView {
-    /// The view of a scene now.
-    pub fn of(shared: &Shared) -> Self {
+    /// The view now of a scene held by `worker` (empty on a single server).
+    pub fn of(shared: &Shared, worker: &str) -> Self {
         let s = shared.status();
         Self {
             scene_id: shared.id,
-            worker: String::new(),
+            worker: worker.to_owned(),
             name: shared.name.clone(),
             owner: shared.owner.clone(),
             state: state_name(s.state),
@@ -355,8 +355,7 @@ async fn presets() -> Json<Vec<&'static str>> {
 
 async fn list(AxState(r): AxState<Arc<Registry>>, Who(who): Who) -> Json<Vec<SceneView>> {
     let here = r.worker_name();
-    let mut views: Vec<SceneView> =
-        r.list(&who).iter().map(|h| SceneView { worker: here.to_owned(), ..SceneView::of(&h.shared) }).collect();
+    let mut views: Vec<SceneView> = r.list(&who).iter().map(|h| SceneView::of(&h.shared, here)).collect();
     views.extend(r.placed_elsewhere(&who).into_iter().map(|p| SceneView {
         scene_id: p.id,
         worker: p.worker,
@@ -420,12 +419,12 @@ async fn create(
     };
     let placing = Placing { worker: named, backend: b.backend.as_deref() };
     let handle = r.create_routed(&who, source, b.overrides, placing).await?;
-    Ok((StatusCode::CREATED, Json(SceneView { worker: r.worker_name().to_owned(), ..SceneView::of(&handle.shared) })))
+    Ok((StatusCode::CREATED, Json(SceneView::of(&handle.shared, r.worker_name()))))
 }
 
 /// The view of a scene the caller may watch.
 fn view(r: &Registry, who: &Caller, id: u64) -> ApiResult<SceneView> {
-    Ok(Json(SceneView::of(&r.get(who, id, Need::Watch)?.shared)))
+    Ok(Json(SceneView::of(&r.get(who, id, Need::Watch)?.shared, r.worker_name())))
 }
 
 async fn scene(AxState(r): AxState<Arc<Registry>>, Who(who): Who, SceneId(id): SceneId) -> ApiResult<SceneView> {
@@ -438,7 +437,7 @@ async fn stats(state: AxState<Arc<Registry>>, who: Who, id: SceneId) -> ApiResul
 
 async fn delete(AxState(r): AxState<Arc<Registry>>, Who(who): Who, SceneId(id): SceneId) -> ApiResult<SceneView> {
     let handle = r.delete(&who, id).await?;
-    Ok(Json(SceneView::of(&handle.shared)))
+    Ok(Json(SceneView::of(&handle.shared, r.worker_name())))
 }
 
 /// `POST /scenes/{id}/step` body.
@@ -475,7 +474,7 @@ async fn step(
 ) -> ApiResult<SceneView> {
     let (steps, until) = b.checked().map_err(|m| ApiError::new(StatusCode::BAD_REQUEST, m))?;
     r.step(&who, id, steps, until).await?;
-    Ok(Json(SceneView::of(&r.get(&who, id, Need::Watch)?.shared)))
+    Ok(Json(SceneView::of(&r.get(&who, id, Need::Watch)?.shared, r.worker_name())))
 }
 
 /// `POST /scenes/{id}/run` body.
