@@ -91,16 +91,18 @@ pub struct Moved {
     pub to: Lease,
 }
 
+/// Every worker with its scenes and the room reserved on it, in one statement: a
+/// scene's row replaces its reservation in one transaction, so reading both at once
+/// counts it exactly once.
 const WORKERS: &str = "SELECT w.name, w.epoch, w.grpc, w.http, w.backend, w.max_scenes, w.max_particles, w.beats, \
-     w.draining, w.live, COUNT(s.id) AS scenes, CAST(COALESCE(SUM(s.particles), 0) AS BIGINT) AS particles \
+     w.draining, w.live, COUNT(s.id) AS scenes, CAST(COALESCE(SUM(s.particles), 0) AS BIGINT) AS particles, \
+     (SELECT COUNT(r.id) FROM reservations r WHERE r.worker = w.name AND r.epoch = w.epoch \
+      AND w.beats < r.until_beats) AS reserved_scenes, \
+     (SELECT CAST(COALESCE(SUM(r.particles), 0) AS BIGINT) FROM reservations r WHERE r.worker = w.name \
+      AND r.epoch = w.epoch AND w.beats < r.until_beats) AS reserved_particles \
      FROM workers w LEFT JOIN scenes s ON s.worker = w.name AND s.epoch = w.epoch \
      GROUP BY w.name, w.epoch, w.grpc, w.http, w.backend, w.max_scenes, w.max_particles, w.beats, w.draining, w.live \
      ORDER BY w.name";
-
-/// The reservations still counting, by worker.
-const RESERVED: &str = "SELECT r.worker, COUNT(r.id) AS scenes, CAST(COALESCE(SUM(r.particles), 0) AS BIGINT) \
-     AS particles FROM reservations r JOIN workers w ON w.name = r.worker AND w.epoch = r.epoch \
-     WHERE w.beats < r.until_beats GROUP BY r.worker";
 
 /// How many of its own heartbeats (about a second each) a worker's reservation
 /// lasts if its scene never arrives: long enough to build a large scene.
@@ -121,7 +123,7 @@ fn worker_row(r: &sqlx::any::AnyRow) -> Result<WorkerRow, sqlx::Error> {
         draining: r.try_get::<i64, _>("draining")? != 0,
         scenes: r.try_get::<i64, _>("scenes")? as u64,
         particles: r.try_get::<i64, _>("particles")? as u64,
-        reserved: (0, 0),
+        reserved: (r.try_get::<i64, _>("reserved_scenes")? as u64, r.try_get::<i64, _>("reserved_particles")? as u64),
         live: r.try_get("live")?,
     })
 }
@@ -129,15 +131,8 @@ fn worker_row(r: &sqlx::any::AnyRow) -> Result<WorkerRow, sqlx::Error> {
 /// Every worker up, with the room reserved on it, on one connection (a pool's or
 /// a placement's transaction).
 async fn workers_on(c: &mut sqlx::AnyConnection) -> Result<Vec<WorkerRow>, DbError> {
-    let mut workers: Vec<WorkerRow> =
-        sqlx::query(WORKERS).fetch_all(&mut *c).await?.iter().map(worker_row).collect::<Result<_, _>>()?;
-    for r in sqlx::query(RESERVED).fetch_all(&mut *c).await? {
-        let name: String = r.try_get("worker")?;
-        if let Some(w) = workers.iter_mut().find(|w| w.info.name == name) {
-            w.reserved = (r.try_get::<i64, _>("scenes")? as u64, r.try_get::<i64, _>("particles")? as u64);
-        }
-    }
-    Ok(workers)
+    let rows = sqlx::query(WORKERS).fetch_all(&mut *c).await?;
+    Ok(rows.iter().map(worker_row).collect::<Result<_, _>>()?)
 }
 
 /// Where [`Database::place`] put a new scene.
