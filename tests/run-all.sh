@@ -15,7 +15,9 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ] || [ ! -d "$XDG_RUNTIME_DIR" ]; then
   export XDG_RUNTIME_DIR
 fi
 # A PostgreSQL cluster of our own on a free port, stopped however the tests end.
-eval "$(bash scripts/pg-test-cluster.sh start)"
+# (Assigned first: a cluster that does not start stops the tests here, naming why.)
+pg_env=$(bash scripts/pg-test-cluster.sh start)
+eval "$pg_env"
 trap 'bash scripts/pg-test-cluster.sh stop "$FLOE_TEST_PG_DIR"' EXIT
 # scripts/install-deps.sh installed lavapipe and PostgreSQL: those tests must run, not skip.
 FLOE_REQUIRE_GPU=1 FLOE_REQUIRE_POSTGRES=1 cargo test --workspace
