@@ -135,6 +135,15 @@ async fn workers_on(c: &mut sqlx::AnyConnection) -> Result<Vec<WorkerRow>, DbErr
     Ok(rows.iter().map(worker_row).collect::<Result<_, _>>()?)
 }
 
+/// Takes the next value of the counter `name` in `meta` (epochs, scene ids,
+/// reservations): its row stays locked until the transaction ends, so whoever takes
+/// it next waits.
+async fn take(c: &mut sqlx::AnyConnection, name: &str) -> Result<i64, DbError> {
+    sqlx::query("UPDATE meta SET value = value + 1 WHERE name = $1").bind(name).execute(&mut *c).await?;
+    let row = sqlx::query("SELECT value - 1 AS taken FROM meta WHERE name = $1").bind(name).fetch_one(&mut *c).await?;
+    Ok(row.try_get("taken")?)
+}
+
 /// Where [`Database::place`] put a new scene.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Placement {
@@ -156,11 +165,7 @@ impl Database {
     /// process is gone: a name is one process, `floe serve` takes a lock on it).
     pub async fn register_worker(&self, info: &WorkerInfo) -> Result<Lease, DbError> {
         let mut tx = self.pool.begin().await?;
-        sqlx::query("UPDATE meta SET value = value + 1 WHERE name = 'next_epoch'").execute(&mut *tx).await?;
-        let epoch: i64 = sqlx::query("SELECT value - 1 AS epoch FROM meta WHERE name = 'next_epoch'")
-            .fetch_one(&mut *tx)
-            .await?
-            .try_get("epoch")?;
+        let epoch = take(&mut tx, "next_epoch").await?;
         sqlx::query(
             "INSERT INTO workers (name, epoch, grpc, http, backend, max_scenes, max_particles, beats, draining, \
              started_at) VALUES ($1, $2, $3, $4, $5, $6, $7, 0, 0, $8) \
@@ -230,11 +235,7 @@ impl Database {
         backend: Option<&str>,
     ) -> Result<Placement, DbError> {
         let mut tx = self.pool.begin().await?;
-        sqlx::query("UPDATE meta SET value = value + 1 WHERE name = 'next_reservation'").execute(&mut *tx).await?;
-        let reservation: i64 = sqlx::query("SELECT value - 1 AS id FROM meta WHERE name = 'next_reservation'")
-            .fetch_one(&mut *tx)
-            .await?
-            .try_get("id")?;
+        let reservation = take(&mut tx, "next_reservation").await?;
         sqlx::query(
             "DELETE FROM reservations WHERE NOT EXISTS (SELECT 1 FROM workers w WHERE w.name = reservations.worker \
              AND w.epoch = reservations.epoch AND w.beats < reservations.until_beats)",
@@ -296,11 +297,9 @@ impl Database {
     /// Takes the next scene id (ids are never reused, over the whole cluster).
     pub async fn take_scene_id(&self) -> Result<u64, DbError> {
         let mut tx = self.pool.begin().await?;
-        sqlx::query("UPDATE meta SET value = value + 1 WHERE name = 'next_scene_id'").execute(&mut *tx).await?;
-        let row =
-            sqlx::query("SELECT value - 1 AS id FROM meta WHERE name = 'next_scene_id'").fetch_one(&mut *tx).await?;
+        let id = take(&mut tx, "next_scene_id").await?;
         tx.commit().await?;
-        Ok(row.try_get::<i64, _>("id")? as u64)
+        Ok(id as u64)
     }
 
     /// The scenes `lease` holds, by id.
