@@ -131,7 +131,8 @@ pub enum Op {
 }
 
 impl Op {
-    fn run(self, s: &mut dyn Stages, dt: Real) {
+    /// Runs the operation.
+    pub fn run(self, s: &mut dyn Stages, dt: Real) {
         match self {
             Op::Pass(name) => s.run_pass(name, dt),
             Op::Sum { attr, into, slot } => s.sum_into(attr, into, slot),

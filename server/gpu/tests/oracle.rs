@@ -158,6 +158,10 @@ const VARIANTS: &[&[&str]] = &[
     ],
     // DFSPH: the factor and each solve's warm start, kick and error.
     &["particle_spacing=0.05", "solver.method=\"dfsph\""],
+    // DFSPH by conjugate gradients: the held particles, each solve's warm start,
+    // start, adjusted start, residual, step and clamp, the product and direction,
+    // and the mirrored walls in the factor and the kicks.
+    &["particle_spacing=0.05", "solver.method=\"dfsph\"", "solver.dfsph.solver=\"cg\""],
     // A rippled slope with friction across the tank under the column.
     &["particle_spacing=0.05", TERRAIN],
     // With heat: a hot corner of the column, a source, a flux through the left

@@ -117,6 +117,33 @@ fn gravity_changed_on_a_gpu_scene_takes_effect() {
     assert!(fastest < 0.05, "without gravity the column stays put; fastest particle {fastest} m/s");
 }
 
+/// DFSPH's conjugate-gradient solves in the closed Poiseuille channel (no particle
+/// held: the residual's mean removed, half the warm start, no clamp, none of which
+/// the oracle's dam break reaches): the GPU's velocities follow the CPU's.
+#[test]
+fn dfsph_cg_channel_agrees_with_the_cpu() {
+    let Some(gpu) = common::gpu("dfsph_cg_channel_agrees_with_the_cpu") else { return };
+    let o = ["particle_spacing=0.1", "solver.method=\"dfsph\"", "solver.dfsph.solver=\"cg\""];
+    let mut g = on_gpu(gpu, "poiseuille", &o);
+    let mut c = Simulation::new_cpu(from_preset("poiseuille", &o.map(String::from)).unwrap()).unwrap();
+    for _ in 0..60 {
+        g.step().unwrap();
+        c.step().unwrap();
+    }
+    let speeds = |sim: &Simulation| -> Vec<f32> {
+        let p = sim.read(&["velocity"]);
+        p.channel("velocity").and_then(|v| v.as_vectors()).unwrap().iter().map(|v| v[0]).collect()
+    };
+    let (vg, vc) = (speeds(&g), speeds(&c));
+    let top = vc.iter().fold(0.0f32, |m, v| m.max(v.abs()));
+    let off = vg.iter().zip(&vc).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
+    eprintln!("{} particles, 60 steps: fastest {top} m/s, largest GPU-CPU difference {off} m/s", c.particle_count());
+    assert!(top > 0.0 && off <= 0.01 * top, "GPU and CPU differ by {off} m/s at speeds up to {top} m/s");
+    for name in ["dfsph.divergence", "dfsph.density"] {
+        assert!(g.stats().solves[name].last_residual <= 1e-3, "{name}: {:?}", g.stats().solves);
+    }
+}
+
 #[test]
 fn dfsph_dam_break_agrees_with_the_cpu_and_restores_bit_for_bit() {
     let Some(gpu) = common::gpu("dfsph_dam_break_agrees_with_the_cpu_and_restores_bit_for_bit") else { return };

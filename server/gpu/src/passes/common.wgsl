@@ -184,3 +184,12 @@ fn material_of(p: vec4<f32>) -> u32 {
 fn non_finite(x: f32) -> bool {
     return (bitcast<u32>(x) & 0x7f800000u) == 0x7f800000u;
 }
+
+// a / b, or 0 where b is not positive (a conjugate-gradient solve with nothing
+// left to solve; floe-engine `viscosity::implicit::ratio`, `schemes::dfsph::cg::ratio`).
+fn ratio(a: f32, b: f32) -> f32 {
+    if (b > 0.0) {
+        return a / b;
+    }
+    return 0.0;
+}

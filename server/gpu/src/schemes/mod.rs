@@ -19,6 +19,22 @@ pub static PASSES: &[&GpuPass] = &[
     &dfsph::DENSITY_WARM,
     &dfsph::DENSITY_KICK,
     &dfsph::DENSITY_ERROR,
+    &dfsph::cg::HELD,
+    &dfsph::cg::DIVERGENCE_WARM,
+    &dfsph::cg::DIVERGENCE_START,
+    &dfsph::cg::DIVERGENCE_ADJUST,
+    &dfsph::cg::DIVERGENCE_RESIDUAL,
+    &dfsph::cg::DIVERGENCE_UPDATE,
+    &dfsph::cg::DIVERGENCE_CLAMP,
+    &dfsph::cg::DENSITY_WARM,
+    &dfsph::cg::DENSITY_START,
+    &dfsph::cg::DENSITY_ADJUST,
+    &dfsph::cg::DENSITY_RESIDUAL,
+    &dfsph::cg::DENSITY_UPDATE,
+    &dfsph::cg::DENSITY_CLAMP,
+    &dfsph::cg::GRADIENT,
+    &dfsph::cg::PRODUCT,
+    &dfsph::cg::DIRECTION,
 ];
 
 /// Every scheme's uniform.

@@ -64,7 +64,7 @@ pub static PRODUCT: GpuPass = GpuPass {
 /// The step along the direction.
 pub static UPDATE: GpuPass = GpuPass {
     name: "viscosity.implicit_update",
-    source: particle_kernel!("implicit/shared.wgsl", "implicit/update.wgsl"),
+    source: particle_kernel!("implicit/update.wgsl"),
     entry: "main",
     bindings: &[
         (U, "params"),
@@ -84,7 +84,7 @@ pub static UPDATE: GpuPass = GpuPass {
 /// The next direction.
 pub static DIRECTION: GpuPass = GpuPass {
     name: "viscosity.implicit_direction",
-    source: particle_kernel!("implicit/shared.wgsl", "implicit/direction.wgsl"),
+    source: particle_kernel!("implicit/direction.wgsl"),
     entry: "main",
     bindings: &[(U, "params"), (R, "visc_scalars"), (R, "visc_r"), (R, "visc_diag"), (W, "visc_p")],
     space: PARTICLES,

@@ -14,7 +14,8 @@
 //! that of the system the kicks apply.
 
 use super::{DfsphConsts, FULL_NEIGHBOURHOOD, WARM_START};
-use crate::cpu::neighbors::{CHUNK, PairValue};
+use crate::attrs::Attrs;
+use crate::cpu::neighbors::{CHUNK, ChunkNeighbors, PairValue};
 use crate::cpu::{CpuCx, CpuPass};
 use crate::kernel::{GradientPacking, Kernel};
 use crate::math::{Real, Vec3};
@@ -23,7 +24,7 @@ use crate::periodic::Separation;
 use rayon::prelude::*;
 
 /// What the factor pass keeps of each pair for the solves' passes.
-trait Kept: Copy + Sync {
+pub(super) trait Kept: Copy + Sync {
     /// The value kept per pair.
     type Value: PairValue + Send + Sync;
     /// The value for the separation `x_ij`.
@@ -39,7 +40,7 @@ trait Kept: Copy + Sync {
 
 /// Whole gradients (12 bytes a pair).
 #[derive(Clone, Copy)]
-struct Whole<'a>(&'a Kernel);
+pub(super) struct Whole<'a>(pub(super) &'a Kernel);
 
 impl Kept for Whole<'_> {
     type Value = Vec3;
@@ -69,7 +70,7 @@ impl Kept for Whole<'_> {
 
 /// Packed `dW/dr / r` (2 bytes a pair).
 #[derive(Clone, Copy)]
-struct Packed<'a>(&'a Kernel, GradientPacking);
+pub(super) struct Packed<'a>(pub(super) &'a Kernel, pub(super) GradientPacking);
 
 impl Kept for Packed<'_> {
     type Value = u16;
@@ -94,19 +95,96 @@ impl Kept for Packed<'_> {
 /// Runs `$body` with `$kept` the model's [`Kept`] and `$sep` its separation.
 macro_rules! with_kept {
     ($model:expr, |$kept:ident, $sep:ident| $body:expr) => {{
-        let model: &Model = $model;
-        let compact = model.consts::<DfsphConsts>().settings.compact_gradients;
+        let model: &crate::model::Model = $model;
+        let compact = model.consts::<crate::schemes::dfsph::DfsphConsts>().settings.compact_gradients;
         match model.kernel.gradient_packing().filter(|_| compact) {
             Some(p) => {
-                let $kept = Packed(&model.kernel, p);
+                let $kept = crate::schemes::dfsph::cpu::Packed(&model.kernel, p);
                 crate::with_separation!(&model.periodic, |$sep| $body)
             }
             None => {
-                let $kept = Whole(&model.kernel);
+                let $kept = crate::schemes::dfsph::cpu::Whole(&model.kernel);
                 crate::with_separation!(&model.periodic, |$sep| $body)
             }
         }
     }};
+}
+pub(super) use with_kept;
+
+/// Neighbours of slot `n` of a chunk (fluid and wall, the particle itself not
+/// counted), against [`FULL_NEIGHBOURHOOD`].
+#[inline(always)]
+pub(super) fn neighbours(nb: &ChunkNeighbors, n: usize) -> u32 {
+    (nb.fluid(n).len() - 1 + nb.walls(n).len()) as u32
+}
+
+/// What the solves' pair sums read: the positions, materials and walls, the kept
+/// gradients and the walls' factor `c` (1 for Akinci's walls, 2 mirrored).
+pub(super) struct Sums<'a, K, S> {
+    kept: K,
+    sep: S,
+    model: &'a Model,
+    pos: &'a [Vec3],
+    mat: Option<&'a [u32]>,
+    c: Real,
+}
+
+impl<'a, K: Kept, S: Separation> Sums<'a, K, S> {
+    pub(super) fn new(model: &'a Model, attrs: &'a Attrs, kept: K, sep: S) -> Self {
+        Self {
+            kept,
+            sep,
+            model,
+            pos: attrs.get(attrs.handle::<Vec3>("x")),
+            mat: attrs.find::<u32>("material").map(|m| attrs.get(m)),
+            c: model.consts::<DfsphConsts>().wall_factor,
+        }
+    }
+
+    /// Particle `i`'s material.
+    #[inline(always)]
+    pub(super) fn material(&self, i: usize) -> &'a crate::materials::Material {
+        self.model.materials.get(self.mat.map_or(0, |m| m[i] as usize))
+    }
+
+    /// `(G P)_i = sum_j (m_i P_i + m_j^2 P_j / m_i) grad W_ij + c P_i sum_b psi_b grad W_ib`
+    /// for particle `i` in slot `n` of its chunk `nb`.
+    #[inline(always)]
+    pub(super) fn gradient(&self, i: usize, n: usize, nb: &ChunkNeighbors, p: &[Real]) -> Vec3 {
+        let (walls, xi) = (&self.model.wall_particles, self.pos[i]);
+        let m_i = self.material(i).mass;
+        let own = m_i * p[i];
+        let mut a = Vec3::ZERO;
+        for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
+            let j = j as usize;
+            let m_j = self.material(j).mass;
+            a += self.kept.scaled(v, || self.sep.between(xi, self.pos[j]), own + m_j * m_j / m_i * p[j]);
+        }
+        let psi = &walls.psi[self.mat.map_or(0, |m| m[i] as usize)];
+        let mut wall = Vec3::ZERO;
+        for (&b, &v) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
+            wall += self.kept.scaled(v, || self.sep.between(xi, walls.positions[b as usize]), psi[b as usize]);
+        }
+        a + wall * (self.c * p[i])
+    }
+
+    /// `(D w)_i = m_i sum_j (w_i - w_j) . grad W_ij + c sum_b psi_b w_i . grad W_ib`:
+    /// the compression rate (kg/(m^3 s)) of the velocities `w`.
+    #[inline(always)]
+    pub(super) fn divergence(&self, i: usize, n: usize, nb: &ChunkNeighbors, w: &[Vec3]) -> Real {
+        let (walls, xi, wi) = (&self.model.wall_particles, self.pos[i], w[i]);
+        let mut fluid = 0.0;
+        for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
+            let j = j as usize;
+            fluid += self.kept.dot(v, || self.sep.between(xi, self.pos[j]), wi - w[j]);
+        }
+        let psi = &walls.psi[self.mat.map_or(0, |m| m[i] as usize)];
+        let mut wall = 0.0;
+        for (&b, &v) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
+            wall += psi[b as usize] * self.kept.dot(v, || self.sep.between(xi, walls.positions[b as usize]), wi);
+        }
+        self.material(i).mass * fluid + self.c * wall
+    }
 }
 
 /// `alpha = 1 / (s . t + m_i^2 sum_j (m_i / m_j) |grad W_ij|^2)`, 0 for a particle
@@ -129,6 +207,7 @@ fn factor<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
     let pos = attrs.get(attrs.handle::<Vec3>("x"));
     let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
     let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
+    let wall_factor = model.consts::<DfsphConsts>().wall_factor;
     alpha.par_chunks_mut(CHUNK).zip(cx.nb.chunks.par_iter_mut()).enumerate().for_each(|(c, (out, nb))| {
         nb.keep(
             |n, j| kept.keep(sep.between(pos[c * CHUNK + n], pos[j])),
@@ -148,7 +227,7 @@ fn factor<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
             for (&b, &v) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
                 wall += kept.gradient(v, || sep.between(xi, walls.positions[b as usize])) * psi[b as usize];
             }
-            let d = (fluid + wall).length_squared() + m_i * m_i * sq;
+            let d = (fluid + wall * wall_factor).length_squared() + m_i * m_i * sq;
             *a = if d > 0.0 { 1.0 / d } else { 0.0 };
         }
     });
@@ -196,36 +275,18 @@ impl CpuPass for Kick {
 }
 
 fn kick<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, pass: &Kick, kept: K, sep: S) {
-    let model = cx.model;
-    let (walls, materials) = (&model.wall_particles, &model.materials);
     let dt = cx.dt;
     let (vh, kh) = (cx.attrs.handle::<Vec3>("v"), cx.attrs.handle::<Real>(pass.kappa));
     let (mut vel, mut kappa) = (cx.attrs.take(vh), cx.attrs.take(kh));
     let attrs = &*cx.attrs;
     let dp = attrs.get(attrs.handle::<Real>(pass.increment));
-    let pos = attrs.get(attrs.handle::<Vec3>("x"));
-    let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
-    let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
+    let sums = Sums::new(cx.model, attrs, kept, sep);
     let outputs = vel.par_chunks_mut(CHUNK).zip(kappa.par_chunks_mut(CHUNK));
     outputs.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((out, kappa), nb))| {
         for (n, v) in out.iter_mut().enumerate() {
             let i = c * CHUNK + n;
             kappa[n] += dp[i];
-            let mi = material(i);
-            let m_i = materials.get(mi).mass;
-            let (own, xi) = (m_i * dp[i], pos[i]);
-            let mut a = Vec3::ZERO;
-            for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
-                let j = j as usize;
-                let m_j = materials.get(material(j)).mass;
-                a += kept.scaled(v, || sep.between(xi, pos[j]), own + m_j * m_j / m_i * dp[j]);
-            }
-            let psi = &walls.psi[mi];
-            let mut wall = Vec3::ZERO;
-            for (&b, &v) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
-                wall += kept.scaled(v, || sep.between(xi, walls.positions[b as usize]), psi[b as usize]);
-            }
-            *v -= (a + wall * dp[i]) * dt;
+            *v -= sums.gradient(i, n, nb, dp) * dt;
         }
     });
     cx.attrs.put(vh, vel);
@@ -251,40 +312,26 @@ impl CpuPass for Error {
 }
 
 fn error<const DENSITY: bool, K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
-    let model = cx.model;
-    let (walls, materials) = (&model.wall_particles, &model.materials);
     let dt = cx.dt;
     let (names, scale) =
         if DENSITY { (["dkappa", "density_error"], dt * dt) } else { (["dkappa_v", "divergence_error"], dt) };
     let handles = names.map(|n| cx.attrs.handle::<Real>(n));
     let [mut inc, mut err] = handles.map(|h| cx.attrs.take(h));
     let attrs = &*cx.attrs;
-    let (pos, vel) = (attrs.get(attrs.handle::<Vec3>("x")), attrs.get(attrs.handle::<Vec3>("v")));
+    let vel = attrs.get(attrs.handle::<Vec3>("v"));
     let (rho, alpha) = (attrs.get(attrs.handle::<Real>("rho")), attrs.get(attrs.handle::<Real>("alpha")));
-    let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
-    let material = |i: usize| mat.map_or(0, |m| m[i] as usize);
+    let sums = Sums::new(cx.model, attrs, kept, sep);
     let outputs = inc.par_chunks_mut(CHUNK).zip(err.par_chunks_mut(CHUNK));
     outputs.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((inc, err), nb))| {
         for n in 0..inc.len() {
             let i = c * CHUNK + n;
-            let (xi, vi, mi) = (pos[i], vel[i], material(i));
-            let m = materials.get(mi);
-            let mut fluid = 0.0;
-            for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
-                let j = j as usize;
-                fluid += kept.dot(v, || sep.between(xi, pos[j]), vi - vel[j]);
-            }
-            let psi = &walls.psi[mi];
-            let mut wall = 0.0;
-            for (&b, &v) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
-                wall += psi[b as usize] * kept.dot(v, || sep.between(xi, walls.positions[b as usize]), vi);
-            }
-            let rate = m.mass * fluid + wall;
+            let rest_density = sums.material(i).rest_density;
+            let rate = sums.divergence(i, n, nb, vel);
             // Only compression is corrected: the error is clamped at zero, so each
             // iteration only adds to the stiffness (SPlisHSPlasH's update).
             let compression = if DENSITY {
-                rho[i] + dt * rate - m.rest_density
-            } else if (nb.fluid(n).len() - 1 + nb.walls(n).len()) as u32 >= FULL_NEIGHBOURHOOD {
+                rho[i] + dt * rate - rest_density
+            } else if neighbours(nb, n) >= FULL_NEIGHBOURHOOD {
                 rate
             } else {
                 0.0
@@ -292,7 +339,7 @@ fn error<const DENSITY: bool, K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: 
             let e = compression.max(0.0);
             inc[n] = e * alpha[i] / scale;
             let residual = if DENSITY { e } else { dt * e };
-            err[n] = residual / m.rest_density;
+            err[n] = residual / rest_density;
         }
     });
     for (h, col) in handles.into_iter().zip([inc, err]) {

@@ -47,6 +47,8 @@
 //! stiffness is kept as `p / rho^2` of the step it was found in; dt changes
 //! slowly under the CFL condition, so it is not rescaled.
 
+pub mod cg;
+pub mod cg_cpu;
 pub mod cpu;
 pub mod spec;
 
@@ -60,7 +62,7 @@ use crate::plan::{PassSpec, Stage};
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
 use crate::scheme::{Iterate, Op, ReduceOp, Reduction, SchemeDef, Stages, StepReport, velocity_solves};
-use spec::DfsphSettings;
+use spec::{DfsphSettings, DfsphSolver};
 
 /// The scheme's definition.
 pub static SCHEME: SchemeDef = SchemeDef {
@@ -70,7 +72,7 @@ pub static SCHEME: SchemeDef = SchemeDef {
     settings: &[SectionDef::defaulted::<DfsphSettings>(SETTINGS)],
     pressure_terms: false,
     validate,
-    retune: |scene, model| model.set_consts(DfsphConsts { settings: settings(scene) }),
+    retune: |scene, model| model.set_consts(DfsphConsts::of(settings(scene))),
     cpu: &[
         ("dfsph.factor", &cpu::Factor),
         ("dfsph.divergence_warm", &cpu::Warm { kappa: "kappa_v", increment: "dkappa_v" }),
@@ -79,6 +81,22 @@ pub static SCHEME: SchemeDef = SchemeDef {
         ("dfsph.density_warm", &cpu::Warm { kappa: "kappa", increment: "dkappa" }),
         ("dfsph.density_kick", &cpu::Kick { kappa: "kappa", increment: "dkappa" }),
         ("dfsph.density_error", &cpu::Error { density: true }),
+        ("dfsph.cg_held", &cg_cpu::Held),
+        ("dfsph.cg_divergence_warm", &cg_cpu::Warm { kappa: "kappa_v", increment: "dkappa_v" }),
+        ("dfsph.cg_divergence_start", &cg_cpu::Start { density: false }),
+        ("dfsph.cg_divergence_adjust", &cg_cpu::Adjust { density: false }),
+        ("dfsph.cg_divergence_residual", &cg_cpu::Residual { residual: "divergence_error" }),
+        ("dfsph.cg_divergence_update", &cg_cpu::Update { kappa: "kappa_v" }),
+        ("dfsph.cg_divergence_clamp", &cg_cpu::Clamp { kappa: "kappa_v", increment: "dkappa_v" }),
+        ("dfsph.cg_density_warm", &cg_cpu::Warm { kappa: "kappa", increment: "dkappa" }),
+        ("dfsph.cg_density_start", &cg_cpu::Start { density: true }),
+        ("dfsph.cg_density_adjust", &cg_cpu::Adjust { density: true }),
+        ("dfsph.cg_density_residual", &cg_cpu::Residual { residual: "density_error" }),
+        ("dfsph.cg_density_update", &cg_cpu::Update { kappa: "kappa" }),
+        ("dfsph.cg_density_clamp", &cg_cpu::Clamp { kappa: "kappa", increment: "dkappa" }),
+        ("dfsph.cg_gradient", &cg_cpu::Gradient),
+        ("dfsph.cg_product", &cg_cpu::Product),
+        ("dfsph.cg_direction", &cg_cpu::Direction),
     ],
     step,
     signal_speed: |_| 0.0,
@@ -97,8 +115,22 @@ pub const FULL_NEIGHBOURHOOD: u32 = 20;
 /// The solves' settings.
 #[derive(Debug, Clone, Copy)]
 pub struct DfsphConsts {
-    /// Tolerances and the iteration limit.
+    /// Tolerances, the iteration limit and the solver.
     pub settings: DfsphSettings,
+    /// The walls' factor `c` in the pressure force and the density rate: 1 for
+    /// Akinci's one-sided walls (the Jacobi), 2 for mirrored walls (the CG, [`cg`]).
+    pub wall_factor: Real,
+}
+
+impl DfsphConsts {
+    /// The constants of `settings`.
+    pub fn of(settings: DfsphSettings) -> Self {
+        let wall_factor = match settings.solver {
+            DfsphSolver::Jacobi => 1.0,
+            DfsphSolver::Cg => 2.0,
+        };
+        Self { settings, wall_factor }
+    }
 }
 
 const fn attr(name: &'static str, unit: &'static str, role: Role, about: &'static str) -> AttrSpec {
@@ -185,20 +217,36 @@ fn pressures(_: &Model, columns: &[Column]) -> Vec<f32> {
 }
 
 fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
-    b.set_consts(DfsphConsts { settings: settings(scene) });
+    let consts = DfsphConsts::of(settings(scene));
+    b.set_consts(consts);
     for spec in [&ALPHA, &KAPPA, &KAPPA_V, &DKAPPA, &DKAPPA_V, &DENSITY_ERROR, &DIVERGENCE_ERROR] {
         b.zeros(spec);
     }
-    for pass in [
-        &FACTOR,
-        &DIVERGENCE_WARM,
-        &DIVERGENCE_KICK,
-        &DIVERGENCE_ERROR_PASS,
-        &DENSITY_WARM,
-        &DENSITY_KICK,
-        &DENSITY_ERROR_PASS,
-    ] {
+    for pass in [&FACTOR, &DIVERGENCE_KICK, &DENSITY_KICK] {
         b.pass(pass);
+    }
+    match consts.settings.solver {
+        DfsphSolver::Jacobi => {
+            for pass in [&DIVERGENCE_WARM, &DIVERGENCE_ERROR_PASS, &DENSITY_WARM, &DENSITY_ERROR_PASS] {
+                b.pass(pass);
+            }
+        }
+        DfsphSolver::Cg => {
+            let masses: Vec<Real> = b.materials().iter().map(|m| m.mass).collect();
+            if masses.iter().any(|&m| m != masses[0]) {
+                return Err(BuildError::Setting(format!(
+                    "solver.dfsph.solver: \"cg\" needs particles of one mass (its system is symmetric only then); \
+                     this scene's materials have masses {masses:?} kg: use \"jacobi\""
+                )));
+            }
+            b.space(cg::SPACE, cg::SLOTS);
+            for spec in cg::ATTRS {
+                b.zeros(spec);
+            }
+            for pass in cg::PASSES {
+                b.pass(pass);
+            }
+        }
     }
     b.channel(PRESSURE);
     Ok(())
@@ -229,6 +277,9 @@ fn validate(scene: &Scene, _: bool, c: &mut crate::scene::validate::Checker) {
 
 /// The divergence-free solve with the scene's settings.
 pub fn divergence_solve(s: &DfsphSettings) -> Iterate {
+    if s.solver == DfsphSolver::Cg {
+        return cg::divergence_solve(s);
+    }
     Iterate {
         name: "dfsph.divergence",
         start: &[
@@ -249,6 +300,9 @@ pub fn divergence_solve(s: &DfsphSettings) -> Iterate {
 
 /// The constant-density solve with the scene's settings.
 pub fn density_solve(s: &DfsphSettings) -> Iterate {
+    if s.solver == DfsphSolver::Cg {
+        return cg::density_solve(s);
+    }
     Iterate {
         name: "dfsph.density",
         start: &[Op::Pass("dfsph.density_warm"), Op::Pass("dfsph.density_kick"), Op::Pass("dfsph.density_error")],
@@ -273,16 +327,27 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     let m = clock.evaluate(s, &EVALUATE)?;
     let dt = clock.dt(s.model(), &m)?;
     let divergence = divergence_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?;
+    finish(&settings, cg::DIVERGENCE_FINISH, s, dt);
     let keep = clock.keep(s.model(), dt);
     s.kick(dt, keep);
     let mut solves = vec![divergence];
     solves.extend(velocity_solves(clock, s, dt)?);
     s.run(Stage::Kick, dt);
     solves.push(density_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?);
+    finish(&settings, cg::DENSITY_FINISH, s, dt);
     s.drift(dt);
     s.run(Stage::Drift, dt);
     solves.extend(crate::position_solve::run(clock, s, dt)?);
     s.run(Stage::PostStep, dt);
     s.end_step();
     Ok(clock.advance(dt, &m, n, solves))
+}
+
+/// What the CG runs after a solve (the clamp at a free surface); the Jacobi nothing.
+fn finish(settings: &DfsphSettings, ops: &[Op], s: &mut dyn Stages, dt: Real) {
+    if settings.solver == DfsphSolver::Cg {
+        for &op in ops {
+            op.run(s, dt);
+        }
+    }
 }

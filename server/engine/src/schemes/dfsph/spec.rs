@@ -26,6 +26,22 @@ pub struct DfsphSettings {
     /// Needs the cubic spline kernel. The GPU keeps none either way.
     #[serde(default)]
     pub compact_gradients: bool,
+    /// How both solves iterate: `"jacobi"` (B&K's, compression only) or `"cg"`
+    /// (preconditioned conjugate gradients, signed, with the walls' pressure
+    /// mirrored: `schemes::dfsph::cg`). One fluid only.
+    #[serde(default)]
+    pub solver: DfsphSolver,
+}
+
+/// The iteration of DFSPH's two solves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum DfsphSolver {
+    /// B&K's relaxed Jacobi iteration on compression only, Akinci's walls.
+    #[default]
+    Jacobi,
+    /// Preconditioned conjugate gradients on the signed system, mirrored walls.
+    Cg,
 }
 
 fn default_density_tolerance() -> f32 {
@@ -45,6 +61,7 @@ impl Default for DfsphSettings {
             divergence_tolerance: default_divergence_tolerance(),
             max_iterations: default_max_iterations(),
             compact_gradients: false,
+            solver: DfsphSolver::Jacobi,
         }
     }
 }

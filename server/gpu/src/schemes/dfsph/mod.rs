@@ -1,6 +1,7 @@
 //! The DFSPH scheme on the GPU: the factor, each solve's warm start, kick and
-//! error, and the uniform `dfsph` (the warm start fraction and the neighbourhood a
-//! particle needs in the divergence-free solve). The kicks and errors read the
+//! error (the conjugate-gradient solves' passes: [`cg`]), and the uniform `dfsph`
+//! (the warm start fraction, the neighbourhood a particle needs in the
+//! divergence-free solve and the walls' factor). The kicks and errors read the
 //! step's dt from the core's `dt` uniform, which the backend writes before a pass
 //! that binds it runs with a new dt.
 
@@ -9,14 +10,17 @@ use crate::passes::{particle_kernel, walk_kernel};
 use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
-use floe_engine::schemes::dfsph::{FULL_NEIGHBOURHOOD, WARM_START};
+use floe_engine::schemes::dfsph::cg::SURFACE_DENSITY;
+use floe_engine::schemes::dfsph::{DfsphConsts, FULL_NEIGHBOURHOOD, WARM_START};
+
+pub mod cg;
 
 /// `alpha` from the step's neighbours.
 pub static FACTOR: GpuPass = GpuPass {
     name: "dfsph.factor",
     source: walk_kernel!("factor.wgsl"),
     entry: "main",
-    bindings: &[(U, "params"), (R, "x"), (R, "starts"), (R, "walls"), (W, "alpha")],
+    bindings: &[(U, "params"), (U, "dfsph"), (R, "x"), (R, "starts"), (R, "walls"), (W, "alpha")],
     space: PARTICLES,
     when: always,
 };
@@ -30,7 +34,14 @@ const fn kick(name: &'static str, bindings: &'static [(Access, &'static str)]) -
 }
 
 const fn error(name: &'static str, entry: &'static str, bindings: &'static [(Access, &'static str)]) -> GpuPass {
-    GpuPass { name, source: particle_kernel!("error.wgsl"), entry, bindings, space: PARTICLES, when: always }
+    GpuPass {
+        name,
+        source: particle_kernel!("rate.wgsl", "error.wgsl"),
+        entry,
+        bindings,
+        space: PARTICLES,
+        when: always,
+    }
 }
 
 /// The divergence-free solve's warm start.
@@ -39,7 +50,17 @@ pub static DIVERGENCE_WARM: GpuPass =
 /// The divergence-free solve's kick.
 pub static DIVERGENCE_KICK: GpuPass = kick(
     "dfsph.divergence_kick",
-    &[(U, "params"), (U, "dt"), (R, "x"), (R, "starts"), (R, "walls"), (R, "dkappa_v"), (W, "v"), (W, "kappa_v")],
+    &[
+        (U, "params"),
+        (U, "dt"),
+        (U, "dfsph"),
+        (R, "x"),
+        (R, "starts"),
+        (R, "walls"),
+        (R, "dkappa_v"),
+        (W, "v"),
+        (W, "kappa_v"),
+    ],
 );
 /// The divergence-free solve's error.
 pub static DIVERGENCE_ERROR: GpuPass = error(
@@ -65,7 +86,17 @@ pub static DENSITY_WARM: GpuPass =
 /// The constant-density solve's kick.
 pub static DENSITY_KICK: GpuPass = kick(
     "dfsph.density_kick",
-    &[(U, "params"), (U, "dt"), (R, "x"), (R, "starts"), (R, "walls"), (R, "dkappa"), (W, "v"), (W, "kappa")],
+    &[
+        (U, "params"),
+        (U, "dt"),
+        (U, "dfsph"),
+        (R, "x"),
+        (R, "starts"),
+        (R, "walls"),
+        (R, "dkappa"),
+        (W, "v"),
+        (W, "kappa"),
+    ],
 );
 /// The constant-density solve's error.
 pub static DENSITY_ERROR: GpuPass = error(
@@ -86,9 +117,12 @@ pub static DENSITY_ERROR: GpuPass = error(
     ],
 );
 
-/// The uniform's bytes (`dfsph` in warm.wgsl and error.wgsl), when the scene is
-/// stepped by DFSPH.
+/// The uniform's bytes (`dfsph`: the warm start fraction, the neighbours a particle
+/// needs, the walls' factor, the density below which the CG holds a particle), when
+/// the scene is stepped by DFSPH.
 pub fn uniform(model: &Model) -> Option<Vec<u8>> {
-    (model.scheme.id == "dfsph")
-        .then(|| bytemuck::bytes_of(&[WARM_START, FULL_NEIGHBOURHOOD as f32, 0.0, 0.0]).to_vec())
+    (model.scheme.id == "dfsph").then(|| {
+        let c = model.consts::<DfsphConsts>().wall_factor;
+        bytemuck::bytes_of(&[WARM_START, FULL_NEIGHBOURHOOD as f32, c, SURFACE_DENSITY]).to_vec()
+    })
 }

@@ -1,0 +1,331 @@
+//! DFSPH's two solves by preconditioned conjugate gradients
+//! (`solver.dfsph.solver = "cg"`), in place of B&K's Jacobi iteration, which
+//! diverges on closed and periodic flows (docs/validation/schemes/NOTES.md, "Why
+//! DFSPH fails on closed and periodic flows") and cannot hold mirrored walls.
+//!
+//! With the stiffness `P = p / rho^2` and the kick `v -= dt G P`, where
+//! `(G P)_i = sum_j (m_i P_i + m_j^2 P_j / m_i) grad W_ij + c P_i sum_b psi_b grad W_ib`
+//! and the compression rate
+//! `(D v)_i = m_i sum_j (v_i - v_j) . grad W_ij + c sum_b psi_b v_i . grad W_ib`,
+//! a kick by `P` lowers the predicted compression by `dt^2 D G P`, so both solves
+//! are `A P = b` with `A = D G`: for the constant-density solve
+//! `b = (rho + dt D v - rho0) / dt^2`, for the divergence-free solve `b = D v / dt`.
+//! For particles of one mass `D = G^T / m`, so `A` is symmetric positive
+//! semi-definite and conjugate gradients apply (Saad 2003, "Iterative methods for
+//! sparse linear systems", algorithm 9.1, with the Jacobi preconditioner
+//! `1 / A_ii`, which is B&K's factor `alpha`). A scene of several masses is refused.
+//!
+//! The walls are mirrored (`c = 2`): a wall particle takes the pressure of the fluid
+//! particle it faces, and the density rate counts it as the mirror image moving at
+//! `-v_i`, which keeps `A` symmetric. Akinci's one-sided term (`c = 1`, the Jacobi's)
+//! needs about twice the hydrostatic pressure beside a wall; mirrored, wall and
+//! interior agree (docs/validation/schemes/CG.md, where every choice below was
+//! measured on a prototype).
+//!
+//! What the solves do beyond plain CG, and why:
+//! - particles with fewer than [`super::FULL_NEIGHBOURHOOD`] neighbours are held at
+//!   `P = 0` (their rows and columns removed): a free surface;
+//! - with no particle held (a closed or periodic domain) the starting residual's mean
+//!   is removed: a uniform stiffness moves nothing there (the near-null mode), and
+//!   the mean compression that the particles' disorder adds to a summed density
+//!   cannot be solved for;
+//! - with a free surface, the density solve starts from `max(rho, rho0)` (as IISPH
+//!   and SPlisHSPlasH do: a deficient density near the surface would ask for
+//!   tension), and after each solve its stiffness is clamped at zero, applied as a
+//!   kick by the difference (a negative `P` beside a one-sided wall pulls the fluid
+//!   into it);
+//! - each solve starts from its last stiffness: all of it where a free surface
+//!   exists, [`super::WARM_START`] (one half) in a closed domain. At a free surface
+//!   a solve stopped at its tolerance does not pin the pressure (`A` is nearly
+//!   singular on smooth modes) and the carried stiffness is what holds it (the
+//!   resting column at 0.025 m: pressure L2 0.78 with one half). In a closed domain
+//!   the near-null modes, which CG does not correct, would build up from step to
+//!   step with all of it (Poiseuille halts; 0.0068 with one half).
+//!
+//! The residual checked is the mean of `|r| dt^2 / rho0` (the signed counterpart of
+//! the Jacobi's mean compression), against the same tolerances.
+//!
+//! Passes (stage `Solve`; the sums between them stay on the device, in
+//! `dfsph_scalars`), for the density solve (the divergence solve's have
+//! `divergence` in their names):
+//! 0. once a step, before the divergence-free solve: `dfsph.cg_held` (`HELD` summed);
+//! 1. `dfsph.cg_density_warm` and the Jacobi's kick (the warm start),
+//!    `dfsph.cg_density_start`: `r = b` (`RSUM` summed);
+//! 2. `dfsph.cg_density_adjust`: the mean removed or the surface's density clamped,
+//!    `p = alpha r`;
+//! 3. `dfsph.cg_density_residual`: per particle `r alpha r` (summed into `RZ`) and
+//!    the residual;
+//! 4. per iteration: `dfsph.cg_gradient` (`G p`), `dfsph.cg_product` (`A p = D G p`,
+//!    `p . Ap` summed into `PAP`), `dfsph.cg_density_update` (`a = RZ / PAP`,
+//!    `P += a p`, `v -= dt a G p`, `r -= a A p`), `dfsph.cg_density_residual`
+//!    (summed into `RZ_NEW`), `dfsph.cg_direction` (`p = alpha r + (RZ_NEW / RZ) p`,
+//!    then `RZ = RZ_NEW`);
+//! 5. after the solve: `dfsph.cg_density_clamp` and the Jacobi's kick.
+
+use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
+use crate::plan::PassSpec;
+use crate::scheme::{Iterate, Op, ReduceOp, Reduction};
+
+use super::spec::DfsphSettings;
+
+/// A particle whose summed density is below this fraction of its rest density is
+/// held at `P = 0` (a free surface), as one with too few neighbours is. The
+/// neighbour count alone misses the top layer of a resting column (up to 26
+/// neighbours once slightly compressed), whose summed density is about 0.965 of
+/// rest; the layer below sums to 0.995 or more. Counted alone, the whole column was
+/// taken for a closed domain at some steps (pressure L2 0.098 to 0.17 depending on
+/// this choice: docs/validation/schemes/CG.md).
+pub const SURFACE_DENSITY: f32 = 0.97;
+
+/// The space of the solves' scalars.
+pub const SPACE: &str = "dfsph.cg";
+/// Slots of `dfsph_scalars`: `r.z` (the current one), `p.Ap`, the new `r.z`, the
+/// number of held particles, the sum of the starting residual.
+pub const RZ: u32 = 0;
+/// See [`RZ`].
+pub const PAP: u32 = 1;
+/// See [`RZ`].
+pub const RZ_NEW: u32 = 2;
+/// See [`RZ`].
+pub const HELD: u32 = 3;
+/// See [`RZ`].
+pub const RSUM: u32 = 4;
+/// Slots in all.
+pub const SLOTS: usize = 5;
+
+const fn attr(name: &'static str, elem: Elem, unit: &'static str, about: &'static str) -> AttrSpec {
+    AttrSpec { name, elem, unit, role: Role::Derived, added_later: false, space: PARTICLES, module: "dfsph", about }
+}
+
+/// The residual `b - A P`.
+pub static R: AttrSpec = attr("dfsph_r", Elem::F32, "kg/(m^3 s^2)", "DFSPH CG: the residual.");
+/// The search direction.
+pub static P: AttrSpec = attr("dfsph_p", Elem::F32, "m^5/(kg s^2)", "DFSPH CG: the search direction.");
+/// `G p`, the acceleration a unit step along `p` gives.
+pub static GP: AttrSpec = attr("dfsph_gp", Elem::Vec3, "m/s^2", "DFSPH CG: the pressure acceleration of p.");
+/// `A p = D G p`.
+pub static AP: AttrSpec = attr("dfsph_ap", Elem::F32, "kg/(m^3 s^2)", "DFSPH CG: the matrix times p.");
+/// Each particle's term of the dot product summed next.
+pub static DOT: AttrSpec = attr("dfsph_dot", Elem::F32, "", "DFSPH CG: dot-product terms.");
+/// 1 for a particle held at `P = 0` (too few neighbours), else 0.
+pub static HELD_ATTR: AttrSpec = attr("dfsph_held", Elem::F32, "", "DFSPH CG: 1 where held at zero pressure.");
+/// The solves' scalars.
+pub static SCALARS: AttrSpec = AttrSpec {
+    name: "dfsph_scalars",
+    elem: Elem::F32,
+    unit: "",
+    role: Role::Derived,
+    added_later: false,
+    space: SPACE,
+    module: "dfsph",
+    about: "DFSPH CG: r.z, p.Ap, the new r.z, held particles and the starting residual's sum.",
+};
+
+/// Every attribute of the solves.
+pub const ATTRS: [&AttrSpec; 7] = [&R, &P, &GP, &AP, &DOT, &HELD_ATTR, &SCALARS];
+
+macro_rules! solve_passes {
+    ($warm:ident, $start:ident, $adjust:ident, $residual:ident, $update:ident, $clamp:ident, $solve:literal, $kappa:literal,
+     $increment:literal, $error:literal) => {
+        /// The warm start: `increment = w kappa`, `kappa = 0`.
+        pub static $warm: PassSpec = PassSpec::solve(
+            "dfsph",
+            concat!("dfsph.cg_", $solve, "_warm"),
+            &["dfsph_scalars", $kappa],
+            &[$increment, $kappa],
+            &[],
+        );
+        /// `r = b` (0 where held).
+        pub static $start: PassSpec = PassSpec::solve(
+            "dfsph",
+            concat!("dfsph.cg_", $solve, "_start"),
+            &["x", "v", "rho", "dfsph_held"],
+            &["dfsph_r"],
+            &[],
+        );
+        /// The mean removed (closed) or the surface's density clamped; `p = alpha r`.
+        pub static $adjust: PassSpec = PassSpec::solve(
+            "dfsph",
+            concat!("dfsph.cg_", $solve, "_adjust"),
+            &["dfsph_scalars", "x", "rho", "alpha", "dfsph_held"],
+            &["dfsph_p"],
+            &["dfsph_r"],
+        );
+        /// Each particle's `r alpha r` and residual.
+        pub static $residual: PassSpec = PassSpec::solve(
+            "dfsph",
+            concat!("dfsph.cg_", $solve, "_residual"),
+            &["x", "alpha", "dfsph_r"],
+            &["dfsph_dot", $error],
+            &[],
+        );
+        /// The step along `p`.
+        pub static $update: PassSpec = PassSpec::solve(
+            "dfsph",
+            concat!("dfsph.cg_", $solve, "_update"),
+            &["dfsph_scalars", "dfsph_p", "dfsph_gp", "dfsph_ap"],
+            &[],
+            &["v", $kappa, "dfsph_r"],
+        );
+        /// The increment that clamps the stiffness at zero where a free surface exists.
+        pub static $clamp: PassSpec = PassSpec::solve(
+            "dfsph",
+            concat!("dfsph.cg_", $solve, "_clamp"),
+            &["dfsph_scalars", $kappa],
+            &[$increment],
+            &[],
+        );
+    };
+}
+
+solve_passes!(
+    DENSITY_WARM,
+    DENSITY_START,
+    DENSITY_ADJUST,
+    DENSITY_RESIDUAL,
+    DENSITY_UPDATE,
+    DENSITY_CLAMP,
+    "density",
+    "kappa",
+    "dkappa",
+    "density_error"
+);
+solve_passes!(
+    DIVERGENCE_WARM,
+    DIVERGENCE_START,
+    DIVERGENCE_ADJUST,
+    DIVERGENCE_RESIDUAL,
+    DIVERGENCE_UPDATE,
+    DIVERGENCE_CLAMP,
+    "divergence",
+    "kappa_v",
+    "dkappa_v",
+    "divergence_error"
+);
+
+/// The particles held at `P = 0`: fewer than [`super::FULL_NEIGHBOURHOOD`]
+/// neighbours (run once a step, at the divergence-free solve's start; the
+/// constant-density solve has the same neighbours).
+pub static HELD_PASS: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_held", &["x", "rho"], &["dfsph_held"], &[]);
+/// `G p`.
+pub static GRADIENT: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_gradient", &["x", "dfsph_p"], &["dfsph_gp"], &[]);
+/// `A p = D G p` (0 for held particles) and the terms of `p . Ap`.
+pub static PRODUCT: PassSpec = PassSpec::solve(
+    "dfsph",
+    "dfsph.cg_product",
+    &["x", "dfsph_gp", "dfsph_p", "dfsph_held"],
+    &["dfsph_ap", "dfsph_dot"],
+    &[],
+);
+/// The next direction.
+pub static DIRECTION: PassSpec =
+    PassSpec::solve("dfsph", "dfsph.cg_direction", &["dfsph_scalars", "alpha", "dfsph_r"], &[], &["dfsph_p"]);
+
+/// Every pass of the solves.
+pub const PASSES: [&PassSpec; 16] = [
+    &HELD_PASS,
+    &DIVERGENCE_WARM,
+    &DIVERGENCE_START,
+    &DIVERGENCE_ADJUST,
+    &DIVERGENCE_RESIDUAL,
+    &DIVERGENCE_UPDATE,
+    &DIVERGENCE_CLAMP,
+    &DENSITY_WARM,
+    &DENSITY_START,
+    &DENSITY_ADJUST,
+    &DENSITY_RESIDUAL,
+    &DENSITY_UPDATE,
+    &DENSITY_CLAMP,
+    &GRADIENT,
+    &PRODUCT,
+    &DIRECTION,
+];
+
+const fn sum(attr: &'static str, slot: u32) -> Op {
+    Op::Sum { attr, into: "dfsph_scalars", slot }
+}
+
+macro_rules! iteration {
+    ($solve:literal) => {
+        &[
+            Op::Pass("dfsph.cg_gradient"),
+            Op::Pass("dfsph.cg_product"),
+            sum("dfsph_dot", PAP),
+            Op::Pass(concat!("dfsph.cg_", $solve, "_update")),
+            Op::Pass(concat!("dfsph.cg_", $solve, "_residual")),
+            sum("dfsph_dot", RZ_NEW),
+            Op::Pass("dfsph.cg_direction"),
+            sum("dfsph_dot", RZ),
+        ]
+    };
+}
+
+macro_rules! start {
+    ($solve:literal $(, $first:expr)*) => {
+        &[
+            $($first,)*
+            Op::Pass(concat!("dfsph.cg_", $solve, "_warm")),
+            Op::Pass(concat!("dfsph.", $solve, "_kick")),
+            Op::Pass(concat!("dfsph.cg_", $solve, "_start")),
+            sum("dfsph_r", RSUM),
+            Op::Pass(concat!("dfsph.cg_", $solve, "_adjust")),
+            Op::Pass(concat!("dfsph.cg_", $solve, "_residual")),
+            sum("dfsph_dot", RZ),
+        ]
+    };
+}
+
+/// What runs after the divergence-free solve: the clamp and its kick.
+pub const DIVERGENCE_FINISH: &[Op] = &[Op::Pass("dfsph.cg_divergence_clamp"), Op::Pass("dfsph.divergence_kick")];
+/// What runs after the constant-density solve.
+pub const DENSITY_FINISH: &[Op] = &[Op::Pass("dfsph.cg_density_clamp"), Op::Pass("dfsph.density_kick")];
+
+fn solve(
+    name: &'static str,
+    start: &'static [Op],
+    iteration: &'static [Op],
+    residual: &'static str,
+    tolerance: f32,
+    max: u32,
+) -> Iterate {
+    Iterate {
+        name,
+        start,
+        iteration,
+        residual: Reduction { attr: residual, op: ReduceOp::Mean },
+        tolerance: f64::from(tolerance),
+        min: 1,
+        max,
+        check_every: 1,
+        sweeps: 1,
+        max_sweeps: 1,
+    }
+}
+
+const DIVERGENCE_START_OPS: &[Op] = start!("divergence", Op::Pass("dfsph.cg_held"), sum("dfsph_held", HELD));
+const DIVERGENCE_ITERATION: &[Op] = iteration!("divergence");
+const DENSITY_START_OPS: &[Op] = start!("density");
+const DENSITY_ITERATION: &[Op] = iteration!("density");
+
+/// The divergence-free solve (named as the Jacobi's, so reports compare them).
+pub fn divergence_solve(s: &DfsphSettings) -> Iterate {
+    solve(
+        "dfsph.divergence",
+        DIVERGENCE_START_OPS,
+        DIVERGENCE_ITERATION,
+        "divergence_error",
+        s.divergence_tolerance,
+        s.max_iterations,
+    )
+}
+
+/// The constant-density solve.
+pub fn density_solve(s: &DfsphSettings) -> Iterate {
+    solve("dfsph.density", DENSITY_START_OPS, DENSITY_ITERATION, "density_error", s.density_tolerance, s.max_iterations)
+}
+
+/// `a / b`, or 0 where `b` is not positive (nothing left to solve).
+#[inline(always)]
+pub fn ratio(a: f32, b: f32) -> f32 {
+    if b > 0.0 { a / b } else { 0.0 }
+}

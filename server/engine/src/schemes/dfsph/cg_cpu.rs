@@ -1,0 +1,290 @@
+//! The conjugate-gradient solves' passes on the CPU ([`super::cg`] has the system and
+//! the order); the pair sums are the Jacobi's ([`super::cpu::Sums`]), over the
+//! gradients the factor pass kept.
+
+use super::cg::{HELD, PAP, RSUM, RZ, RZ_NEW, SURFACE_DENSITY, ratio};
+use super::cpu::{Kept, Sums, neighbours, with_kept};
+use super::{FULL_NEIGHBOURHOOD, WARM_START};
+use crate::cpu::neighbors::CHUNK;
+use crate::cpu::{CpuCx, CpuPass};
+use crate::math::{Real, Vec3};
+use crate::periodic::Separation;
+use rayon::prelude::*;
+
+/// The solves' scalars.
+fn scalars(cx: &CpuCx<'_>) -> Vec<Real> {
+    cx.attrs.get(cx.attrs.handle::<Real>("dfsph_scalars")).to_vec()
+}
+
+/// `dfsph.cg_held`: 1 for a particle with fewer than [`FULL_NEIGHBOURHOOD`]
+/// neighbours, held at `P = 0`, else 0.
+#[derive(Debug)]
+pub struct Held;
+
+impl CpuPass for Held {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let model = cx.model;
+        let h = cx.attrs.handle::<Real>("dfsph_held");
+        let mut held = cx.attrs.take(h);
+        let attrs = &*cx.attrs;
+        let rho = attrs.get(attrs.handle::<Real>("rho"));
+        let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
+        held.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (out, nb))| {
+            for (n, held) in out.iter_mut().enumerate() {
+                let i = c * CHUNK + n;
+                let rest = model.materials.get(mat.map_or(0, |m| m[i] as usize)).rest_density;
+                let free = neighbours(nb, n) >= FULL_NEIGHBOURHOOD && rho[i] >= SURFACE_DENSITY * rest;
+                *held = if free { 0.0 } else { 1.0 };
+            }
+        });
+        cx.attrs.put(h, held);
+    }
+}
+
+/// `dfsph.cg_{density,divergence}_warm`: `increment = w kappa`, `kappa = 0` (the
+/// kick that follows adds the increment back), `w` 1 where a free surface exists,
+/// else [`WARM_START`] ([`super::cg`]).
+#[derive(Debug)]
+pub struct Warm {
+    /// The solve's stiffness.
+    pub kappa: &'static str,
+    /// The solve's increment.
+    pub increment: &'static str,
+}
+
+impl CpuPass for Warm {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let w = if scalars(cx)[HELD as usize] > 0.0 { 1.0 } else { WARM_START };
+        let (kh, dh) = (cx.attrs.handle::<Real>(self.kappa), cx.attrs.handle::<Real>(self.increment));
+        let (mut kappa, mut inc) = (cx.attrs.take(kh), cx.attrs.take(dh));
+        kappa.par_iter_mut().zip(inc.par_iter_mut()).for_each(|(k, d)| {
+            *d = w * *k;
+            *k = 0.0;
+        });
+        cx.attrs.put(kh, kappa);
+        cx.attrs.put(dh, inc);
+    }
+}
+
+/// `dfsph.cg_{density,divergence}_start`: `r = b` from the current velocities, 0
+/// for a held particle.
+#[derive(Debug)]
+pub struct Start {
+    /// The constant-density solve's (else the divergence-free solve's).
+    pub density: bool,
+}
+
+impl CpuPass for Start {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        with_kept!(cx.model, |kept, sep| start(cx, self.density, kept, sep))
+    }
+}
+
+fn start<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, density: bool, kept: K, sep: S) {
+    let dt = cx.dt;
+    let rh = cx.attrs.handle::<Real>("dfsph_r");
+    let mut r = cx.attrs.take(rh);
+    let attrs = &*cx.attrs;
+    let (vel, rho) = (attrs.get(attrs.handle::<Vec3>("v")), attrs.get(attrs.handle::<Real>("rho")));
+    let held = attrs.get(attrs.handle::<Real>("dfsph_held"));
+    let sums = Sums::new(cx.model, attrs, kept, sep);
+    r.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (r, nb))| {
+        for (n, r) in r.iter_mut().enumerate() {
+            let i = c * CHUNK + n;
+            *r = if held[i] != 0.0 {
+                0.0
+            } else if density {
+                (rho[i] + dt * sums.divergence(i, n, nb, vel) - sums.material(i).rest_density) / (dt * dt)
+            } else {
+                sums.divergence(i, n, nb, vel) / dt
+            };
+        }
+    });
+    cx.attrs.put(rh, r);
+}
+
+/// `dfsph.cg_{density,divergence}_adjust`: with no particle held, the starting
+/// residual's mean removed; with some, the density solve's start raised to
+/// `max(rho, rho0)`; then the first direction `p = alpha r`.
+#[derive(Debug)]
+pub struct Adjust {
+    /// The constant-density solve's (else the divergence-free solve's).
+    pub density: bool,
+}
+
+impl CpuPass for Adjust {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let s = scalars(cx);
+        let (dt, model) = (cx.dt, cx.model);
+        let (rh, ph) = (cx.attrs.handle::<Real>("dfsph_r"), cx.attrs.handle::<Real>("dfsph_p"));
+        let (mut r, mut p) = (cx.attrs.take(rh), cx.attrs.take(ph));
+        let attrs = &*cx.attrs;
+        let (rho, alpha) = (attrs.get(attrs.handle::<Real>("rho")), attrs.get(attrs.handle::<Real>("alpha")));
+        let held = attrs.get(attrs.handle::<Real>("dfsph_held"));
+        let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
+        let closed = s[HELD as usize] == 0.0;
+        let mean = s[RSUM as usize] / r.len().max(1) as Real;
+        r.par_iter_mut().zip(p.par_iter_mut()).enumerate().for_each(|(i, (r, p))| {
+            if closed {
+                *r -= mean;
+            } else if self.density && held[i] == 0.0 {
+                let rest = model.materials.get(mat.map_or(0, |m| m[i] as usize)).rest_density;
+                *r += (rest - rho[i]).max(0.0) / (dt * dt);
+            }
+            *p = alpha[i] * *r;
+        });
+        cx.attrs.put(rh, r);
+        cx.attrs.put(ph, p);
+    }
+}
+
+/// `dfsph.cg_{density,divergence}_residual`: each particle's `r alpha r` and its
+/// residual `|r| dt^2 / rho0`.
+#[derive(Debug)]
+pub struct Residual {
+    /// The solve's residual attribute.
+    pub residual: &'static str,
+}
+
+impl CpuPass for Residual {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let (dt, model) = (cx.dt, cx.model);
+        let (dh, eh) = (cx.attrs.handle::<Real>("dfsph_dot"), cx.attrs.handle::<Real>(self.residual));
+        let (mut dot, mut err) = (cx.attrs.take(dh), cx.attrs.take(eh));
+        let attrs = &*cx.attrs;
+        let (r, alpha) = (attrs.get(attrs.handle::<Real>("dfsph_r")), attrs.get(attrs.handle::<Real>("alpha")));
+        let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
+        dot.par_iter_mut().zip(err.par_iter_mut()).enumerate().for_each(|(i, (dot, err))| {
+            let rest = model.materials.get(mat.map_or(0, |m| m[i] as usize)).rest_density;
+            *dot = r[i] * alpha[i] * r[i];
+            *err = r[i].abs() * dt * dt / rest;
+        });
+        cx.attrs.put(dh, dot);
+        cx.attrs.put(eh, err);
+    }
+}
+
+/// `dfsph.cg_gradient`: `G p`.
+#[derive(Debug)]
+pub struct Gradient;
+
+impl CpuPass for Gradient {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        with_kept!(cx.model, |kept, sep| gradient(cx, kept, sep))
+    }
+}
+
+fn gradient<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
+    let h = cx.attrs.handle::<Vec3>("dfsph_gp");
+    let mut gp = cx.attrs.take(h);
+    let attrs = &*cx.attrs;
+    let p = attrs.get(attrs.handle::<Real>("dfsph_p"));
+    let sums = Sums::new(cx.model, attrs, kept, sep);
+    gp.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (out, nb))| {
+        for (n, g) in out.iter_mut().enumerate() {
+            *g = sums.gradient(c * CHUNK + n, n, nb, p);
+        }
+    });
+    cx.attrs.put(h, gp);
+}
+
+/// `dfsph.cg_product`: `A p = D G p` (0 for a held particle) and `p . Ap` per
+/// particle.
+#[derive(Debug)]
+pub struct Product;
+
+impl CpuPass for Product {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        with_kept!(cx.model, |kept, sep| product(cx, kept, sep))
+    }
+}
+
+fn product<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
+    let (ah, dh) = (cx.attrs.handle::<Real>("dfsph_ap"), cx.attrs.handle::<Real>("dfsph_dot"));
+    let (mut ap, mut dot) = (cx.attrs.take(ah), cx.attrs.take(dh));
+    let attrs = &*cx.attrs;
+    let (gp, p) = (attrs.get(attrs.handle::<Vec3>("dfsph_gp")), attrs.get(attrs.handle::<Real>("dfsph_p")));
+    let held = attrs.get(attrs.handle::<Real>("dfsph_held"));
+    let sums = Sums::new(cx.model, attrs, kept, sep);
+    let outputs = ap.par_chunks_mut(CHUNK).zip(dot.par_chunks_mut(CHUNK));
+    outputs.zip(&cx.nb.chunks).enumerate().for_each(|(c, ((ap, dot), nb))| {
+        for n in 0..ap.len() {
+            let i = c * CHUNK + n;
+            ap[n] = if held[i] == 0.0 { sums.divergence(i, n, nb, gp) } else { 0.0 };
+            dot[n] = p[i] * ap[n];
+        }
+    });
+    cx.attrs.put(ah, ap);
+    cx.attrs.put(dh, dot);
+}
+
+/// `dfsph.cg_{density,divergence}_update`: `a = RZ / PAP`, `P += a p`,
+/// `v -= dt a G p`, `r -= a A p`.
+#[derive(Debug)]
+pub struct Update {
+    /// The solve's stiffness.
+    pub kappa: &'static str,
+}
+
+impl CpuPass for Update {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let s = scalars(cx);
+        let (a, dt) = (ratio(s[RZ as usize], s[PAP as usize]), cx.dt);
+        let (vh, kh, rh) =
+            (cx.attrs.handle::<Vec3>("v"), cx.attrs.handle::<Real>(self.kappa), cx.attrs.handle::<Real>("dfsph_r"));
+        let (mut v, mut kappa, mut r) = (cx.attrs.take(vh), cx.attrs.take(kh), cx.attrs.take(rh));
+        let attrs = &*cx.attrs;
+        let (p, gp, ap) = (
+            attrs.get(attrs.handle::<Real>("dfsph_p")),
+            attrs.get(attrs.handle::<Vec3>("dfsph_gp")),
+            attrs.get(attrs.handle::<Real>("dfsph_ap")),
+        );
+        let outputs = v.par_iter_mut().zip(kappa.par_iter_mut()).zip(r.par_iter_mut());
+        outputs.enumerate().for_each(|(i, ((v, kappa), r))| {
+            *kappa += a * p[i];
+            *v -= gp[i] * (dt * a);
+            *r -= a * ap[i];
+        });
+        cx.attrs.put(vh, v);
+        cx.attrs.put(kh, kappa);
+        cx.attrs.put(rh, r);
+    }
+}
+
+/// `dfsph.cg_direction`: `p = alpha r + (RZ_NEW / RZ) p`.
+#[derive(Debug)]
+pub struct Direction;
+
+impl CpuPass for Direction {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let s = scalars(cx);
+        let beta = ratio(s[RZ_NEW as usize], s[RZ as usize]);
+        let h = cx.attrs.handle::<Real>("dfsph_p");
+        let mut p = cx.attrs.take(h);
+        let attrs = &*cx.attrs;
+        let (r, alpha) = (attrs.get(attrs.handle::<Real>("dfsph_r")), attrs.get(attrs.handle::<Real>("alpha")));
+        p.par_iter_mut().enumerate().for_each(|(i, p)| *p = alpha[i] * r[i] + beta * *p);
+        cx.attrs.put(h, p);
+    }
+}
+
+/// `dfsph.cg_{density,divergence}_clamp`: where a free surface exists (some particle
+/// held), the increment `max(P, 0) - P` that the solve's kick then applies; else 0.
+#[derive(Debug)]
+pub struct Clamp {
+    /// The solve's stiffness.
+    pub kappa: &'static str,
+    /// The solve's increment.
+    pub increment: &'static str,
+}
+
+impl CpuPass for Clamp {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let surface = scalars(cx)[HELD as usize] > 0.0;
+        let h = cx.attrs.handle::<Real>(self.increment);
+        let mut inc = cx.attrs.take(h);
+        let kappa = cx.attrs.get(cx.attrs.handle::<Real>(self.kappa));
+        inc.par_iter_mut().zip(kappa).for_each(|(d, &k)| *d = if surface { (-k).max(0.0) } else { 0.0 });
+        cx.attrs.put(h, inc);
+    }
+}

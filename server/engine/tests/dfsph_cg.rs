@@ -1,0 +1,105 @@
+//! DFSPH's conjugate-gradient solves (`solver.dfsph.solver = "cg"`) on the CPU: the
+//! closed Poiseuille channel within the bound the Jacobi misses, the periodic
+//! Taylor-Green vortex past the step where the Jacobi diverges, the resting column
+//! held with the walls mirrored, a restore that continues bit for bit, and a scene
+//! of two masses refused naming the setting.
+
+use floe_engine::Simulation;
+use floe_engine::scene::load::from_preset;
+use floe_engine::simulation::cpu_backend;
+use floe_engine::validation::cases::{self, Variant};
+use floe_engine::validation::hydrostatic;
+
+const CG: [&str; 4] = [
+    "solver.method=\"dfsph\"",
+    "solver.dfsph.solver=\"cg\"",
+    "solver.delta_sph=null",
+    "solver.transport_velocity=null",
+];
+
+fn overrides(extra: &[&str]) -> Vec<String> {
+    CG.iter().chain(extra).map(|s| s.to_string()).collect()
+}
+
+fn cg(preset: &str, extra: &[&str]) -> Simulation {
+    Simulation::new_cpu(from_preset(preset, &overrides(extra)).unwrap()).unwrap()
+}
+
+/// The `poiseuille` case at the spacing its bounds are checked at (15 layers), as
+/// `floe validate --bounds` runs it: within 1 % at 0.1 s, 0.5 s and steady, where the
+/// Jacobi's steady profile is 7.8 % off (docs/validation/schemes/NOTES.md).
+#[test]
+fn the_closed_channel_reaches_the_poiseuille_profile() {
+    let case = cases::all().into_iter().find(|c| c.name == "poiseuille").unwrap();
+    let spacing = *case.spacings(false).last().unwrap();
+    let variant = Variant { name: "cg", overrides: &[] };
+    let out = cases::run(case, spacing, &variant, &overrides(&[]), &cpu_backend).unwrap();
+    eprintln!("{out:?}");
+    assert!(out.halted.is_none(), "{:?}", out.halted);
+    for name in ["velocity_l2_t0_1", "velocity_l2_t0_5", "velocity_l2_steady"] {
+        let e = out.error(name).unwrap();
+        assert!(e <= 0.01, "{name} {e:.4}");
+    }
+}
+
+/// The periodic vortex: the Jacobi's signed modes overshoot and it is NaN at step 2;
+/// the CG converges every step. (Its decay rate is still far off: CG.md.)
+#[test]
+fn the_periodic_vortex_runs_and_its_solves_converge() {
+    let mut sim = cg("taylor_green", &["particle_spacing=0.025"]);
+    for _ in 0..20 {
+        sim.step().unwrap();
+    }
+    let p = sim.read(&["velocity"]);
+    let v = p.channel("velocity").and_then(|c| c.as_vectors()).unwrap();
+    assert!(v.iter().flatten().all(|c| c.is_finite()));
+    let solves = &sim.stats().solves;
+    for name in ["dfsph.divergence", "dfsph.density"] {
+        assert!(solves[name].last_residual <= 1e-3, "{name}: {solves:?}");
+    }
+}
+
+/// The resting column with mirrored walls: at its rest density, and its pressure
+/// far nearer `rho0 g (H - y)` than the Jacobi's, whose wall term needs twice the
+/// pressure beside a wall (0.21 against 0.53 at this spacing; the bound of 0.02 is
+/// not met: CG.md).
+#[test]
+fn the_resting_column_is_held_with_mirrored_walls() {
+    let column = |solver: &str| {
+        let mut sim = cg("hydrostatic", &["particle_spacing=0.05", solver]);
+        sim.run_until(1.0, |_, _| {}).unwrap();
+        let p = sim.read(&["density", "pressure"]);
+        let e = hydrostatic::measure(&p, 1000.0, 9.81, 0.9, 0.05);
+        eprintln!("{solver}: {} steps: {e:?}, {:?}", sim.steps(), sim.stats().solves);
+        e
+    };
+    let (cg, jacobi) = (column("solver.dfsph.solver=\"cg\""), column("solver.dfsph.solver=\"jacobi\""));
+    assert!(cg.mean_density_deviation < 0.01, "mean density deviation {:.4}", cg.mean_density_deviation);
+    assert!(
+        cg.pressure_l2 < 0.5 * jacobi.pressure_l2,
+        "pressure L2 {:.3}, Jacobi {:.3}",
+        cg.pressure_l2,
+        jacobi.pressure_l2
+    );
+}
+
+#[test]
+fn a_restored_snapshot_continues_bit_for_bit() {
+    let mut a = cg("dam_break", &["particle_spacing=0.05"]);
+    for _ in 0..15 {
+        a.step().unwrap();
+    }
+    let mut b = Simulation::restore(&a.snapshot()).unwrap();
+    for _ in 0..10 {
+        assert_eq!(a.step().unwrap(), b.step().unwrap());
+    }
+    let all = ["velocity", "density", "pressure"];
+    assert_eq!(a.read(&all), b.read(&all));
+}
+
+#[test]
+fn a_scene_of_two_masses_is_refused_naming_the_setting() {
+    let scene = from_preset("layers", &overrides(&["particle_spacing=0.025"])).unwrap();
+    let e = Simulation::new_cpu(scene).unwrap_err().to_string();
+    assert!(e.starts_with("solver.dfsph.solver: \"cg\" needs particles of one mass"), "{e}");
+}
