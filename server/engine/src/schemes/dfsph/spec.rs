@@ -26,9 +26,12 @@ pub struct DfsphSettings {
     /// Needs the cubic spline kernel. The GPU keeps none either way.
     #[serde(default)]
     pub compact_gradients: bool,
-    /// How both solves iterate: `"jacobi"` (B&K's, compression only) or `"cg"`
-    /// (preconditioned conjugate gradients, signed, with the walls' pressure
-    /// mirrored: `schemes::dfsph::cg`). One fluid only.
+    /// How both solves iterate: `"jacobi"` (B&K's, compression only; the default) or
+    /// `"cg"` (preconditioned conjugate gradients, signed, with the walls' pressure
+    /// mirrored: `schemes::dfsph::cg`), one particle mass only. The CG converges on
+    /// closed and periodic flows where the Jacobi diverges (Poiseuille within 1 %),
+    /// but fails in closed domains under gravity and is worse on the dam break
+    /// (docs/validation/schemes/CG.md).
     #[serde(default)]
     pub solver: DfsphSolver,
 }
