@@ -25,6 +25,7 @@ fn scenes() -> Vec<(String, Model)> {
     let variants: &[(&str, &[&str])] = &[
         ("dam_break", &["particle_spacing=0.05", "fluids[0].xsph=0.1"]),
         ("dam_break", &["particle_spacing=0.05", "solver.method=\"wcsph\"", "fluids[0].xsph=0.1"]),
+        ("dam_break", &["particle_spacing=0.05", "solver.dfsph.solver=\"cg\""]),
         ("hydrostatic", &["particle_spacing=0.05", "solver.delta_sph=null"]),
         ("cross_channel", &["particle_spacing=0.1", r#"snow.solver={"method":"explicit"}"#]),
         ("elastic_drop", &["particle_spacing=0.04", "solid.oriented={}"]),

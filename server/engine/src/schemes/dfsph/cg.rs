@@ -205,8 +205,9 @@ solve_passes!(
 
 /// The particles held at `P = 0`: fewer than [`super::FULL_NEIGHBOURHOOD`]
 /// neighbours (run once a step, at the divergence-free solve's start; the
-/// constant-density solve has the same neighbours).
-pub static HELD_PASS: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_held", &["x", "rho"], &["dfsph_held"], &[]);
+/// constant-density solve has the same neighbours). It reads the velocities on the
+/// GPU, whose count comes from the rate's walk (rate.wgsl).
+pub static HELD_PASS: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_held", &["x", "v", "rho"], &["dfsph_held"], &[]);
 /// `G p`.
 pub static GRADIENT: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_gradient", &["x", "dfsph_p"], &["dfsph_gp"], &[]);
 /// `A p = D G p` (0 for held particles) and the terms of `p . Ap`.

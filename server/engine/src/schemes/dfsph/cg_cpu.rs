@@ -41,28 +41,16 @@ impl CpuPass for Held {
     }
 }
 
-/// `dfsph.cg_{density,divergence}_warm`: `increment = w kappa`, `kappa = 0` (the
-/// kick that follows adds the increment back), `w` 1 where a free surface exists,
-/// else [`WARM_START`] ([`super::cg`]).
+/// `dfsph.cg_{density,divergence}_warm`: the Jacobi's warm start
+/// ([`super::cpu::Warm`]) from all of the last stiffness where a free surface exists,
+/// else from [`WARM_START`] of it ([`super::cg`]).
 #[derive(Debug)]
-pub struct Warm {
-    /// The solve's stiffness.
-    pub kappa: &'static str,
-    /// The solve's increment.
-    pub increment: &'static str,
-}
+pub struct Warm(pub super::cpu::Warm);
 
 impl CpuPass for Warm {
     fn run(&self, cx: &mut CpuCx<'_>) {
         let w = if scalars(cx)[HELD as usize] > 0.0 { 1.0 } else { WARM_START };
-        let (kh, dh) = (cx.attrs.handle::<Real>(self.kappa), cx.attrs.handle::<Real>(self.increment));
-        let (mut kappa, mut inc) = (cx.attrs.take(kh), cx.attrs.take(dh));
-        kappa.par_iter_mut().zip(inc.par_iter_mut()).for_each(|(k, d)| {
-            *d = w * *k;
-            *k = 0.0;
-        });
-        cx.attrs.put(kh, kappa);
-        cx.attrs.put(dh, inc);
+        self.0.start(cx, w);
     }
 }
 

@@ -246,10 +246,17 @@ pub struct Warm {
 
 impl CpuPass for Warm {
     fn run(&self, cx: &mut CpuCx<'_>) {
+        self.start(cx, WARM_START);
+    }
+}
+
+impl Warm {
+    /// `increment = w kappa`, `kappa = 0`.
+    pub(super) fn start(&self, cx: &mut CpuCx<'_>, w: Real) {
         let (kh, dh) = (cx.attrs.handle::<Real>(self.kappa), cx.attrs.handle::<Real>(self.increment));
         let (mut kappa, mut inc) = (cx.attrs.take(kh), cx.attrs.take(dh));
         kappa.par_iter_mut().zip(inc.par_iter_mut()).with_min_len(4096).for_each(|(k, d)| {
-            *d = WARM_START * *k;
+            *d = w * *k;
             *k = 0.0;
         });
         cx.attrs.put(kh, kappa);

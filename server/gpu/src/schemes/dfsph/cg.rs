@@ -25,21 +25,6 @@ pub static HELD: GpuPass = particles(
 );
 
 const WARM: &str = particle_kernel!("cg/warm.wgsl");
-/// The divergence-free solve's warm start.
-pub static DIVERGENCE_WARM: GpuPass = particles(
-    "dfsph.cg_divergence_warm",
-    WARM,
-    "main",
-    &[(U, "params"), (U, "dfsph"), (R, "dfsph_scalars"), (W, "kappa_v"), (W, "dkappa_v")],
-);
-/// The constant-density solve's warm start.
-pub static DENSITY_WARM: GpuPass = particles(
-    "dfsph.cg_density_warm",
-    WARM,
-    "main",
-    &[(U, "params"), (U, "dfsph"), (R, "dfsph_scalars"), (W, "kappa"), (W, "dkappa")],
-);
-
 const START: &str = particle_kernel!("rate.wgsl", "cg/start.wgsl");
 const START_BINDINGS: &[(Access, &str)] = &[
     (U, "params"),
@@ -53,11 +38,6 @@ const START_BINDINGS: &[(Access, &str)] = &[
     (R, "dfsph_held"),
     (W, "dfsph_r"),
 ];
-/// The divergence-free solve's start.
-pub static DIVERGENCE_START: GpuPass = particles("dfsph.cg_divergence_start", START, "divergence", START_BINDINGS);
-/// The constant-density solve's start.
-pub static DENSITY_START: GpuPass = particles("dfsph.cg_density_start", START, "density", START_BINDINGS);
-
 const ADJUST: &str = particle_kernel!("cg/adjust.wgsl");
 const ADJUST_BINDINGS: &[(Access, &str)] = &[
     (U, "params"),
@@ -70,83 +50,91 @@ const ADJUST_BINDINGS: &[(Access, &str)] = &[
     (W, "dfsph_r"),
     (W, "dfsph_p"),
 ];
-/// The divergence-free solve's adjusted start.
-pub static DIVERGENCE_ADJUST: GpuPass = particles("dfsph.cg_divergence_adjust", ADJUST, "divergence", ADJUST_BINDINGS);
-/// The constant-density solve's adjusted start.
-pub static DENSITY_ADJUST: GpuPass = particles("dfsph.cg_density_adjust", ADJUST, "density", ADJUST_BINDINGS);
-
 const RESIDUAL: &str = particle_kernel!("cg/residual.wgsl");
-/// The divergence-free solve's dot-product terms and residual.
-pub static DIVERGENCE_RESIDUAL: GpuPass = particles(
-    "dfsph.cg_divergence_residual",
-    RESIDUAL,
-    "main",
-    &[(U, "params"), (U, "dt"), (R, "x"), (R, "alpha"), (R, "dfsph_r"), (W, "dfsph_dot"), (W, "divergence_error")],
-);
-/// The constant-density solve's dot-product terms and residual.
-pub static DENSITY_RESIDUAL: GpuPass = particles(
-    "dfsph.cg_density_residual",
-    RESIDUAL,
-    "main",
-    &[(U, "params"), (U, "dt"), (R, "x"), (R, "alpha"), (R, "dfsph_r"), (W, "dfsph_dot"), (W, "density_error")],
-);
-
 const UPDATE: &str = particle_kernel!("cg/update.wgsl");
-/// The divergence-free solve's step.
-pub static DIVERGENCE_UPDATE: GpuPass = particles(
-    "dfsph.cg_divergence_update",
-    UPDATE,
-    "main",
-    &[
-        (U, "params"),
-        (U, "dt"),
-        (R, "dfsph_scalars"),
-        (R, "dfsph_p"),
-        (R, "dfsph_gp"),
-        (R, "dfsph_ap"),
-        (W, "v"),
-        (W, "kappa_v"),
-        (W, "dfsph_r"),
-    ],
-);
-/// The constant-density solve's step.
-pub static DENSITY_UPDATE: GpuPass = particles(
-    "dfsph.cg_density_update",
-    UPDATE,
-    "main",
-    &[
-        (U, "params"),
-        (U, "dt"),
-        (R, "dfsph_scalars"),
-        (R, "dfsph_p"),
-        (R, "dfsph_gp"),
-        (R, "dfsph_ap"),
-        (W, "v"),
-        (W, "kappa"),
-        (W, "dfsph_r"),
-    ],
-);
-
 const CLAMP: &str = particle_kernel!("cg/clamp.wgsl");
-/// The divergence-free solve's clamp.
-pub static DIVERGENCE_CLAMP: GpuPass = particles(
-    "dfsph.cg_divergence_clamp",
-    CLAMP,
-    "main",
-    &[(U, "params"), (R, "dfsph_scalars"), (R, "kappa_v"), (W, "dkappa_v")],
+
+/// One solve's passes: its warm start, start, adjusted start, residual, step and
+/// clamp, over its stiffness, increment and residual attributes (the start and the
+/// adjusted start take the solve's entry point).
+macro_rules! solve_passes {
+    ($warm:ident, $start:ident, $adjust:ident, $residual:ident, $update:ident, $clamp:ident, $solve:literal,
+     $kappa:literal, $increment:literal, $error:literal) => {
+        #[doc = concat!("The ", $solve, " solve's warm start.")]
+        pub static $warm: GpuPass = particles(
+            concat!("dfsph.cg_", $solve, "_warm"),
+            WARM,
+            "main",
+            &[(U, "params"), (U, "dfsph"), (R, "dfsph_scalars"), (W, $kappa), (W, $increment)],
+        );
+        #[doc = concat!("The ", $solve, " solve's start.")]
+        pub static $start: GpuPass = particles(concat!("dfsph.cg_", $solve, "_start"), START, $solve, START_BINDINGS);
+        #[doc = concat!("The ", $solve, " solve's adjusted start.")]
+        pub static $adjust: GpuPass =
+            particles(concat!("dfsph.cg_", $solve, "_adjust"), ADJUST, $solve, ADJUST_BINDINGS);
+        #[doc = concat!("The ", $solve, " solve's dot-product terms and residual.")]
+        pub static $residual: GpuPass = particles(
+            concat!("dfsph.cg_", $solve, "_residual"),
+            RESIDUAL,
+            "main",
+            &[(U, "params"), (U, "dt"), (R, "x"), (R, "alpha"), (R, "dfsph_r"), (W, "dfsph_dot"), (W, $error)],
+        );
+        #[doc = concat!("The ", $solve, " solve's step.")]
+        pub static $update: GpuPass = particles(
+            concat!("dfsph.cg_", $solve, "_update"),
+            UPDATE,
+            "main",
+            &[
+                (U, "params"),
+                (U, "dt"),
+                (R, "dfsph_scalars"),
+                (R, "dfsph_p"),
+                (R, "dfsph_gp"),
+                (R, "dfsph_ap"),
+                (W, "v"),
+                (W, $kappa),
+                (W, "dfsph_r"),
+            ],
+        );
+        #[doc = concat!("The ", $solve, " solve's clamp.")]
+        pub static $clamp: GpuPass = particles(
+            concat!("dfsph.cg_", $solve, "_clamp"),
+            CLAMP,
+            "main",
+            &[(U, "params"), (R, "dfsph_scalars"), (R, $kappa), (W, $increment)],
+        );
+    };
+}
+
+solve_passes!(
+    DIVERGENCE_WARM,
+    DIVERGENCE_START,
+    DIVERGENCE_ADJUST,
+    DIVERGENCE_RESIDUAL,
+    DIVERGENCE_UPDATE,
+    DIVERGENCE_CLAMP,
+    "divergence",
+    "kappa_v",
+    "dkappa_v",
+    "divergence_error"
 );
-/// The constant-density solve's clamp.
-pub static DENSITY_CLAMP: GpuPass = particles(
-    "dfsph.cg_density_clamp",
-    CLAMP,
-    "main",
-    &[(U, "params"), (R, "dfsph_scalars"), (R, "kappa"), (W, "dkappa")],
+solve_passes!(
+    DENSITY_WARM,
+    DENSITY_START,
+    DENSITY_ADJUST,
+    DENSITY_RESIDUAL,
+    DENSITY_UPDATE,
+    DENSITY_CLAMP,
+    "density",
+    "kappa",
+    "dkappa",
+    "density_error"
 );
 
 /// `G p`.
 pub static GRADIENT: GpuPass = particles(
     "dfsph.cg_gradient",
-    walk_kernel!("cg/gradient.wgsl"),
+    walk_kernel!("gradient_sum.wgsl", "cg/gradient.wgsl"),
     "main",
     &[(U, "params"), (U, "dfsph"), (R, "x"), (R, "starts"), (R, "walls"), (R, "dfsph_p"), (W, "dfsph_gp")],
 );

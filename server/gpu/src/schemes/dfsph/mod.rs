@@ -30,7 +30,14 @@ const fn warm(name: &'static str, bindings: &'static [(Access, &'static str)]) -
 }
 
 const fn kick(name: &'static str, bindings: &'static [(Access, &'static str)]) -> GpuPass {
-    GpuPass { name, source: walk_kernel!("kick.wgsl"), entry: "main", bindings, space: PARTICLES, when: always }
+    GpuPass {
+        name,
+        source: walk_kernel!("gradient_sum.wgsl", "kick.wgsl"),
+        entry: "main",
+        bindings,
+        space: PARTICLES,
+        when: always,
+    }
 }
 
 const fn error(name: &'static str, entry: &'static str, bindings: &'static [(Access, &'static str)]) -> GpuPass {
