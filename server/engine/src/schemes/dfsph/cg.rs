@@ -222,24 +222,26 @@ pub static PRODUCT: PassSpec = PassSpec::solve(
 pub static DIRECTION: PassSpec =
     PassSpec::solve("dfsph", "dfsph.cg_direction", &["dfsph_scalars", "alpha", "dfsph_r"], &[], &["dfsph_p"]);
 
-/// Every pass of the solves.
-pub const PASSES: [&PassSpec; 16] = [
+/// Every pass of the solves (the Jacobi's kicks too), in the order each first runs.
+pub const PASSES: [&PassSpec; 18] = [
     &HELD_PASS,
     &DIVERGENCE_WARM,
+    &super::DIVERGENCE_KICK,
     &DIVERGENCE_START,
     &DIVERGENCE_ADJUST,
     &DIVERGENCE_RESIDUAL,
+    &GRADIENT,
+    &PRODUCT,
     &DIVERGENCE_UPDATE,
+    &DIRECTION,
     &DIVERGENCE_CLAMP,
     &DENSITY_WARM,
+    &super::DENSITY_KICK,
     &DENSITY_START,
     &DENSITY_ADJUST,
     &DENSITY_RESIDUAL,
     &DENSITY_UPDATE,
     &DENSITY_CLAMP,
-    &GRADIENT,
-    &PRODUCT,
-    &DIRECTION,
 ];
 
 const fn sum(attr: &'static str, slot: u32) -> Op {

@@ -222,12 +222,17 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     for spec in [&ALPHA, &KAPPA, &KAPPA_V, &DKAPPA, &DKAPPA_V, &DENSITY_ERROR, &DIVERGENCE_ERROR] {
         b.zeros(spec);
     }
-    for pass in [&FACTOR, &DIVERGENCE_KICK, &DENSITY_KICK] {
-        b.pass(pass);
-    }
+    b.pass(&FACTOR);
     match consts.settings.solver {
         DfsphSolver::Jacobi => {
-            for pass in [&DIVERGENCE_WARM, &DIVERGENCE_ERROR_PASS, &DENSITY_WARM, &DENSITY_ERROR_PASS] {
+            for pass in [
+                &DIVERGENCE_WARM,
+                &DIVERGENCE_KICK,
+                &DIVERGENCE_ERROR_PASS,
+                &DENSITY_WARM,
+                &DENSITY_KICK,
+                &DENSITY_ERROR_PASS,
+            ] {
                 b.pass(pass);
             }
         }
