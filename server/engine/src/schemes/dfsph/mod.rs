@@ -22,7 +22,9 @@
 //! neighbour search, run before the next step's kick (the non-pressure forces see the
 //! velocities before it).
 //!
-//! Each solve is a Jacobi iteration on the stiffness of each particle, written as the
+//! Each solve is a Jacobi iteration (the default; `solver.dfsph.solver = "cg"` takes
+//! conjugate gradients instead, with mirrored walls: [`cg`]) on the stiffness of each
+//! particle, written as the
 //! pressure term `P = p / rho^2` that the pressure force uses (the quantity WCSPH's
 //! `pterm` holds):
 //! `a_i = -sum_j (m_i P_i + m_j^2 P_j / m_i) grad W_ij - P_i sum_b psi_b grad W_ib`
