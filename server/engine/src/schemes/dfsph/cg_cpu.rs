@@ -1,5 +1,5 @@
 //! The conjugate-gradient solves' passes on the CPU ([`super::cg`] has the system and
-//! the order); the pair sums are the Jacobi's ([`super::cpu::Sums`]), over the
+//! the order); the pair sums are the Jacobi's (`cpu::Sums`), over the
 //! gradients the factor pass kept.
 
 use super::cg::{HELD, PAP, RSUM, RZ, RZ_NEW, SURFACE_DENSITY, ratio};
