@@ -31,6 +31,9 @@ test('each worker\'s scene streams to the viewer through the proxy', { skip, tim
       const page = await browser.newPage({ viewport: { width: 800, height: 600 } });
       const problems = watchProblems(page);
       await page.goto(new URL(`/#scene=${scene.scene_id}`, proxy).href);
+      // The scene asked for, even where the worker that answered the list does not list it yet.
+      await page.waitForFunction((id) => document.querySelector('#scenes').value === String(id), scene.scene_id,
+        { timeout: 10_000 });
       await statAtLeast(page, 'frames', 1);
       // A 421 is a worker naming where the scene is: the page follows it.
       assert.deepEqual(problems.filter((p) => !p.startsWith('HTTP 421')), [], `scene on ${scene.worker}`);

@@ -75,6 +75,19 @@ test('the viewer streams, draws and pauses a dam break', { timeout: 120_000 }, a
     }, null, { timeout: 10_000 });
     assert.deepEqual(problems, [], 'nothing went wrong on the page before the restart');
 
+    // An address naming a scene that does not exist says so and opens the list's first.
+    const lost = await browser.newPage({ viewport: { width: 600, height: 400 } });
+    const lostProblems = watchProblems(lost);
+    await lost.goto(`${url}#scene=999`);
+    await lost.waitForFunction(() => /^scene 999: .*999/.test(document.querySelector('#view-error').textContent),
+      null, { timeout: 10_000 });
+    await lost.waitForFunction(() => document.querySelector('#scenes').value === '1', null, { timeout: 10_000 });
+    await statAtLeast(lost, 'particles', 4096);
+    // The browser logs the 404 it was answered, and nothing else went wrong.
+    assert.ok(lostProblems.includes(`HTTP 404: ${new URL('/api/v1/scenes/999', url)}`), lostProblems.join('\n'));
+    assert.deepEqual(lostProblems.filter((p) => !/404/.test(p)), []);
+    await lost.close();
+
     // The server restarts under the page (same address, same data): scene 1 comes
     // back from its checkpoint with its live settings, and the viewer finds it again
     // by itself and streams it once it runs.

@@ -86,6 +86,20 @@ async function refreshScenes(select, reopen = false) {
   const scenes = await api('/scenes');
   routes.learn(scenes);
   if (replay.active) return;
+  // A scene the list does not name (yet: in a cluster a worker lists another's new scene
+  // after its next tick) is asked for by id, which reaches its worker (whose name the
+  // answer carries, for the stream); one that does not exist or is not the user's is said
+  // so, and the list's first opens instead.
+  if (select != null && !scenes.some((s) => s.scene_id === select)) {
+    const asked = await api(`/scenes/${select}`).catch((e) => {
+      showError('view-error', `scene ${select}: ${e.message}`);
+      return null;
+    });
+    if (asked) {
+      routes.learn([asked]);
+      scenes.push(asked);
+    }
+  }
   const sel = $('scenes');
   sel.replaceChildren(...scenes.map((s) => new Option(`${s.scene_id}: ${s.name} (${s.particles} particles)`, s.scene_id)));
   const known = (i) => scenes.some((s) => s.scene_id === i);
