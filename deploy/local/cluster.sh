@@ -53,15 +53,21 @@ pg_bin() {
   echo "$bin"
 }
 
-# COUNT distinct free ports on 127.0.0.1, asked of the OS: every socket stays bound
-# until all are chosen, so no port comes out twice.
+# COUNT distinct free ports on 127.0.0.1, below the kernel's ephemeral range (32768
+# up on Linux), where no outgoing connection can take one between their choice and
+# the components' binding them (a port the OS hands out for port 0 is in that range).
+# Every socket stays bound until all are chosen, so no port comes out twice.
 free_ports() {
   python3 - "$1" <<'PY'
-import socket, sys
+import random, socket, sys
 socks = []
-for _ in range(int(sys.argv[1])):
+while len(socks) < int(sys.argv[1]):
     s = socket.socket()
-    s.bind(("127.0.0.1", 0))
+    try:
+        s.bind(("127.0.0.1", random.randrange(20000, 32000)))
+    except OSError:
+        s.close()
+        continue
     socks.append(s)
 print(" ".join(str(s.getsockname()[1]) for s in socks))
 PY
