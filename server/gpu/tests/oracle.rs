@@ -160,7 +160,8 @@ const VARIANTS: &[&[&str]] = &[
     &["particle_spacing=0.05", "solver.method=\"dfsph\""],
     // DFSPH by conjugate gradients: the held particles, each solve's warm start,
     // start, adjusted start, residual, step and clamp, the product and direction,
-    // and the mirrored walls in the factor and the kicks.
+    // the mirrored walls in the factor and the kicks, and the walls' hydrostatic
+    // pressure.
     &["particle_spacing=0.05", "solver.method=\"dfsph\"", "solver.dfsph.solver=\"cg\""],
     // A rippled slope with friction across the tank under the column.
     &["particle_spacing=0.05", TERRAIN],

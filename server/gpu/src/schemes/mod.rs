@@ -26,6 +26,7 @@ pub static PASSES: &[&GpuPass] = &[
     &dfsph::cg::DIVERGENCE_RESIDUAL,
     &dfsph::cg::DIVERGENCE_UPDATE,
     &dfsph::cg::DIVERGENCE_CLAMP,
+    &dfsph::cg::WALL_PRESSURE,
     &dfsph::cg::DENSITY_WARM,
     &dfsph::cg::DENSITY_START,
     &dfsph::cg::DENSITY_ADJUST,

@@ -41,6 +41,46 @@ impl CpuPass for Held {
     }
 }
 
+/// `dfsph.cg_wall_pressure`: the walls' hydrostatic part of their pressure as a
+/// kick, `v_i -= dt sum_b psi_b P'_b grad W_ib` with
+/// `P'_b = g . (x_b - x_i) / rho0_i`, at a free surface no less than
+/// `-(kappa_i + kappa_v_i)` (a wall particle's pressure is not negative; [`super::cg`]).
+#[derive(Debug)]
+pub struct WallPressure;
+
+impl CpuPass for WallPressure {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        with_kept!(cx.model, |kept, sep| wall_pressure(cx, kept, sep))
+    }
+}
+
+fn wall_pressure<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
+    let surface = scalars(cx)[HELD as usize] > 0.0;
+    let (dt, model) = (cx.dt, cx.model);
+    let (walls, g) = (&model.wall_particles, model.gravity);
+    let h = cx.attrs.handle::<Vec3>("v");
+    let mut vel = cx.attrs.take(h);
+    let attrs = &*cx.attrs;
+    let pos = attrs.get(attrs.handle::<Vec3>("x"));
+    let (kappa, kappa_v) = (attrs.get(attrs.handle::<Real>("kappa")), attrs.get(attrs.handle::<Real>("kappa_v")));
+    let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
+    vel.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (out, nb))| {
+        for (n, v) in out.iter_mut().enumerate() {
+            let i = c * CHUNK + n;
+            let m = mat.map_or(0, |m| m[i] as usize);
+            let (psi, rho0) = (&walls.psi[m], model.materials.get(m).rest_density);
+            let least = if surface { -(kappa[i] + kappa_v[i]) } else { Real::NEG_INFINITY };
+            let mut a = Vec3::ZERO;
+            for (&b, &k) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
+                let x_ib = sep.between(pos[i], walls.positions[b as usize]);
+                a += kept.scaled(k, || x_ib, psi[b as usize] * (-g.dot(x_ib) / rho0).max(least));
+            }
+            *v -= a * dt;
+        }
+    });
+    cx.attrs.put(h, vel);
+}
+
 /// `dfsph.cg_{density,divergence}_warm`: the Jacobi's warm start
 /// ([`super::cpu::Warm`]) from all of the last stiffness where a free surface exists,
 /// else from [`WARM_START`] of it ([`super::cg`]).

@@ -84,6 +84,7 @@ pub static SCHEME: SchemeDef = SchemeDef {
         ("dfsph.density_kick", &cpu::Kick { kappa: "kappa", increment: "dkappa" }),
         ("dfsph.density_error", &cpu::Error { density: true }),
         ("dfsph.cg_held", &cg_cpu::Held),
+        ("dfsph.cg_wall_pressure", &cg_cpu::WallPressure),
         ("dfsph.cg_divergence_warm", &cg_cpu::Warm(cpu::Warm { kappa: "kappa_v", increment: "dkappa_v" })),
         ("dfsph.cg_divergence_start", &cg_cpu::Start { density: false }),
         ("dfsph.cg_divergence_adjust", &cg_cpu::Adjust { density: false }),

@@ -24,6 +24,24 @@ pub static HELD: GpuPass = particles(
     &[(U, "params"), (U, "dfsph"), (R, "x"), (R, "v"), (R, "rho"), (R, "starts"), (R, "walls"), (W, "dfsph_held")],
 );
 
+/// The walls' hydrostatic pressure.
+pub static WALL_PRESSURE: GpuPass = particles(
+    "dfsph.cg_wall_pressure",
+    particle_kernel!("cg/wall_pressure.wgsl"),
+    "main",
+    &[
+        (U, "params"),
+        (U, "dt"),
+        (R, "dfsph_scalars"),
+        (R, "x"),
+        (R, "kappa"),
+        (R, "kappa_v"),
+        (R, "starts"),
+        (R, "walls"),
+        (W, "v"),
+    ],
+);
+
 const WARM: &str = particle_kernel!("cg/warm.wgsl");
 const START: &str = particle_kernel!("rate.wgsl", "cg/start.wgsl");
 const START_BINDINGS: &[(Access, &str)] = &[
