@@ -27,10 +27,11 @@ pub struct DfsphSettings {
     #[serde(default)]
     pub compact_gradients: bool,
     /// How both solves iterate: `"jacobi"` (B&K's, compression only; the default) or
-    /// `"cg"` (preconditioned conjugate gradients, signed, with the walls' pressure
-    /// mirrored: `schemes::dfsph::cg`), one particle mass only. The CG converges on
-    /// closed and periodic flows where the Jacobi diverges (Poiseuille within 1 %),
-    /// but fails in closed domains under gravity and is worse on the dam break
+    /// `"cg"` (preconditioned conjugate gradients, signed, the walls' pressure the
+    /// fluid's mirrored plus its hydrostatic difference: `schemes::dfsph::cg`), one
+    /// particle mass only. The CG converges on closed and periodic flows where the
+    /// Jacobi diverges (Poiseuille within 1 %) and holds a column within 5 %, but fails
+    /// in closed domains under gravity and is worse on the dam break
     /// (docs/validation/schemes/CG.md).
     #[serde(default)]
     pub solver: DfsphSolver,
