@@ -20,25 +20,29 @@ pub(crate) use particle_kernel;
 /// Joins `common.wgsl` and the neighbour walk `walk.wgsl` with a pair pass's terms
 /// and hooks. The walk visits the wall neighbours too (`walk_walls.wgsl`), always,
 /// or, after `walls_if;`, where the kernel's `walk_walls()` says so; after
-/// `fluid_only;` it visits none (`walk_fluid.wgsl`).
+/// `fluid_only;` it visits none (`walk_fluid.wgsl`); after `walls_only;` it visits
+/// the wall neighbours alone (`walk_walls_only.wgsl`).
 macro_rules! walk_kernel {
     (fluid_only; $($file:literal),+) => {
-        walk_kernel!(@join ["walk_fluid.wgsl"]; $($file),+)
+        walk_kernel!(@join "walk.wgsl", ["walk_fluid.wgsl"]; $($file),+)
     };
     (walls_if; $($file:literal),+) => {
-        walk_kernel!(@join ["walk_walls.wgsl"]; $($file),+)
+        walk_kernel!(@join "walk.wgsl", ["walk_walls.wgsl"]; $($file),+)
     };
-    (@join [$($walk:literal),+]; $($file:literal),+) => {
+    (walls_only; $($file:literal),+) => {
+        walk_kernel!(@join "walk_walls_only.wgsl", ["walk_walls.wgsl", "walk_walls_always.wgsl"]; $($file),+)
+    };
+    (@join $main:literal, [$($walk:literal),+]; $($file:literal),+) => {
         concat!(
             include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/common.wgsl")),
             "\n",
-            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/walk.wgsl")),
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/", $main)),
             $("\n", include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/passes/", $walk))),+,
             $("\n", include_str!($file)),+
         )
     };
     ($($file:literal),+) => {
-        walk_kernel!(@join ["walk_walls.wgsl", "walk_walls_always.wgsl"]; $($file),+)
+        walk_kernel!(@join "walk.wgsl", ["walk_walls.wgsl", "walk_walls_always.wgsl"]; $($file),+)
     };
 }
 pub(crate) use walk_kernel;

@@ -27,7 +27,7 @@ pub static HELD: GpuPass = particles(
 /// The walls' hydrostatic pressure.
 pub static WALL_PRESSURE: GpuPass = particles(
     "dfsph.cg_wall_pressure",
-    particle_kernel!("cg/wall_pressure.wgsl"),
+    walk_kernel!(walls_only; "cg/wall_pressure.wgsl"),
     "main",
     &[
         (U, "params"),

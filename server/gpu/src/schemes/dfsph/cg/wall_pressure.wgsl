@@ -14,29 +14,24 @@
 @group(0) @binding(7) var<storage, read> walls: array<vec4<f32>>;
 @group(0) @binding(8) var<storage, read_write> vel: array<vec4<f32>>;
 
-@compute @workgroup_size(WG)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
-    let i = thread_index(gid, groups);
-    if (i >= params.n || params.n_walls == 0u) {
-        return;
-    }
-    let xi = pos[i].xyz;
-    let mat = params.materials[material_of(pos[i])];
+var<private> least: f32;
+// The fluid's material: x its rest density, w its rest density over material 0's
+// (the walls' psi_b, kept for material 0, scaled to this fluid's).
+var<private> mat: vec4<f32>;
+var<private> a: vec3<f32>;
+
+fn walk_begin(i: u32) {
+    mat = params.materials[material_of(pos[i])];
     // -3.4e38: no least pressure in a closed domain.
-    let least = select(-3.4e38, -(kappa[i] + kappa_v[i]), scalars[3] > 0.0);
-    var a = vec3<f32>(0.0);
-    let bw = block_of(xi, params.wall_origin, params.wall_inv_cell, params.wall_dims);
-    for (var k = 0u; k < block_runs(bw); k++) {
-        let run = run_cells(bw, k, params.wall_dims);
-        for (var b = starts[params.wall_start + run.x]; b < starts[params.wall_start + run.y]; b++) {
-            let x_ib = separation(xi, walls[b].xyz);
-            let r2 = dot(x_ib, x_ib);
-            if (r2 >= params.h2 || r2 == 0.0) {
-                continue;
-            }
-            a += kernel_grad(x_ib, r2) * ((walls[b].w * mat.w) * max(-dot(params.gravity, x_ib) / mat.x, least));
-        }
-    }
+    least = select(-3.4e38, -(kappa[i] + kappa_v[i]), scalars[3] > 0.0);
+    a = vec3<f32>(0.0);
+}
+
+fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
+    a += kernel_grad(x_ib, r2) * ((walls[b].w * mat.w) * max(-dot(params.gravity, x_ib) / mat.x, least));
+}
+
+fn walk_end(i: u32) {
     let v = vel[i];
     vel[i] = vec4<f32>(v.xyz - a * step_dt.x, v.w);
 }
