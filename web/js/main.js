@@ -11,11 +11,12 @@ import { acting, showError } from './notify.js';
 import { wallLines } from './outline.js';
 import { PlotPanel } from './plots.js';
 import { Recorder } from './recorder.js';
+import { realTime, statsText } from './overlay.js';
 import { LOOKS, Renderer } from './render.js';
 import { Replay } from './replay.js';
 import { Routes } from './route.js';
 import { FPS as OTHER_FPS, OtherSets } from './sets.js';
-import { sliders } from './tunables.js';
+import { SettingsPanel } from './settings.js';
 
 const $ = (id) => document.getElementById(id);
 const credentials = new Credentials(sessionStorage);
@@ -137,7 +138,7 @@ function open(scene) {
   renderer.look = LOOKS[scene.materials?.[0]?.look] ?? LOOKS.water;
   // Oriented particles (an elastic solid's `solid.oriented`) are drawn as ellipsoids.
   renderer.setOriented(orientedRadii(scene.scene, scene.particle_spacing));
-  showTunables(scene);
+  settings.show(scene);
   const tank = scene.scene?.boundaries?.find((b) => b.kind === 'box');
   showScene({ min: scene.bounds_min, max: scene.bounds_max }, wallLines(scene.scene), scene.particle_spacing, changed, tank);
   if (changed) showTerrain(scene);
@@ -227,7 +228,7 @@ function reconnect() {
 
 /** A status of the scene shown: settings, halt banner, plots. */
 function onStatus(scene) {
-  showSettings(scene.scene);
+  settings.update(scene.scene);
   state.lastStatus = scene;
   // A halt banner goes once the scene is no longer halted (after a reset).
   if (scene.state !== 'halted' && $('banner').textContent.startsWith('Halted')) banner(null);
@@ -331,50 +332,8 @@ $('pause').onclick = pause;
 $('step').onclick = step;
 $('reset').onclick = reset;
 // Sliders for tunable settings: applied when released.
-$('gravity').oninput = () => { $('gravity-value').textContent = Number($('gravity').value).toFixed(2); };
-$('gravity').onchange = () => setParameters([`gravity=[0,${$('gravity').value},0]`], 'settings-error');
+const settings = new SettingsPanel((overrides) => setParameters(overrides, 'settings-error'));
 
-/**
- * One slider per bounded numeric tunable of the scene (a module's settings included),
- * applied when released; the input's title lists every tunable with its unit.
- */
-function showTunables(scene) {
-  const list = scene.tunables ?? [];
-  $('param').title = list.map((t) => `${t.path}${t.unit ? ` (${t.unit})` : ''}: ${t.about}`).join('\n');
-  const rows = sliders(list, scene.scene ?? {}).flatMap((s) => {
-    const label = document.createElement('label');
-    const out = document.createElement('output');
-    label.textContent = `${s.path} `;
-    label.title = s.about;
-    label.append(out, s.unit ? ` ${s.unit}` : '');
-    const input = Object.assign(document.createElement('input'), { type: 'range', min: s.min, max: s.max, step: s.step });
-    input.dataset.path = s.path;
-    input.setAttribute('aria-label', s.path);
-    label.htmlFor = input.id = `tunable-${s.path}`;
-    input.oninput = () => { out.textContent = Number(input.value).toPrecision(3); };
-    input.onchange = () => setParameters([`${s.path}=${input.value}`], 'settings-error');
-    input.value = s.value;
-    input.oninput();
-    return [label, input];
-  });
-  $('tunables').replaceChildren(...rows);
-}
-
-/** Shows a scene's current tunable settings on the sliders (not on one being dragged). */
-function showSettings(scene) {
-  const g = scene?.gravity?.[1];
-  if (typeof g === 'number' && document.activeElement !== $('gravity')) {
-    $('gravity').value = g;
-    $('gravity-value').textContent = g.toFixed(2);
-  }
-  for (const s of sliders(state.scene?.tunables ?? [], scene ?? {})) {
-    const input = document.getElementById(`tunable-${s.path}`);
-    if (input && document.activeElement !== input) {
-      input.value = s.value;
-      input.oninput();
-    }
-  }
-}
 $('rtf').oninput = () => {
   const v = rtf();
   if (state.running) { state.requestedRtf = v; control('run', { real_time_factor: v }); }
@@ -495,23 +454,6 @@ bindKeys({
   g.fillRect(0, 0, 200, 10);
 }
 
-/** The resolution of the frames drawn, where it is lowered while the picture moves (resolution.js). */
-function resolutionNote() {
-  const moving = renderer.resolution.moving;
-  return moving < 1 ? ` at ${Math.round(100 * moving)} % resolution while moving` : '';
-}
-
-/** The real-time factor: achieved (over the last 3 s) against asked, for the overlay. */
-function realTime(s) {
-  if (s?.state !== 'running') return { text: '', slow: false };
-  const achieved = plots.series.recentRealTime(3);
-  if (!Number.isFinite(achieved)) return { text: 'measuring', slow: false };
-  const asked = state.requestedRtf;
-  const slow = asked !== null && achieved < 0.9 * asked;
-  const text = `${achieved.toPrecision(2)}${asked !== null ? ` of ${asked.toPrecision(2)} asked` : ''}${slow ? ' (cannot keep up)' : ''}`;
-  return { text, slow };
-}
-
 // Render loop and stats overlay.
 let fpsFrames = 0, fpsStart = performance.now(), lastPoll = 0;
 function frame(now) {
@@ -536,23 +478,13 @@ function frame(now) {
     fpsFrames = 0;
     fpsStart = now;
     const s = replay.active ? null : state.lastStatus;
-    const rt = realTime(s);
+    const rt = realTime(s, plots.series.recentRealTime(3), state.requestedRtf);
     $('rtf-achieved').textContent = rt.text ? `achieved ${rt.text}` : '';
     $('rtf-achieved').classList.toggle('slow', rt.slow);
-    $('stats').textContent = [
-      state.renderFps > 0 ? `render     ${state.renderFps.toFixed(0)} fps (${renderer.view})${resolutionNote()}` : `render     idle (${renderer.view})`,
-      `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}${renderer.drawnCount < renderer.count ? ` (${renderer.drawnCount} drawn)` : ''}`,
-      renderer.oriented ? `oriented   ellipsoids ${renderer.radii.map((r) => (1000 * r).toPrecision(2)).join(' x ')} mm${renderer.view === 'spheres' ? '' : ' (spheres view)'}` : '',
-      ...(replay.active ? replay.describe() : []),
-      s ? `sim time   ${s.sim_time.toFixed(3)} s (${s.state})` : '',
-      rt.text ? `real time  ${rt.text}` : '',
-      s ? `steps/s    ${s.steps_per_second.toFixed(0)}` : '',
-      replay.active ? '' : `frames     ${state.frames}${state.skipped ? ` (${state.skipped} skipped, decoder busy)` : ''}`,
-      replay.active ? '' : `bytes/frm  ${state.lastBytes} (${(state.lastBytes / Math.max(renderer.count, 1)).toFixed(2)} B/particle)`,
-      `decode     ${state.decodeMs.toFixed(2)} ms`,
-      s ? `dropped    ${s.dropped_frames}` : '',
-      ...(replay.active ? [] : others.summary()),
-    ].filter(Boolean).join('\n');
+    $('stats').textContent = statsText({
+      renderer, status: s, replay: replay.active ? replay.describe() : null, realTime: rt, stream: state,
+      others: others.summary(),
+    });
   }
   requestAnimationFrame(frame);
 }
