@@ -4,16 +4,18 @@
 //! backend waits only for the 32-byte measures the time step and guard need (and,
 //! for an iterative solve, a 4-byte residual per check). Kicks and drifts are
 //! submitted without waiting. Each plan pass is bound by name ([`crate::pass`]), so
-//! this file knows no module. [`readback`] copies results back to the CPU.
+//! this file knows no module. [`readback`] copies results back to the CPU;
+//! [`population`] removes and adds particles.
 
 mod binds;
+mod population;
 mod readback;
 
 use binds::{CoreBinds, PlanPass, core_binds, plan_passes};
 
 use crate::buffers::{Buffers, PACKED, STEP_SLOTS, from_gpu_words, gpu_words};
 use crate::context::GpuContext;
-use crate::layout::{Measures, Params, QuantGrid, Step, Words};
+use crate::layout::{Measures, Params, Step, Words};
 use crate::passes::PER_PARTIAL;
 use crate::program::Recorder;
 use crate::timer::Timer;
@@ -353,11 +355,6 @@ impl Stages for GpuBackend {
     }
 }
 
-/// The declaration of attribute `name` of `model` (one it has).
-fn layout_spec(model: &Model, name: &str) -> &'static floe_engine::attrs::AttrSpec {
-    model.layout.spec(name).unwrap_or_else(|| panic!("no attribute {name}"))
-}
-
 impl Backend for GpuBackend {
     fn name(&self) -> &'static str {
         "gpu"
@@ -482,64 +479,11 @@ impl Backend for GpuBackend {
     /// some, copies the particles' state back, keeps the others in order and uploads
     /// it (a copy of the particle state, only in a step that removed particles).
     fn compact(&mut self) {
-        let marked = self.reduce(&Reduction { attr: floe_engine::population::REMOVE.name, op: ReduceOp::Sum });
-        if !marked.is_ok_and(|m| m > 0.0) {
-            return;
-        }
-        let layout = &self.model.layout;
-        let mut names: Vec<&'static str> = layout
-            .specs()
-            .filter(|s| s.space == PARTICLES && s.role == floe_engine::attrs::Role::State && s.name != "material")
-            .map(|s| s.name)
-            .collect();
-        // The material after the positions, whose w it rides in.
-        names.extend(layout.spec("material").map(|s| s.name));
-        let remove = self.download(&[floe_engine::population::REMOVE.name]).remove(0);
-        let Column::F32(remove) = remove else { unreachable!("remove is declared f32") };
-        let keep: Vec<bool> = remove.iter().map(|&r| r == 0.0).collect();
-        let columns = self.download(&names);
-        let n = keep.iter().filter(|&&k| k).count();
-        self.resized(n as u32);
-        let zero = vec![0u8; 4 * remove.len()];
-        self.gpu.queue.write_buffer(self.buffers.get(floe_engine::population::REMOVE.name), 0, &zero);
-        for (name, column) in names.into_iter().zip(columns) {
-            let mut attrs = floe_engine::attrs::Attrs::new(vec![(layout_spec(&self.model, name), column)]);
-            attrs.retain(PARTICLES, &keep);
-            let (_, kept) = attrs.into_columns().remove(0);
-            self.upload(name, kept);
-        }
+        self.remove_marked();
     }
 
-    /// Writes the births after the live particles: their positions (with their
-    /// material in w), velocities and ids, every other attribute of theirs zero.
     fn emit(&mut self, births: &floe_engine::population::Births, first_id: u32) {
-        self.flush();
-        let (n, k) = (self.n as u64, births.len());
-        let specs: Vec<&'static floe_engine::attrs::AttrSpec> = self
-            .model
-            .layout
-            .specs()
-            .filter(|s| s.space == PARTICLES && !PACKED.iter().any(|(a, _)| *a == s.name))
-            .collect();
-        for spec in specs {
-            let column = match spec.name {
-                "x" => {
-                    let mut words = gpu_words(&Column::Vec3(births.x.clone()));
-                    if self.model.layout.spec("material").is_some() {
-                        for (j, &m) in births.material.iter().enumerate() {
-                            words[4 * j + 3] = (m as f32).to_bits();
-                        }
-                    }
-                    words
-                }
-                "v" => gpu_words(&Column::Vec3(births.v.clone())),
-                "id" => (first_id..first_id + k as u32).collect(),
-                _ => gpu_words(&Column::zeros(spec.elem, k)),
-            };
-            let at = 4 * spec.elem.gpu_words() as u64 * n;
-            self.gpu.queue.write_buffer(self.buffers.get(spec.name), at, bytemuck::cast_slice(&column));
-        }
-        self.resized((n as usize + k) as u32);
+        self.write_births(births, first_id);
     }
 
     fn set_particle_count(&mut self, n: usize) {
@@ -555,20 +499,6 @@ impl Backend for GpuBackend {
     }
 
     fn read_on_grid(&self, set: &SetSpec, channels: &[&str], grid: &PositionGrid) -> Particles {
-        let Some(quantize) = self.core.quantize.as_ref().filter(|_| set.space == PARTICLES) else {
-            return self.read_set(set, channels);
-        };
-        let b = &self.buffers;
-        self.gpu.queue.write_buffer(b.get("quant_grid"), 0, bytemuck::bytes_of(&QuantGrid::from(grid)));
-        let encoder =
-            self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("quantize") });
-        let mut e = Recorder { encoder, timer: None };
-        self.gpu.programs.quantize.dispatch(&mut e, quantize, self.n.div_ceil(2));
-        self.gpu.queue.submit([e.encoder.finish()]);
-        let got = self.download_words(&[(b.get("codes"), 0, 12 * (self.n as u64).div_ceil(2))]);
-        let codes: &[u16] = bytemuck::cast_slice(&got[0]);
-        let positions =
-            codes.chunks_exact(3).take(self.n as usize).map(|c| std::array::from_fn(|k| grid.value(c[k], k))).collect();
-        floe_engine::backend::read(self, set, channels, Some(positions))
+        self.read_quantized(set, channels, grid)
     }
 }

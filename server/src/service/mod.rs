@@ -20,10 +20,11 @@ mod membership;
 pub mod options;
 mod persist;
 pub mod pump;
+mod setup;
 pub mod shared;
 mod worker;
 
-use crate::auth::{Access, AuthMode, Caller};
+use crate::auth::{Access, Caller};
 use crate::cluster::{Member, Tenure};
 use crate::metrics::{Metrics, SceneSample, SceneSamples};
 use crate::quota::{Limit, QuotaSet, Quotas, StreamPermit};
@@ -37,6 +38,7 @@ use floe_engine::simulation::BackendFactory;
 use frames::{FrameCache, Subscription};
 pub use handle::{CommandError, MAX_STEPS_PER_REQUEST, SceneHandle};
 use options::FrameRequest;
+pub use setup::{DEFAULT_CHECKPOINT_SECONDS, DEFAULT_MAX_PARTICLES, DEFAULT_MAX_SCENES, Limits, Options};
 pub use shared::{Event, Published, Shared, State, Status};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -84,62 +86,6 @@ pub enum SceneSource {
         /// TOML or JSON.
         format: Format,
     },
-}
-
-/// Server limits.
-#[derive(Debug, Clone, Copy)]
-pub struct Limits {
-    /// Scenes alive at once.
-    pub max_scenes: usize,
-    /// Fluid particles in one scene.
-    pub max_particles: usize,
-}
-
-/// Default of [`Limits::max_scenes`].
-pub const DEFAULT_MAX_SCENES: u64 = 64;
-/// Default of [`Limits::max_particles`].
-pub const DEFAULT_MAX_PARTICLES: u64 = 4_000_000;
-/// Default of [`Options::checkpoint_every`] (s).
-pub const DEFAULT_CHECKPOINT_SECONDS: u64 = 60;
-
-impl Default for Limits {
-    fn default() -> Self {
-        Self { max_scenes: DEFAULT_MAX_SCENES as usize, max_particles: DEFAULT_MAX_PARTICLES as usize }
-    }
-}
-
-/// How a registry is set up.
-#[derive(Debug, Clone)]
-pub struct Options {
-    /// Server limits.
-    pub limits: Limits,
-    /// Server-wide quota defaults.
-    pub quotas: QuotaSet,
-    /// How calls are authenticated.
-    pub auth: AuthMode,
-    /// Origins besides the server's own that may open a WebSocket.
-    pub origins: Vec<String>,
-    /// Wall time a scene runs between periodic checkpoints.
-    pub checkpoint_every: Duration,
-    /// Directory of the terrain assets scenes may name (`--assets`); none: refused.
-    pub assets: Option<std::path::PathBuf>,
-    /// The backend scenes run on (`cpu` or `gpu`), what a scene asking for one is
-    /// checked against.
-    pub backend: &'static str,
-}
-
-impl Default for Options {
-    fn default() -> Self {
-        Self {
-            limits: Limits::default(),
-            quotas: QuotaSet::default(),
-            auth: AuthMode::SingleUser,
-            origins: Vec::new(),
-            checkpoint_every: Duration::from_secs(DEFAULT_CHECKPOINT_SECONDS),
-            assets: None,
-            backend: "cpu",
-        }
-    }
 }
 
 /// What a call does to a scene.

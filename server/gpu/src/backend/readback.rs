@@ -2,9 +2,36 @@
 //! backend waits for the device.
 
 use super::GpuBackend;
+use crate::layout::QuantGrid;
+use crate::program::Recorder;
+use floe_engine::attrs::PARTICLES;
+use floe_engine::backend::{Backend, Particles};
+use floe_engine::channels::SetSpec;
+use floe_engine::quantize::PositionGrid;
 use wgpu::Buffer;
 
 impl GpuBackend {
+    /// A set's channels with the particles' positions quantised on `grid` by the
+    /// GPU (6 bytes a particle read back instead of 16), where the backend has the
+    /// quantiser; other sets are read whole.
+    pub(super) fn read_quantized(&self, set: &SetSpec, channels: &[&str], grid: &PositionGrid) -> Particles {
+        let Some(quantize) = self.core.quantize.as_ref().filter(|_| set.space == PARTICLES) else {
+            return self.read_set(set, channels);
+        };
+        let b = &self.buffers;
+        self.gpu.queue.write_buffer(b.get("quant_grid"), 0, bytemuck::bytes_of(&QuantGrid::from(grid)));
+        let encoder =
+            self.gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("quantize") });
+        let mut e = Recorder { encoder, timer: None };
+        self.gpu.programs.quantize.dispatch(&mut e, quantize, self.n.div_ceil(2));
+        self.gpu.queue.submit([e.encoder.finish()]);
+        let got = self.download_words(&[(b.get("codes"), 0, 12 * (self.n as u64).div_ceil(2))]);
+        let codes: &[u16] = bytemuck::cast_slice(&got[0]);
+        let positions =
+            codes.chunks_exact(3).take(self.n as usize).map(|c| std::array::from_fn(|k| grid.value(c[k], k))).collect();
+        floe_engine::backend::read(self, set, channels, Some(positions))
+    }
+
     /// Copies byte ranges (multiples of 4 bytes) of buffers back to the CPU, one
     /// submission and one wait, as 4-byte words. Panics if the device is lost (a
     /// scene's worker turns that into a halt).
