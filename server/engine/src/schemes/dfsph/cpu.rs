@@ -9,8 +9,9 @@
 //! the dam break), so the kernel is evaluated once instead of once per pass. Whole
 //! gradients cost 12 bytes a pair; with `solver.dfsph.compact_gradients` each pair
 //! keeps its `dW/dr / r` in 2 bytes ([`GradientPacking`]) and the passes multiply it
-//! by the separation: half the memory (365 against 742 bytes a particle at 1M) at
-//! 1.3 times the solves' time (docs/benchmarks.md). The factor reads the kept values too, so its diagonal is
+//! by the separation: half the memory (365-378 against 742-762 bytes a particle at
+//! 1M) at 1.1 (1M particles) to 1.4 (21,952) times the step's time
+//! (docs/benchmarks.md). The factor reads the kept values too, so its diagonal is
 //! that of the system the kicks apply.
 
 use super::{DfsphConsts, FULL_NEIGHBOURHOOD, WARM_START};
@@ -118,6 +119,12 @@ pub(super) fn neighbours(nb: &ChunkNeighbors, n: usize) -> u32 {
     (nb.fluid(n).len() - 1 + nb.walls(n).len()) as u32
 }
 
+/// The mass every material's particles have, if they have one.
+fn uniform_mass(materials: &crate::materials::Materials) -> Option<Real> {
+    let m = materials.get(0).mass;
+    materials.iter().all(|x| x.mass == m).then_some(m)
+}
+
 /// What the solves' pair sums read: the positions, materials and walls, the kept
 /// gradients and the walls' factor `c` (1 for Akinci's walls, 2 mirrored).
 pub(super) struct Sums<'a, K, S> {
@@ -126,6 +133,9 @@ pub(super) struct Sums<'a, K, S> {
     model: &'a Model,
     pos: &'a [Vec3],
     mat: Option<&'a [u32]>,
+    /// The particles' one mass where every material has it: the pair's
+    /// `m_j^2 / m_i` is then `m` and the pair reads no material.
+    uniform: Option<Real>,
     c: Real,
 }
 
@@ -137,6 +147,7 @@ impl<'a, K: Kept, S: Separation> Sums<'a, K, S> {
             model,
             pos: attrs.get(attrs.handle::<Vec3>("x")),
             mat: attrs.find::<u32>("material").map(|m| attrs.get(m)),
+            uniform: uniform_mass(&model.materials),
             c: model.consts::<DfsphConsts>().wall_factor,
         }
     }
@@ -157,8 +168,11 @@ impl<'a, K: Kept, S: Separation> Sums<'a, K, S> {
         let mut a = Vec3::ZERO;
         for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
             let j = j as usize;
-            let m_j = self.material(j).mass;
-            a += self.kept.scaled(v, || self.sep.between(xi, self.pos[j]), own + m_j * m_j / m_i * p[j]);
+            let m_j2 = match self.uniform {
+                Some(m) => m,
+                None => self.material(j).mass * self.material(j).mass / m_i,
+            };
+            a += self.kept.scaled(v, || self.sep.between(xi, self.pos[j]), own + m_j2 * p[j]);
         }
         let psi = &walls.psi[self.mat.map_or(0, |m| m[i] as usize)];
         let mut wall = Vec3::ZERO;
