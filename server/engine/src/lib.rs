@@ -57,6 +57,7 @@ pub mod model;
 pub mod module;
 pub mod modules;
 pub mod neighbors;
+pub mod overburden;
 pub mod periodic;
 pub mod plan;
 pub mod population;

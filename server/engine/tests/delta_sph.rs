@@ -197,7 +197,7 @@ fn a_resting_column_starts_in_balance_and_its_pressure_is_smooth() {
 
 #[test]
 fn each_particle_starts_under_the_weight_of_the_fluid_above_it() {
-    use floe_engine::schemes::wcsph::continuity::overburden;
+    use floe_engine::overburden::overburden;
     // Two columns 0.1 m apart, four particles each: 100 kg/m^3 over 1000 kg/m^3.
     let d = 0.1;
     let x: Vec<Vec3> = (0..8).map(|k| Vec3::new(0.05 + d * (k / 4) as f32, 0.05 + d * (k % 4) as f32, 0.05)).collect();

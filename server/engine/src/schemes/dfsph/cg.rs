@@ -29,8 +29,9 @@
 //! `dfsph.cg_wall_pressure` applies its force as a kick, once a step, before the
 //! constant-density solve. Without it the mirror holds a column at 1.09 of
 //! hydrostatic (the floor and the side walls give no pressure gradient); with it the
-//! column at 0.025 m comes to pressure L2 0.041 against 0.097, the dam break's front
-//! to 0.22 against 0.43 and Poiseuille to 0.0038 against 0.0068 (CG.md).
+//! column at 0.025 m came to pressure L2 0.041 against 0.097, the dam break's front
+//! to 0.22 against 0.43 and Poiseuille to 0.0038 against 0.0068 (CG.md; 0.026 and
+//! 0.12 for the first two since the start below).
 //!
 //! What the solves do beyond plain CG, and why:
 //! - particles with fewer than [`super::FULL_NEIGHBOURHOOD`] neighbours are held at
@@ -45,7 +46,11 @@
 //!   kick by the difference (a negative `P` beside a one-sided wall pulls the fluid
 //!   into it);
 //! - each solve starts from its last stiffness: all of it where a free surface
-//!   exists, [`super::WARM_START`] (one half) in a closed domain. At a free surface
+//!   exists, [`super::WARM_START`] (one half) in a closed domain, none for a held
+//!   particle (its stiffness is zero, not the last one it had while free; a fluid's
+//!   vertical face otherwise kept the hydrostatic start below). The first density
+//!   solve starts from the weight of the fluid above each particle
+//!   ([`crate::overburden`]), not from zero. At a free surface
 //!   a solve stopped at its tolerance does not pin the pressure (`A` is nearly
 //!   singular on smooth modes) and the carried stiffness is what holds it (the
 //!   resting column at 0.025 m: pressure L2 0.78 with one half). In a closed domain
@@ -142,7 +147,7 @@ macro_rules! solve_passes {
         pub static $warm: PassSpec = PassSpec::solve(
             "dfsph",
             concat!("dfsph.cg_", $solve, "_warm"),
-            &["dfsph_scalars", $kappa],
+            &["dfsph_scalars", "dfsph_held", $kappa],
             &[$increment, $kappa],
             &[],
         );

@@ -83,7 +83,8 @@ fn wall_pressure<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
 
 /// `dfsph.cg_{density,divergence}_warm`: the Jacobi's warm start
 /// ([`super::cpu::Warm`]) from all of the last stiffness where a free surface exists,
-/// else from [`WARM_START`] of it ([`super::cg`]).
+/// else from [`WARM_START`] of it ([`super::cg`]); none for a held particle, whose
+/// stiffness is zero.
 #[derive(Debug)]
 pub struct Warm(pub super::cpu::Warm);
 
@@ -91,6 +92,11 @@ impl CpuPass for Warm {
     fn run(&self, cx: &mut CpuCx<'_>) {
         let w = if scalars(cx)[HELD as usize] > 0.0 { 1.0 } else { WARM_START };
         self.0.start(cx, w);
+        let h = cx.attrs.handle::<Real>(self.0.increment);
+        let mut inc = cx.attrs.take(h);
+        let held = cx.attrs.get(cx.attrs.handle::<Real>("dfsph_held"));
+        inc.par_iter_mut().zip(held).for_each(|(d, &held)| *d *= 1.0 - held);
+        cx.attrs.put(h, inc);
     }
 }
 

@@ -79,20 +79,13 @@ pub struct DeltaConsts {
 
 /// Declares the integrated density, its rate and the passes; returns the passes'
 /// constants. Each particle starts at the density its equation of state gives the
-/// weight of the fluid above it ([`overburden`]): a fluid at rest starts in balance
+/// weight of the fluid above it ([`crate::overburden`]): a fluid at rest starts in balance
 /// instead of falling onto its own compression and ringing.
 pub fn build(b: &mut ModelBuilder, delta: Real, sound_speed: Real, eos: &[Eos]) -> DeltaConsts {
     let rest: Vec<Real> = b.materials().iter().map(|m| m.rest_density).collect();
     let g: Vec3 = b.scene.gravity.into();
-    let mat = match b.column("material") {
-        Some(Column::U32(mat)) => mat.clone(),
-        _ => vec![0; b.count(PARTICLES)],
-    };
-    let Some(Column::Vec3(x)) = b.column("x") else { panic!("the core declares positions first") };
-    let rho0: Vec<Real> = mat.iter().map(|&m| rest[m as usize]).collect();
-    let along_periodic = b.scene.periodic_axes().iter().zip(g.to_array()).any(|(&p, g)| p && g != 0.0);
-    let p = if along_periodic { vec![0.0; x.len()] } else { overburden(x, &rho0, g, b.scene.particle_spacing) };
-    let rho = p.iter().zip(&mat).map(|(&p, &m)| eos[m as usize].density(p));
+    let at_rest = crate::overburden::at_rest(b);
+    let rho = at_rest.pressure.iter().zip(&at_rest.material).map(|(&p, &m)| eos[m as usize].density(p));
     b.redeclare(&RHO_INTEGRATED, Column::F32(rho.collect()));
     b.replace_pass("core.density", &crate::cpu::core::NEIGHBOURS);
     b.zeros(&DRHO);
@@ -184,33 +177,4 @@ fn continuity<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
         }
     });
     cx.attrs.put(d_h, out);
-}
-
-/// The hydrostatic pressure (Pa) on each particle from the weight of the fluid above
-/// it: particles in columns `d` wide along gravity `g`, each carrying
-/// `|g| (rho0_i d / 2 + sum of rho0_j d above it)`, its own half layer and the whole
-/// layers above. A block at rest gets `rho0 |g| depth`, and a layer under another
-/// carries the other's weight as well. Gravity along a periodic axis has no "above":
-/// the caller starts such scenes at rest density.
-pub fn overburden(x: &[Vec3], rho0: &[Real], g: Vec3, d: Real) -> Vec<Real> {
-    let (g_len, down) = (g.length(), g.normalize_or_zero());
-    let mut out = vec![0.0; x.len()];
-    if g_len == 0.0 {
-        return out;
-    }
-    let (e1, e2) = down.any_orthonormal_pair();
-    let mut columns: std::collections::HashMap<(i64, i64), Vec<usize>> = Default::default();
-    for (i, x) in x.iter().enumerate() {
-        let key = ((x.dot(e1) / d).floor() as i64, (x.dot(e2) / d).floor() as i64);
-        columns.entry(key).or_default().push(i);
-    }
-    for mut column in columns.into_values() {
-        column.sort_by(|&a, &b| x[a].dot(down).total_cmp(&x[b].dot(down)));
-        let mut above = 0.0;
-        for i in column {
-            out[i] = g_len * (above + 0.5 * rho0[i] * d);
-            above += rho0[i] * d;
-        }
-    }
-    out
 }

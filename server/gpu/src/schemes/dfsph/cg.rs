@@ -83,7 +83,7 @@ macro_rules! solve_passes {
             concat!("dfsph.cg_", $solve, "_warm"),
             WARM,
             "main",
-            &[(U, "params"), (U, "dfsph"), (R, "dfsph_scalars"), (W, $kappa), (W, $increment)],
+            &[(U, "params"), (U, "dfsph"), (R, "dfsph_scalars"), (W, $kappa), (W, $increment), (R, "dfsph_held")],
         );
         #[doc = concat!("The ", $solve, " solve's start.")]
         pub static $start: GpuPass = particles(concat!("dfsph.cg_", $solve, "_start"), START, $solve, START_BINDINGS);
