@@ -91,12 +91,7 @@ pub struct Warm(pub super::cpu::Warm);
 impl CpuPass for Warm {
     fn run(&self, cx: &mut CpuCx<'_>) {
         let w = if scalars(cx)[HELD as usize] > 0.0 { 1.0 } else { WARM_START };
-        self.0.start(cx, w);
-        let h = cx.attrs.handle::<Real>(self.0.increment);
-        let mut inc = cx.attrs.take(h);
-        let held = cx.attrs.get(cx.attrs.handle::<Real>("dfsph_held"));
-        inc.par_iter_mut().zip(held).for_each(|(d, &held)| *d *= 1.0 - held);
-        cx.attrs.put(h, inc);
+        self.0.start(cx, w, Some("dfsph_held"));
     }
 }
 

@@ -168,10 +168,10 @@ impl<'a, K: Kept, S: Separation> Sums<'a, K, S> {
         let mut a = Vec3::ZERO;
         for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
             let j = j as usize;
-            let m_j2 = match self.uniform {
-                Some(m) => m,
-                None => self.material(j).mass * self.material(j).mass / m_i,
-            };
+            let m_j2 = self.uniform.unwrap_or_else(|| {
+                let m_j = self.material(j).mass;
+                m_j * m_j / m_i
+            });
             a += self.kept.scaled(v, || self.sep.between(xi, self.pos[j]), own + m_j2 * p[j]);
         }
         let psi = &walls.psi[self.mat.map_or(0, |m| m[i] as usize)];
@@ -260,17 +260,19 @@ pub struct Warm {
 
 impl CpuPass for Warm {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        self.start(cx, WARM_START);
+        self.start(cx, WARM_START, None);
     }
 }
 
 impl Warm {
-    /// `increment = w kappa`, `kappa = 0`.
-    pub(super) fn start(&self, cx: &mut CpuCx<'_>, w: Real) {
+    /// `increment = w kappa` (0 where the attribute `held` is 1, if given),
+    /// `kappa = 0`.
+    pub(super) fn start(&self, cx: &mut CpuCx<'_>, w: Real, held: Option<&'static str>) {
         let (kh, dh) = (cx.attrs.handle::<Real>(self.kappa), cx.attrs.handle::<Real>(self.increment));
         let (mut kappa, mut inc) = (cx.attrs.take(kh), cx.attrs.take(dh));
-        kappa.par_iter_mut().zip(inc.par_iter_mut()).with_min_len(4096).for_each(|(k, d)| {
-            *d = w * *k;
+        let held = held.map(|h| cx.attrs.get(cx.attrs.handle::<Real>(h)));
+        kappa.par_iter_mut().zip(inc.par_iter_mut()).enumerate().with_min_len(4096).for_each(|(i, (k, d))| {
+            *d = held.map_or(w, |h| w * (1.0 - h[i])) * *k;
             *k = 0.0;
         });
         cx.attrs.put(kh, kappa);
