@@ -39,4 +39,5 @@ pub static PASSES: &[&GpuPass] = &[
 ];
 
 /// Every scheme's uniform.
-pub static UNIFORMS: &[(&str, UniformSource)] = &[("wcsph", wcsph::uniform), ("dfsph", dfsph::uniform)];
+pub static UNIFORMS: &[(&str, UniformSource)] =
+    &[("wcsph", wcsph::uniform), ("dfsph", dfsph::uniform), ("dfsph_surface", dfsph::cg::surface_uniform)];

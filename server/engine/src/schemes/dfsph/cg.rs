@@ -34,8 +34,10 @@
 //! 0.12 for the first two since the start below).
 //!
 //! What the solves do beyond plain CG, and why:
-//! - particles with fewer than [`super::FULL_NEIGHBOURHOOD`] neighbours are held at
-//!   `P = 0` (their rows and columns removed): a free surface;
+//! - particles with fewer than [`super::FULL_NEIGHBOURHOOD`] neighbours, a summed
+//!   density below [`SURFACE_DENSITY`] of rest, or below rest with a neighbourhood a
+//!   free surface cuts ([`SURFACE_GRADIENT`]) are held at `P = 0` (their rows and
+//!   columns removed): a free surface;
 //! - with no particle held (a closed or periodic domain) the starting residual's mean
 //!   is removed: a uniform stiffness moves nothing there (the near-null mode), and
 //!   the mean compression that the particles' disorder adds to a summed density
@@ -93,6 +95,19 @@ use super::spec::DfsphSettings;
 /// this choice: docs/validation/schemes/CG.md).
 pub const SURFACE_DENSITY: f32 = 0.97;
 
+/// A particle below its rest density whose rest-volume gradient sum `|sum_j V_j grad
+/// W_ij + sum_b V_b grad W_ib|` ([`super::cpu::Sums::volume_gradient`]) times the
+/// kernel's support is at least this is held at `P = 0` too. The sum vanishes in a
+/// full neighbourhood, compressed or not, and a free surface cuts it: on a resting
+/// column at 0.025 m the top layer sums to 0.8-1.0, the layer below to 0.22 at
+/// most, the interior to 0.05. [`SURFACE_DENSITY`] alone lets a settled top layer
+/// go free once it is pressed to 0.97-0.98 of rest: with no particle held the solves
+/// took the column for a closed domain, whose pressure level they do not pin, and
+/// the column burst after 1.8 s (docs/validation/schemes/CG.md). A compressed
+/// particle is never held by this test: at P = 0 beside a wall (whose pressure
+/// mirrors the particle's) nothing would stop it being pressed into the wall.
+pub const SURFACE_GRADIENT: f32 = 0.5;
+
 /// The space of the solves' scalars.
 pub const SPACE: &str = "dfsph.cg";
 /// Slots of `dfsph_scalars`: `r.z` (the current one), `p.Ap`, the new `r.z`, the
@@ -123,7 +138,7 @@ pub static GP: AttrSpec = attr("dfsph_gp", Elem::Vec3, "m/s^2", "DFSPH CG: the p
 pub static AP: AttrSpec = attr("dfsph_ap", Elem::F32, "kg/(m^3 s^2)", "DFSPH CG: the matrix times p.");
 /// Each particle's term of the dot product summed next.
 pub static DOT: AttrSpec = attr("dfsph_dot", Elem::F32, "", "DFSPH CG: dot-product terms.");
-/// 1 for a particle held at `P = 0` (too few neighbours), else 0.
+/// 1 for a particle held at `P = 0` (a free surface), else 0.
 pub static HELD_ATTR: AttrSpec = attr("dfsph_held", Elem::F32, "", "DFSPH CG: 1 where held at zero pressure.");
 /// The solves' scalars.
 pub static SCALARS: AttrSpec = AttrSpec {
@@ -219,11 +234,11 @@ solve_passes!(
     "divergence_error"
 );
 
-/// The particles held at `P = 0`: fewer than [`super::FULL_NEIGHBOURHOOD`]
-/// neighbours (run once a step, at the divergence-free solve's start; the
-/// constant-density solve has the same neighbours). It reads the velocities on the
-/// GPU, whose count comes from the rate's walk (rate.wgsl).
-pub static HELD_PASS: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_held", &["x", "v", "rho"], &["dfsph_held"], &[]);
+/// The particles held at `P = 0`: a free surface ([`SURFACE_DENSITY`],
+/// [`SURFACE_GRADIENT`]; run
+/// once a step, at the divergence-free solve's start; the constant-density solve has
+/// the same neighbours).
+pub static HELD_PASS: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_held", &["x", "rho"], &["dfsph_held"], &[]);
 /// The walls' hydrostatic pressure, as a kick before the constant-density solve
 /// (once a step; see the module's documentation).
 pub static WALL_PRESSURE_PASS: PassSpec =

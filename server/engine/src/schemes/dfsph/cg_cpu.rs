@@ -2,7 +2,7 @@
 //! the order); the pair sums are the Jacobi's (`cpu::Sums`), over the
 //! gradients the factor pass kept.
 
-use super::cg::{HELD, PAP, RSUM, RZ, RZ_NEW, SURFACE_DENSITY, ratio};
+use super::cg::{HELD, PAP, RSUM, RZ, RZ_NEW, SURFACE_DENSITY, SURFACE_GRADIENT, ratio};
 use super::cpu::{Kept, Sums, neighbours, with_kept};
 use super::{FULL_NEIGHBOURHOOD, WARM_START};
 use crate::cpu::neighbors::CHUNK;
@@ -16,29 +16,35 @@ fn scalars(cx: &CpuCx<'_>) -> Vec<Real> {
     cx.attrs.get(cx.attrs.handle::<Real>("dfsph_scalars")).to_vec()
 }
 
-/// `dfsph.cg_held`: 1 for a particle with fewer than [`FULL_NEIGHBOURHOOD`]
-/// neighbours, held at `P = 0`, else 0.
+/// `dfsph.cg_held`: 1 for a particle held at `P = 0` (a free surface: fewer than
+/// [`FULL_NEIGHBOURHOOD`] neighbours, a summed density below [`SURFACE_DENSITY`] of
+/// rest, or below rest with a neighbourhood the surface cuts, [`SURFACE_GRADIENT`]),
+/// else 0.
 #[derive(Debug)]
 pub struct Held;
 
 impl CpuPass for Held {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        let model = cx.model;
-        let h = cx.attrs.handle::<Real>("dfsph_held");
-        let mut held = cx.attrs.take(h);
-        let attrs = &*cx.attrs;
-        let rho = attrs.get(attrs.handle::<Real>("rho"));
-        let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
-        held.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (out, nb))| {
-            for (n, held) in out.iter_mut().enumerate() {
-                let i = c * CHUNK + n;
-                let rest = model.materials.get(mat.map_or(0, |m| m[i] as usize)).rest_density;
-                let free = neighbours(nb, n) >= FULL_NEIGHBOURHOOD && rho[i] >= SURFACE_DENSITY * rest;
-                *held = if free { 0.0 } else { 1.0 };
-            }
-        });
-        cx.attrs.put(h, held);
+        with_kept!(cx.model, |kept, sep| held(cx, kept, sep))
     }
+}
+
+fn held<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
+    let cut = SURFACE_GRADIENT / cx.model.kernel.support();
+    let h = cx.attrs.handle::<Real>("dfsph_held");
+    let mut held = cx.attrs.take(h);
+    let sums = Sums::new(cx.model, &*cx.attrs, kept, sep);
+    let rho = cx.attrs.get(cx.attrs.handle::<Real>("rho"));
+    held.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (out, nb))| {
+        for (n, held) in out.iter_mut().enumerate() {
+            let i = c * CHUNK + n;
+            let rest = sums.material(i).rest_density;
+            let surface = rho[i] < rest && sums.volume_gradient(i, n, nb).length_squared() >= cut * cut;
+            let free = neighbours(nb, n) >= FULL_NEIGHBOURHOOD && rho[i] >= SURFACE_DENSITY * rest && !surface;
+            *held = if free { 0.0 } else { 1.0 };
+        }
+    });
+    cx.attrs.put(h, held);
 }
 
 /// `dfsph.cg_wall_pressure`: the walls' hydrostatic part of their pressure as a

@@ -182,6 +182,26 @@ impl<'a, K: Kept, S: Separation> Sums<'a, K, S> {
         a + wall * (self.c * p[i])
     }
 
+    /// `sum_j V_j grad W_ij + sum_b V_b grad W_ib` (1/m) with the rest volumes
+    /// `V_j = m_j / rho0_j` and the walls' `V_b = psi_b / rho0_i`: zero in a full
+    /// neighbourhood, whatever its compression, and of the order of `1 / support` where
+    /// the neighbourhood is cut by a free surface.
+    #[inline(always)]
+    pub(super) fn volume_gradient(&self, i: usize, n: usize, nb: &ChunkNeighbors) -> Vec3 {
+        let (walls, xi) = (&self.model.wall_particles, self.pos[i]);
+        let mut fluid = Vec3::ZERO;
+        for (&j, &v) in nb.fluid(n).iter().zip(nb.fluid_kept::<K::Value>(n)) {
+            let m = self.material(j as usize);
+            fluid += self.kept.scaled(v, || self.sep.between(xi, self.pos[j as usize]), m.mass / m.rest_density);
+        }
+        let psi = &walls.psi[self.mat.map_or(0, |m| m[i] as usize)];
+        let mut wall = Vec3::ZERO;
+        for (&b, &v) in nb.walls(n).iter().zip(nb.wall_kept::<K::Value>(n)) {
+            wall += self.kept.scaled(v, || self.sep.between(xi, walls.positions[b as usize]), psi[b as usize]);
+        }
+        fluid + wall / self.material(i).rest_density
+    }
+
     /// `(D w)_i = m_i sum_j (w_i - w_j) . grad W_ij + c sum_b psi_b w_i . grad W_ib`:
     /// the compression rate (kg/(m^3 s)) of the velocities `w`.
     #[inline(always)]

@@ -30,8 +30,8 @@ pub struct DfsphSettings {
     /// `"cg"` (preconditioned conjugate gradients, signed, the walls' pressure the
     /// fluid's mirrored plus its hydrostatic difference: `schemes::dfsph::cg`), one
     /// particle mass only. The CG converges on closed and periodic flows where the
-    /// Jacobi diverges (Poiseuille within 1 %) and holds a column within 5 %, but fails
-    /// in closed domains under gravity and is worse on the dam break
+    /// Jacobi diverges (Poiseuille within 1 %), holds a column within 3 % and the dam
+    /// break's front as the Jacobi does, but fails in closed domains under gravity
     /// (docs/validation/schemes/CG.md).
     #[serde(default)]
     pub solver: DfsphSolver,

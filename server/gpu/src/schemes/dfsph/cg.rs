@@ -6,6 +6,10 @@ use crate::pass::{GpuPass, always};
 use crate::passes::{particle_kernel, walk_kernel};
 use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use floe_engine::attrs::PARTICLES;
+use floe_engine::model::Model;
+use floe_engine::schemes::dfsph::DfsphConsts;
+use floe_engine::schemes::dfsph::cg::SURFACE_GRADIENT;
+use floe_engine::schemes::dfsph::spec::DfsphSolver;
 
 const fn particles(
     name: &'static str,
@@ -19,10 +23,26 @@ const fn particles(
 /// The held particles.
 pub static HELD: GpuPass = particles(
     "dfsph.cg_held",
-    particle_kernel!("rate.wgsl", "cg/held.wgsl"),
+    walk_kernel!("cg/held.wgsl"),
     "main",
-    &[(U, "params"), (U, "dfsph"), (R, "x"), (R, "v"), (R, "rho"), (R, "starts"), (R, "walls"), (W, "dfsph_held")],
+    &[
+        (U, "params"),
+        (U, "dfsph"),
+        (U, "dfsph_surface"),
+        (R, "x"),
+        (R, "rho"),
+        (R, "starts"),
+        (R, "walls"),
+        (W, "dfsph_held"),
+    ],
 );
+
+/// The uniform's bytes (`dfsph_surface`: the rest-volume gradient sum, 1/m, at which
+/// an under-dense particle is held), when the scene's DFSPH solves by CG.
+pub fn surface_uniform(model: &Model) -> Option<Vec<u8>> {
+    let cg = model.scheme.id == "dfsph" && model.consts::<DfsphConsts>().settings.solver == DfsphSolver::Cg;
+    cg.then(|| bytemuck::bytes_of(&[SURFACE_GRADIENT / model.kernel.support(), 0.0, 0.0, 0.0]).to_vec())
+}
 
 /// The walls' hydrostatic pressure.
 pub static WALL_PRESSURE: GpuPass = particles(
