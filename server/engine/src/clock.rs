@@ -105,8 +105,10 @@ impl Clock {
         Ok(m)
     }
 
-    /// The next dt from the stable limits of `m`, or the halt when it is too small.
-    pub fn dt(&mut self, model: &Model, m: &Measures) -> Result<Real, Halted> {
+    /// The next dt from the stable limits of `m` and the pressure's signal speed `c_p`
+    /// (m/s; 0 for a scheme whose pressure is not a constraint's, [`Limits::c_p`]), or
+    /// the halt when it is too small.
+    pub fn dt(&mut self, model: &Model, m: &Measures, c_p: Real) -> Result<Real, Halted> {
         let module = model.modules.iter().filter_map(|d| (d.dt_limit)(model)).fold(
             None,
             |best: Option<(&'static str, Real)>, l| match best {
@@ -120,6 +122,7 @@ impl Clock {
             // sound sets no limit.
             c: if model.particle_count() == 0 { 0.0 } else { (model.scheme.signal_speed)(model) },
             v_max: m.max_speed2.0.sqrt(),
+            c_p,
             a_max: m.max_accel2.sqrt(),
             module,
         };

@@ -4,6 +4,13 @@
 //! Zhu 1997, eqs. 19-20; with h the smoothing length, half the kernel support):
 //! - CFL: `lambda h / (c + v_max)`, c the scheme's signal speed (WCSPH: the speed
 //!   of sound);
+//! - pressure: `lambda h / c_p`, `c_p = sqrt(|p| / rho)` the largest, where the
+//!   pressure is a constraint's multiplier (DFSPH): the pressure force on a particle
+//!   moved at fixed pressure (the constraint's geometric stiffness, Tournier et al.
+//!   2015, "Stable constrained dynamics", ACM TOG 34(4), section 3) is of the order
+//!   of `c_p^2 / h^2` per unit displacement and is integrated explicitly. A resting
+//!   column on DFSPH grows a disorder from its floor above 0.6 to 0.7 `h / c_p`
+//!   (docs/validation/schemes/CG.md);
 //! - the modules' own limits (the fluid's viscous `0.125 h^2 / nu`, a heat
 //!   module's diffusion limit, ...);
 //! - force: `0.25 sqrt(h / |a|_max)`.
@@ -25,6 +32,9 @@ pub struct Limits {
     pub c: Real,
     /// Largest particle speed (m/s).
     pub v_max: Real,
+    /// The pressure's signal speed `sqrt(|p| / rho)` (m/s) of a scheme whose pressure
+    /// is a constraint's multiplier (DFSPH), else 0.
+    pub c_p: Real,
     /// Largest acceleration (m/s^2).
     pub a_max: Real,
     /// The smallest of the modules' limits (s) and its name, if any module limits dt.
@@ -40,6 +50,9 @@ impl Limits {
     /// The limit that binds and its value (s): `cfl`, a module's limit, or `force`.
     pub fn binding(&self, cfl: Real) -> (&'static str, Real) {
         let mut dt = ("cfl", cfl * self.h / (self.c + self.v_max));
+        if self.c_p > 0.0 && cfl * self.h / self.c_p < dt.1 {
+            dt = ("pressure", cfl * self.h / self.c_p);
+        }
         if let Some((name, limit)) = self.module
             && limit < dt.1
         {
@@ -139,7 +152,14 @@ mod tests {
     use super::*;
 
     fn limits(v_max: Real) -> Limits {
-        Limits { h: 0.02, c: 40.0, v_max, a_max: 10.0, module: Some(("viscosity", 0.125 * 0.02 * 0.02 / 1e-6)) }
+        Limits {
+            h: 0.02,
+            c: 40.0,
+            v_max,
+            c_p: 0.0,
+            a_max: 10.0,
+            module: Some(("viscosity", 0.125 * 0.02 * 0.02 / 1e-6)),
+        }
     }
 
     #[test]
@@ -151,6 +171,10 @@ mod tests {
         assert_eq!(viscous.binding(0.25).0, "viscosity");
         let forced = Limits { a_max: 1e6, ..l };
         assert!((forced.stable_dt(0.25) - 0.25 * (0.02f32 / 1e6).sqrt()).abs() < 1e-9);
+        // The pressure's speed binds alone, not added to the flow's.
+        let constrained = Limits { c: 0.0, v_max: 2.0, c_p: 4.0, a_max: 0.0, module: None, ..l };
+        assert_eq!(constrained.binding(0.5), ("pressure", 0.5 * 0.02 / 4.0));
+        assert_eq!(Limits { v_max: 8.0, ..constrained }.binding(0.5), ("cfl", 0.5 * 0.02 / 8.0));
     }
 
     #[test]

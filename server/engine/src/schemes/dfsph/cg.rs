@@ -65,7 +65,7 @@
 //! Passes (stage `Solve`; the sums between them stay on the device, in
 //! `dfsph_scalars`), for the density solve (the divergence solve's have
 //! `divergence` in their names):
-//! 0. once a step, before the divergence-free solve: `dfsph.cg_held` (`HELD` summed);
+//! 0. once a step, before its length is chosen: `dfsph.cg_held` (`HELD` summed);
 //!    before the constant-density solve: `dfsph.cg_wall_pressure`;
 //! 1. `dfsph.cg_density_warm` and the Jacobi's kick (the warm start),
 //!    `dfsph.cg_density_start`: `r = b` (`RSUM` summed);
@@ -236,8 +236,7 @@ solve_passes!(
 
 /// The particles held at `P = 0`: a free surface ([`SURFACE_DENSITY`],
 /// [`SURFACE_GRADIENT`]; run
-/// once a step, at the divergence-free solve's start; the constant-density solve has
-/// the same neighbours).
+/// once a step, before its length is chosen; both solves have the same neighbours).
 pub static HELD_PASS: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_held", &["x", "rho"], &["dfsph_held"], &[]);
 /// The walls' hydrostatic pressure, as a kick before the constant-density solve
 /// (once a step; see the module's documentation).
@@ -341,7 +340,10 @@ fn solve(
     }
 }
 
-const DIVERGENCE_START_OPS: &[Op] = start!("divergence", Op::Pass("dfsph.cg_held"), sum("dfsph_held", HELD));
+/// What runs once a step before its length is chosen (the step's pressure limit
+/// reads the count): the held particles, counted into `HELD`.
+pub const HELD_OPS: &[Op] = &[Op::Pass("dfsph.cg_held"), sum("dfsph_held", HELD)];
+const DIVERGENCE_START_OPS: &[Op] = start!("divergence");
 const DIVERGENCE_ITERATION: &[Op] = iteration!("divergence");
 const DENSITY_START_OPS: &[Op] = start!("density", Op::Pass("dfsph.cg_wall_pressure"));
 const DENSITY_ITERATION: &[Op] = iteration!("density");

@@ -353,7 +353,8 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     let n = s.model().particle_count();
     let settings = s.model().consts::<DfsphConsts>().settings;
     let m = clock.evaluate(s, &EVALUATE)?;
-    let dt = clock.dt(s.model(), &m)?;
+    let c_p = pressure_speed(&settings, s).map_err(|e| clock.halt(e, None))?;
+    let dt = clock.dt(s.model(), &m, c_p)?;
     let divergence = divergence_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?;
     finish(&settings, cg::DIVERGENCE_FINISH, s, dt);
     let keep = clock.keep(s.model(), dt);
@@ -369,6 +370,32 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     s.run(Stage::PostStep, dt);
     s.end_step();
     Ok(clock.advance(dt, &m, n, solves))
+}
+
+/// The pressure's signal speed `sqrt(p / rho)` (m/s) for the step's limit
+/// ([`crate::timestep::Limits::c_p`]) with the CG at a free surface: from the largest
+/// stiffness `P = p / rho^2` the last constant-density solve left, at the largest rest
+/// density. Without it the CG's resting column at 0.01875 m grows a disorder from its
+/// floor at the 5 ms cap (pressure L2 0.18); its steps are stable below 0.6 to 0.7
+/// `h / c_p` on columns of 0.45 and 0.9 m at 0.025 and 0.01875 m
+/// (docs/validation/schemes/CG.md). Runs the CG's held test first ([`cg::HELD_OPS`]).
+/// None (0) where no particle is held (a closed domain, whose stiffness's level is
+/// free: the vortex halted under it) and for the Jacobi (its column stops converging
+/// under it, its Akinci walls needing twice the pressure beside a wall, and the dam
+/// break takes a quarter more steps).
+fn pressure_speed(settings: &DfsphSettings, s: &mut dyn Stages) -> Result<Real, String> {
+    if settings.solver != DfsphSolver::Cg {
+        return Ok(0.0);
+    }
+    for &op in cg::HELD_OPS {
+        op.run(s, 0.0);
+    }
+    if s.reduce(&Reduction { attr: cg::HELD_ATTR.name, op: ReduceOp::Sum })? == 0.0 {
+        return Ok(0.0);
+    }
+    let kappa = s.reduce(&Reduction { attr: "kappa", op: ReduceOp::Max })?.max(0.0);
+    let rho0 = s.model().materials.iter().map(|m| m.rest_density).fold(0.0, Real::max);
+    Ok((kappa * f64::from(rho0)).sqrt() as Real)
 }
 
 /// What the CG runs after a solve (the clamp at a free surface); the Jacobi nothing.

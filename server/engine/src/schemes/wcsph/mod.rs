@@ -216,7 +216,7 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     let (dt, m, solves) = match integrator {
         Integrator::SymplecticEuler => {
             let m = clock.evaluate(s, &EVALUATE)?;
-            let dt = clock.dt(s.model(), &m)?;
+            let dt = clock.dt(s.model(), &m, 0.0)?;
             let keep = clock.keep(s.model(), dt);
             s.kick(dt, keep);
             let mut solves = velocity_solves(clock, s, dt)?;
@@ -231,7 +231,7 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
                 Some(m) => m,
                 None => clock.evaluate(s, &EVALUATE)?,
             };
-            let dt = clock.dt(s.model(), &m0)?;
+            let dt = clock.dt(s.model(), &m0, 0.0)?;
             let half: Real = 0.5 * dt;
             let keep = clock.keep(s.model(), half);
             s.kick(half, keep);
