@@ -40,4 +40,4 @@ pub static PASSES: &[&GpuPass] = &[
 
 /// Every scheme's uniform.
 pub static UNIFORMS: &[(&str, UniformSource)] =
-    &[("wcsph", wcsph::uniform), ("dfsph", dfsph::uniform), ("dfsph_surface", dfsph::cg::surface_uniform)];
+    &[("wcsph", wcsph::uniform), ("dfsph", dfsph::uniform), ("dfsph_cg", dfsph::cg::uniform)];

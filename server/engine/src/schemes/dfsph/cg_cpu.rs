@@ -2,7 +2,7 @@
 //! the order); the pair sums are the Jacobi's (`cpu::Sums`), over the
 //! gradients the factor pass kept.
 
-use super::cg::{HELD, PAP, RSUM, RZ, RZ_NEW, SURFACE_DENSITY, SURFACE_GRADIENT, ratio};
+use super::cg::{HELD, PAP, RAW_EXCESS, RSUM, RZ, RZ_NEW, SURFACE_DENSITY, SURFACE_GRADIENT, ratio};
 use super::cpu::{Kept, Sums, neighbours, with_kept};
 use super::{FULL_NEIGHBOURHOOD, WARM_START};
 use crate::cpu::neighbors::CHUNK;
@@ -102,7 +102,8 @@ impl CpuPass for Warm {
 }
 
 /// `dfsph.cg_{density,divergence}_start`: `r = b` from the current velocities, 0
-/// for a held particle.
+/// for a held particle; in a closed domain the density's deviation filtered
+/// ([`RAW_EXCESS`]).
 #[derive(Debug)]
 pub struct Start {
     /// The constant-density solve's (else the divergence-free solve's).
@@ -116,11 +117,13 @@ impl CpuPass for Start {
 }
 
 fn start<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, density: bool, kept: K, sep: S) {
-    let dt = cx.dt;
+    let (dt, kernel) = (cx.dt, &cx.model.kernel);
+    let closed = scalars(cx)[HELD as usize] == 0.0;
     let rh = cx.attrs.handle::<Real>("dfsph_r");
     let mut r = cx.attrs.take(rh);
     let attrs = &*cx.attrs;
     let (vel, rho) = (attrs.get(attrs.handle::<Vec3>("v")), attrs.get(attrs.handle::<Real>("rho")));
+    let pos = attrs.get(attrs.handle::<Vec3>("x"));
     let held = attrs.get(attrs.handle::<Real>("dfsph_held"));
     let sums = Sums::new(cx.model, attrs, kept, sep);
     r.par_chunks_mut(CHUNK).zip(&cx.nb.chunks).enumerate().for_each(|(c, (r, nb))| {
@@ -128,6 +131,19 @@ fn start<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, density: bool, kept: K, sep
             let i = c * CHUNK + n;
             *r = if held[i] != 0.0 {
                 0.0
+            } else if density && closed {
+                // Shepard's mean of the deviation over the fluid neighbours (the
+                // particle itself included), with RAW_EXCESS of its own difference.
+                let rest = sums.material(i).rest_density;
+                let (mut sum, mut weight) = (0.0, 0.0);
+                for &j in nb.fluid(n) {
+                    let w = kernel.w_r2(sums.separation(pos[i], pos[j as usize]).length_squared());
+                    sum += w * (rho[j as usize] - rest);
+                    weight += w;
+                }
+                let mean = sum / weight;
+                let excess = mean + RAW_EXCESS * (rho[i] - rest - mean);
+                (excess + dt * sums.divergence(i, n, nb, vel)) / (dt * dt)
             } else if density {
                 (rho[i] + dt * sums.divergence(i, n, nb, vel) - sums.material(i).rest_density) / (dt * dt)
             } else {

@@ -152,6 +152,12 @@ impl<'a, K: Kept, S: Separation> Sums<'a, K, S> {
         }
     }
 
+    /// `x_a - x_b` (across a periodic domain's seams).
+    #[inline(always)]
+    pub(super) fn separation(&self, a: Vec3, b: Vec3) -> Vec3 {
+        self.sep.between(a, b)
+    }
+
     /// Particle `i`'s material.
     #[inline(always)]
     pub(super) fn material(&self, i: usize) -> &'a crate::materials::Material {

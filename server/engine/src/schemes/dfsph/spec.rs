@@ -30,9 +30,9 @@ pub struct DfsphSettings {
     /// `"cg"` (preconditioned conjugate gradients, signed, the walls' pressure the
     /// fluid's mirrored plus its hydrostatic difference: `schemes::dfsph::cg`), one
     /// particle mass only. The CG converges on closed and periodic flows where the
-    /// Jacobi diverges (Poiseuille within 1 %), holds a column within 4 % and the dam
-    /// break's front as the Jacobi does, but fails in closed domains under gravity
-    /// (docs/validation/schemes/CG.md).
+    /// Jacobi diverges (Poiseuille and the heated channel within 1 %), holds a column
+    /// within 4 % and the dam break's front as the Jacobi does, but halts the heated
+    /// cavity (docs/validation/schemes/CG.md).
     #[serde(default)]
     pub solver: DfsphSolver,
 }

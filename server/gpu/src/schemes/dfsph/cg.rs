@@ -8,7 +8,7 @@ use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
 use floe_engine::schemes::dfsph::DfsphConsts;
-use floe_engine::schemes::dfsph::cg::SURFACE_GRADIENT;
+use floe_engine::schemes::dfsph::cg::{RAW_EXCESS, SURFACE_GRADIENT};
 use floe_engine::schemes::dfsph::spec::DfsphSolver;
 
 const fn particles(
@@ -28,7 +28,7 @@ pub static HELD: GpuPass = particles(
     &[
         (U, "params"),
         (U, "dfsph"),
-        (U, "dfsph_surface"),
+        (U, "dfsph_cg"),
         (R, "x"),
         (R, "rho"),
         (R, "starts"),
@@ -37,11 +37,12 @@ pub static HELD: GpuPass = particles(
     ],
 );
 
-/// The uniform's bytes (`dfsph_surface`: the rest-volume gradient sum, 1/m, at which
-/// an under-dense particle is held), when the scene's DFSPH solves by CG.
-pub fn surface_uniform(model: &Model) -> Option<Vec<u8>> {
+/// The uniform's bytes (`dfsph_cg`: x the rest-volume gradient sum, 1/m, at which an
+/// under-dense particle is held, y the share of a particle's own density deviation a
+/// closed domain's density solve takes), when the scene's DFSPH solves by CG.
+pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     let cg = model.scheme.id == "dfsph" && model.consts::<DfsphConsts>().settings.solver == DfsphSolver::Cg;
-    cg.then(|| bytemuck::bytes_of(&[SURFACE_GRADIENT / model.kernel.support(), 0.0, 0.0, 0.0]).to_vec())
+    cg.then(|| bytemuck::bytes_of(&[SURFACE_GRADIENT / model.kernel.support(), RAW_EXCESS, 0.0, 0.0]).to_vec())
 }
 
 /// The walls' hydrostatic pressure.
@@ -68,6 +69,8 @@ const START_BINDINGS: &[(Access, &str)] = &[
     (U, "params"),
     (U, "dt"),
     (U, "dfsph"),
+    (U, "dfsph_cg"),
+    (R, "dfsph_scalars"),
     (R, "x"),
     (R, "v"),
     (R, "rho"),

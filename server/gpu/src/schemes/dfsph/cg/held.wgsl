@@ -1,14 +1,14 @@
 // The particles a CG solve holds at P = 0 (floe-engine
 // `schemes::dfsph::cg_cpu::Held`): 1 with fewer neighbours than `dfsph.y`, a summed
 // density below `dfsph.w` of rest, or, below rest, a rest-volume gradient sum
-// `|sum_j V_j grad W_ij + sum_b V_b grad W_ib|` of at least `dfsph_surface.x` (1/m: a
+// `|sum_j V_j grad W_ij + sum_b V_b grad W_ib|` of at least `dfsph_cg.x` (1/m: a
 // neighbourhood cut by a free surface); else 0.
 
 // y: the neighbours a particle needs, w: the fraction of the rest density below which
 // a particle is held.
 @group(0) @binding(1) var<uniform> dfsph: vec4<f32>;
-// x: the gradient sum at which an under-dense particle is held.
-@group(0) @binding(2) var<uniform> dfsph_surface: vec4<f32>;
+// x: the gradient sum at which an under-dense particle is held (y: start.wgsl's).
+@group(0) @binding(2) var<uniform> dfsph_cg: vec4<f32>;
 @group(0) @binding(3) var<storage, read> pos: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read> rho: array<f32>;
 @group(0) @binding(5) var<storage, read> starts: array<u32>;
@@ -41,7 +41,7 @@ fn walk_wall(i: u32, b: u32, x_ib: vec3<f32>, r2: f32) {
 fn walk_end(i: u32) {
     // psi_b = walls[b].w * (rho0_i / rho0_0), so V_b = psi_b / rho0_i.
     let s = held_fluid + held_wall * (held_mat.w / held_mat.x);
-    let cut = dfsph_surface.x;
+    let cut = dfsph_cg.x;
     let rest = held_mat.x;
     let surface = rho[i] < rest && dot(s, s) >= cut * cut;
     held[i] = select(0.0, 1.0, f32(held_count) < dfsph.y || rho[i] < dfsph.w * rest || surface);
