@@ -4,7 +4,7 @@
 //! Zhu 1997, eqs. 19-20; with h the smoothing length, half the kernel support):
 //! - CFL: `lambda h / (c + v_max)`, c the scheme's signal speed (WCSPH: the speed
 //!   of sound);
-//! - pressure: `lambda h / c_p`, `c_p = sqrt(|p| / rho)` the largest, where the
+//! - pressure: `lambda h / c_p`, `c_p = sqrt(p / rho)` the largest, where the
 //!   pressure is a constraint's multiplier (DFSPH): the pressure force on a particle
 //!   moved at fixed pressure (the constraint's geometric stiffness, Tournier et al.
 //!   2015, "Stable constrained dynamics", ACM TOG 34(4), section 3) is of the order
@@ -32,7 +32,7 @@ pub struct Limits {
     pub c: Real,
     /// Largest particle speed (m/s).
     pub v_max: Real,
-    /// The pressure's signal speed `sqrt(|p| / rho)` (m/s) of a scheme whose pressure
+    /// The pressure's signal speed `sqrt(p / rho)` (m/s) of a scheme whose pressure
     /// is a constraint's multiplier (DFSPH), else 0.
     pub c_p: Real,
     /// Largest acceleration (m/s^2).
@@ -47,7 +47,8 @@ impl Limits {
         self.binding(cfl).1
     }
 
-    /// The limit that binds and its value (s): `cfl`, a module's limit, or `force`.
+    /// The limit that binds and its value (s): `cfl`, `pressure`, a module's limit, or
+    /// `force`.
     pub fn binding(&self, cfl: Real) -> (&'static str, Real) {
         let mut dt = ("cfl", cfl * self.h / (self.c + self.v_max));
         if self.c_p > 0.0 && cfl * self.h / self.c_p < dt.1 {
