@@ -45,7 +45,8 @@ test('the viewer follows its scene when its worker is killed', { skip, timeout: 
       assert.ok(Date.now() - t0 < 30_000, `scene ${scene.scene_id} still on floe-3 after 30 s`);
       await new Promise((done) => setTimeout(done, 250));
       const list = await call(null, 'scenes');
-      if (list.ok) now = (await list.json()).find((s) => s.scene_id === scene.scene_id)?.worker ?? 'floe-3';
+      // While the scene moves the list may leave it out or name no worker for it.
+      if (list.ok) now = (await list.json()).find((s) => s.scene_id === scene.scene_id)?.worker || 'floe-3';
     }
     assert.equal(now, 'floe-1', 'floe-2 is gone (the Rust test killed it): floe-1 takes the scene');
     const on = await call(now, `scenes/${scene.scene_id}/step`, 'POST', { steps: 20 });
