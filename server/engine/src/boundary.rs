@@ -258,7 +258,7 @@ mod tests {
         // A fluid particle half a spacing above a one-layer floor sampled on the
         // lattice sees exactly the full lattice sum (support = 2 spacings).
         use crate::kernel::{Kernel, KernelKind};
-        for kind in [KernelKind::Mueller, KernelKind::CubicSpline] {
+        for kind in [KernelKind::Mueller, KernelKind::CubicSpline, KernelKind::WendlandC2] {
             let d = 0.1;
             let k = Kernel::new(kind, 2.0 * d);
             let full = lattice_sum(&k, d, None);

@@ -80,6 +80,7 @@ impl Params {
             kernel_kind: match k.kind() {
                 KernelKind::Mueller => 0,
                 KernelKind::CubicSpline => 1,
+                KernelKind::WendlandC2 => 2,
             },
             grid_origin: grid.origin().to_array(),
             cell_count: grid.cell_count() as u32,

@@ -60,7 +60,7 @@ impl<'s> ModelBuilder<'s> {
             |(b, g): (&Boundary, &Option<Arc<HeightGrid>>)| sample_boundary(b, d, scene.periodic_axes(), g.as_deref());
         Ok(Self {
             scene,
-            kernel: Kernel::new(scene.solver.kernel, scene.solver.support_factor * d),
+            kernel: Kernel::on_lattice(scene.solver.kernel, scene.solver.support_factor * d, d),
             quantities: crate::quantities::resolution(scene),
             scheme: crate::scheme::of(scene),
             spacing: d,

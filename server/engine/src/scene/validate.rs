@@ -337,7 +337,7 @@ mod tests {
         );
         assert_eq!(
             errors(&["solver.dfsph.compact_gradients=true", "solver.kernel=\"mueller\""]),
-            "solver.dfsph.compact_gradients: needs solver.kernel = \"cubic_spline\" \
+            "solver.dfsph.compact_gradients: needs solver.kernel = \"cubic_spline\" or \"wendland_c2\" \
              (the spiky gradient over r is unbounded near r = 0)"
         );
         // Several problems are reported together.

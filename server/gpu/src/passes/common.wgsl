@@ -40,6 +40,7 @@ struct Params {
 
 const WG: u32 = 128u;
 const KERNEL_MUELLER: u32 = 0u;
+const KERNEL_WENDLAND: u32 = 2u;
 
 @group(0) @binding(0) var<uniform> params: Params;
 
@@ -140,8 +141,11 @@ fn kernel_w(r2: f32) -> f32 {
         return params.w_norm * d * d * d;
     }
     let q = sqrt(r2) * params.inv_h;
-    let inner = 6.0 * q * q * (q - 1.0) + 1.0;
     let t = 1.0 - q;
+    if (params.kernel_kind == KERNEL_WENDLAND) {
+        return params.w_norm * t * t * t * t * (1.0 + 4.0 * q);
+    }
+    let inner = 6.0 * q * q * (q - 1.0) + 1.0;
     return params.w_norm * select(2.0 * t * t * t, inner, q <= 0.5);
 }
 
@@ -155,6 +159,9 @@ fn kernel_dw_dr(r: f32) -> f32 {
     }
     let q = r * params.inv_h;
     let t = 1.0 - q;
+    if (params.kernel_kind == KERNEL_WENDLAND) {
+        return -params.g_norm * q * t * t * t;
+    }
     return params.g_norm * select(-t * t, q * (3.0 * q - 2.0), q <= 0.5);
 }
 

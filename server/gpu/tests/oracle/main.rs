@@ -165,6 +165,13 @@ const VARIANTS: &[&[&str]] = &[
     // the mirrored walls in the factor and the kicks, and the walls' hydrostatic
     // pressure.
     &["particle_spacing=0.05", "solver.method=\"dfsph\"", "solver.dfsph.solver=\"cg\""],
+    // The same on Wendland's kernel (its value and gradient in every pair loop).
+    &[
+        "particle_spacing=0.05",
+        "solver.method=\"dfsph\"",
+        "solver.dfsph.solver=\"cg\"",
+        "solver.kernel=\"wendland_c2\"",
+    ],
     // A rippled slope with friction across the tank under the column.
     &["particle_spacing=0.05", TERRAIN],
     // With heat: a hot corner of the column, a source, a flux through the left

@@ -279,10 +279,11 @@ fn validate(scene: &Scene, _: bool, c: &mut crate::scene::validate::Checker) {
     c.within("solver.dfsph.density_tolerance", s.density_tolerance, 1e-6, 0.1);
     c.within("solver.dfsph.divergence_tolerance", s.divergence_tolerance, 1e-6, 0.1);
     c.within("solver.dfsph.max_iterations", s.max_iterations as f32, 1.0, 10_000.0);
-    if s.compact_gradients && scene.solver.kernel != crate::kernel::KernelKind::CubicSpline {
+    if s.compact_gradients && scene.solver.kernel == crate::kernel::KernelKind::Mueller {
         c.fail(
             "solver.dfsph.compact_gradients",
-            "needs solver.kernel = \"cubic_spline\" (the spiky gradient over r is unbounded near r = 0)".into(),
+            "needs solver.kernel = \"cubic_spline\" or \"wendland_c2\" (the spiky gradient over r is unbounded near r = 0)"
+                .into(),
         );
     }
 }
