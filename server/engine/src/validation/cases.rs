@@ -107,7 +107,7 @@ impl Outcome {
 
 /// Runs `case` at `spacing` with `variant` on the backend `make` builds, `extra`
 /// overrides applied before the variant's own (so a variant that sets the same field
-/// keeps its value).
+/// keeps its value; an extra `particle_spacing` replaces `spacing`).
 pub fn run(
     case: &'static Case,
     spacing: f64,
@@ -119,6 +119,12 @@ pub fn run(
     overrides.extend_from_slice(extra);
     overrides.extend(variant.overrides.iter().map(|s| s.to_string()));
     let scene = from_preset(case.preset, &overrides)?;
+    // An extra `particle_spacing` wins over the ladder's: measure and report the one
+    // run (its shortest decimal, as it was written, not the f32's widening).
+    let spacing = match scene.particle_spacing {
+        s if s == spacing as f32 => spacing,
+        s => s.to_string().parse().expect("an f32 prints as a decimal"),
+    };
     let mut sim = Simulation::new(scene, make).map_err(|e| SceneError::Invalid(vec![e.to_string()]))?;
     let (wall, halted, errors) = (case.measure)(&mut sim, spacing);
     Ok(Outcome {

@@ -13,14 +13,17 @@ const A: f64 = DAM_BREAK_A as f64;
 
 /// The variants the hydrostatic case runs: the preset (WCSPH with δ-SPH), then one
 /// option changed at a time: the kernels, the integrator, the viscosity, the density
-/// summed instead of integrated, the other scheme.
-const HYDROSTATIC_VARIANTS: [Variant; 6] = [
+/// summed instead of integrated, the other scheme (with its default Jacobi solves, and
+/// with conjugate gradients on Wendland's kernel, which holds the column at rest:
+/// docs/validation/schemes/CG.md).
+const HYDROSTATIC_VARIANTS: [Variant; 7] = [
     Variant { name: "default", overrides: &[] },
     Variant { name: "mueller_kernels", overrides: &["solver.kernel=mueller"] },
     Variant { name: "leapfrog", overrides: &["solver.integrator=leapfrog"] },
     Variant { name: "laplacian_viscosity", overrides: LAPLACIAN },
     Variant { name: "summation", overrides: &["solver.delta_sph=null"] },
     Variant { name: "dfsph", overrides: &[DFSPH, "solver.delta_sph=null"] },
+    Variant { name: "dfsph_cg_wendland", overrides: &[DFSPH, "solver.delta_sph=null", CG, WENDLAND] },
 ];
 
 /// The variants the dam break runs: the preset (DFSPH), the other scheme, and WCSPH
@@ -37,6 +40,8 @@ const DAM_BREAK_VARIANTS: [Variant; 6] = [
 
 const WCSPH: &str = "solver.method=\"wcsph\"";
 const DFSPH: &str = "solver.method=\"dfsph\"";
+const CG: &str = "solver.dfsph.solver=\"cg\"";
+const WENDLAND: &str = "solver.kernel=\"wendland_c2\"";
 
 /// Laplacian viscosity of water with a little XSPH smoothing, in place of the
 /// presets' artificial viscosity.
