@@ -79,6 +79,21 @@ fn set_overrides_every_run_before_its_variant() {
         floe_engine::validation::cases::run(conduction, 0.002, &wcsph, &extra, &floe_engine::simulation::cpu_backend)
             .unwrap();
     assert!(run.solves.is_empty(), "the variant's scheme, WCSPH, has no solves: {:?}", run.solves);
+    // An extra spacing replaces the ladder's, in the scene and in the report.
+    let extra = ["particle_spacing=0.0016".to_string()];
+    let run =
+        floe_engine::validation::cases::run(conduction, 0.002, &wcsph, &extra, &floe_engine::simulation::cpu_backend)
+            .unwrap();
+    let ladder =
+        floe_engine::validation::cases::run(conduction, 0.002, &wcsph, &[], &floe_engine::simulation::cpu_backend)
+            .unwrap();
+    assert_eq!(run.spacing, 0.0016, "the run is reported at the spacing it ran at");
+    assert!(
+        run.particles > ladder.particles,
+        "{} particles at 0.0016 m, {} at 0.002 m",
+        run.particles,
+        ladder.particles
+    );
 }
 
 #[test]
