@@ -52,11 +52,13 @@ fn checksum(preset: &str, overrides: &[&str], steps: usize) -> u64 {
 /// The dam break's cases pin WCSPH, its scheme then (its preset uses DFSPH since).
 const CASES: &[(&str, &[&str], usize, u64)] = &[
     ("dam_break", &["particle_spacing=0.03125", WCSPH], 150, 0xcf06_4427_4e8a_f26b),
-    // The preset as it was: summed density, artificial viscosity 0.02.
+    // The preset as it was: WCSPH, summed density, artificial viscosity 0.02.
     (
         "hydrostatic",
         &[
             "particle_spacing=0.05",
+            WCSPH,
+            "solver.kernel=\"cubic_spline\"",
             "solver.delta_sph=null",
             "fluids[0].viscosity={\"model\":\"artificial\",\"alpha\":0.02}",
         ],
@@ -127,7 +129,8 @@ fn state_checksum(sim: &Simulation) -> u64 {
 const PRESET_STEPS: usize = 200;
 const PRESETS: &[(&str, &[&str], u64)] = &[
     ("dam_break", &["particle_spacing=0.05"], 0x8df9da5688d36507),
-    ("hydrostatic", &["particle_spacing=0.05"], 0x49970b86d267f48e),
+    // Recorded when the preset moved to DFSPH (CG, Wendland's kernel).
+    ("hydrostatic", &["particle_spacing=0.05"], 0x974718f994aaa59a),
     ("poiseuille", &["particle_spacing=0.1"], 0x094c1acaf37fdc63),
     ("taylor_green", &[], 0x9cf832681994f216),
     ("conduction", &[], 0xb4e11d2cb1f76950),

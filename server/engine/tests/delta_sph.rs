@@ -165,9 +165,15 @@ fn a_fluid_diffuses_and_dissipates_at_its_own_speed_of_sound() {
 fn a_resting_column_starts_in_balance_and_its_pressure_is_smooth() {
     let lin = "fluids[0].eos={\"kind\":\"linear\"}".to_string();
     let column = |delta: bool| {
-        let mut o = vec!["particle_spacing=0.05".to_string(), lin.clone()];
-        if !delta {
-            o.push("solver.delta_sph=null".into());
+        // The preset's column as it was before it moved to DFSPH.
+        let mut o = vec![
+            "particle_spacing=0.05".to_string(),
+            lin.clone(),
+            "solver.method=\"wcsph\"".into(),
+            "solver.kernel=\"cubic_spline\"".into(),
+        ];
+        if delta {
+            o.push("solver.delta_sph={\"delta\":0.1}".into());
         }
         Simulation::new_cpu(from_preset("hydrostatic", &o).unwrap()).unwrap()
     };

@@ -9,7 +9,13 @@ use floe_engine::scene::load::from_preset;
 use floe_engine::validation::{dam_break, hydrostatic};
 
 fn dfsph(name: &str, overrides: &[&str]) -> Simulation {
-    let mut o = vec!["solver.method=dfsph".to_string(), "solver.delta_sph=null".to_string()];
+    // The Jacobi on the cubic spline (the hydrostatic preset's are the CG and Wendland's).
+    let mut o = vec![
+        "solver.method=dfsph".to_string(),
+        "solver.dfsph.solver=\"jacobi\"".to_string(),
+        "solver.kernel=\"cubic_spline\"".to_string(),
+        "solver.delta_sph=null".to_string(),
+    ];
     o.extend(overrides.iter().map(|s| s.to_string()));
     Simulation::new_cpu(from_preset(name, &o).unwrap()).unwrap()
 }

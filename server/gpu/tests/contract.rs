@@ -26,7 +26,8 @@ fn scenes() -> Vec<(String, Model)> {
         ("dam_break", &["particle_spacing=0.05", "fluids[0].xsph=0.1"]),
         ("dam_break", &["particle_spacing=0.05", "solver.method=\"wcsph\"", "fluids[0].xsph=0.1"]),
         ("dam_break", &["particle_spacing=0.05", "solver.dfsph.solver=\"cg\""]),
-        ("hydrostatic", &["particle_spacing=0.05", "solver.delta_sph=null"]),
+        ("hydrostatic", &["particle_spacing=0.05", "solver.method=\"wcsph\""]),
+        ("hydrostatic", &["particle_spacing=0.05", "solver.method=\"wcsph\"", "solver.delta_sph={\"delta\":0.1}"]),
         ("cross_channel", &["particle_spacing=0.1", r#"snow.solver={"method":"explicit"}"#]),
         ("elastic_drop", &["particle_spacing=0.04", "solid.oriented={}"]),
         (

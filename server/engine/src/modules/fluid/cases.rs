@@ -11,19 +11,20 @@ use crate::validation::{dam_break, hydrostatic, poiseuille, run_probed, taylor_g
 
 const A: f64 = DAM_BREAK_A as f64;
 
-/// The variants the hydrostatic case runs: the preset (WCSPH with δ-SPH), then one
-/// option changed at a time: the kernels, the integrator, the viscosity, the density
-/// summed instead of integrated, the other scheme (with its default Jacobi solves, and
-/// with conjugate gradients on Wendland's kernel, which holds the column at rest:
-/// docs/validation/schemes/CG.md).
-const HYDROSTATIC_VARIANTS: [Variant; 7] = [
+/// The variants the hydrostatic case runs: the preset (DFSPH, conjugate gradients,
+/// Wendland's kernel), on the cubic spline, with DFSPH's Jacobi solves, and WCSPH
+/// with δ-SPH (the preset until 2026-12-06) with one of its options changed at a
+/// time: the kernels, the integrator, the viscosity, the density summed instead of
+/// integrated.
+const HYDROSTATIC_VARIANTS: [Variant; 8] = [
     Variant { name: "default", overrides: &[] },
-    Variant { name: "mueller_kernels", overrides: &["solver.kernel=mueller"] },
-    Variant { name: "leapfrog", overrides: &["solver.integrator=leapfrog"] },
-    Variant { name: "laplacian_viscosity", overrides: LAPLACIAN },
-    Variant { name: "summation", overrides: &["solver.delta_sph=null"] },
-    Variant { name: "dfsph", overrides: &[DFSPH, "solver.delta_sph=null"] },
-    Variant { name: "dfsph_cg_wendland", overrides: &[DFSPH, "solver.delta_sph=null", CG, WENDLAND] },
+    Variant { name: "cubic_spline", overrides: &[CUBIC] },
+    Variant { name: "jacobi", overrides: &[JACOBI, CUBIC] },
+    Variant { name: "wcsph", overrides: &[WCSPH, CUBIC, DELTA_SPH] },
+    Variant { name: "wcsph_mueller_kernels", overrides: &[WCSPH, DELTA_SPH, "solver.kernel=mueller"] },
+    Variant { name: "wcsph_leapfrog", overrides: &[WCSPH, CUBIC, DELTA_SPH, "solver.integrator=leapfrog"] },
+    Variant { name: "wcsph_laplacian_viscosity", overrides: &[WCSPH, CUBIC, DELTA_SPH, LAPLACIAN[0], LAPLACIAN[1]] },
+    Variant { name: "wcsph_summation", overrides: &[WCSPH, CUBIC] },
 ];
 
 /// The variants the dam break runs: the preset (DFSPH), the other scheme, and WCSPH
@@ -40,8 +41,9 @@ const DAM_BREAK_VARIANTS: [Variant; 6] = [
 
 const WCSPH: &str = "solver.method=\"wcsph\"";
 const DFSPH: &str = "solver.method=\"dfsph\"";
-const CG: &str = "solver.dfsph.solver=\"cg\"";
-const WENDLAND: &str = "solver.kernel=\"wendland_c2\"";
+const JACOBI: &str = "solver.dfsph.solver=\"jacobi\"";
+const CUBIC: &str = "solver.kernel=\"cubic_spline\"";
+const DELTA_SPH: &str = "solver.delta_sph={\"delta\":0.1}";
 
 /// Laplacian viscosity of water with a little XSPH smoothing, in place of the
 /// presets' artificial viscosity.
