@@ -40,4 +40,4 @@ pub static PASSES: &[&GpuPass] = &[
 
 /// Every scheme's uniform.
 pub static UNIFORMS: &[(&str, UniformSource)] =
-    &[("wcsph", wcsph::uniform), ("dfsph", dfsph::uniform), ("dfsph_cg", dfsph::cg::uniform)];
+    &[("wcsph", wcsph::uniform), ("dfsph", dfsph::uniform), ("dfsph.cg", dfsph::cg::uniform)];

@@ -28,7 +28,7 @@ pub static HELD: GpuPass = particles(
     &[
         (U, "params"),
         (U, "dfsph"),
-        (U, "dfsph_cg"),
+        (U, "dfsph.cg"),
         (R, "x"),
         (R, "rho"),
         (R, "starts"),
@@ -37,9 +37,10 @@ pub static HELD: GpuPass = particles(
     ],
 );
 
-/// The uniform's bytes (`dfsph_cg`: x the rest-volume gradient sum, 1/m, at which an
-/// under-dense particle is held, y the share of a particle's own density deviation a
-/// closed domain's density solve takes), when the scene's DFSPH solves by CG.
+/// The uniform's bytes (`dfsph.cg`, counted as the scheme's; `dfsph_cg` in the
+/// kernels: x the rest-volume gradient sum, 1/m, at which an under-dense particle is
+/// held, y the share of a particle's own density deviation a closed domain's density
+/// solve takes), when the scene's DFSPH solves by CG.
 pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     let cg = model.scheme.id == "dfsph" && model.consts::<DfsphConsts>().settings.solver == DfsphSolver::Cg;
     cg.then(|| bytemuck::bytes_of(&[SURFACE_GRADIENT / model.kernel.support(), RAW_EXCESS, 0.0, 0.0]).to_vec())
@@ -69,7 +70,7 @@ const START_BINDINGS: &[(Access, &str)] = &[
     (U, "params"),
     (U, "dt"),
     (U, "dfsph"),
-    (U, "dfsph_cg"),
+    (U, "dfsph.cg"),
     (R, "dfsph_scalars"),
     (R, "x"),
     (R, "v"),
