@@ -73,6 +73,22 @@ fn wraps(axis: u32) -> bool {
     return (params.periodic & (1u << axis)) != 0u;
 }
 
+// Back through the opposite face on periodic axes (floe-engine `Periodicity::wrap`).
+fn wrap_periodic(p: vec3<f32>) -> vec3<f32> {
+    var x = p;
+    for (var axis = 0u; axis < 3u; axis++) {
+        let lo = params.domain_min[axis];
+        let l = params.period[axis];
+        if (wraps(axis) && (x[axis] < lo || x[axis] >= lo + l)) {
+            x[axis] -= l * floor((x[axis] - lo) / l);
+            if (x[axis] >= lo + l) {
+                x[axis] = lo;
+            }
+        }
+    }
+    return x;
+}
+
 // The distinct cells around cell `c` along an axis of `d` cells, and how many.
 fn block_axis(c: u32, d: u32, wrap: bool) -> vec4<u32> {
     if (!wrap) {

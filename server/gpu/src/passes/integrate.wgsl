@@ -155,18 +155,7 @@ fn drift(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups)
             }
         }
     }
-    // Back through the opposite face on periodic axes (floe-engine `Periodicity::wrap`).
-    for (var axis = 0u; axis < 3u; axis++) {
-        let lo = params.domain_min[axis];
-        let l = params.period[axis];
-        if (wraps(axis) && (x[axis] < lo || x[axis] >= lo + l)) {
-            x[axis] -= l * floor((x[axis] - lo) / l);
-            if (x[axis] >= lo + l) {
-                x[axis] = lo;
-            }
-        }
-    }
     // w keeps the particle's material.
-    pos[i] = vec4<f32>(x, pos[i].w);
+    pos[i] = vec4<f32>(wrap_periodic(x), pos[i].w);
     vel[i] = vec4<f32>(v, 0.0);
 }

@@ -42,6 +42,7 @@ const DAM_BREAK_VARIANTS: [Variant; 6] = [
 const WCSPH: &str = "solver.method=\"wcsph\"";
 const DFSPH: &str = "solver.method=\"dfsph\"";
 const JACOBI: &str = "solver.dfsph.solver=\"jacobi\"";
+const CG: &str = "solver.dfsph.solver=\"cg\"";
 const CUBIC: &str = "solver.kernel=\"cubic_spline\"";
 const DELTA_SPH: &str = "solver.delta_sph={\"delta\":0.1}";
 
@@ -105,7 +106,7 @@ pub const CASES: &[Case] = &[
         bounds: &[("decay_rate_error", 0.02)],
         variants: &[
             Variant { name: "default", overrides: &[] },
-            Variant { name: "dfsph", overrides: &[DFSPH, "solver.transport_velocity=null"] },
+            Variant { name: "dfsph", overrides: &[DFSPH, CG, "solver.transport_velocity=null"] },
         ],
         measure: taylor_green_case,
     },

@@ -59,13 +59,49 @@
 //!   the near-null modes, which CG does not correct, would build up from step to
 //!   step with all of it (Poiseuille halts; 0.0068 with one half).
 //!
+//! A scene is closed or open once and for all at its first step (`dfsph_closed`, a
+//! state saved with snapshots): closed if no particle is held then. The held test
+//! is not run again in a closed scene: in a disordered bulk its surface criteria
+//! misfire on single particles (a summed density under [`SURFACE_DENSITY`], a
+//! rest-volume gradient sum over [`SURFACE_GRADIENT`]), and one held particle
+//! turned the whole periodic vortex into an open domain for a step (the mean kept,
+//! the stiffness clamped): the vortex under the shift below halted at step 27
+//! (docs/validation/schemes/CG.md).
+//!
+//! In a closed scene the particles are shifted after each drift
+//! (`solver.dfsph.shift`, [`SHIFT_MOST`], [`SHIFT_ANTI_CLUSTERING`], [`SHIFT_LIMIT`]):
+//! `dx_i = -D sum_j V_j (1 + R (W_ij / W(dx))^4) grad W_ij`, with the walls' rest
+//! volumes `psi_b / rho0_i`, from the positions the drift left (the neighbours from
+//! the step's grid), at most [`SHIFT_LIMIT`] spacings. It is Lind, Xu, Stansby &
+//! Rogers's Fickian shift (2012, J. Comput. Phys. 231, `dr = -D grad C` with their
+//! anti-clustering term, Monaghan's tensile correction on the concentration's
+//! gradient), with the coefficient of Sun, Colagrossi, Marrone & Zhang's
+//! delta-plus-SPH (2017, Comput. Methods Appl. Mech. Eng. 315), `CFL Ma (2h)^2`,
+//! which is `4 h U dt` for the flow's largest speed `U`: `D = shift h v_max dt`, at
+//! most [`SHIFT_MOST`] `h^2` (the shift is stable to about 0.7 `h^2` a step on the
+//! vortex). `D` follows the flow's displacement, not the step: the density solve
+//! answers a shift's compression with a velocity of the shift over `dt`, and a
+//! shift of a fixed size each step drove the Poiseuille channel (its step 0.25 ms,
+//! the viscous limit) unstable within 30 steps.
+//!
+//! Why: a Lagrangian arrangement cannot follow a vortex at constant summed density.
+//! The exact Taylor-Green flow carries a lattice into layers whose summed density
+//! spreads to 2.4 times rest by 0.28 s, and the constant-density solve answers that
+//! spread with pressures the flow does not have, which drained the vortex 57 % too
+//! fast at 1/40 m. The shift keeps the arrangement isotropic so that there is
+//! little for the solve to correct: the vortex within 0.5 % at 1/40 m
+//! (docs/validation/schemes/CG.md). Velocities are not corrected for the shift
+//! (Lind et al.'s Taylor expansion measured no better). Free surfaces are not
+//! shifted (the concentration gradient there points out of the fluid).
+//!
 //! The residual checked is the mean of `|r| dt^2 / rho0` (the signed counterpart of
 //! the Jacobi's mean compression), against the same tolerances.
 //!
 //! Passes (stage `Solve`; the sums between them stay on the device, in
 //! `dfsph_scalars`), for the density solve (the divergence solve's have
 //! `divergence` in their names):
-//! 0. once a step, before its length is chosen: `dfsph.cg_held` (`HELD` summed);
+//! 0. once a step, before its length is chosen: `dfsph.cg_held` (`HELD` summed),
+//!    `dfsph.cg_closed` (at the first step, whether the scene is closed);
 //!    before the constant-density solve: `dfsph.cg_wall_pressure`;
 //! 1. `dfsph.cg_density_warm` and the Jacobi's kick (the warm start),
 //!    `dfsph.cg_density_start`: `r = b` (`RSUM` summed; in a closed domain with the
@@ -79,7 +115,9 @@
 //!    `P += a p`, `v -= dt a G p`, `r -= a A p`), `dfsph.cg_density_residual`
 //!    (summed into `RZ_NEW`), `dfsph.cg_direction` (`p = alpha r + (RZ_NEW / RZ) p`,
 //!    then `RZ = RZ_NEW`);
-//! 5. after the solve: `dfsph.cg_density_clamp` and the Jacobi's kick.
+//! 5. after the solve: `dfsph.cg_density_clamp` and the Jacobi's kick;
+//! 6. after the drift, in a closed scene with a shift: `dfsph.cg_shift` (each
+//!    particle's displacement) and `dfsph.cg_shift_apply` (the particles moved).
 
 use crate::attrs::{AttrSpec, Elem, PARTICLES, Role};
 use crate::plan::PassSpec;
@@ -121,6 +159,29 @@ pub const SURFACE_GRADIENT: f32 = 0.5;
 /// 0.30 there, 0.57 at 1/40 m, against 0.49 and 0.81 unfiltered;
 /// docs/validation/schemes/CG.md).
 pub const RAW_EXCESS: f32 = 0.3;
+
+/// The anti-clustering weight `R` of the shift: measured on the Taylor-Green vortex
+/// at 1/40 m with a fixed coefficient of 0.44 `h^2` a step (decay rate error 0.0197
+/// at 0.2, Lind et al.'s value; 0.0004 at 0.5; 0.0038 at 1; 0.074 without the term).
+pub const SHIFT_ANTI_CLUSTERING: f32 = 0.5;
+
+/// The largest coefficient `D` of the shift in one step, in `h^2` (`h` half the
+/// support): the vortex halts at 0.9 and runs at 0.67 (a fixed coefficient each
+/// step, measured on the CPU).
+pub const SHIFT_MOST: f32 = 0.45;
+
+/// The largest shift of a particle in one step, in spacings.
+pub const SHIFT_LIMIT: f32 = 0.1;
+
+/// [`CLOSED`]'s value before the first step.
+pub const UNDECIDED: f32 = 0.0;
+/// [`CLOSED`]'s value in a closed scene.
+pub const IS_CLOSED: f32 = 1.0;
+/// [`CLOSED`]'s value in an open scene (a free surface at the first step).
+pub const IS_OPEN: f32 = 2.0;
+
+/// The space of the scene's closed-or-open decision (one element).
+pub const CLOSED_SPACE: &str = "dfsph.closed";
 
 /// The space of the solves' scalars.
 pub const SPACE: &str = "dfsph.cg";
@@ -165,6 +226,22 @@ pub static SCALARS: AttrSpec = AttrSpec {
     module: "dfsph",
     about: "DFSPH CG: r.z, p.Ap, the new r.z, held particles and the starting residual's sum.",
 };
+
+/// Whether the scene is closed: [`UNDECIDED`] until the first step's held test,
+/// then [`IS_CLOSED`] (no particle held) or [`IS_OPEN`].
+pub static CLOSED: AttrSpec = AttrSpec {
+    name: "dfsph_closed",
+    elem: Elem::F32,
+    unit: "",
+    role: Role::State,
+    added_later: true,
+    space: CLOSED_SPACE,
+    module: "dfsph",
+    about: "DFSPH CG: 0 before the first step, then 1 in a closed scene, 2 in an open one.",
+};
+
+/// Each particle's shift this step (m).
+pub static SHIFT: AttrSpec = attr("dfsph_shift", Elem::Vec3, "m", "DFSPH CG: the particle's shift this step.");
 
 /// Every attribute of the solves.
 pub const ATTRS: [&AttrSpec; 7] = [&R, &P, &GP, &AP, &DOT, &HELD_ATTR, &SCALARS];
@@ -251,7 +328,15 @@ solve_passes!(
 /// The particles held at `P = 0`: a free surface ([`SURFACE_DENSITY`],
 /// [`SURFACE_GRADIENT`]; run
 /// once a step, before its length is chosen; both solves have the same neighbours).
-pub static HELD_PASS: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_held", &["x", "rho"], &["dfsph_held"], &[]);
+pub static HELD_PASS: PassSpec =
+    PassSpec::solve("dfsph", "dfsph.cg_held", &["x", "rho", "dfsph_closed"], &["dfsph_held"], &[]);
+/// At the first step, whether the scene is closed (no particle held).
+pub static CLOSED_PASS: PassSpec =
+    PassSpec::solve("dfsph", "dfsph.cg_closed", &["dfsph_scalars"], &[], &["dfsph_closed"]);
+/// Each particle's shift from the positions the drift left.
+pub static SHIFT_PASS: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_shift", &["x"], &["dfsph_shift"], &[]);
+/// The particles moved by their shifts (back through a periodic face).
+pub static SHIFT_APPLY: PassSpec = PassSpec::solve("dfsph", "dfsph.cg_shift_apply", &["dfsph_shift"], &[], &["x"]);
 /// The walls' hydrostatic pressure, as a kick before the constant-density solve
 /// (once a step; see the module's documentation).
 pub static WALL_PRESSURE_PASS: PassSpec =
@@ -271,8 +356,9 @@ pub static DIRECTION: PassSpec =
     PassSpec::solve("dfsph", "dfsph.cg_direction", &["dfsph_scalars", "alpha", "dfsph_r"], &[], &["dfsph_p"]);
 
 /// Every pass of the solves (the Jacobi's kicks too), in the order each first runs.
-pub const PASSES: [&PassSpec; 19] = [
+pub const PASSES: [&PassSpec; 20] = [
     &HELD_PASS,
+    &CLOSED_PASS,
     &DIVERGENCE_WARM,
     &super::DIVERGENCE_KICK,
     &DIVERGENCE_START,
@@ -355,8 +441,13 @@ fn solve(
 }
 
 /// What runs once a step before its length is chosen (the step's pressure limit
-/// reads the count): the held particles, counted into `HELD`.
-pub const HELD_OPS: &[Op] = &[Op::Pass("dfsph.cg_held"), sum("dfsph_held", HELD)];
+/// reads the count): the held particles, counted into `HELD`, and at the first
+/// step the scene's closed-or-open decision.
+pub const HELD_OPS: &[Op] = &[Op::Pass("dfsph.cg_held"), sum("dfsph_held", HELD), Op::Pass("dfsph.cg_closed")];
+/// The shift's passes: after the drift, in a closed scene.
+pub const SHIFT_OPS: &[Op] = &[Op::Pass("dfsph.cg_shift"), Op::Pass("dfsph.cg_shift_apply")];
+/// The shift's passes and attribute, built with a CG whose `shift` is not zero.
+pub const SHIFT_PASSES: [&PassSpec; 2] = [&SHIFT_PASS, &SHIFT_APPLY];
 const DIVERGENCE_START_OPS: &[Op] = start!("divergence");
 const DIVERGENCE_ITERATION: &[Op] = iteration!("divergence");
 const DENSITY_START_OPS: &[Op] = start!("density", Op::Pass("dfsph.cg_wall_pressure"));

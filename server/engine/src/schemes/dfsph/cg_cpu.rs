@@ -2,10 +2,13 @@
 //! the order); the pair sums are the Jacobi's (`cpu::Sums`), over the
 //! gradients the factor pass kept.
 
-use super::cg::{HELD, PAP, RAW_EXCESS, RSUM, RZ, RZ_NEW, SURFACE_DENSITY, SURFACE_GRADIENT, ratio};
+use super::cg::{
+    HELD, IS_CLOSED, IS_OPEN, PAP, RAW_EXCESS, RSUM, RZ, RZ_NEW, SHIFT_ANTI_CLUSTERING, SHIFT_LIMIT, SHIFT_MOST,
+    SURFACE_DENSITY, SURFACE_GRADIENT, UNDECIDED, ratio,
+};
 use super::cpu::{Kept, Sums, neighbours, with_kept};
 use super::{FULL_NEIGHBOURHOOD, WARM_START};
-use crate::cpu::neighbors::CHUNK;
+use crate::cpu::neighbors::{CHUNK, gather};
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Real, Vec3};
 use crate::periodic::Separation;
@@ -19,7 +22,7 @@ fn scalars(cx: &CpuCx<'_>) -> Vec<Real> {
 /// `dfsph.cg_held`: 1 for a particle held at `P = 0` (a free surface: fewer than
 /// [`FULL_NEIGHBOURHOOD`] neighbours, a summed density below [`SURFACE_DENSITY`] of
 /// rest, or below rest with a neighbourhood the surface cuts, [`SURFACE_GRADIENT`]),
-/// else 0.
+/// else 0; 0 for every particle of a closed scene.
 #[derive(Debug)]
 pub struct Held;
 
@@ -31,6 +34,7 @@ impl CpuPass for Held {
 
 fn held<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
     let cut = SURFACE_GRADIENT / cx.model.kernel.support();
+    let closed = cx.attrs.get(cx.attrs.handle::<Real>("dfsph_closed"))[0] == IS_CLOSED;
     let h = cx.attrs.handle::<Real>("dfsph_held");
     let mut held = cx.attrs.take(h);
     let sums = Sums::new(cx.model, &*cx.attrs, kept, sep);
@@ -41,10 +45,101 @@ fn held<K: Kept, S: Separation>(cx: &mut CpuCx<'_>, kept: K, sep: S) {
             let rest = sums.material(i).rest_density;
             let surface = rho[i] < rest && sums.volume_gradient(i, n, nb).length_squared() >= cut * cut;
             let free = neighbours(nb, n) >= FULL_NEIGHBOURHOOD && rho[i] >= SURFACE_DENSITY * rest && !surface;
-            *held = if free { 0.0 } else { 1.0 };
+            *held = if closed || free { 0.0 } else { 1.0 };
         }
     });
     cx.attrs.put(h, held);
+}
+
+/// `dfsph.cg_closed`: before the first step's decision, the scene is closed if no
+/// particle is held ([`IS_CLOSED`]), else open ([`IS_OPEN`]); later, nothing.
+#[derive(Debug)]
+pub struct Closed;
+
+impl CpuPass for Closed {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let held = scalars(cx)[HELD as usize];
+        let h = cx.attrs.handle::<Real>("dfsph_closed");
+        let mut closed = cx.attrs.take(h);
+        if closed[0] == UNDECIDED {
+            closed[0] = if held == 0.0 { IS_CLOSED } else { IS_OPEN };
+        }
+        cx.attrs.put(h, closed);
+    }
+}
+
+/// `dfsph.cg_shift`: each particle's shift ([`super::cg`]) from the current
+/// positions, its neighbours found on the step's grid (as a GPU's walk finds them).
+#[derive(Debug)]
+pub struct Shift;
+
+impl CpuPass for Shift {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        crate::with_separation!(&cx.model.periodic, |sep| shift(cx, sep))
+    }
+}
+
+fn shift<S: Separation>(cx: &mut CpuCx<'_>, sep: S) {
+    let model = cx.model;
+    let (kernel, walls, dx) = (&model.kernel, &model.wall_particles, model.spacing);
+    let h = 0.5 * kernel.support();
+    // cx.dt: the step's largest displacement v_max dt (m).
+    let a = model.consts::<super::DfsphConsts>().settings.shift;
+    let step = (a * h * cx.dt).min(SHIFT_MOST * h * h);
+    let (limit, w_dx, h2) = (SHIFT_LIMIT * dx, kernel.w_r2(dx * dx), kernel.support() * kernel.support());
+    // The pair's weight `V (1 + R (W / W(dx))^4) |grad W| / r` along x_ij.
+    let weight = |x: Vec3, volume: Real| {
+        let r2 = x.length_squared();
+        let f = kernel.w_r2(r2) / w_dx;
+        kernel.grad(x, r2.sqrt()) * (volume * (1.0 + SHIFT_ANTI_CLUSTERING * (f * f) * (f * f)))
+    };
+    let handle = cx.attrs.handle::<Vec3>("dfsph_shift");
+    let mut out = cx.attrs.take(handle);
+    let attrs = &*cx.attrs;
+    let pos = attrs.get(attrs.handle::<Vec3>("x"));
+    let mat = attrs.find::<u32>("material").map(|m| attrs.get(m));
+    let grid = &*cx.grid;
+    out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+        let (mut fluid, mut wall) = (Vec::new(), Vec::new());
+        for (n, o) in out.iter_mut().enumerate() {
+            let i = c * CHUNK + n;
+            let (xi, mi) = (pos[i], mat.map_or(0, |m| m[i] as usize));
+            fluid.clear();
+            gather(sep, grid, pos, xi, h2, &mut fluid);
+            let mut g = Vec3::ZERO;
+            for &j in &fluid {
+                let m = model.materials.get(mat.map_or(0, |m| m[j as usize] as usize));
+                let x_ij = sep.between(xi, pos[j as usize]);
+                if x_ij != Vec3::ZERO {
+                    g += weight(x_ij, m.mass / m.rest_density);
+                }
+            }
+            wall.clear();
+            gather(sep, &walls.grid, &walls.positions, xi, h2, &mut wall);
+            let (psi, rho0) = (&walls.psi[mi], model.materials.get(mi).rest_density);
+            for &b in &wall {
+                g += weight(sep.between(xi, walls.positions[b as usize]), psi[b as usize] / rho0);
+            }
+            let d = g * -step;
+            *o = if d.length() > limit { d * (limit / d.length()) } else { d };
+        }
+    });
+    cx.attrs.put(handle, out);
+}
+
+/// `dfsph.cg_shift_apply`: `x += dfsph_shift`, back through a periodic face.
+#[derive(Debug)]
+pub struct ShiftApply;
+
+impl CpuPass for ShiftApply {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let h = cx.attrs.handle::<Vec3>("x");
+        let mut x = cx.attrs.take(h);
+        let shift = cx.attrs.get(cx.attrs.handle::<Vec3>("dfsph_shift"));
+        let periodic = &cx.model.periodic;
+        x.par_iter_mut().zip(shift).with_min_len(4096).for_each(|(x, d)| *x = periodic.wrap(*x + *d));
+        cx.attrs.put(h, x);
+    }
 }
 
 /// `dfsph.cg_wall_pressure`: the walls' hydrostatic part of their pressure as a

@@ -15,7 +15,8 @@
 //! 4. the constant-density solve: the velocities are corrected until the mean
 //!    predicted compression `(rho + dt Drho/Dt - rho0) / rho0` is at most
 //!    `solver.dfsph.density_tolerance` (algorithm 3);
-//! 5. the drift `x += dt v`.
+//! 5. the drift `x += dt v`; with the CG in a closed scene, the particle shift
+//!    ([`cg`], `solver.dfsph.shift`).
 //!
 //! Step 2 corrects the velocities the last drift left at the positions this step
 //! sorted: the divergence-free solve B&K run at the end of a step, after its
@@ -84,6 +85,9 @@ pub static SCHEME: SchemeDef = SchemeDef {
         ("dfsph.density_kick", &cpu::Kick { kappa: "kappa", increment: "dkappa" }),
         ("dfsph.density_error", &cpu::Error { density: true }),
         ("dfsph.cg_held", &cg_cpu::Held),
+        ("dfsph.cg_closed", &cg_cpu::Closed),
+        ("dfsph.cg_shift", &cg_cpu::Shift),
+        ("dfsph.cg_shift_apply", &cg_cpu::ShiftApply),
         ("dfsph.cg_wall_pressure", &cg_cpu::WallPressure),
         ("dfsph.cg_divergence_warm", &cg_cpu::Warm(cpu::Warm { kappa: "kappa_v", increment: "dkappa_v" })),
         ("dfsph.cg_divergence_start", &cg_cpu::Start { density: false }),
@@ -255,8 +259,16 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
             for spec in cg::ATTRS {
                 b.zeros(spec);
             }
+            b.space(cg::CLOSED_SPACE, 1);
+            b.attr(&cg::CLOSED, Column::F32(vec![cg::UNDECIDED]));
             for pass in cg::PASSES {
                 b.pass(pass);
+            }
+            if consts.settings.shift > 0.0 {
+                b.zeros(&cg::SHIFT);
+                for pass in cg::SHIFT_PASSES {
+                    b.pass(pass);
+                }
             }
         }
     }
@@ -279,6 +291,7 @@ fn validate(scene: &Scene, _: bool, c: &mut crate::scene::validate::Checker) {
     c.within("solver.dfsph.density_tolerance", s.density_tolerance, 1e-6, 0.1);
     c.within("solver.dfsph.divergence_tolerance", s.divergence_tolerance, 1e-6, 0.1);
     c.within("solver.dfsph.max_iterations", s.max_iterations as f32, 1.0, 10_000.0);
+    c.within("solver.dfsph.shift", s.shift, 0.0, 8.0);
     if s.compact_gradients && scene.solver.kernel == crate::kernel::KernelKind::Mueller {
         c.fail(
             "solver.dfsph.compact_gradients",
@@ -354,7 +367,8 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     let n = s.model().particle_count();
     let settings = s.model().consts::<DfsphConsts>().settings;
     let m = clock.evaluate(s, &EVALUATE)?;
-    let c_p = pressure_speed(&settings, s).map_err(|e| clock.halt(e, None))?;
+    let held = held_particles(&settings, s).map_err(|e| clock.halt(e, None))?;
+    let c_p = pressure_speed(held, s).map_err(|e| clock.halt(e, None))?;
     let dt = clock.dt(s.model(), &m, c_p)?;
     let divergence = divergence_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?;
     finish(&settings, cg::DIVERGENCE_FINISH, s, dt);
@@ -366,6 +380,12 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     solves.push(density_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?);
     finish(&settings, cg::DENSITY_FINISH, s, dt);
     s.drift(dt);
+    if held == Some(0.0) && settings.shift > 0.0 {
+        let reach = m.max_speed2.0.sqrt() * dt;
+        for &op in cg::SHIFT_OPS {
+            op.run(s, reach);
+        }
+    }
     s.run(Stage::Drift, dt);
     solves.extend(crate::position_solve::run(clock, s, dt)?);
     s.run(Stage::PostStep, dt);
@@ -373,25 +393,31 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     Ok(clock.advance(dt, &m, n, solves))
 }
 
-/// The pressure's signal speed `sqrt(p / rho)` (m/s) for the step's limit
-/// ([`crate::timestep::Limits::c_p`]) with the CG at a free surface: from the largest
-/// stiffness `P = p / rho^2` the last constant-density solve left, at the largest rest
-/// density. Without it the CG's resting column at 0.01875 m grows a disorder from its
-/// floor at the 5 ms cap (pressure L2 0.18); its steps are stable below 0.6 to 0.7
-/// `h / c_p` on columns of 0.45 and 0.9 m at 0.025 and 0.01875 m
-/// (docs/validation/schemes/CG.md). Runs the CG's held test first ([`cg::HELD_OPS`]).
-/// None (0) where no particle is held (a closed domain, whose stiffness's level is
-/// free: the vortex halted under it) and for the Jacobi (its column stops converging
-/// under it, its Akinci walls needing twice the pressure beside a wall, and the dam
-/// break takes a quarter more steps).
-fn pressure_speed(settings: &DfsphSettings, s: &mut dyn Stages) -> Result<Real, String> {
+/// The CG's held test ([`cg::HELD_OPS`]) and the number of particles it held (none
+/// in a closed scene); None for the Jacobi.
+fn held_particles(settings: &DfsphSettings, s: &mut dyn Stages) -> Result<Option<f64>, String> {
     if settings.solver != DfsphSolver::Cg {
-        return Ok(0.0);
+        return Ok(None);
     }
     for &op in cg::HELD_OPS {
         op.run(s, 0.0);
     }
-    if s.reduce(&Reduction { attr: cg::HELD_ATTR.name, op: ReduceOp::Sum })? == 0.0 {
+    s.reduce(&Reduction { attr: cg::HELD_ATTR.name, op: ReduceOp::Sum }).map(Some)
+}
+
+/// The pressure's signal speed `sqrt(p / rho)` (m/s) for the step's limit
+/// ([`crate::timestep::Limits::c_p`]) with the CG at a free surface (`held`
+/// particles, [`held_particles`]): from the largest stiffness `P = p / rho^2` the
+/// last constant-density solve left, at the largest rest density. Without it the
+/// CG's resting column at 0.01875 m grows a disorder from its floor at the 5 ms cap
+/// (pressure L2 0.18); its steps are stable below 0.6 to 0.7 `h / c_p` on columns
+/// of 0.45 and 0.9 m at 0.025 and 0.01875 m (docs/validation/schemes/CG.md). None
+/// (0) where no particle is held (a closed domain, whose stiffness's level is free:
+/// the vortex halted under it) and for the Jacobi (its column stops converging under
+/// it, its Akinci walls needing twice the pressure beside a wall, and the dam break
+/// takes a quarter more steps).
+fn pressure_speed(held: Option<f64>, s: &mut dyn Stages) -> Result<Real, String> {
+    if held.unwrap_or(0.0) == 0.0 {
         return Ok(0.0);
     }
     let kappa = s.reduce(&Reduction { attr: "kappa", op: ReduceOp::Max })?.max(0.0);

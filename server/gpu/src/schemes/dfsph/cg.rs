@@ -8,7 +8,9 @@ use crate::program::Access::{self, Read as R, ReadWrite as W, Uniform as U};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
 use floe_engine::schemes::dfsph::DfsphConsts;
-use floe_engine::schemes::dfsph::cg::{RAW_EXCESS, SURFACE_GRADIENT};
+use floe_engine::schemes::dfsph::cg::{
+    CLOSED_SPACE, RAW_EXCESS, SHIFT_ANTI_CLUSTERING, SHIFT_LIMIT, SHIFT_MOST, SURFACE_GRADIENT,
+};
 use floe_engine::schemes::dfsph::spec::DfsphSolver;
 
 const fn particles(
@@ -34,16 +36,61 @@ pub static HELD: GpuPass = particles(
         (R, "starts"),
         (R, "walls"),
         (W, "dfsph_held"),
+        (R, "dfsph_closed"),
     ],
+);
+
+/// At the first step, whether the scene is closed.
+pub static CLOSED: GpuPass = GpuPass {
+    name: "dfsph.cg_closed",
+    source: particle_kernel!("cg/closed.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (R, "dfsph_scalars"), (W, "dfsph_closed")],
+    space: CLOSED_SPACE,
+    when: always,
+};
+
+/// Each particle's shift in a closed scene.
+pub static SHIFT: GpuPass = particles(
+    "dfsph.cg_shift",
+    walk_kernel!("cg/shift.wgsl"),
+    "main",
+    &[(U, "params"), (U, "dt"), (U, "dfsph.cg"), (R, "x"), (R, "starts"), (R, "walls"), (W, "dfsph_shift")],
+);
+
+/// The particles moved by their shifts.
+pub static SHIFT_APPLY: GpuPass = particles(
+    "dfsph.cg_shift_apply",
+    particle_kernel!("cg/shift_apply.wgsl"),
+    "main",
+    &[(U, "params"), (R, "dfsph_shift"), (W, "x")],
 );
 
 /// The uniform's bytes (`dfsph.cg`, counted as the scheme's; `dfsph_cg` in the
 /// kernels: x the rest-volume gradient sum, 1/m, at which an under-dense particle is
 /// held, y the share of a particle's own density deviation a closed domain's density
-/// solve takes), when the scene's DFSPH solves by CG.
+/// solve takes, z and w the shift's `shift h` (m) and largest coefficient
+/// `SHIFT_MOST h^2` (m^2); then its limit (m), anti-clustering weight and `W(dx)`,
+/// which only shift.wgsl reads), when the scene's DFSPH solves by CG.
 pub fn uniform(model: &Model) -> Option<Vec<u8>> {
-    let cg = model.scheme.id == "dfsph" && model.consts::<DfsphConsts>().settings.solver == DfsphSolver::Cg;
-    cg.then(|| bytemuck::bytes_of(&[SURFACE_GRADIENT / model.kernel.support(), RAW_EXCESS, 0.0, 0.0]).to_vec())
+    if model.scheme.id != "dfsph" {
+        return None;
+    }
+    let settings = model.consts::<DfsphConsts>().settings;
+    (settings.solver == DfsphSolver::Cg).then(|| {
+        let (dx, h) = (model.spacing, 0.5 * model.kernel.support());
+        let values = [
+            SURFACE_GRADIENT / model.kernel.support(),
+            RAW_EXCESS,
+            settings.shift * h,
+            SHIFT_MOST * h * h,
+            SHIFT_LIMIT * dx,
+            SHIFT_ANTI_CLUSTERING,
+            model.kernel.w_r2(dx * dx),
+            0.0,
+        ];
+        bytemuck::bytes_of(&values).to_vec()
+    })
 }
 
 /// The walls' hydrostatic pressure.

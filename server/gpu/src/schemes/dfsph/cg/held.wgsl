@@ -2,7 +2,7 @@
 // `schemes::dfsph::cg_cpu::Held`): 1 with fewer neighbours than `dfsph.y`, a summed
 // density below `dfsph.w` of rest, or, below rest, a rest-volume gradient sum
 // `|sum_j V_j grad W_ij + sum_b V_b grad W_ib|` of at least `dfsph_cg.x` (1/m: a
-// neighbourhood cut by a free surface); else 0.
+// neighbourhood cut by a free surface); else 0; 0 for every particle of a closed scene.
 
 // y: the neighbours a particle needs, w: the fraction of the rest density below which
 // a particle is held.
@@ -14,6 +14,8 @@
 @group(0) @binding(5) var<storage, read> starts: array<u32>;
 @group(0) @binding(6) var<storage, read> walls: array<vec4<f32>>;
 @group(0) @binding(7) var<storage, read_write> held: array<f32>;
+// 1 in a closed scene (closed.wgsl).
+@group(0) @binding(8) var<storage, read> closed: array<f32>;
 
 var<private> held_mat: vec4<f32>;
 var<private> held_count: u32;
@@ -44,5 +46,6 @@ fn walk_end(i: u32) {
     let cut = dfsph_cg.x;
     let rest = held_mat.x;
     let surface = rho[i] < rest && dot(s, s) >= cut * cut;
-    held[i] = select(0.0, 1.0, f32(held_count) < dfsph.y || rho[i] < dfsph.w * rest || surface);
+    let free = f32(held_count) >= dfsph.y && rho[i] >= dfsph.w * rest && !surface;
+    held[i] = select(1.0, 0.0, closed[0] == 1.0 || free);
 }
