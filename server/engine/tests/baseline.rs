@@ -18,6 +18,7 @@
 //! fluid's lattice in both, and its sound speed comes from the fluid's fall height).
 
 use floe_engine::Simulation;
+use floe_engine::modules::fluid::presets::TAYLOR_GREEN_WCSPH;
 use floe_engine::scene::load::from_preset;
 
 const WCSPH: &str = "solver.method=\"wcsph\"";
@@ -132,7 +133,9 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     // Recorded when the preset moved to DFSPH (CG, Wendland's kernel).
     ("hydrostatic", &["particle_spacing=0.05"], 0x974718f994aaa59a),
     ("poiseuille", &["particle_spacing=0.1"], 0x094c1acaf37fdc63),
-    ("taylor_green", &[], 0x9cf832681994f216),
+    ("taylor_green", &TAYLOR_GREEN_WCSPH, 0x9cf832681994f216),
+    // Recorded when the preset moved to DFSPH's CG with the particle shift.
+    ("taylor_green", &[], 0xb2cff381d27b89f5),
     ("conduction", &[], 0xb4e11d2cb1f76950),
     ("convection", &["particle_spacing=0.01"], 0x2e404b95d2c212ee),
     ("two_fluids", &["particle_spacing=0.01"], 0x432f249734b193c7),

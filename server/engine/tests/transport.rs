@@ -8,6 +8,7 @@
 use floe_engine::Simulation;
 use floe_engine::attrs::Column;
 use floe_engine::math::Vec3;
+use floe_engine::modules::fluid::presets::TAYLOR_GREEN_WCSPH;
 use floe_engine::plan::Stage;
 use floe_engine::scene::load::{Format, from_preset, from_str};
 
@@ -100,7 +101,8 @@ fn the_drift_moves_with_the_push_and_the_velocity_does_not_take_it() {
 
 #[test]
 fn scenes_with_it_restore_bit_for_bit_and_scenes_without_it_have_no_push() {
-    let mut sim = Simulation::new_cpu(from_preset("taylor_green", &[]).unwrap()).unwrap();
+    let wcsph = TAYLOR_GREEN_WCSPH.map(String::from);
+    let mut sim = Simulation::new_cpu(from_preset("taylor_green", &wcsph).unwrap()).unwrap();
     assert!(sim.model().layout.spec("a_transport").is_some());
     for _ in 0..10 {
         sim.step().unwrap();
@@ -115,6 +117,6 @@ fn scenes_with_it_restore_bit_for_bit_and_scenes_without_it_have_no_push() {
     }
     assert_eq!(restored.snapshot(), sim.snapshot());
     assert!(block(None).model().layout.spec("a_transport").is_none());
-    let plain = Simulation::new_cpu(from_preset("taylor_green", &["solver.transport_velocity=null".into()]).unwrap());
+    let plain = Simulation::new_cpu(from_preset("taylor_green", &[wcsph[0].clone()]).unwrap());
     assert!(plain.unwrap().model().layout.spec("a_transport").is_none());
 }

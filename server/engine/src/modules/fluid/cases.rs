@@ -3,7 +3,7 @@
 
 use crate::Simulation;
 use crate::modules::fluid::presets::DAM_BREAK_A;
-use crate::modules::fluid::presets::{POISEUILLE, TAYLOR_GREEN};
+use crate::modules::fluid::presets::{POISEUILLE, TAYLOR_GREEN, TAYLOR_GREEN_WCSPH};
 use crate::modules::fluid::spec::TaylorGreen;
 use crate::validation::cases::{Case, Measured, Variant};
 use crate::validation::stability::{Expect, StabilityCase};
@@ -42,7 +42,6 @@ const DAM_BREAK_VARIANTS: [Variant; 6] = [
 const WCSPH: &str = "solver.method=\"wcsph\"";
 const DFSPH: &str = "solver.method=\"dfsph\"";
 const JACOBI: &str = "solver.dfsph.solver=\"jacobi\"";
-const CG: &str = "solver.dfsph.solver=\"cg\"";
 const CUBIC: &str = "solver.kernel=\"cubic_spline\"";
 const DELTA_SPH: &str = "solver.delta_sph={\"delta\":0.1}";
 
@@ -106,7 +105,7 @@ pub const CASES: &[Case] = &[
         bounds: &[("decay_rate_error", 0.02)],
         variants: &[
             Variant { name: "default", overrides: &[] },
-            Variant { name: "dfsph", overrides: &[DFSPH, CG, "solver.transport_velocity=null"] },
+            Variant { name: "wcsph", overrides: &TAYLOR_GREEN_WCSPH },
         ],
         measure: taylor_green_case,
     },
