@@ -265,6 +265,8 @@ pub struct SchemeDef {
     pub cpu: &'static [(&'static str, &'static dyn CpuPass)],
     /// One step.
     pub step: fn(&mut Clock, &mut dyn Stages) -> Result<StepReport, Halted>,
+    /// Where in its step the modules' position solves run.
+    pub position_solves: crate::position_solve::When,
     /// The signal speed of the CFL condition (m/s): the speed of sound for WCSPH, 0
     /// for an incompressible scheme (the flow speed alone limits its steps).
     pub signal_speed: fn(&Model) -> Real,

@@ -159,17 +159,31 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     ),
     // Recorded when the eigen rotation came to be built from the two largest
     // eigenvalues' axes (for flat clusters) and the walls held elastic particles
-    // in the position solve; the bunny when it was added.
-    ("elastic_drop", &["particle_spacing=0.04"], 0xdfa2b6fd9128456b),
-    ("floating_blocks", &["particle_spacing=0.04"], 0xc193b41b8b11186e),
-    ("bunny", &["particle_spacing=0.0196"], 0x93e350edc95029d1),
+    // in the position solve; the bunny when it was added. The presets as they were
+    // then: WCSPH, each particle moved to the mean of its goals, no damping.
+    ("elastic_drop", &["particle_spacing=0.04", WCSPH, MEAN_SHARES, NO_DAMPING], 0xdfa2b6fd9128456b),
+    ("floating_blocks", &["particle_spacing=0.04", WCSPH, MEAN_SHARES, NO_DAMPING], 0xc193b41b8b11186e),
+    ("bunny", &["particle_spacing=0.0196", WCSPH, MEAN_SHARES, NO_DAMPING], 0x93e350edc95029d1),
+    // Recorded when the solid presets moved to DFSPH with conserving shares and the
+    // damping toward the clusters' rigid motions.
+    ("elastic_drop", &["particle_spacing=0.04"], 0x57fc825a9b405ea8),
+    ("floating_blocks", &["particle_spacing=0.04"], 0x979ada34ee73f53a),
+    ("bunny", &["particle_spacing=0.0196"], 0xc28d420801b59638),
     // Recorded when ice came to melt.
     ("stefan", &[], 0x932e82fea25ad891),
-    ("ice_cube_in_glass", &["particle_spacing=0.01", WCSPH], 0x3a090f0234c896c0),
-    // Recorded when the preset moved to DFSPH.
-    ("ice_cube_in_glass", &["particle_spacing=0.01"], 0x522896b53c7fc63d),
-    ("ice_melting", &["particle_spacing=0.0196"], 0x146f9b1cb932e666),
+    ("ice_cube_in_glass", &["particle_spacing=0.01", WCSPH, MEAN_SHARES, NO_DAMPING], 0x3a090f0234c896c0),
+    ("ice_melting", &["particle_spacing=0.0196", WCSPH, MEAN_SHARES, NO_DAMPING], 0x146f9b1cb932e666),
+    // Recorded when the solid presets moved to DFSPH, their shape matching before
+    // the density solve (which moved ice_cube_in_glass, on DFSPH before), with
+    // conserving shares and the damping.
+    ("ice_cube_in_glass", &["particle_spacing=0.01"], 0x40121240969031a1),
+    ("ice_melting", &["particle_spacing=0.0196"], 0x29b212a7d81d7db2),
 ];
+
+/// The solid's Jacobi as it was before conserving shares, and no damping toward
+/// the clusters' rigid motions.
+const MEAN_SHARES: &str = "solid.shares=\"mean\"";
+const NO_DAMPING: &str = "solid.damping=0";
 
 /// State attributes added (or made state) after the checksums were recorded,
 /// which no preset changes in its first steps: left out of the checksums, and

@@ -107,8 +107,13 @@ pub const HOST_PASSES: &[&str] = &["core.sort", "core.neighbours"];
 
 /// Every plan pass the GPU implements: the core's, the schemes' and the modules'.
 pub fn all() -> Vec<&'static GpuPass> {
-    let core: &[&'static GpuPass] =
-        &[&crate::passes::DENSITY_PASS, &crate::passes::PREDICT_PASS, &crate::passes::VELOCITY_FROM_POSITIONS_PASS];
+    let core: &[&'static GpuPass] = &[
+        &crate::passes::DENSITY_PASS,
+        &crate::passes::PREDICT_PASS,
+        &crate::passes::VELOCITY_FROM_POSITIONS_PASS,
+        &crate::passes::LOOK_AHEAD_PASS,
+        &crate::passes::LOOK_BACK_PASS,
+    ];
     let core = core.iter().chain(crate::viscosity::PASSES);
     let extra = EXTRA.read().expect("registry lock");
     let registered = extra.iter().flat_map(|m| m.passes);

@@ -39,6 +39,7 @@ pub struct ModelBuilder<'s> {
     passes: Vec<&'static PassSpec>,
     velocity_solves: Vec<crate::scheme::Iterate>,
     position_solves: Vec<crate::scheme::Iterate>,
+    after_position_solves: Vec<crate::scheme::Iterate>,
     maps: Vec<&'static crate::maps::MapSpec>,
     domain: Option<Aabb>,
     /// Births and deaths: room reserved, emitters, whether passes remove particles.
@@ -73,6 +74,7 @@ impl<'s> ModelBuilder<'s> {
             passes: Vec::new(),
             velocity_solves: Vec::new(),
             position_solves: Vec::new(),
+            after_position_solves: Vec::new(),
             maps: Vec::new(),
             domain: None,
             reserved: 0,
@@ -234,17 +236,34 @@ impl<'s> ModelBuilder<'s> {
         self.velocity_solves.push(solve);
     }
 
-    /// Adds a position solve run after every drift (its passes added with
-    /// [`Self::pass`]); the first one brings the core's prediction and velocity
-    /// update ([`crate::position_solve`]).
+    /// Adds a position solve (its passes added with [`Self::pass`]), run where the
+    /// scheme runs them ([`crate::position_solve::When`]); the first one brings the
+    /// core's prediction and velocity update, and under
+    /// [`crate::position_solve::When::BeforeDensitySolve`] the look-ahead
+    /// ([`crate::position_solve`]).
     pub fn position_solve(&mut self, solve: crate::scheme::Iterate) {
-        use crate::position_solve::{PREDICT, VELOCITY_FROM_POSITIONS, X_PREDICTED};
+        use crate::position_solve::{
+            LOOK_AHEAD, LOOK_BACK, PREDICT, VELOCITY_FROM_POSITIONS, When, X_PREDICTED, X_START,
+        };
         if self.position_solves.is_empty() {
             self.zeros(&X_PREDICTED);
             self.pass(&PREDICT);
             self.pass(&VELOCITY_FROM_POSITIONS);
+            if self.scheme.position_solves == When::BeforeDensitySolve {
+                self.zeros(&X_START);
+                self.pass(&LOOK_AHEAD);
+                self.pass(&LOOK_BACK);
+            }
         }
         self.position_solves.push(solve);
+    }
+
+    /// Adds a velocity correction run after the position solves have moved the
+    /// positions and the velocities followed (its passes added with
+    /// [`Self::pass`]); needs a position solve.
+    pub fn after_position_solves(&mut self, solve: crate::scheme::Iterate) {
+        assert!(!self.position_solves.is_empty(), "{}: after the position solves, but there is none", solve.name);
+        self.after_position_solves.push(solve);
     }
 
     /// Declares index map `map` (see [`crate::maps`]) with its segments' member
@@ -385,6 +404,7 @@ impl<'s> ModelBuilder<'s> {
             plan,
             velocity_solves: self.velocity_solves,
             position_solves: self.position_solves,
+            after_position_solves: self.after_position_solves,
             maps: self.maps,
             population,
             channels: self.channels,

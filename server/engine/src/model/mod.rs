@@ -215,9 +215,12 @@ pub struct Model {
     /// The modules' velocity solves after each kick, in order
     /// ([`crate::scheme::velocity_solves`]).
     pub velocity_solves: Vec<crate::scheme::Iterate>,
-    /// The modules' position solves after each drift, in order
-    /// ([`crate::position_solve::run`]).
+    /// The modules' position solves, in order, run where the scheme says
+    /// ([`crate::position_solve`]).
     pub position_solves: Vec<crate::scheme::Iterate>,
+    /// The modules' velocity corrections run after the position solves, over the
+    /// solved positions ([`crate::position_solve::run`]).
+    pub after_position_solves: Vec<crate::scheme::Iterate>,
     /// The index maps ([`crate::maps`]).
     pub maps: Vec<&'static crate::maps::MapSpec>,
     /// Births and deaths, in a scene that has them ([`crate::population`]).

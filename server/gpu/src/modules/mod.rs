@@ -46,6 +46,15 @@ pub static PASSES: &[&GpuPass] = &[
     &solid::ORIENT_TURN,
     &solid::ORIENT_SUM,
     &solid::ORIENT_UPDATE,
+    &solid::MOTION,
+    &solid::VELOCITY_SUM,
+    &solid::SPIN,
+    &solid::SPIN_SUM,
+    &solid::INERTIA_SUM,
+    &solid::RIGID,
+    &solid::RIGID_WAY,
+    &solid::DAMP,
+    &solid::DAMP_BLENDED,
 ];
 
 /// Kernels doing several modules' passes in one neighbour walk.

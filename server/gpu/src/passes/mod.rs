@@ -92,6 +92,26 @@ pub static VELOCITY_FROM_POSITIONS_PASS: crate::pass::GpuPass = crate::pass::Gpu
     when: crate::pass::always,
 };
 
+/// `x_start = x`, `x += dt v` (floe-engine `position_solve::run_ahead`).
+pub static LOOK_AHEAD_PASS: crate::pass::GpuPass = crate::pass::GpuPass {
+    name: "core.look_ahead",
+    source: particle_kernel!("look_ahead.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "dt"), (R, "v"), (W, "x_start"), (W, "x")],
+    space: floe_engine::attrs::PARTICLES,
+    when: crate::pass::always,
+};
+
+/// `x = x_start` (floe-engine `position_solve::run_ahead`).
+pub static LOOK_BACK_PASS: crate::pass::GpuPass = crate::pass::GpuPass {
+    name: "core.look_back",
+    source: particle_kernel!("look_back.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (R, "x_start"), (W, "x")],
+    space: floe_engine::attrs::PARTICLES,
+    when: crate::pass::always,
+};
+
 /// Particles per partial of the reductions (their workgroup size).
 pub const PER_PARTIAL: u32 = 256;
 

@@ -98,6 +98,14 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("solid.orient_turn", &orient::Turn),
         ("solid.orient_sum", &MemberSum::<Quat>::new(&CLUSTERS, "solid_clusters_turn", "solid_turn_sum")),
         ("solid.orient_update", &orient::Update),
+        ("solid.motion", &cpu::Motion),
+        ("solid.velocity_sum", &SegmentSum::<Vec3>::new(&CLUSTERS, "solid_clusters_v", "cluster_v_sum")),
+        ("solid.spin", &cpu::Spin),
+        ("solid.spin_sum", &SegmentSum::<Vec3>::new(&CLUSTERS, "solid_clusters_spin", "cluster_spin")),
+        ("solid.inertia_sum", &SegmentSum::<Mat3>::new(&CLUSTERS, "solid_clusters_inertia", "cluster_inertia")),
+        ("solid.rigid", &cpu::Rigid),
+        ("solid.rigid_way", &cpu::RigidWay),
+        ("solid.damp", &cpu::Damp),
     ],
     presets: presets::PRESETS,
     dt_limit: |_| None,
@@ -168,6 +176,22 @@ pub const TUNABLES: &[Tunable] = &[
         module: "solid",
     },
     Tunable {
+        path: "solid.damping",
+        unit: "",
+        min: Some(0.0),
+        max: Some(1.0),
+        about: "Share of each cluster's non-rigid velocity removed after each step's solve: 0 none, 1 every cluster moves rigidly.",
+        module: "solid",
+    },
+    Tunable {
+        path: "solid.shares",
+        unit: "",
+        min: None,
+        max: None,
+        about: "How a jacobi iteration shares each cluster's ways: conserving (momentum conserved) or mean (the thesis's eq. 2.31).",
+        module: "solid",
+    },
+    Tunable {
         path: "solid.iterations",
         unit: "",
         min: Some(1.0),
@@ -218,6 +242,10 @@ pub struct SolidConsts {
     pub rotation: spec::Rotation,
     /// How the goals move the particles.
     pub solver: spec::ClusterSolver,
+    /// How a Jacobi iteration shares a cluster's ways.
+    pub shares: spec::Shares,
+    /// The share of each cluster's non-rigid velocity removed after each step.
+    pub damping: Real,
     /// Colours the clusters are swept in: the conflict-free colouring's for
     /// Gauss-Seidel, `colours` for hybrid (a cluster sweeps with its colour
     /// modulo this), 1 for the Jacobi solvers.
@@ -248,6 +276,12 @@ pub struct SolidConsts {
 }
 
 impl SolidConsts {
+    /// Whether a Jacobi iteration scales each cluster's ways by its share and sums
+    /// them ([`spec::Shares::Conserving`]).
+    pub fn conserving(&self) -> bool {
+        self.solver == spec::ClusterSolver::Jacobi && self.shares == spec::Shares::Conserving
+    }
+
     /// Whether each sweep matches only the clusters of its colour.
     pub fn coloured(&self) -> bool {
         matches!(self.solver, spec::ClusterSolver::GaussSeidel | spec::ClusterSolver::Hybrid)
@@ -286,6 +320,8 @@ fn consts(scene: &Scene, colours: u32, elastic: u32, melting: bool) -> SolidCons
         stiffness: s.stiffness,
         rotation: s.rotation,
         solver: s.solver,
+        shares: s.shares,
+        damping: s.damping,
         sweeps,
         colours,
         hybrid_colours: s.colours,
@@ -350,6 +386,33 @@ fn shape_solve(iterations: u32, c: &SolidConsts) -> Iterate {
     }
 }
 
+/// Once after each step's solve, the velocities damped toward the clusters' rigid
+/// motions (its residual: the largest speed relative to them, m/s).
+fn rigidity_solve() -> Iterate {
+    Iterate {
+        name: "solid.rigidity",
+        start: RIGIDITY,
+        iteration: &[],
+        residual: Reduction { attr: "solid_nonrigid", op: ReduceOp::Max },
+        tolerance: f64::INFINITY,
+        min: 0,
+        max: 0,
+        check_every: 1,
+        sweeps: 1,
+        max_sweeps: 1,
+    }
+}
+
+/// Each cluster's share of its ways under conserving shares: one over the most
+/// clusters any of its members belongs to.
+fn shares(lists: &[Vec<u32>], particles: usize) -> Vec<Real> {
+    let mut count = vec![0u32; particles];
+    for &m in lists.iter().flatten() {
+        count[m as usize] += 1;
+    }
+    lists.iter().map(|l| 1.0 / l.iter().map(|&m| count[m as usize]).max().unwrap_or(1).max(1) as Real).collect()
+}
+
 /// The clusters cannot be counted before the bodies are placed: a particle has
 /// at most the lattice points within the radius as members.
 fn count(_: &Scene) -> Vec<(&'static str, u64)> {
@@ -391,6 +454,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     b.attr(&REST, Column::Vec3(found.rest));
     b.attr(&OWNER, Column::U32(ids));
     b.attr(&COLOUR, Column::U32(colour));
+    b.attr(&SHARE, Column::F32(shares(&found.lists, x.len())));
     for spec in [
         &CLUSTER_LIVE,
         &REST_CENTRE,
@@ -404,6 +468,15 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         &WAY_SUM,
         &WEIGHT_SUM,
         &RESIDUAL,
+        &MEMBER_V,
+        &MEMBER_SPIN,
+        &MEMBER_INERTIA,
+        &CLUSTER_V,
+        &CLUSTER_SPIN,
+        &CLUSTER_INERTIA,
+        &V_MEAN,
+        &OMEGA,
+        &NONRIGID,
     ] {
         b.zeros(spec);
     }
@@ -432,6 +505,11 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         orient_particles(b, &material, &elastic);
     }
     b.position_solve(shape_solve(s.iterations, &c));
+    let damp = if melting { &DAMP_BLENDED } else { &DAMP };
+    for pass in [&MOTION, &VELOCITY_SUM, &SPIN, &SPIN_SUM, &INERTIA_SUM, &RIGID, &RIGID_WAY, damp] {
+        b.pass(pass);
+    }
+    b.after_position_solves(rigidity_solve());
     b.channel(DEFORMATION_CHANNEL);
     if c.oriented {
         b.channel(ORIENTATION_CHANNEL);

@@ -35,8 +35,13 @@ pub static MEMBER_WEIGHT: AttrSpec = attr("solid_clusters_weight", Elem::F32, ""
 pub static CLUSTER_SUM: AttrSpec = attr("cluster_x_sum", Elem::Vec3, "m", Role::Derived, "solid_cluster");
 /// Each cluster's moment matrix `A_pq` (m^2).
 pub static CLUSTER_MOMENT: AttrSpec = attr("cluster_moment", Elem::Mat3, "m^2", Role::Derived, "solid_cluster");
-/// Each cluster's centre relative to its own particle (m).
-pub static CENTRE: AttrSpec = attr("cluster_centre", Elem::Vec3, "m", Role::Derived, "solid_cluster");
+/// Each cluster's origin of its goals relative to its own particle (m), and in
+/// `w` its share of its ways under [`super::spec::Shares::Conserving`].
+pub static CENTRE: AttrSpec = attr("cluster_centre", Elem::Vec4, "m", Role::Derived, "solid_cluster");
+/// Each cluster's share of its ways under [`super::spec::Shares::Conserving`]: one
+/// over the most clusters any of its members belongs to, so that no particle's
+/// shares sum above 1.
+pub static SHARE: AttrSpec = attr("cluster_share", Elem::F32, "", Role::Constant, "solid_cluster");
 /// Each cluster's rotation from its rest shape (state: the next extraction starts from it).
 pub static ROTATION: AttrSpec = attr("cluster_rotation", Elem::Quat, "", Role::State, "solid_cluster");
 /// Each cluster's live members: those that have not left it (every member,
@@ -52,6 +57,26 @@ pub static WAY_SUM: AttrSpec = attr("solid_way_sum", Elem::Vec3, "m", Role::Deri
 pub static WEIGHT_SUM: AttrSpec = attr("solid_weight_sum", Elem::F32, "", Role::Derived, PARTICLES);
 /// Each particle's largest way (its weighted mean) over this iteration's sweeps (m).
 pub static RESIDUAL: AttrSpec = attr("solid_residual", Elem::F32, "m", Role::Derived, PARTICLES);
+/// Each membership's member velocity (m/s), for the clusters' rigid motion.
+pub static MEMBER_V: AttrSpec = attr("solid_clusters_v", Elem::Vec3, "m/s", Role::Derived, "solid_clusters");
+/// Each membership's angular momentum about its cluster's centre, `r x v` (m^2/s).
+pub static MEMBER_SPIN: AttrSpec = attr("solid_clusters_spin", Elem::Vec3, "m^2/s", Role::Derived, "solid_clusters");
+/// Each membership's inertia about its cluster's centre, `|r|^2 1 - r r^T` (m^2).
+pub static MEMBER_INERTIA: AttrSpec =
+    attr("solid_clusters_inertia", Elem::Mat3, "m^2", Role::Derived, "solid_clusters");
+/// Each cluster's sum of its members' velocities (m/s).
+pub static CLUSTER_V: AttrSpec = attr("cluster_v_sum", Elem::Vec3, "m/s", Role::Derived, "solid_cluster");
+/// Each cluster's angular momentum about its centre, per unit mass (m^2/s).
+pub static CLUSTER_SPIN: AttrSpec = attr("cluster_spin", Elem::Vec3, "m^2/s", Role::Derived, "solid_cluster");
+/// Each cluster's inertia about its centre, per unit mass (m^2).
+pub static CLUSTER_INERTIA: AttrSpec = attr("cluster_inertia", Elem::Mat3, "m^2", Role::Derived, "solid_cluster");
+/// Each cluster's rigid motion: the mean velocity of its members (m/s).
+pub static V_MEAN: AttrSpec = attr("cluster_v_mean", Elem::Vec3, "m/s", Role::Derived, "solid_cluster");
+/// Each cluster's rigid motion: its angular velocity `I^-1 L` (rad/s).
+pub static OMEGA: AttrSpec = attr("cluster_omega", Elem::Vec3, "rad/s", Role::Derived, "solid_cluster");
+/// Each particle's speed relative to the mean of its clusters' rigid motions before
+/// the damping (m/s).
+pub static NONRIGID: AttrSpec = attr("solid_nonrigid", Elem::F32, "m/s", Role::Derived, PARTICLES);
 
 const fn solve(
     name: &'static str,
@@ -133,7 +158,7 @@ pub(super) static MOMENT_SUM: PassSpec = solve(
 );
 pub(super) static ROTATE: PassSpec = solve(
     "solid.rotate",
-    &["cluster_moment", "cluster_x_sum", "cluster_live", "cluster_rest_centre", "cluster_colour"],
+    &["cluster_moment", "cluster_x_sum", "cluster_live", "cluster_rest_centre", "cluster_colour", "cluster_share"],
     &["cluster_centre"],
     &["cluster_rotation"],
 );
@@ -188,6 +213,78 @@ pub(super) static PROJECT: PassSpec =
 /// solid update (the first thesis's eqs. 2.39-2.40).
 pub(super) static PROJECT_BLENDED: PassSpec =
     solve("solid.project", &["solid_way_sum", "solid_weight_sum", "liquid_fraction"], &[], &["x", "solid_residual"]);
+
+/// Each membership's member position relative to its cluster's own particle and
+/// its velocity, for every cluster (the rigid motion's gather).
+pub(super) static MOTION: PassSpec = solve(
+    "solid.motion",
+    &["solid_clusters_member", "slot_of", "x", "v", "solid_clusters_segment", "cluster_owner"],
+    &["solid_clusters_x", "solid_clusters_v"],
+    &[],
+);
+pub(super) static VELOCITY_SUM: PassSpec = solve(
+    "solid.velocity_sum",
+    &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_v"],
+    &["cluster_v_sum"],
+    &[],
+);
+/// Each membership's angular momentum and inertia about its cluster's centre.
+pub(super) static SPIN: PassSpec = solve(
+    "solid.spin",
+    &["solid_clusters_x", "cluster_x_sum", "cluster_live", "solid_clusters_segment", "solid_clusters_v"],
+    &["solid_clusters_spin", "solid_clusters_inertia"],
+    &[],
+);
+pub(super) static SPIN_SUM: PassSpec = solve(
+    "solid.spin_sum",
+    &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_spin"],
+    &["cluster_spin"],
+    &[],
+);
+pub(super) static INERTIA_SUM: PassSpec = solve(
+    "solid.inertia_sum",
+    &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_inertia"],
+    &["cluster_inertia"],
+    &[],
+);
+/// Each cluster's rigid motion: its members' mean velocity and its angular
+/// velocity.
+pub(super) static RIGID: PassSpec = solve(
+    "solid.rigid",
+    &["cluster_v_sum", "cluster_live", "cluster_spin", "cluster_inertia"],
+    &["cluster_v_mean", "cluster_omega"],
+    &[],
+);
+/// Each membership's velocity under its cluster's rigid motion (weight 1).
+pub(super) static RIGID_WAY: PassSpec = solve(
+    "solid.rigid_way",
+    &["solid_clusters_x", "cluster_x_sum", "cluster_live", "solid_clusters_segment", "cluster_v_mean", "cluster_omega"],
+    &["solid_clusters_way", "solid_clusters_weight"],
+    &[],
+);
+/// Each particle's velocity moves by `damping` of the way to the mean of its
+/// clusters' rigid velocities.
+pub(super) static DAMP: PassSpec =
+    solve("solid.damp", &["solid_way_sum", "solid_weight_sum"], &["solid_nonrigid"], &["v"]);
+/// The same where the bodies melt: times `1 - beta`.
+pub(super) static DAMP_BLENDED: PassSpec =
+    solve("solid.damp", &["solid_way_sum", "solid_weight_sum", "liquid_fraction"], &["solid_nonrigid"], &["v"]);
+
+/// What runs once after the velocities followed the solve: each cluster's rigid
+/// motion, and each particle's velocity damped toward the mean of its clusters'.
+pub(super) const RIGIDITY: &[Op] = &[
+    Op::Pass("solid.motion"),
+    Op::Pass("solid.centre_sum"),
+    Op::Pass("solid.velocity_sum"),
+    Op::Pass("solid.spin"),
+    Op::Pass("solid.spin_sum"),
+    Op::Pass("solid.inertia_sum"),
+    Op::Pass("solid.rigid"),
+    Op::Pass("solid.rigid_way"),
+    Op::Pass("solid.way_sum"),
+    Op::Pass("solid.weight_sum"),
+    Op::Pass("solid.damp"),
+];
 
 /// What runs once before a step's iterations: the clusters' live members (after
 /// the melted leave, where bodies melt), the oriented particles' prediction.

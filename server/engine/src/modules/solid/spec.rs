@@ -29,6 +29,15 @@ pub struct Solid {
     /// How the clusters' goals move the particles in an iteration. Live.
     #[serde(default)]
     pub solver: ClusterSolver,
+    /// How a `jacobi` iteration shares a cluster's ways among its members. Live.
+    #[serde(default)]
+    pub shares: Shares,
+    /// The share of each cluster's non-rigid velocity removed after each step's
+    /// solve, 0 to 1 (Mueller et al. 2007, "Position based dynamics", section 3.5,
+    /// per cluster; default 1: every cluster's members then move as a rigid body
+    /// would, each particle taking the mean over its clusters). Live.
+    #[serde(default = "default_damping")]
+    pub damping: f32,
     /// Colours of the `hybrid` solver (2 to 64; default 2, red-black).
     #[serde(default = "default_colours")]
     pub colours: u32,
@@ -93,6 +102,25 @@ pub enum ClusterSolver {
     Hybrid,
 }
 
+/// How the `jacobi` solver shares each cluster's ways among its members.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Shares {
+    /// Each cluster's ways scaled alike for all its members, by one over the most
+    /// clusters any of its members belongs to, and summed: a cluster's moves sum to
+    /// zero and turn nothing, so the solve conserves linear and angular momentum
+    /// (equal masses within a body), and no particle moves further than the mean
+    /// of its ways. The default.
+    #[default]
+    Conserving,
+    /// Each particle moved to the mean of its goals (the first thesis's eq. 2.31):
+    /// where particles belong to unequal numbers of clusters (a thin feature's
+    /// surface) the moves of one cluster's members no longer sum to zero, which
+    /// makes momentum (a bunny's ear tips spun up to 30 m/s at DFSPH's step;
+    /// docs/solid.md).
+    Mean,
+}
+
 /// An elastic fluid.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -132,6 +160,10 @@ fn default_stiffness() -> f32 {
 
 fn default_iterations() -> u32 {
     3
+}
+
+fn default_damping() -> f32 {
+    1.0
 }
 
 fn default_colours() -> u32 {

@@ -15,6 +15,7 @@ pub(super) fn validate(scene: &Scene, c: &mut Checker) {
     }
     c.within("solid.cluster_radius", s.cluster_radius, 1.0, 4.0);
     c.within("solid.stiffness", s.stiffness, 0.0, 1.0);
+    c.within("solid.damping", s.damping, 0.0, 1.0);
     if !(1..=MAX_ITERATIONS).contains(&s.iterations) {
         c.fail("solid.iterations", format!("must be between 1 and {MAX_ITERATIONS}, got {}", s.iterations));
     }

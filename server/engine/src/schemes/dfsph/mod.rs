@@ -11,7 +11,10 @@
 //!    compression rate `dt (Drho/Dt) / rho0` is at most
 //!    `solver.dfsph.divergence_tolerance` (B&K 2017, algorithm 2);
 //! 3. the kick `v += dt a` with the non-pressure accelerations, the modules'
-//!    velocity solves (implicit viscosity) and the kick-stage passes;
+//!    velocity solves (implicit viscosity) and the kick-stage passes, then the
+//!    modules' position solves as a velocity correction over the positions the
+//!    velocities would reach (the solid's shape matching;
+//!    [`crate::position_solve::When::BeforeDensitySolve`]);
 //! 4. the constant-density solve: the velocities are corrected until the mean
 //!    predicted compression `(rho + dt Drho/Dt - rho0) / rho0` is at most
 //!    `solver.dfsph.density_tolerance` (algorithm 3);
@@ -107,6 +110,7 @@ pub static SCHEME: SchemeDef = SchemeDef {
     ],
     step,
     signal_speed: |_| 0.0,
+    position_solves: crate::position_solve::When::BeforeDensitySolve,
 };
 
 /// Fraction of the previous step's stiffness each solve starts from. The
@@ -377,6 +381,7 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
     let mut solves = vec![divergence];
     solves.extend(velocity_solves(clock, s, dt)?);
     s.run(Stage::Kick, dt);
+    solves.extend(crate::position_solve::run_ahead(clock, s, dt)?);
     solves.push(density_solve(&settings).run(s, dt).map_err(|e| clock.halt(e, None))?);
     finish(&settings, cg::DENSITY_FINISH, s, dt);
     s.drift(dt);
@@ -387,7 +392,6 @@ fn step(clock: &mut Clock, s: &mut dyn Stages) -> Result<StepReport, Halted> {
         }
     }
     s.run(Stage::Drift, dt);
-    solves.extend(crate::position_solve::run(clock, s, dt)?);
     s.run(Stage::PostStep, dt);
     s.end_step();
     Ok(clock.advance(dt, &m, n, solves))

@@ -62,6 +62,7 @@ pub static SCHEME: SchemeDef = SchemeDef {
     ],
     step,
     signal_speed: |model| model.consts::<WcsphConsts>().signal_speed,
+    position_solves: position_solve::When::AfterDrift,
 };
 
 /// δ-SPH's settings in `solver` ([`spec::DeltaSph`]; absent or `null`: the density is summed).

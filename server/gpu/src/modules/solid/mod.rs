@@ -23,6 +23,12 @@ pub static MOMENT_SUM: GpuPass = crate::map_pass!(segment_sum "solid.moment_sum"
 pub static WAY_SUM: GpuPass = crate::map_pass!(member_sum "solid.way_sum", map "solid_clusters", members "particles", words 4, from "solid_clusters_way" into "solid_way_sum");
 /// Each particle's sum of its ways' weights.
 pub static WEIGHT_SUM: GpuPass = crate::map_pass!(member_sum "solid.weight_sum", map "solid_clusters", members "particles", words 1, from "solid_clusters_weight" into "solid_weight_sum");
+/// Each cluster's sum of its members' velocities.
+pub static VELOCITY_SUM: GpuPass = crate::map_pass!(segment_sum "solid.velocity_sum", map "solid_clusters", segments "solid_cluster", words 4, from "solid_clusters_v" into "cluster_v_sum");
+/// Each cluster's angular momentum about its centre.
+pub static SPIN_SUM: GpuPass = crate::map_pass!(segment_sum "solid.spin_sum", map "solid_clusters", segments "solid_cluster", words 4, from "solid_clusters_spin" into "cluster_spin");
+/// Each cluster's inertia about its centre.
+pub static INERTIA_SUM: GpuPass = crate::map_pass!(segment_sum "solid.inertia_sum", map "solid_clusters", segments "solid_cluster", words 12, from "solid_clusters_inertia" into "cluster_inertia");
 
 /// Which members of a melting body's clusters hold.
 pub static LEAVE: GpuPass = GpuPass {
@@ -138,6 +144,7 @@ pub static ROTATE: GpuPass = GpuPass {
         (R, "cluster_live"),
         (R, "cluster_rest_centre"),
         (R, "cluster_colour"),
+        (R, "cluster_share"),
         (W, "cluster_centre"),
         (W, "cluster_rotation"),
     ],
@@ -198,6 +205,123 @@ pub static PROJECT_BLENDED: GpuPass = GpuPass {
         (R, "solid_weight_sum"),
         (W, "x"),
         (W, "solid_residual"),
+        (R, "liquid_fraction"),
+    ],
+    space: PARTICLES,
+    when: melting,
+};
+
+/// Each membership's relative position and velocity, for every cluster.
+pub static MOTION: GpuPass = GpuPass {
+    name: "solid.motion",
+    source: particle_kernel!("solid.wgsl", "motion.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "solid_clusters_member"),
+        (R, "slot_of"),
+        (R, "x"),
+        (R, "v"),
+        (R, "solid_clusters_segment"),
+        (R, "cluster_owner"),
+        (W, "solid_clusters_x"),
+        (W, "solid_clusters_v"),
+        (U, "dt"),
+    ],
+    space: "solid_clusters",
+    when: always,
+};
+
+/// Each membership's angular momentum and inertia about its cluster's centre.
+pub static SPIN: GpuPass = GpuPass {
+    name: "solid.spin",
+    source: particle_kernel!("solid.wgsl", "spin.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "solid_clusters_x"),
+        (R, "cluster_x_sum"),
+        (R, "cluster_live"),
+        (R, "solid_clusters_segment"),
+        (R, "solid_clusters_v"),
+        (W, "solid_clusters_spin"),
+        (W, "solid_clusters_inertia"),
+    ],
+    space: "solid_clusters",
+    when: always,
+};
+
+/// Each cluster's rigid motion.
+pub static RIGID: GpuPass = GpuPass {
+    name: "solid.rigid",
+    source: particle_kernel!("solid.wgsl", "rigid.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "cluster_v_sum"),
+        (R, "cluster_live"),
+        (R, "cluster_spin"),
+        (R, "cluster_inertia"),
+        (W, "cluster_v_mean"),
+        (W, "cluster_omega"),
+    ],
+    space: "solid_cluster",
+    when: always,
+};
+
+/// Each membership's velocity under its cluster's rigid motion.
+pub static RIGID_WAY: GpuPass = GpuPass {
+    name: "solid.rigid_way",
+    source: particle_kernel!("solid.wgsl", "rigid_way.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "solid_clusters_x"),
+        (R, "cluster_x_sum"),
+        (R, "cluster_live"),
+        (R, "solid_clusters_segment"),
+        (R, "cluster_v_mean"),
+        (R, "cluster_omega"),
+        (W, "solid_clusters_way"),
+        (W, "solid_clusters_weight"),
+    ],
+    space: "solid_clusters",
+    when: always,
+};
+
+/// Each particle's velocity damped toward its clusters' rigid motions.
+pub static DAMP: GpuPass = GpuPass {
+    name: "solid.damp",
+    source: particle_kernel!("solid.wgsl", "damp.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "solid_way_sum"),
+        (R, "solid_weight_sum"),
+        (W, "solid_nonrigid"),
+        (W, "v"),
+    ],
+    space: PARTICLES,
+    when: |m| !melting(m),
+};
+
+/// The same where the bodies melt: times `1 - beta`.
+pub static DAMP_BLENDED: GpuPass = GpuPass {
+    name: "solid.damp",
+    source: particle_kernel!("solid.wgsl", "damp.wgsl", "damp_blended.wgsl"),
+    entry: "blended",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "solid_way_sum"),
+        (R, "solid_weight_sum"),
+        (W, "solid_nonrigid"),
+        (W, "v"),
         (R, "liquid_fraction"),
     ],
     space: PARTICLES,
@@ -329,6 +453,10 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         c.elastic,
         MIN_MEMBERS,
         u32::from(c.melting),
+        c.damping.to_bits(),
+        f32::from(u8::from(c.conserving())).to_bits(),
+        0,
+        0,
     ];
     Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())
 }

@@ -1,4 +1,5 @@
-// A particle moves by alpha of the weighted mean of its ways (times 1 - beta
+// A particle moves by alpha of the weighted mean of its ways (of their sum under
+// conserving shares, each already scaled by its cluster's share; times 1 - beta
 // where the bodies melt: `blended`), no further than its room (out of the walls);
 // its residual is the largest such mean over the iteration's sweeps (floe-engine
 // `solid::cpu::Project`).
@@ -23,7 +24,10 @@ fn project(i: u32, share: f32) {
         r = 0.0;
     }
     if (weight[i] > 0.0) {
-        let mean = way[i].xyz / weight[i];
+        var mean = way[i].xyz / weight[i];
+        if (solid.rigid.y != 0.0) {
+            mean = way[i].xyz;
+        }
         r = max(r, length(mean));
         let moved = clamp(pos[i].xyz + mean * share, solid.low.xyz, solid.high.xyz);
         pos[i] = vec4<f32>(moved, pos[i].w);

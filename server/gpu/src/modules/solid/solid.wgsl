@@ -15,6 +15,9 @@ struct Solid {
     // The cluster radius (m) in x (as f32), the elastic materials' bits in y, the
     // fewest members a cluster keeps (MIN_MEMBERS) in z, 1 in w where bodies melt.
     melt: vec4<u32>,
+    // The damping toward the clusters' rigid motions in x, 1 in y under conserving
+    // shares (SolidConsts::conserving), else 0.
+    rigid: vec4<f32>,
 }
 
 @group(0) @binding(1) var<uniform> solid: Solid;
@@ -57,6 +60,22 @@ fn quat_mat(q: vec4<f32>) -> mat3x3<f32> {
         vec3<f32>(xy - wz, 1.0 - (xx + zz), yz + wx),
         vec3<f32>(xz + wy, yz - wx, 1.0 - (xx + yy)),
     );
+}
+
+// The inertia of a unit mass at r, |r|^2 1 - r r^T (solid::cpu::inertia_of).
+fn inertia_of(r: vec3<f32>) -> mat3x3<f32> {
+    let l = dot(r, r);
+    let diagonal = mat3x3<f32>(vec3<f32>(l, 0.0, 0.0), vec3<f32>(0.0, l, 0.0), vec3<f32>(0.0, 0.0, l));
+    return diagonal - mat3x3<f32>(r * r.x, r * r.y, r * r.z);
+}
+
+// The inverse of m by its columns' cross products (glam's Mat3::inverse).
+fn mat_inverse(m: mat3x3<f32>) -> mat3x3<f32> {
+    let t0 = cross(m[1], m[2]);
+    let t1 = cross(m[2], m[0]);
+    let t2 = cross(m[0], m[1]);
+    let inv_det = 1.0 / dot(m[2], t2);
+    return transpose(mat3x3<f32>(t0 * inv_det, t1 * inv_det, t2 * inv_det));
 }
 
 // A quaternion rotating v (glam's Quat * Vec3).

@@ -1,6 +1,6 @@
-// Per membership: the way to its goal, R q_k + c - x_k, times its weight; a
-// cluster of another colour has none and the idle weight (floe-engine
-// `solid::cpu::Way`).
+// Per membership: the way to its goal, R q_k + c - x_k, times its weight (times
+// its cluster's share, w of its centre, under conserving shares); a cluster of
+// another colour has none and the idle weight (floe-engine `solid::cpu::Way`).
 
 @group(0) @binding(2) var<uniform> sweep: vec4<u32>;
 @group(0) @binding(3) var<storage, read> rotation: array<vec4<f32>>;
@@ -29,6 +29,10 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     if (solid.solver.x == SOLVER_WEIGHTED) {
         w = length(to_goal);
     }
-    way[k] = vec4<f32>(to_goal * w, 0.0);
+    var scale = w;
+    if (solid.rigid.y != 0.0) {
+        scale = centre[s].w;
+    }
+    way[k] = vec4<f32>(to_goal * scale, 0.0);
     weight[k] = w;
 }
