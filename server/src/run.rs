@@ -67,6 +67,12 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         }
     }
     progress.finish();
+    if sim.substeps() > 0 {
+        tracing::warn!(
+            "the fixed step solver.time_step.dt is above the stable limit: {} sub-steps taken at the limit",
+            sim.substeps()
+        );
+    }
     let summary = Summary::new(&sim, stepping);
     tracing::info!(
         "done: {} steps, {:.2} s wall, {:.2} M particle-steps/s, dt mean {:.2e} s, max density deviation {:.2} %",

@@ -211,7 +211,8 @@ impl Simulation {
     }
 
     /// The named values the scene reports with its statistics: the run's largest
-    /// density deviation and speed, each iterative solve's iterations and last
+    /// density deviation and speed, the sub-steps a fixed step above the stable
+    /// limit took (where it did), each iterative solve's iterations and last
     /// residual, and what each module measures (its [`crate::module::ModuleDef::measures`]).
     /// Module measures may read state back from the device: call it at most a few
     /// times a second.
@@ -221,6 +222,10 @@ impl Simulation {
             Measure::new("max_density_deviation", s.max_density_deviation, ""),
             Measure::new("max_speed", s.max_speed, "m/s"),
         ];
+        // A fixed step above the stable limit is taken in sub-steps: say how many.
+        if self.substeps() > 0 {
+            out.push(Measure::new("substeps", self.substeps() as f64, ""));
+        }
         for (name, solve) in &s.solves {
             out.push(Measure::new(format!("{name}.mean_iterations"), solve.mean_iterations, ""));
             out.push(Measure::new(format!("{name}.max_iterations"), f64::from(solve.max_iterations), ""));

@@ -142,7 +142,9 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     ("heated_cavity", &["particle_spacing=0.005"], 0x24edb4e42f7103eb),
     ("heated_channel", &["particle_spacing=0.1"], 0xd6240c1624ee9c54),
     ("layers", &["particle_spacing=0.0125"], 0xb31e089e512d0c20),
-    ("avalanche", &["particle_spacing=0.05"], 0x8c7f110239ad93db),
+    ("avalanche", &["particle_spacing=0.05", WCSPH], 0x8c7f110239ad93db),
+    // Recorded when the preset moved to DFSPH.
+    ("avalanche", &["particle_spacing=0.05"], 0xcc050736ae7db871),
     ("power_law_channel", &["particle_spacing=0.1"], 0x3b9b872526dd0493),
     ("bingham_channel", &["particle_spacing=0.1"], 0x35026c9cb52d54b6),
     ("cross_channel", &["particle_spacing=0.1"], 0x3ceb18dbc831a1f1),
@@ -154,8 +156,14 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     // the avalanche's first steps.
     (
         "snowfall_then_avalanche",
-        &["particle_spacing=0.1", "snowfall.height=3.2", "snowfall.depth_per_hour=540", "snowfall.release.at=5"],
+        &["particle_spacing=0.1", "snowfall.height=3.2", "snowfall.depth_per_hour=540", "snowfall.release.at=5", WCSPH],
         0x59eed517fc9457a9,
+    ),
+    // Recorded when the preset moved to DFSPH.
+    (
+        "snowfall_then_avalanche",
+        &["particle_spacing=0.1", "snowfall.height=3.2", "snowfall.depth_per_hour=540", "snowfall.release.at=5"],
+        0xab63b3c9c4791237,
     ),
     // Recorded when the eigen rotation came to be built from the two largest
     // eigenvalues' axes (for flat clusters) and the walls held elastic particles
