@@ -322,12 +322,19 @@ pub struct ServeArgs {
     pub web: Option<PathBuf>,
     /// Scene to create at start-up when the server has none: `auto` (the dam break at
     /// the finest resolution this backend steps at real time or faster, measured at
-    /// start), a preset name (`dam_break`: the full 21,952 particles), or `none`.
+    /// start), a preset name (`dam_break`: the full 21,952 particles, whatever
+    /// `--preset-size` says), or `none`.
     #[arg(long, default_value = "auto")]
     pub scene: String,
     /// Backend every scene runs on.
     #[arg(long, env = "FLOE_BACKEND", value_enum, default_value = "auto")]
     pub backend: BackendChoice,
+    /// How a preset created without a `particle_spacing` is sized: `auto` (the
+    /// finest spacing this backend steps at real time or faster, measured once per
+    /// preset; the scene's info says what was chosen and the full size) or `full`
+    /// (the preset's own).
+    #[arg(long, env = "FLOE_PRESET_SIZE", value_enum, default_value = "auto")]
+    pub preset_size: crate::service::PresetSize,
     /// Most scenes alive at once, over all users; one more is refused (HTTP 429, gRPC
     /// RESOURCE_EXHAUSTED) until one is deleted.
     #[arg(long, env = "FLOE_MAX_SCENES", default_value_t = crate::service::DEFAULT_MAX_SCENES, value_parser = clap::value_parser!(u64).range(1..))]
@@ -394,6 +401,7 @@ impl ServeArgs {
             origins: self.allow_origins.clone(),
             checkpoint_every: std::time::Duration::from_secs(self.checkpoint_every),
             assets: self.assets.clone(),
+            preset_size: self.preset_size,
             // `floe serve` sets the backend it chose at start-up.
             ..Default::default()
         }

@@ -106,6 +106,13 @@ pub fn scene_info(shared: &Shared, worker: &str) -> pb::SceneInfo {
             .collect(),
         owner: shared.owner.clone(),
         worker: worker.to_owned(),
+        sizing: shared.sizing().map(|s| pb::Sizing {
+            spacing: s.spacing,
+            particles: s.particles as u64,
+            real_time_factor: s.rtf,
+            full_spacing: s.full_spacing,
+            full_particles: s.full_particles,
+        }),
     }
 }
 

@@ -57,7 +57,7 @@ impl SceneService for Grpc {
             }
             None => return Err(Status::invalid_argument("source: give a preset name or a scene document")),
         };
-        let placing = Placing { worker: named.as_deref(), backend: Some(&r.backend) };
+        let placing = Placing { worker: named.as_deref(), backend: Some(&r.backend), size: None };
         let handle = self.registry.create_routed(&who, source, r.overrides, placing).await.map_err(status)?;
         Ok(Response::new(convert::scene_info(&handle.shared, self.registry.worker_name())))
     }

@@ -13,7 +13,7 @@
 //! - [`progress`]: the progress display.
 //! - [`validate`]: `floe validate`, the validation report and stability battery.
 //! - [`serve`]: `floe serve`, the server: listeners, health, reflection, shutdown;
-//!   [`default_scene`]: the scene it starts with, sized to the backend.
+//!   [`sizing`]: presets (and the default scene) sized to the backend.
 //! - [`service`]: the in-process service API (scenes, workers, frame subscriptions).
 //! - [`grpc`], [`convert`]: the gRPC adapter and where generated types meet the service.
 //! - [`http`], [`ws`]: the viewer's files, the REST mirror and the per-scene WebSocket.
@@ -35,7 +35,6 @@ pub mod cli;
 pub mod cluster;
 pub mod codec_bench;
 pub mod convert;
-pub mod default_scene;
 pub mod echo;
 pub mod entry;
 pub mod figure;
@@ -52,6 +51,7 @@ pub mod quota;
 pub mod run;
 pub mod serve;
 pub mod service;
+pub mod sizing;
 pub mod store;
 pub mod validate;
 pub mod ws;

@@ -9,7 +9,7 @@ use crate::cluster::Member;
 use crate::grpc::Grpc;
 use crate::grpc_guard::GuardLayer;
 use crate::grpc_lab::Lab;
-use crate::service::{Registry, SceneSource};
+use crate::service::{PresetSize, Registry, SceneSource};
 use crate::store::Store;
 use crate::store::cluster::WorkerInfo;
 use floe_proto::pb::lab_service_server::LabServiceServer;
@@ -176,7 +176,6 @@ pub fn serve(args: crate::cli::ServeArgs) -> anyhow::Result<()> {
         }
         let choice = args.backend.into();
         let backend = tokio::task::spawn_blocking(move || floe_gpu::select::select(choice)).await??;
-        let factory = backend.factory.clone();
         let member = match &args.worker {
             Some(name) => {
                 let info = WorkerInfo {
@@ -200,22 +199,25 @@ pub fn serve(args: crate::cli::ServeArgs) -> anyhow::Result<()> {
             && mode == AuthMode::SingleUser
             && registry.list(&local).is_empty()
         {
-            let (preset, overrides) = if args.scene == "auto" {
-                let c = tokio::task::spawn_blocking(move || crate::default_scene::choose(&*factory)).await??;
-                tracing::info!(
-                    "default scene: the dam break at {} particles with {}, measured at {:.2} times real time on \
-                     the {} backend (--scene dam_break for the full 21,952)",
-                    c.particles,
-                    c.scheme,
-                    c.rtf,
-                    backend.name
-                );
-                ("dam_break".to_string(), c.overrides)
-            } else {
-                (args.scene.clone(), Vec::new())
+            // `auto`: the dam break sized to the backend; a named preset at its own size.
+            let (preset, size) = match args.scene.as_str() {
+                "auto" => ("dam_break".to_string(), PresetSize::Auto),
+                name => (name.to_string(), PresetSize::Full),
             };
-            let handle = registry.create(&local, SceneSource::Preset(preset.clone()), overrides).await?;
-            tracing::info!("default scene '{preset}' is scene {}", handle.shared.id);
+            let placing = crate::service::Placing { size: Some(size), ..Default::default() };
+            let handle =
+                registry.create_routed(&local, SceneSource::Preset(preset.clone()), Vec::new(), placing).await?;
+            match handle.shared.sizing() {
+                Some(c) => tracing::info!(
+                    "default scene: the {preset} at {} particles, measured at {:.2} times real time on the {} \
+                     backend (--scene {preset} for the full {})",
+                    c.particles,
+                    c.rtf,
+                    backend.name,
+                    c.full_particles
+                ),
+                None => tracing::info!("default scene '{preset}' is scene {}", handle.shared.id),
+            }
         }
         tracing::info!(
             "gRPC (floe.v1.SceneService, floe.v1.LabService, health, reflection) on {}",

@@ -155,7 +155,7 @@ async fn create(
             ));
         }
     };
-    let placing = Placing { worker: named, backend: b.backend.as_deref() };
+    let placing = Placing { worker: named, backend: b.backend.as_deref(), size: None };
     let handle = r.create_routed(&who, source, b.overrides, placing).await?;
     Ok((StatusCode::CREATED, Json(SceneView::of(&handle.shared, r.worker_name()))))
 }

@@ -61,6 +61,25 @@ pub struct SceneView {
     /// What the scheme and modules measured (refreshed at most twice a second while
     /// running, and whenever stepping stops), by name.
     pub measures: std::collections::BTreeMap<String, MeasureView>,
+    /// The resolution the server chose for a preset created without one (`floe
+    /// serve --preset-size auto`); absent for a scene its creator sized.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sizing: Option<SizingView>,
+}
+
+/// A preset sized to the server's backend ([`crate::sizing::Sizing`]).
+#[derive(Debug, Serialize)]
+pub struct SizingView {
+    /// The chosen particle spacing (m).
+    pub spacing: f32,
+    /// Particles at that spacing.
+    pub particles: usize,
+    /// Simulated seconds per wall second measured at that spacing, stepped alone.
+    pub real_time_factor: f64,
+    /// The preset's own spacing (m): `particle_spacing` for its full size.
+    pub full_spacing: f32,
+    /// Particles at the full size.
+    pub full_particles: u64,
 }
 
 /// A channel a scene offers.
@@ -162,6 +181,13 @@ impl SceneView {
             dropped_frames: shared.dropped_frames(),
             frames_published: shared.published.load(Ordering::Relaxed),
             scene: serde_json::from_str(&shared.scene_json()).unwrap_or_default(),
+            sizing: shared.sizing().map(|s| SizingView {
+                spacing: s.spacing,
+                particles: s.particles,
+                real_time_factor: s.rtf,
+                full_spacing: s.full_spacing,
+                full_particles: s.full_particles,
+            }),
             channels: shared
                 .channels
                 .iter()

@@ -38,11 +38,11 @@ use floe_engine::simulation::BackendFactory;
 use frames::{FrameCache, Subscription};
 pub use handle::{CommandError, MAX_STEPS_PER_REQUEST, SceneHandle};
 use options::FrameRequest;
-pub use setup::{DEFAULT_CHECKPOINT_SECONDS, DEFAULT_MAX_PARTICLES, DEFAULT_MAX_SCENES, Limits, Options};
+pub use setup::{DEFAULT_CHECKPOINT_SECONDS, DEFAULT_MAX_PARTICLES, DEFAULT_MAX_SCENES, Limits, Options, PresetSize};
 pub use shared::{Event, Published, Shared, State, Status};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, RwLock};
+use std::sync::{Arc, Mutex, RwLock};
 use std::time::{Duration, Instant};
 
 /// A scene another worker of the cluster holds, as the database records it.
@@ -72,6 +72,9 @@ pub struct Placing<'a> {
     pub worker: Option<&'a str>,
     /// The backend the scene must run on (`gpu`, `cpu`); `None` or empty: any.
     pub backend: Option<&'a str>,
+    /// How a preset without a `particle_spacing` is sized; `None`: as the server's
+    /// [`Options::preset_size`] says.
+    pub size: Option<PresetSize>,
 }
 
 /// Where a new scene comes from.
@@ -177,6 +180,9 @@ pub struct Registry {
     newest_known: AtomicU64,
     /// Serialises the running-scene quota checks with the runs they admit.
     run_gate: tokio::sync::Mutex<()>,
+    /// Each sized preset's size (by preset and overrides), measured once
+    /// ([`crate::sizing`]).
+    sizes: Mutex<HashMap<String, crate::sizing::Sizing>>,
 }
 
 impl std::fmt::Debug for Registry {
@@ -215,6 +221,7 @@ impl Registry {
             elsewhere: RwLock::new(BTreeMap::new()),
             newest_known: AtomicU64::new(0),
             run_gate: tokio::sync::Mutex::new(()),
+            sizes: Mutex::new(HashMap::new()),
         }
     }
 
@@ -344,6 +351,7 @@ impl Registry {
                 "the server holds its limit of {max_scenes} scenes; delete one first"
             )));
         }
+        let (overrides, sizing) = self.sized(&source, overrides, placing.size).await?;
         let (server_max, quotas) = (self.options.limits.max_particles, self.quotas.clone());
         let quota = self.quotas_of(owner).get(Limit::ParticlesPerScene);
         let who = owner.to_string();
@@ -388,7 +396,50 @@ impl Registry {
             store.db.insert_scene(&persist::row(id, owner, &sim, particles, lease)).await.map_err(unavailable)?;
         }
         tracing::info!(scene = id, owner = %owner, name = %sim.scene().name, particles = sim.particle_count(), "scene created");
-        Ok(self.insert(id, owner.to_string(), sim))
+        let handle = self.insert(id, owner.to_string(), sim);
+        if let Some(sizing) = sizing {
+            handle.shared.sized(sizing);
+        }
+        Ok(handle)
+    }
+
+    /// A preset created without a resolution, on a server that sizes presets: its
+    /// overrides with the spacing chosen for this backend, and the choice
+    /// ([`crate::sizing`], measured once per preset and overrides). Otherwise the
+    /// overrides as they are.
+    async fn sized(
+        &self,
+        source: &SceneSource,
+        mut overrides: Vec<String>,
+        size: Option<PresetSize>,
+    ) -> Result<(Vec<String>, Option<crate::sizing::Sizing>), ServiceError> {
+        let SceneSource::Preset(preset) = source else { return Ok((overrides, None)) };
+        if size.unwrap_or(self.options.preset_size) == PresetSize::Full || crate::sizing::sets_spacing(&overrides) {
+            return Ok((overrides, None));
+        }
+        let key = format!("{preset} {overrides:?}");
+        let known = self.sizes.lock().expect("lock").get(&key).cloned();
+        let sizing = match known {
+            Some(s) => s,
+            None => {
+                let (name, o, backend) = (preset.clone(), overrides.clone(), self.backend.clone());
+                let measured = tokio::task::spawn_blocking(move || crate::sizing::size(&name, &o, &*backend))
+                    .await
+                    .expect("sizing task")
+                    .map_err(|e| ServiceError::InvalidArgument(e.to_string()))?;
+                tracing::info!(
+                    preset = %preset,
+                    particles = measured.particles,
+                    full = measured.full_particles,
+                    rtf = measured.rtf,
+                    "preset sized to the backend"
+                );
+                self.sizes.lock().expect("lock").insert(key, measured.clone());
+                measured
+            }
+        };
+        overrides.push(format!("particle_spacing={}", sizing.spacing));
+        Ok((overrides, Some(sizing)))
     }
 
     /// Starts the worker of scene `id` and lists it.

@@ -44,6 +44,19 @@ pub struct Options {
     /// The backend scenes run on (`cpu` or `gpu`), what a scene asking for one is
     /// checked against.
     pub backend: &'static str,
+    /// Whether a preset created without a resolution is sized to the backend
+    /// ([`crate::sizing`]) or keeps its own.
+    pub preset_size: PresetSize,
+}
+
+/// How a preset created without a `particle_spacing` is sized (`--preset-size`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PresetSize {
+    /// The finest spacing the backend steps at real time or faster, measured
+    /// ([`crate::sizing`]).
+    Auto,
+    /// The preset's own spacing.
+    Full,
 }
 
 impl Default for Options {
@@ -56,6 +69,7 @@ impl Default for Options {
             checkpoint_every: Duration::from_secs(DEFAULT_CHECKPOINT_SECONDS),
             assets: None,
             backend: "cpu",
+            preset_size: PresetSize::Full,
         }
     }
 }

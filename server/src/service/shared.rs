@@ -133,9 +133,22 @@ pub struct Shared {
     pub passes: Mutex<Vec<(&'static str, f64, u64)>>,
     /// Set on delete, so a long hand-step ends at the next step.
     pub(super) cancel: AtomicBool,
+    /// The size the server chose for a preset created without a resolution
+    /// ([`crate::sizing`]); none for a scene sized by its creator.
+    sizing: std::sync::OnceLock<crate::sizing::Sizing>,
 }
 
 impl Shared {
+    /// The size the server chose for the scene, where it did.
+    pub fn sizing(&self) -> Option<&crate::sizing::Sizing> {
+        self.sizing.get()
+    }
+
+    /// Records the size the server chose at creation.
+    pub(super) fn sized(&self, sizing: crate::sizing::Sizing) {
+        let _ = self.sizing.set(sizing);
+    }
+
     /// The shared state of a scene's simulation (new or restored), paused.
     pub(super) fn new(id: u64, owner: String, sim: &Simulation) -> Self {
         let domain = sim.domain();
@@ -190,6 +203,7 @@ impl Shared {
             frame_bytes: AtomicU64::new(0),
             passes: Mutex::new(sim.kernel_times()),
             cancel: AtomicBool::new(false),
+            sizing: std::sync::OnceLock::new(),
         }
     }
 

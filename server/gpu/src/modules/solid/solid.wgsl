@@ -138,9 +138,9 @@ fn mat_quat(m: mat3x3<f32>) -> vec4<f32> {
     return vec4<f32>((m12 - m21) * inv4w, (m20 - m02) * inv4w, (m01 - m10) * inv4w, four_wsq * inv4w);
 }
 
-/// Below this share of the largest eigenvalue of A^T A a direction is missing from
-/// a cluster (polar.rs's FLAT).
-const FLAT: f32 = 1e-8;
+/// Below this share of |A v_0| the image of a cluster's second axis is missing: the
+/// cluster is straight (polar.rs's STRAIGHT).
+const STRAIGHT: f32 = 1e-4;
 
 /// The shortest-arc rotation taking the unit vector a to the unit vector b.
 fn arc(a: vec3<f32>, b: vec3<f32>) -> vec4<f32> {
@@ -216,7 +216,8 @@ fn polar_eigen(m: mat3x3<f32>) -> vec4<f32> {
     );
     // The two largest eigenvalues' axes, u_k = A v_k / |A v_k|, and R = U V^T with
     // the third axes their cross products (polar.rs's eigen: a rotation also for
-    // flat clusters and where det A < 0; a straight cluster turns by the shortest arc).
+    // flat clusters and where det A < 0; a straight cluster, told by A's images, turns
+    // by the shortest arc).
     var i0 = 0;
     var i1 = 1;
     var i2 = 2;
@@ -229,12 +230,13 @@ fn polar_eigen(m: mat3x3<f32>) -> vec4<f32> {
         return vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
     let u0 = normalize(av0);
-    if (values[i1] <= FLAT * values[i0]) {
+    let av1 = m * vecs[i1];
+    let across = av1 - u0 * dot(u0, av1);
+    if (length(across) <= STRAIGHT * length(av0)) {
         return arc(v0, u0);
     }
+    let u1 = normalize(across);
     let v1 = normalize(vecs[i1] - v0 * dot(v0, vecs[i1]));
-    let av1 = m * vecs[i1];
-    let u1 = normalize(av1 - u0 * dot(u0, av1));
     let u = mat3x3<f32>(u0, u1, cross(u0, u1));
     let w = mat3x3<f32>(v0, v1, cross(v0, v1));
     let q = mat_quat(u * transpose(w));
