@@ -8,6 +8,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
+# Every server the tests start keeps each preset's own resolution (`floe serve
+# --preset-size full`): they count particles and compare figures. The viewer's test of
+# presets sized to the machine asks for `auto` on its command line.
+export FLOE_PRESET_SIZE=full
 echo "== Rust tests"
 # Mesa's device-select layer wants a runtime directory (absent in CI containers).
 if [ -z "${XDG_RUNTIME_DIR:-}" ] || [ ! -d "$XDG_RUNTIME_DIR" ]; then
