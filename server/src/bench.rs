@@ -1,7 +1,8 @@
 //! `floe bench`: fluid particle-steps per second on the dam break, peak memory,
 //! time to solution with the surge-front error, the modules' benchmarks (`--case`:
 //! the dam break with a module beside it, or a module's preset run for a time),
-//! and (`--codec`) the frame codec.
+//! (`--codec`) the frame codec, and (`--suite gpu`, [`crate::bench_suite`]) every
+//! figure tracked on a GPU.
 
 use crate::cli::BenchArgs;
 use anyhow::Context;
@@ -20,7 +21,7 @@ pub fn spacing_for(particles: usize) -> f32 {
 }
 
 /// The dam break scaled to about `particles` fluid particles.
-fn dam_break(particles: usize, overrides: &[String], backend: &Selected) -> anyhow::Result<Simulation> {
+pub(crate) fn dam_break(particles: usize, overrides: &[String], backend: &Selected) -> anyhow::Result<Simulation> {
     let spacing = format!("particle_spacing={}", spacing_for(particles));
     let all: Vec<String> = std::iter::once(spacing).chain(overrides.iter().cloned()).collect();
     Ok(Simulation::new(load::from_preset("dam_break", &all)?, &*backend.factory)?)
@@ -50,6 +51,15 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     }
     if let Some(frames) = args.codec {
         return crate::codec_bench::codec_bench(args.particles[0], frames);
+    }
+    if let Some(suite) = &args.suite {
+        // The suite is the GPU's: `auto` means the GPU, software adapters included.
+        let choice = match args.backend {
+            crate::cli::BackendChoice::Auto => crate::cli::BackendChoice::Gpu,
+            other => other,
+        };
+        let backend = floe_gpu::select::select_with(choice.into(), args.profile)?;
+        return crate::bench_suite::run(suite, args.tiny, args.profile, &backend, args.out.as_deref());
     }
     let case = args.case.as_deref().map(find_case).transpose()?;
     let backend = floe_gpu::select::select_with(args.backend.into(), args.profile)?;
@@ -113,7 +123,7 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
 }
 
 /// The table of time per step by pass.
-fn print_profile(label: &str, kernels: &[(&'static str, f64, f64)], backend: &str) {
+pub(crate) fn print_profile(label: &str, kernels: &[(&'static str, f64, f64)], backend: &str) {
     let total: f64 = kernels.iter().map(|k| k.1).sum();
     let how = if backend == "cpu" { "CPU wall time" } else { "GPU timestamp queries" };
     println!("\nTime per step by pass at {label} ({how}), {total:.3} ms in all:");
@@ -125,29 +135,78 @@ fn print_profile(label: &str, kernels: &[(&'static str, f64, f64)], backend: &st
 }
 
 /// The module benchmark called `name`.
-fn find_case(name: &str) -> anyhow::Result<BenchCase> {
+pub(crate) fn find_case(name: &str) -> anyhow::Result<BenchCase> {
     let cases = floe_engine::module::bench_cases();
     let names: Vec<&str> = cases.iter().map(|c| c.name).collect();
     cases.iter().copied().find(|c| c.name == name).with_context(|| format!("no bench case {name}; there are {names:?}"))
 }
 
 /// A module's preset run: which, what to report, how big and how long.
-struct PresetRun {
-    preset: &'static str,
-    measures: &'static [&'static str],
-    size: BenchSize,
+pub(crate) struct PresetRun {
+    pub(crate) preset: &'static str,
+    pub(crate) measures: &'static [&'static str],
+    pub(crate) size: BenchSize,
     /// About how many particles (or elements of the sized space).
-    count: usize,
+    pub(crate) count: usize,
     /// Simulated time (s).
-    seconds: f64,
+    pub(crate) seconds: f64,
     /// Whether to report the peak resident memory per element.
-    memory: bool,
+    pub(crate) memory: bool,
+}
+
+/// What a preset run measured.
+#[derive(Debug, serde::Serialize)]
+pub(crate) struct PresetFigures {
+    /// The preset.
+    pub(crate) preset: &'static str,
+    /// The overrides that sized it.
+    pub(crate) sizing: Vec<String>,
+    /// What was counted (`particles`, or a module's space).
+    pub(crate) counted: &'static str,
+    /// How many.
+    pub(crate) count: usize,
+    /// Simulated seconds.
+    pub(crate) simulated: f64,
+    /// Steps.
+    pub(crate) steps: u64,
+    /// Mean dt (s).
+    pub(crate) dt_mean: f64,
+    /// Solver iterations per step ("-" for a scheme without solves).
+    pub(crate) iterations: String,
+    /// Wall seconds stepping.
+    pub(crate) wall: f64,
+    /// Peak resident memory per counted element (bytes), where asked for.
+    pub(crate) memory: Option<f64>,
+    /// The preset's measures asked for: (name, value, unit).
+    pub(crate) measures: Vec<(String, f64, String)>,
+    /// Time per step by pass: (pass, ms per step, calls per step), slowest first.
+    pub(crate) passes: Vec<(&'static str, f64, f64)>,
+}
+
+impl PresetFigures {
+    /// Milliseconds per step.
+    pub(crate) fn ms_per_step(&self) -> f64 {
+        self.wall * 1e3 / self.steps.max(1) as f64
+    }
+
+    /// Millions of element-steps per wall second.
+    pub(crate) fn m_steps_per_second(&self) -> f64 {
+        self.count as f64 * self.steps as f64 / self.wall / 1e6
+    }
+
+    /// Simulated seconds per wall second.
+    pub(crate) fn real_time_factor(&self) -> f64 {
+        self.simulated / self.wall
+    }
 }
 
 /// A module's preset sized to about `run.count` particles (their count goes as the
-/// cube of the spacing) or elements of its space, simulated for `run.seconds`; the
-/// table ends with `run.measures`.
-fn run_preset(run: &PresetRun, overrides: &[String], backend: &Selected, profile: bool) -> anyhow::Result<()> {
+/// cube of the spacing) or elements of its space, simulated for `run.seconds`.
+pub(crate) fn measure_preset(
+    run: &PresetRun,
+    overrides: &[String],
+    backend: &Selected,
+) -> anyhow::Result<PresetFigures> {
     let (sizing, counted) = match run.size {
         BenchSize::Particles => {
             let reference = load::from_preset(run.preset, overrides)?;
@@ -159,10 +218,6 @@ fn run_preset(run: &PresetRun, overrides: &[String], backend: &Selected, profile
     };
     let all: Vec<String> = sizing.iter().chain(overrides).cloned().collect();
     let mut sim = Simulation::new(load::from_preset(run.preset, &all)?, &*backend.factory)?;
-    let count = |sim: &Simulation| match run.size {
-        BenchSize::Particles => sim.particle_count(),
-        BenchSize::Space(space, _) => sim.model().layout.count(space),
-    };
     let kernels_before = sim.kernel_times();
     let t0 = Instant::now();
     while sim.time() < run.seconds {
@@ -170,30 +225,59 @@ fn run_preset(run: &PresetRun, overrides: &[String], backend: &Selected, profile
     }
     let wall = t0.elapsed().as_secs_f64();
     let steps = sim.steps();
+    let count = match run.size {
+        BenchSize::Particles => sim.particle_count(),
+        BenchSize::Space(space, _) => sim.model().layout.count(space),
+    };
     let reported = sim.measures();
-    let found: Vec<_> = run.measures.iter().map(|&name| (name, reported.iter().find(|m| m.name == name))).collect();
-    let n = count(&sim);
-    println!("{} on {}, {}", run.preset, backend.description, sizing.join(", "));
-    let heads: String = found.iter().map(|(name, m)| format!(" {name} {} |", m.map_or("", |m| &m.unit))).collect();
+    let measures = (run.measures.iter())
+        .map(|&name| {
+            let m = reported.iter().find(|m| m.name == name);
+            (name.to_string(), m.map_or(f64::NAN, |m| m.value), m.map_or(String::new(), |m| m.unit.clone()))
+        })
+        .collect();
+    Ok(PresetFigures {
+        preset: run.preset,
+        sizing,
+        counted,
+        count,
+        simulated: sim.time(),
+        steps,
+        dt_mean: sim.stats().dt_mean,
+        iterations: per_step_iterations(&sim, iterations(&sim), steps),
+        wall,
+        memory: peak_rss().filter(|_| run.memory).map(|b| b as f64 / count as f64),
+        measures,
+        passes: per_step(&kernels_before, &sim.kernel_times(), steps),
+    })
+}
+
+/// [`measure_preset`], printed as a table (and the time per pass with `profile`).
+fn run_preset(run: &PresetRun, overrides: &[String], backend: &Selected, profile: bool) -> anyhow::Result<()> {
+    let f = measure_preset(run, overrides, backend)?;
+    let counted = f.counted;
+    println!("{} on {}, {}", f.preset, backend.description, f.sizing.join(", "));
+    let heads: String = f.measures.iter().map(|(name, _, unit)| format!(" {name} {unit} |")).collect();
     println!(
         "| {counted} | simulated s | steps | dt mean s | solver iterations/step | wall s | ms/step | M {counted}-steps/s | real-time factor | peak RSS bytes/{counted} |{heads}"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(found.len()));
-    let values: String =
-        found.iter().map(|(_, m)| format!(" {} |", crate::figure::figure(m.map_or(f64::NAN, |m| m.value)))).collect();
-    let memory = peak_rss().filter(|_| run.memory).map_or("-".into(), |b| format!("{:.0}", b as f64 / n as f64));
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|{}", "---:|".repeat(f.measures.len()));
+    let values: String = f.measures.iter().map(|(_, v, _)| format!(" {} |", crate::figure::figure(*v))).collect();
+    let memory = f.memory.map_or("-".into(), |b| format!("{b:.0}"));
     println!(
-        "| {n} | {:.3} | {steps} | {:.2e} | {} | {wall:.2} | {:.2} | {:.3} | {:.4} | {memory} |{values}",
-        sim.time(),
-        sim.stats().dt_mean,
-        per_step_iterations(&sim, iterations(&sim), steps),
-        wall * 1e3 / steps.max(1) as f64,
-        n as f64 * steps as f64 / wall / 1e6,
-        sim.time() / wall,
+        "| {} | {:.3} | {} | {:.2e} | {} | {:.2} | {:.2} | {:.3} | {:.4} | {memory} |{values}",
+        f.count,
+        f.simulated,
+        f.steps,
+        f.dt_mean,
+        f.iterations,
+        f.wall,
+        f.ms_per_step(),
+        f.m_steps_per_second(),
+        f.real_time_factor(),
     );
     if profile {
-        let label = format!("{n} {counted} ({})", run.preset);
-        print_profile(&label, &per_step(&kernels_before, &sim.kernel_times(), steps), backend.name);
+        print_profile(&format!("{} {counted} ({})", f.count, f.preset), &f.passes, backend.name);
     }
     Ok(())
 }
@@ -210,7 +294,7 @@ fn per_step_iterations(sim: &Simulation, solved: u64, steps: u64) -> String {
 
 /// Per kernel, device milliseconds and dispatches per step between two
 /// [`floe_engine::Simulation::kernel_times`] readings `steps` steps apart, slowest first.
-fn per_step(
+pub(crate) fn per_step(
     before: &[(&'static str, f64, u64)],
     after: &[(&'static str, f64, u64)],
     steps: u64,

@@ -175,6 +175,17 @@ pub struct BenchArgs {
     /// time per kernel from timestamp queries on a GPU (adds a wait per submission).
     #[arg(long)]
     pub profile: bool,
+    /// A suite instead: `gpu`, every figure tracked on a GPU (the dam break at 1M
+    /// particles, the bunny and the ice bunny at full size, the avalanche at 256k, a
+    /// million flakes) as a Markdown table; `--backend auto` means the GPU here.
+    #[arg(long, value_name = "SUITE", conflicts_with_all = ["codec", "solve", "case"])]
+    pub suite: Option<String>,
+    /// `--suite`: each figure at a small size (seconds on a software GPU).
+    #[arg(long, requires = "suite")]
+    pub tiny: bool,
+    /// `--suite`: also write the table and the figures as JSON into this directory.
+    #[arg(long, value_name = "DIR", requires = "suite")]
+    pub out: Option<std::path::PathBuf>,
     /// Frame codec instead: bytes per particle and encode/decode throughput on
     /// this many dam-break frames at the first particle count.
     #[arg(long, value_name = "FRAMES", conflicts_with = "solve")]

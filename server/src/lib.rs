@@ -31,6 +31,7 @@
 pub mod admin;
 pub mod auth;
 pub mod bench;
+pub mod bench_suite;
 pub mod cli;
 pub mod cluster;
 pub mod codec_bench;

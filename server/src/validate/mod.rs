@@ -3,7 +3,7 @@
 //! `report.json` and SVG plots, and fails when a stated bound is not met.
 
 mod plot;
-mod report;
+pub(crate) mod report;
 
 use crate::cli::ValidateArgs;
 use anyhow::{Context, bail};
