@@ -1,6 +1,6 @@
 // Oriented particles in headless Chromium: an elastic drop with `solid.oriented` on (thin
 // ellipsoids, 0.5 x 0.25 x 0.25 spacings) and one without. The page asks for the orientation
-// channel only for the first; in the spheres view the thin ellipsoids leave gaps the spheres of
+// channel only for the first, whatever the colour; coloured by speed in the spheres view the thin ellipsoids leave gaps the spheres of
 // the second close; the oriented drop plays and is drawn, in both views, without a page error.
 // Leaves a screenshot in target/viewer-ellipsoids.png. Needs a server with oriented particles
 // (FLOE_BIN, or a current target/debug/floe).
@@ -12,6 +12,16 @@ import { canvasSummary, createScene, launchBrowser, root, startServer, statAtLea
 
 /** Waits for the next frames to be drawn. */
 const settle = (page) => page.waitForTimeout(800);
+
+/**
+ * Colours the particles by speed (each scene opens on none) and waits for the page to ask for
+ * `channels` on scene `id`'s stream.
+ */
+async function colourBySpeed(page, streams, id, channels) {
+  await page.selectOption('#colour', 'velocity');
+  for (let k = 0; k < 50 && streams[id] !== channels; k++) await page.waitForTimeout(100);
+  assert.equal(streams[id], channels);
+}
 
 test('oriented particles are drawn as ellipsoids in the spheres view', { timeout: 90_000 }, async () => {
   const { child: server, url } = await startServer({ quiet: true });
@@ -35,15 +45,18 @@ test('oriented particles are drawn as ellipsoids in the spheres view', { timeout
     await statAtLeast(page, 'particles', oriented.particles, 20_000);
     await page.waitForFunction(() => /oriented\s+ellipsoids 10 x 5\.0 x 5\.0 mm\n/.test(`${document.querySelector('#stats').textContent}\n`),
       null, { timeout: 10_000 });
-    assert.deepEqual(streams[oriented.scene_id].split(','), ['velocity', 'orientation']);
+    assert.equal(streams[oriented.scene_id], 'orientation', 'orientations, coloured by none');
+    await colourBySpeed(page, streams, oriented.scene_id, 'velocity,orientation');
+    await statAtLeast(page, 'frames', 2, 10_000);
     await settle(page);
     const thin = await canvasSummary(page);
 
     // The same drop without oriented particles: spheres, no orientation asked for.
     await page.selectOption('#scenes', String(plain.scene_id));
     await page.waitForFunction(() => !/oriented/.test(document.querySelector('#stats').textContent), null, { timeout: 10_000 });
+    assert.equal(streams[plain.scene_id], '');
+    await colourBySpeed(page, streams, plain.scene_id, 'velocity');
     await settle(page);
-    assert.equal(streams[plain.scene_id], 'velocity');
     const round = await canvasSummary(page);
     assert.ok(round.fluid > 1000, `only ${round.fluid} particle pixels for spheres`);
     // Seen from the default camera the cube of 10 x 10 x 10 is a few pixels a particle: the rods

@@ -36,17 +36,20 @@ export function tempDataDir() {
 /**
  * Starts the server (`binary`, by default {@link floeBinary}; HTTP on `http`, gRPC on `grpc`, the
  * start-up scene `scene` (default none),
- * this checkout's web/ or FLOE_WEB, its data in `dataDir`, by default a new temporary directory)
+ * this checkout's web/ or FLOE_WEB, its data in `dataDir`, by default a new temporary directory;
+ * `presetSize` and `backend`, where given, as `--preset-size` and `--backend`, over the
+ * environment's FLOE_PRESET_SIZE and FLOE_BACKEND)
  * and resolves with `{child, url}` once it prints the viewer's URL; `child.exited` resolves when
  * it ends.
  */
 export function startServer({
   http = '127.0.0.1:0', grpc = '127.0.0.1:0', release = false, quiet = false, dataDir = tempDataDir(), scene = 'none',
-  binary = floeBinary(release),
+  binary = floeBinary(release), presetSize = null, backend = null,
 } = {}) {
   const web = process.env.FLOE_WEB ?? path.join(root, 'web');
+  const options = [['--preset-size', presetSize], ['--backend', backend]].filter(([, v]) => v).flat();
   const child = spawn(binary,
-    ['serve', '--http', http, '--grpc', grpc, '--scene', scene, '--web', web, '--data-dir', dataDir],
+    ['serve', '--http', http, '--grpc', grpc, '--scene', scene, '--web', web, '--data-dir', dataDir, ...options],
     { cwd: root, stdio: ['ignore', 'pipe', quiet ? 'ignore' : 'inherit'] });
   return new Promise((resolve, reject) => {
     let out = '';

@@ -5,18 +5,19 @@ import { OrbitCamera } from './camera.js';
 import { DEFAULT_CHANNELS, NONE, colourModes, colourValues, valueRange } from './colour.js';
 import { Credentials } from './credentials.js';
 import { orientationValues, orientedRadii, streamedChannels } from './ellipsoid.js';
-import { phaseChannels, phaseLooks, phaseValues } from './phase.js';
 import { bindKeys, fillHelp } from './help.js';
+import { LOOKS, lookChannels, lookValues, sceneLooks } from './looks.js';
 import { acting, showError } from './notify.js';
 import { wallLines } from './outline.js';
 import { PlotPanel } from './plots.js';
 import { Recorder } from './recorder.js';
 import { realTime, statsText } from './overlay.js';
-import { LOOKS, Renderer } from './render.js';
+import { Renderer } from './render.js';
 import { Replay } from './replay.js';
 import { Routes } from './route.js';
 import { FPS as OTHER_FPS, OtherSets } from './sets.js';
 import { SettingsPanel } from './settings.js';
+import { fullSizeLabel, fullSizeRequest } from './sizing.js';
 
 const $ = (id) => document.getElementById(id);
 const credentials = new Credentials(sessionStorage);
@@ -67,15 +68,26 @@ function rtf() {
 }
 
 /**
- * Fills the "Colour by" menu from a channel list, keeping the choice if it is still there; a
- * scene where ice melts starts on none, which draws its phases (phase.js).
+ * Fills the "Colour by" menu from a channel list. A scene opened afresh starts on none, which
+ * draws each material in its own look (looks.js): a choice made for another scene's channels
+ * says little of this one's. The scene shown, opened again (`keep`), keeps the choice if it is
+ * still there.
  */
-function showColourModes(channels) {
+function showColourModes(channels, keep) {
   const sel = $('colour'), was = sel.value;
   sel.replaceChildren(...colourModes(channels).map((m) => new Option(m.label, m.value)));
-  const first = phaseChannels(NONE, channels).length > 0 ? NONE : sel.options[0].value;
-  sel.value = [...sel.options].some((o) => o.value === was) ? was : first;
+  sel.value = keep && [...sel.options].some((o) => o.value === was) ? was : NONE;
   $('legend').hidden = sel.value === NONE;
+}
+
+/**
+ * Offers a scene the server sized for this machine at its full size (sizing.js); hidden for any
+ * other scene, or none.
+ */
+function showSizing(scene) {
+  const full = fullSizeRequest(scene);
+  $('sizing').hidden = !full;
+  if (full) $('full-size').textContent = fullSizeLabel(scene.sizing);
 }
 
 /**
@@ -115,6 +127,7 @@ async function refreshScenes(select, reopen = false) {
   } else {
     close();
     state.scene = null;
+    showSizing(null);
   }
 }
 
@@ -128,14 +141,15 @@ function close() {
 }
 
 function open(scene) {
-  const changed = scene.scene_id !== state.scene?.scene_id || state.bounds === null;
+  const other = scene.scene_id !== state.scene?.scene_id;
+  const changed = other || state.bounds === null;
   close();
   state.scene = scene;
   state.wantOpen = true;
   banner(scene.halt_reason ? `Halted: ${scene.halt_reason}` : null);
-  showColourModes(scene.channels ?? DEFAULT_CHANNELS);
-  // The first material's look (a scene of several materials draws them all in it).
-  renderer.look = LOOKS[scene.materials?.[0]?.look] ?? LOOKS.water;
+  showColourModes(scene.channels ?? DEFAULT_CHANNELS, !other);
+  showSizing(scene);
+  renderer.setLooks(sceneLooks(scene.materials).map((name) => LOOKS[name]));
   // Oriented particles (an elastic solid's `solid.oriented`) are drawn as ellipsoids.
   renderer.setOriented(orientedRadii(scene.scene, scene.particle_spacing));
   settings.show(scene);
@@ -195,8 +209,10 @@ function connect() {
   const url = new URL(routes.url(`/scenes/${state.scene.scene_id}/ws`), location.href);
   url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
   // The colour channel, oriented particles' orientations where the scene streams them, and
-  // without a colour map the phases of a melting scene.
-  const channels = [...streamedChannels(channel, state.scene.channels), ...phaseChannels(channel, state.scene.channels)];
+  // without a colour map each particle's material where materials differ in look (with a
+  // melting scene's liquid fractions).
+  const channels = [...streamedChannels(channel, state.scene.channels),
+    ...lookChannels(channel, state.scene.channels, state.scene.materials)];
   url.search = new URLSearchParams({ channels: channels.join(','), max_fps: '60' });
   const ws = new WebSocket(url, credentials.protocols());
   ws.binaryType = 'arraybuffer';
@@ -265,10 +281,9 @@ function showFrame(frame) {
     $('legend-max').textContent = hi.toPrecision(3);
   }
   const orientations = renderer.radii ? orientationValues(frame, state.scene?.channels) : null;
-  const looks = values ? null : phaseLooks(state.scene?.materials, LOOKS);
-  const phases = looks && phaseValues(frame, state.scene.materials, state.scene.channels);
-  if (phases) renderer.upload(frame.positions, phases, orientations, looks);
-  else renderer.upload(frame.positions, values, orientations);
+  // Without a colour map, each particle in its material's look where the frame says which.
+  const looks = values ? null : lookValues(frame, state.scene?.materials, state.scene?.channels);
+  renderer.upload(frame.positions, values ?? looks, orientations, looks !== null);
 }
 
 /**
@@ -353,6 +368,7 @@ $('delete').onclick = () => acting('controls-error', async () => {
   const id = state.scene.scene_id;
   close();
   state.scene = null;
+  showSizing(null);
   try {
     await api(`/scenes/${id}`, { method: 'DELETE' });
   } finally {
@@ -367,6 +383,7 @@ async function create(body, errorId) {
   });
 }
 $('create').onclick = () => create({ preset: $('preset').value }, 'create-error');
+$('full-size').onclick = () => create(fullSizeRequest(state.scene), 'create-error');
 $('create-doc').onclick = () => {
   const text = $('document').value;
   create({ document: text, document_format: text.trim().startsWith('{') ? 'json' : 'toml' }, 'create-doc-error');
@@ -483,7 +500,7 @@ function frame(now) {
     $('rtf-achieved').classList.toggle('slow', rt.slow);
     $('stats').textContent = statsText({
       renderer, status: s, replay: replay.active ? replay.describe() : null, realTime: rt, stream: state,
-      others: others.summary(),
+      others: others.summary(), sizing: replay.active ? null : state.scene?.sizing,
     });
   }
   requestAnimationFrame(frame);

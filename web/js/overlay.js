@@ -1,5 +1,7 @@
 // The stats overlay's text: what is drawn, how fast, and the scene's (or the replay's) state.
 
+import { sizedRealTime, sizingText } from './sizing.js';
+
 /**
  * The real-time factor for the overlay: `achieved` (simulated over wall seconds, the last 3 s)
  * against `asked` (null: as fast as it goes), while `status` says the scene runs; slow below
@@ -30,15 +32,18 @@ function resolutionNote(renderer) {
  * @param {{text: string}} o.realTime from realTime()
  * @param {{renderFps: number, frames: number, skipped: number, lastBytes: number, decodeMs: number}} o.stream
  * @param {string[]} o.others the other particle sets' lines (sets.js)
+ * @param {object|null} [o.sizing] the live scene's `sizing` (sizing.js), if the server sized it
  */
-export function statsText({ renderer, status: s, replay, realTime: rt, stream, others }) {
+export function statsText({ renderer, status: s, replay, realTime: rt, stream, others, sizing = null }) {
+  const sized = sizingText(sizing);
   return [
     stream.renderFps > 0 ? `render     ${stream.renderFps.toFixed(0)} fps (${renderer.view})${resolutionNote(renderer)}` : `render     idle (${renderer.view})`,
     `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}${renderer.drawnCount < renderer.count ? ` (${renderer.drawnCount} drawn)` : ''}`,
+    sized ? `size       ${sized}` : '',
     renderer.oriented ? `oriented   ellipsoids ${renderer.radii.map((r) => (1000 * r).toPrecision(2)).join(' x ')} mm${renderer.view === 'spheres' ? '' : ' (spheres view)'}` : '',
     ...(replay ?? []),
     s ? `sim time   ${s.sim_time.toFixed(3)} s (${s.state})` : '',
-    rt.text ? `real time  ${rt.text}` : '',
+    rt.text ? `real time  ${rt.text}${sizedRealTime(sizing)}` : '',
     s ? `steps/s    ${s.steps_per_second.toFixed(0)}` : '',
     replay ? '' : `frames     ${stream.frames}${stream.skipped ? ` (${stream.skipped} skipped, decoder busy)` : ''}`,
     replay ? '' : `bytes/frm  ${stream.lastBytes} (${(stream.lastBytes / Math.max(renderer.count, 1)).toFixed(2)} B/particle)`,

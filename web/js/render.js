@@ -1,8 +1,9 @@
 // WebGL2 particle renderer with two views: spheres (each particle a point sprite shaded as a lit
-// sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection; in a
-// scene of oriented particles each is drawn as its ellipsoid instead, of the scene's radii and
-// turned by the orientation the stream carries, ellipsoid.js) and the fluid's surface
-// (surface.js, spheres whatever the particles' orientation); particles hidden deep inside the
+// sphere impostor, Blinn-Phong, coloured by a scalar through a colour map, for inspection, or in
+// its material's look, looks.js; in a scene of oriented particles each is drawn as its ellipsoid
+// instead, of the scene's radii and turned by the orientation the stream carries, ellipsoid.js)
+// and the fluid's surface (surface.js, spheres whatever the particles' orientation, with the
+// particles of a scene's other looks as spheres over it); particles hidden deep inside the
 // fluid are left out or merged (cull.js). Both draw spheres at the particles' physical size
 // (spacing.js); the scene's box walls are lines (outline.js), its floor a checkerboard
 // (floor.js), its terrains lit meshes (terrain.js) and its other sets, grids and a module's own
@@ -12,6 +13,7 @@ import { CELL, cubeLumps, cubesOf, innerCubes, lumpedParticles, outerParticles }
 import { ELLIPSOID_POINT, ELLIPSOID_VERT, boundingRadius } from './ellipsoid.js';
 import { ATTRIBUTES, programWith } from './gl.js';
 import { Floor } from './floor.js';
+import { LOOKS, LOOK_GLSL, MAX_LOOKS, splitByLook } from './looks.js';
 import { Others } from './others.js';
 import { Outline } from './outline.js';
 import { Resolution } from './resolution.js';
@@ -21,31 +23,18 @@ import { Surface, pixelsAcross } from './surface.js';
 import { TerrainMeshes } from './terrain.js';
 
 /**
- * How a material is drawn without a colour map, by the look the server sends with each
- * material (`SceneInfo.materials[].look`): its RGB (0 to 1), and whether the surface view
- * draws it as an opaque body rather than as translucent water.
- */
-export const LOOKS = {
-  water: { rgb: [0.25, 0.55, 0.9], opaque: false },
-  snow: { rgb: [0.93, 0.95, 0.98], opaque: true },
-  ice: { rgb: [0.78, 0.88, 0.96], opaque: false },
-  solid: { rgb: [0.6, 0.6, 0.62], opaque: true },
-};
-
-/**
  * The particle fragment shader: `inputs` declares the surface's GLSL (its varyings and its
  * point function), `point` sets `vec3 n`, the view-space normal under the fragment, or discards.
  */
 const shaded = (inputs, point) => `#version 300 es
 precision highp float;
 uniform bool u_coloured;
-uniform vec3 u_plain;
-// Phases (phase.js): each particle between u_plain (the solid's look) and u_other (water's).
-uniform bool u_blend;
-uniform vec3 u_other;
+// Each particle in its material's look (looks.js): v_t times MAX_LOOKS is its look code.
+uniform bool u_by_look;
 in float v_t;
 out vec4 colour;
 ${inputs}
+${LOOK_GLSL}
 vec3 ramp(float t) {
   // A perceptual blue-green-yellow ramp (close to viridis).
   vec3 a = vec3(0.267, 0.005, 0.329), b = vec3(0.128, 0.567, 0.551), c = vec3(0.993, 0.906, 0.144);
@@ -58,7 +47,7 @@ void main() {
   ${point}
   vec3 l = normalize(vec3(0.4, 0.7, 0.6));
   vec3 h = normalize(l + vec3(0.0, 0.0, 1.0));
-  vec3 base = u_blend ? mix(u_plain, u_other, v_t) : u_coloured ? ramp(v_t) : u_plain;
+  vec3 base = u_by_look ? lookColour(v_t * float(${MAX_LOOKS})) : u_coloured ? ramp(v_t) : u_looks[0];
   float diffuse = max(dot(n, l), 0.0), specular = pow(max(dot(n, h), 0.0), 48.0);
   colour = vec4(base * (0.25 + 0.75 * diffuse) + vec3(0.35) * specular, 1.0);
 }`;
@@ -81,6 +70,19 @@ export const BACKGROUND = [0.063, 0.078, 0.094];
  */
 const FAR_PIXELS = 2;
 
+/** A vertex array of particles' positions and values, with its two buffers. */
+function particleArrays(gl) {
+  const vao = gl.createVertexArray(), posBuf = gl.createBuffer(), valBuf = gl.createBuffer();
+  gl.bindVertexArray(vao);
+  for (const [buf, loc, size] of [[posBuf, ATTRIBUTES.position, 3], [valBuf, ATTRIBUTES.value, 1]]) {
+    gl.bindBuffer(gl.ARRAY_BUFFER, buf);
+    gl.enableVertexAttribArray(loc);
+    gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
+  }
+  gl.bindVertexArray(null);
+  return { vao, posBuf, valBuf };
+}
+
 /** The views a renderer can draw. */
 export const VIEWS = Object.freeze(['surface', 'spheres']);
 
@@ -93,7 +95,7 @@ export class Renderer {
     this.gl = gl;
     this.canvas = canvas;
     this.spheres = programWith(gl, SPRITE_VERT, FRAG,
-      ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured', 'u_plain', 'u_blend', 'u_other', 'u_scaled']);
+      ['u_proj', 'u_view', 'u_radius', 'u_viewport_h', 'u_range', 'u_coloured', 'u_by_look', 'u_looks', 'u_water', 'u_scaled']);
     /** The scene's walls; `outline.set(wallLines(scene))` when the scene changes. */
     this.outline = new Outline(gl);
     /** The scene's floor; `floor.set(min, max)` when the scene changes. */
@@ -102,16 +104,13 @@ export class Renderer {
     this.terrain = new TerrainMeshes(gl);
     /** The scene's other sets; `setOthers(sets)` as their frames arrive. */
     this.others = new Others(gl);
-    this.vao = gl.createVertexArray();
-    gl.bindVertexArray(this.vao);
-    this.posBuf = gl.createBuffer();
-    this.valBuf = gl.createBuffer();
-    for (const [buf, loc, size] of [[this.posBuf, ATTRIBUTES.position, 3], [this.valBuf, ATTRIBUTES.value, 1]]) {
-      gl.bindBuffer(gl.ARRAY_BUFFER, buf);
-      gl.enableVertexAttribArray(loc);
-      gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
-    }
-    gl.bindVertexArray(null);
+    // The particles' vertex array and its buffers: `vao`, `posBuf`, `valBuf`.
+    Object.assign(this, particleArrays(gl));
+    /**
+     * In the surface view of a scene of several looks, the particles of the looks after the
+     * first, drawn as spheres over the first's surface (looks.js): their arrays and how many.
+     */
+    this.over = { ...particleArrays(gl), count: 0 };
     /**
      * The ellipsoid program and its vertex array (the particles' buffers and a quaternion's),
      * made when a scene of oriented particles is first drawn (a scene without them pays
@@ -120,13 +119,18 @@ export class Renderer {
     this.ellipsoids = null;
     /** The oriented particles' ellipsoid radii (m), or null when the scene has none. */
     this.radii = null;
-    /** Particles in the frame, and those in the GPU's buffers (the sphere view leaves out hidden ones). */
+    /**
+     * Particles in the frame, and those in the main buffers (the sphere view leaves out hidden
+     * ones, the surface view merges them); `over` counts its own.
+     */
     this.count = 0;
-    this.drawnCount = 0;
+    this.mainCount = 0;
     this.box = { min: [0, 0, 0], max: [0, 0, 0] };
-    /** The frame's particles, and what each view draws of them (made when needed, cull.js). */
+    /**
+     * The frame's particles and, kept with them, what each view draws of them (`drawable`, made
+     * when needed, cull.js), and their split by look for the surface view (`split`).
+     */
     this.frame = null;
-    this.drawable = null;
     /** Which the buffers hold: `'spheres'`, `'surface'` or `'surface-far'` (see #buffer). */
     this.buffered = null;
     /** Particle spacing (m) and drawing radius of a particle (m). */
@@ -134,10 +138,14 @@ export class Renderer {
     this.radius = physicalRadius(this.spacing);
     this.range = [0, 1];
     this.coloured = false;
-    /** The two looks (rgb `from`, `to`) values mix between in place of a colour map (phase.js), or null. */
-    this.blend = null;
-    /** How particles are drawn without a colour map (one of LOOKS). */
-    this.look = LOOKS.water;
+    /** Whether the values are look codes (looks.js) in place of a colour map. */
+    this.byLook = false;
+    /**
+     * The scene's looks (LOOKS entries, looks.js's `sceneLooks`): without a colour map every
+     * particle is drawn in the first, or with look codes each in its own; the surface view
+     * draws the first as the body.
+     */
+    this.looks = [LOOKS.water];
     /** `'surface'` or `'spheres'`. */
     this.view = 'spheres';
     /** @type {Surface|null} made when first drawn */
@@ -155,8 +163,15 @@ export class Renderer {
     this.floor.set(floorMin, floorMax);
     this.spacing = spacing;
     this.radius = physicalRadius(spacing);
-    this.drawable = null;
+    // What is drawn of the particles depends on the spacing.
+    if (this.frame) this.frame = { ...this.frame, drawable: null, split: null };
     this.buffered = null;
+    this.version += 1;
+  }
+
+  /** The scene's looks, LOOKS entries, the body's first (looks.js's `sceneLooks`). */
+  setLooks(looks) {
+    this.looks = looks;
     this.version += 1;
   }
 
@@ -193,6 +208,11 @@ export class Renderer {
     this.version += 1;
   }
 
+  /** Particles drawn, of those in the frame. */
+  get drawnCount() {
+    return this.mainCount + this.over.count;
+  }
+
   /** Whether the sphere view draws the frame's particles as ellipsoids. */
   get oriented() {
     return this.radii !== null && this.frame?.orientations != null && this.ellipsoids !== false;
@@ -200,10 +220,10 @@ export class Renderer {
 
   /**
    * New particle data: positions (x,y,z interleaved), one value per particle (or null) and, in a
-   * scene of oriented particles, their quaternions (x,y,z,w interleaved; or null). With `blend`
-   * ({from, to} rgb) the values are fractions from one look to the other (phase.js), not a colour map.
+   * scene of oriented particles, their quaternions (x,y,z,w interleaved; or null). With `byLook`
+   * the values are look codes (looks.js), not a colour map.
    */
-  upload(positions, values, orientations = null, blend = null) {
+  upload(positions, values, orientations = null, byLook = false) {
     this.count = positions.length / 3;
     const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < positions.length; i += 3) {
@@ -215,11 +235,10 @@ export class Renderer {
     }
     /** The particles' bounding box (m). */
     this.box = { min, max };
-    this.frame = { positions, values, orientations };
-    this.drawable = null;
+    this.frame = { positions, values, orientations, drawable: null, split: null };
     this.buffered = null;
-    this.coloured = values != null && blend == null;
-    this.blend = values != null ? blend : null;
+    this.coloured = values != null && !byLook;
+    this.byLook = values != null && byLook;
     this.version += 1;
   }
 
@@ -229,30 +248,42 @@ export class Renderer {
    * (cull.js's reckoning that outer particles hide inner ones holds for spheres of a particle's
    * volume, not for thinner ellipsoids); for `'surface'` the outer particles and one sphere per
    * inner cube, for `'surface-far'` one sphere per cube, with radius scales in place of values.
+   * With look codes the surface view's are those of the first look's particles, and the other
+   * looks' particles go to `over` as spheres (looks.js).
    */
   #buffer(kind) {
     if (this.buffered === kind || !this.frame) return;
-    const { positions, values, orientations } = this.frame;
-    const d = (this.drawable ??= { grid: cubesOf(positions, this.spacing, this.box) });
-    const cubes = () => (d.cubes ??= innerCubes(positions, this.spacing, this.box, d.grid));
-    let data;
-    if (kind === 'spheres') data = (d.spheres ??= outerParticles(positions, values, cubes()));
-    else if (kind === 'ellipsoids') data = { positions, values };
-    else {
-      const lumps = kind === 'surface-far' ? (d.far ??= cubeLumps(positions, d.grid)) : (d.surface ??= lumpedParticles(positions, cubes()));
-      data = { positions: lumps.positions, values: lumps.scales };
-    }
-    const gl = this.gl;
-    this.drawnCount = data.positions.length / 3;
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.posBuf);
-    gl.bufferData(gl.ARRAY_BUFFER, data.positions, gl.DYNAMIC_DRAW);
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.valBuf);
-    gl.bufferData(gl.ARRAY_BUFFER, data.values ?? new Float32Array(this.drawnCount), gl.DYNAMIC_DRAW);
+    const surface = kind === 'surface' || kind === 'surface-far';
+    const split = surface && this.byLook ? (this.frame.split ??= splitByLook(this.frame.positions, this.frame.values)) : null;
+    this.mainCount = this.#fill(this, this.#drawable(split?.body ?? this.frame, kind));
+    this.over.count = split ? this.#fill(this.over, this.#drawable(split.over, 'spheres')) : 0;
     if (kind === 'ellipsoids') {
+      const gl = this.gl;
       gl.bindBuffer(gl.ARRAY_BUFFER, this.ellipsoids.quatBuf);
-      gl.bufferData(gl.ARRAY_BUFFER, orientations, gl.DYNAMIC_DRAW);
+      gl.bufferData(gl.ARRAY_BUFFER, this.frame.orientations, gl.DYNAMIC_DRAW);
     }
     this.buffered = kind;
+  }
+
+  /** What `kind` draws of a set of particles (`{positions, values?}`), kept with the set. */
+  #drawable(set, kind) {
+    const { positions, values } = set;
+    const d = (set.drawable ??= { grid: cubesOf(positions, this.spacing, this.box) });
+    const cubes = () => (d.cubes ??= innerCubes(positions, this.spacing, this.box, d.grid));
+    if (kind === 'spheres') return (d.spheres ??= outerParticles(positions, values, cubes()));
+    if (kind === 'ellipsoids') return { positions, values };
+    const lumps = kind === 'surface-far' ? (d.far ??= cubeLumps(positions, d.grid)) : (d.surface ??= lumpedParticles(positions, cubes()));
+    return { positions: lumps.positions, values: lumps.scales };
+  }
+
+  /** Uploads particles (`{positions, values?}`) into the buffers of `arrays`; returns how many. */
+  #fill(arrays, data) {
+    const gl = this.gl, n = data.positions.length / 3;
+    gl.bindBuffer(gl.ARRAY_BUFFER, arrays.posBuf);
+    gl.bufferData(gl.ARRAY_BUFFER, data.positions, gl.DYNAMIC_DRAW);
+    gl.bindBuffer(gl.ARRAY_BUFFER, arrays.valBuf);
+    gl.bufferData(gl.ARRAY_BUFFER, data.values ?? new Float32Array(n), gl.DYNAMIC_DRAW);
+    return n;
   }
 
   /**
@@ -283,27 +314,44 @@ export class Renderer {
     gl.viewport(0, 0, w, h);
     this.#background(proj, view);
     if (surface) {
+      // The other looks' spheres: behind the body's surface, where it refracts them, and then
+      // in front of it, where they stand out of it (the surface wrote its depth).
+      const over = (p, v, height) => this.#particles(this.spheres, this.over.vao, this.over.count, p, v, height);
       this.surface ??= new Surface(gl);
-      this.surface.draw({ proj, view, vao: this.vao, count: this.drawnCount, radius: this.radius,
+      this.surface.draw({ proj, view, vao: this.vao, count: this.mainCount, radius: this.radius,
         grain: far ? CELL * this.radius : this.radius, box: this.box, width: w, height: h, distance,
-        background: (p, v) => this.#background(p, v), opaque: this.look.opaque ? this.look.rgb : null });
+        background: (p, v, height) => { this.#background(p, v); over(p, v, height); }, look: this.looks[0] });
+      over(proj, view, h);
       // Walls in front of the water.
       this.outline.draw(proj, view);
       return true;
     }
+    this.#particles(ellipsoids ?? this.spheres, ellipsoids?.vao ?? this.vao, this.mainCount, proj, view, h);
+    this.outline.draw(proj, view);
+    return true;
+  }
+
+  /**
+   * Draws `count` particles of the vertex array `vao` with `program` (the spheres' or the
+   * ellipsoids') into a viewport `h` pixels high, depth-tested, coloured as the frame says.
+   */
+  #particles({ program, u }, vao, count, proj, view, h) {
+    if (count === 0) return;
+    const gl = this.gl;
     gl.enable(gl.DEPTH_TEST);
-    const { program, u, vao } = ellipsoids ?? { ...this.spheres, vao: this.vao };
+    gl.depthFunc(gl.LESS);
     gl.useProgram(program);
     gl.uniformMatrix4fv(u.u_proj, false, proj);
     gl.uniformMatrix4fv(u.u_view, false, view);
     gl.uniform1f(u.u_viewport_h, h);
-    const range = this.blend ? [0, 1] : this.range;
+    // Look codes reach the fragment shader as v_t, the code over MAX_LOOKS (looks.js).
+    const range = this.byLook ? [0, MAX_LOOKS] : this.range;
     gl.uniform2f(u.u_range, range[0], range[1]);
     gl.uniform1i(u.u_coloured, this.coloured ? 1 : 0);
-    gl.uniform1i(u.u_blend, this.blend ? 1 : 0);
-    gl.uniform3fv(u.u_plain, this.blend ? this.blend.from : this.look.rgb);
-    gl.uniform3fv(u.u_other, this.blend ? this.blend.to : this.look.rgb);
-    if (ellipsoids) {
+    gl.uniform1i(u.u_by_look, this.byLook ? 1 : 0);
+    gl.uniform3fv(u.u_looks, Array.from({ length: MAX_LOOKS }, (_, k) => (this.looks[k] ?? this.looks[0]).rgb).flat());
+    gl.uniform3fv(u.u_water, LOOKS.water.rgb);
+    if (u.u_radii) {
       gl.uniform1f(u.u_radius, boundingRadius(this.radii));
       gl.uniform3fv(u.u_radii, this.radii);
     } else {
@@ -311,9 +359,7 @@ export class Renderer {
       gl.uniform1i(u.u_scaled, 0);
     }
     gl.bindVertexArray(vao);
-    gl.drawArrays(gl.POINTS, 0, this.drawnCount);
-    this.outline.draw(proj, view);
-    return true;
+    gl.drawArrays(gl.POINTS, 0, count);
   }
 
   /**
@@ -326,7 +372,7 @@ export class Renderer {
     let e;
     try {
       e = programWith(gl, ELLIPSOID_VERT, ELLIPSOID_FRAG,
-        ['u_proj', 'u_view', 'u_radius', 'u_radii', 'u_viewport_h', 'u_range', 'u_coloured', 'u_plain', 'u_blend', 'u_other']);
+        ['u_proj', 'u_view', 'u_radius', 'u_radii', 'u_viewport_h', 'u_range', 'u_coloured', 'u_by_look', 'u_looks', 'u_water']);
     } catch (err) {
       console.warn(`oriented particles drawn as spheres: the ellipsoid shader failed: ${err.message}`);
       this.ellipsoids = false;

@@ -18,7 +18,9 @@
 // 5. shading (full resolution, the normals filtered between texels): the background refracted
 //    along the normal and tinted by Beer-Lambert absorption over the thickness, light scattered
 //    back in water's colour the more the thicker it is, Fresnel (Schlick) reflection of a sky,
-//    and a specular highlight; snow is opaque and matte instead: its white, lit by the normal.
+//    and a specular highlight; a body of another look (looks.js) is its colour lit by the normal
+//    instead, matte and opaque (snow), or over the refracted background with the reflection and
+//    the highlight (ice).
 //    The surface's depth goes to the depth buffer, so walls drawn after it hide behind it.
 //
 // Passes 1 to 4 run at `Surface.SCALE` times the canvas's resolution, and passes 3 to 5 only over
@@ -26,7 +28,8 @@
 // (half of a frame at 200k particles, measured): seen from afar the renderer hands it one lump per
 // cube of particles instead (cull.js), and `grain`, the bumps' radius, is then a lump's.
 // The scene behind the water is drawn into the canvas by the caller first, and again at the
-// passes' resolution for refraction.
+// passes' resolution for refraction by `background`, with what is seen only through the water
+// there (the renderer's spheres of a scene's other looks).
 
 import { FULL_SCREEN, framebuffer, programWith, texture } from './gl.js';
 import { SPHERE_POINT, SPRITE_VERT, WINDOW_DEPTH } from './sprite.js';
@@ -131,8 +134,8 @@ ${VIEW_POINT}
 uniform sampler2D u_normals, u_thickness, u_background;
 uniform mat4 u_view;
 uniform vec2 u_size;
-// An opaque, matte body's colour (rgb, a = 1: snow), or a = 0 for water.
-uniform vec4 u_opaque;
+// The body's look: its colour and opacity (looks.js; 0 for water).
+uniform vec4 u_look;
 out vec4 colour;
 ${WINDOW_DEPTH}
 vec3 sky(vec3 dir) {
@@ -157,19 +160,18 @@ void main() {
   float opacity = 1.0 - exp(-4.0 * thickness);
   vec3 l = normalize(vec3(0.4, 0.7, 0.6));
   float lit = 0.55 + 0.45 * max(dot(n, l), 0.0);
-  if (u_opaque.a > 0.5) {
-    colour = vec4(u_opaque.rgb * lit, 1.0);
-    gl_FragDepth = windowDepth(u_proj, p);
+  gl_FragDepth = windowDepth(u_proj, p);
+  if (u_look.a >= 1.0) {
+    colour = vec4(u_look.rgb * lit, 1.0);
     return;
   }
   vec3 water = vec3(0.13, 0.48, 0.78) * lit;
-  vec3 body = mix(behind * tint, water, opacity);
+  vec3 body = u_look.a > 0.0 ? mix(behind, u_look.rgb * lit, u_look.a) : mix(behind * tint, water, opacity);
   float cosine = max(dot(n, v), 0.0);
   float fresnel = 0.02 + 0.98 * pow(1.0 - cosine, 5.0);
   vec3 reflected = sky(transpose(mat3(u_view)) * reflect(-v, n));
   float specular = pow(max(dot(n, normalize(l + v)), 0.0), 60.0);
   colour = vec4(mix(body, reflected, fresnel) + vec3(0.5) * specular, 1.0);
-  gl_FragDepth = windowDepth(u_proj, p);
 }`;
 
 /**
@@ -227,7 +229,7 @@ export class Surface {
     this.smoothPass = programWith(gl, FULL_SCREEN, SMOOTH_FRAG, ['u_depth', 'u_c', 'u_jump', 'u_rate']);
     this.normalPass = programWith(gl, FULL_SCREEN, NORMAL_FRAG, ['u_depth', 'u_proj', 'u_low', 'u_jump']);
     this.shadePass = programWith(gl, FULL_SCREEN, SHADE_FRAG,
-      ['u_depth', 'u_normals', 'u_thickness', 'u_background', 'u_proj', 'u_view', 'u_size', 'u_low', 'u_opaque']);
+      ['u_depth', 'u_normals', 'u_thickness', 'u_background', 'u_proj', 'u_view', 'u_size', 'u_low', 'u_look']);
     this.empty = gl.createVertexArray();
     this.targets = null;
   }
@@ -269,11 +271,12 @@ export class Surface {
    * already), depth included.
    * @param {{proj: Float32Array, view: Float32Array, vao: WebGLVertexArrayObject, count: number,
    *   radius: number, grain: number, box: {min: number[], max: number[]}, width: number, height: number,
-   *   distance: number, background: (proj: Float32Array, view: Float32Array) => void,
-   *   opaque: number[] | null}} o the particles (`vao` with positions and radius scales, `count`, a
-   *   particle's drawing `radius` in m, bounding `box`), the canvas's size in pixels, the
-   *   camera's distance to what it looks at (m; sets how much to smooth), what draws the scene
-   *   behind the water, and the colour of an opaque, matte body (snow), or null for water
+   *   distance: number, background: (proj: Float32Array, view: Float32Array, height: number) => void,
+   *   look: {rgb: number[], opacity: number}}} o the particles (`vao` with positions and radius
+   *   scales, `count`, a particle's drawing `radius` in m, bounding `box`), the canvas's size in
+   *   pixels, the camera's distance to what it looks at (m; sets how much to smooth), what draws
+   *   the scene behind the water (into the bound framebuffer, `height` pixels high), and the
+   *   body's look (looks.js: water, or a body of that colour and opacity)
    */
   draw(o) {
     const gl = this.gl;
@@ -283,7 +286,7 @@ export class Surface {
     // The scene behind the water, to refract.
     gl.bindFramebuffer(gl.FRAMEBUFFER, t.backgroundFb);
     gl.viewport(0, 0, t.lw, t.lh);
-    o.background(o.proj, o.view);
+    o.background(o.proj, o.view, t.lh);
     // 1 and 2. Depth of the nearest sphere, and the spheres' chords added.
     gl.bindVertexArray(o.vao);
     this.#particlePasses(o, t);
@@ -343,7 +346,7 @@ export class Surface {
     gl.uniformMatrix4fv(c.u.u_view, false, o.view);
     gl.uniform2f(c.u.u_size, t.w, t.h);
     gl.uniform2f(c.u.u_low, t.lw, t.lh);
-    gl.uniform4f(c.u.u_opaque, ...(o.opaque ?? [0, 0, 0]), o.opaque ? 1 : 0);
+    gl.uniform4f(c.u.u_look, ...o.look.rgb, o.look.opacity);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.disable(gl.SCISSOR_TEST);
     gl.depthFunc(gl.LESS);

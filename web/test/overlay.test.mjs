@@ -28,6 +28,14 @@ test('the overlay says what is drawn, live or replayed', () => {
     'dropped    3',
     'ice  5 frames',
   ]);
+  const sizing = { spacing: 0.0175, particles: 1210, real_time_factor: 1.1, full_spacing: 0.01, full_particles: 6537 };
+  const sized = statsText({ renderer, status, replay: null, realTime: { text: '0.95' }, stream, others: [], sizing });
+  assert.deepEqual(sized.split('\n').slice(1, 5), [
+    'particles  1000 on cpu (800 drawn)',
+    'size       1,210 of 6,537 particles (1.75 cm spacing, full size 1 cm), sized for this machine',
+    'sim time   0.250 s (running)',
+    'real time  0.95; sized for 1.1',
+  ]);
   const replayed = statsText({ renderer: { ...renderer, drawnCount: 1000, resolution: { moving: 1 } }, status: null,
     replay: ['replay     frame 3 of 9'], realTime: { text: '' }, stream: { ...stream, renderFps: 0 }, others: ['ice'] });
   assert.deepEqual(replayed.split('\n'), ['render     idle (spheres)', 'particles  1000', 'replay     frame 3 of 9', 'decode     1.23 ms']);
