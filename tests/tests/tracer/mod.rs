@@ -19,11 +19,14 @@
 //!   group's sum of its live members' positions (m) and `group_sums` each
 //!   particle's sum of its groups' sums: a gather, a segmented sum, a spread and a
 //!   member sum, the core's generic map passes.
-//! - `tracer.floor`, a position solve after each drift: no particle below the
-//!   lowest initial particle (`floor`, m); an iteration projects the particles of
-//!   colour `id % 4` in the sweep of that colour, so one iteration of four sweeps
-//!   converges (a broken sweep index never would); the residual is the deepest
-//!   particle's depth below the floor (`tracer_depth`, m).
+//! - `tracer.floor`, a position solve: no particle below the lowest initial
+//!   particle (`floor`, m); an iteration projects the particles of colour `id % 4`
+//!   in the sweep of that colour, so one iteration of four sweeps converges (a
+//!   broken sweep index never would); the residual is the deepest particle's depth
+//!   below the floor (`tracer_depth`, m). On WCSPH it runs after each drift, so no
+//!   particle ends a step below the floor; on DFSPH before the density solve
+//!   (`position_solve::When`), which the floor, a wall the pressure solve does not
+//!   see, then fights: the tests that need the floor at each step's end run WCSPH.
 //!
 //! - `columns`, a grid of 8 x 1 x 8 cells over the domain's floor, with
 //!   `column_count`: the particles above each cell after each step, streamed as
