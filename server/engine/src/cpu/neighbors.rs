@@ -49,6 +49,8 @@ pub struct ChunkNeighbors {
     wall_grad: Vec<Vec3>,
     fluid_packed: Vec<u16>,
     wall_packed: Vec<u16>,
+    fluid_weight: Vec<f32>,
+    wall_weight: Vec<f32>,
 }
 
 impl ChunkNeighbors {
@@ -64,6 +66,8 @@ impl ChunkNeighbors {
         self.wall_grad.clear();
         self.fluid_packed.clear();
         self.wall_packed.clear();
+        self.fluid_weight.clear();
+        self.wall_weight.clear();
     }
 
     /// Appends the next particle's neighbours: particles of `pos` on `grid` and wall
@@ -164,6 +168,15 @@ impl PairValue for u16 {
     }
     fn columns_mut(nb: &mut ChunkNeighbors) -> (&mut Vec<Self>, &mut Vec<Self>) {
         (&mut nb.fluid_packed, &mut nb.wall_packed)
+    }
+}
+
+impl PairValue for f32 {
+    fn columns(nb: &ChunkNeighbors) -> (&Vec<Self>, &Vec<Self>) {
+        (&nb.fluid_weight, &nb.wall_weight)
+    }
+    fn columns_mut(nb: &mut ChunkNeighbors) -> (&mut Vec<Self>, &mut Vec<Self>) {
+        (&mut nb.fluid_weight, &mut nb.wall_weight)
     }
 }
 
