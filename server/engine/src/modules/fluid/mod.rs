@@ -180,6 +180,17 @@ fn validate(scene: &Scene, c: &mut Checker) {
             Viscosity::Artificial { alpha } => c.within(&format!("{p}.viscosity.alpha"), alpha, 0.0, 1.0),
         }
         c.within(&format!("{p}.xsph"), f.xsph, 0.0, 1.0);
+        if f.blocks.is_empty() && !filled(scene).contains(&f.name) {
+            c.fail(
+                &format!("{p}.blocks"),
+                format!(
+                    "must hold at least one block: nothing in the scene fills the fluid {:?} while it runs \
+                     (a fluid may start empty only when {} names it)",
+                    f.name,
+                    FILLED_BY.iter().map(|(path, _)| *path).collect::<Vec<_>>().join(" or ")
+                ),
+            );
+        }
         for (j, b) in f.blocks.iter().enumerate() {
             let bp = format!("{p}.blocks[{j}]");
             c.ordered_box(&bp, b.min, b.max);
@@ -220,6 +231,40 @@ fn validate(scene: &Scene, c: &mut Checker) {
     if fluids(scene).len() > 256 {
         c.fail(SECTION, format!("at most 256 fluid phases, got {}", fluids(scene).len()));
     }
+}
+
+/// The settings of other modules' sections that name a fluid something fills while
+/// the scene runs, as paths into the scene document (`*`: every element of a list):
+/// the snowfall's release creates particles of its `fluid` (`ModelBuilder::emitter`),
+/// and heat's melting turns a fluid's particles into a phase like its `into`
+/// (`ModelBuilder::phase`). Only such a fluid may start without blocks; any other
+/// would stay empty for ever (a scene of 0 particles by mistake). Read as data, as
+/// the heat module reads the fluids' names: a module that learns to fill a fluid
+/// adds its setting here.
+const FILLED_BY: &[(&str, &[&str])] = &[
+    ("snowfall.release.fluid", &["snowfall", "release", "fluid"]),
+    ("heat.fluids[*].melting.into", &["heat", "fluids", "*", "melting", "into"]),
+];
+
+/// The names of the fluids [`FILLED_BY`]'s settings name in `scene`.
+fn filled(scene: &Scene) -> Vec<String> {
+    fn walk(value: &serde_json::Value, path: &[&str], out: &mut Vec<String>) {
+        match path.split_first() {
+            None => out.extend(value.as_str().map(String::from)),
+            Some((&"*", rest)) => value.as_array().into_iter().flatten().for_each(|v| walk(v, rest, out)),
+            Some((key, rest)) => {
+                if let Some(v) = value.get(key) {
+                    walk(v, rest, out)
+                }
+            }
+        }
+    }
+    let mut names = Vec::new();
+    for (_, path) in FILLED_BY {
+        let Some(section) = scene.sections.get::<serde_json::Value>(path[0]) else { continue };
+        walk(&section, &path[1..], &mut names);
+    }
+    names
 }
 
 /// How many particles the fluids' blocks hold, counted without placing them (an
@@ -364,5 +409,33 @@ mod tests {
         ];
         let err = crate::scene::load::from_preset("dam_break", &o).map(|_| ()).unwrap_err().to_string();
         assert!(err.contains("fluids[0].blocks[0].shape"), "{err}");
+    }
+
+    /// A fluid without blocks that nothing fills is refused naming the field (it
+    /// would be a scene of no particles); one that the snowfall's release or a
+    /// melting fills is accepted, as the presets that start it empty.
+    #[test]
+    fn a_fluid_without_blocks_needs_something_that_fills_it() {
+        let load = |preset: &str, o: &[&str]| {
+            let o: Vec<String> = o.iter().map(|s| s.to_string()).collect();
+            crate::scene::load::from_preset(preset, &o).map(|_| ()).map_err(|e| e.to_string())
+        };
+        let err = load("dam_break", &["fluids[0].blocks=[]"]).unwrap_err();
+        assert!(err.starts_with("fluids[0].blocks: must hold at least one block"), "{err}");
+        assert!(err.contains("snowfall.release.fluid or heat.fluids[*].melting.into"), "{err}");
+        // The second fluid empty, the first not: the second is named.
+        let second = r#"fluids=[{"blocks":[{"min":[0,0,0],"max":[0.5,1,0.25]}]},{"name":"oil","blocks":[]}]"#;
+        let err = load("dam_break", &[second]).unwrap_err();
+        assert!(err.starts_with("fluids[1].blocks: must hold at least one block"), "{err}");
+        assert!(err.contains("\"oil\""), "{err}");
+        // The snow the snowfall's cover releases, and water only the ice's melt becomes.
+        assert_eq!(load("snowfall_then_avalanche", &[]), Ok(()));
+        assert_eq!(load("ice_cube_in_glass", &["fluids[0].blocks=[]"]), Ok(()));
+        // Without the release, or released into another fluid, the snow stays empty.
+        let err = load("snowfall_then_avalanche", &[r#"snowfall.release=null"#]);
+        assert!(err.as_ref().is_err_and(|e| e.contains("fluids[0].blocks")), "{err:?}");
+        // Without the melting, the water stays empty.
+        let err = load("ice_cube_in_glass", &["fluids[0].blocks=[]", "heat.fluids[1].melting=null"]);
+        assert!(err.as_ref().is_err_and(|e| e.contains("fluids[0].blocks")), "{err:?}");
     }
 }

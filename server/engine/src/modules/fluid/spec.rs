@@ -29,8 +29,10 @@ pub struct Fluid {
     #[serde(default, skip_serializing_if = "Look::is_water")]
     pub look: Look,
     /// Boxes filled with particles on a cubic lattice of `particle_spacing`. None:
-    /// the fluid starts without particles and gets them while the scene runs (the
-    /// snow a snowfall's cover releases).
+    /// the fluid starts without particles and gets them while the scene runs, which
+    /// only a fluid another setting fills may do (the snow a snowfall's cover
+    /// releases, `snowfall.release.fluid`; the melt of a fluid that melts like it,
+    /// `heat.fluids[i].melting.into`).
     pub blocks: Vec<FluidBlock>,
 }
 
