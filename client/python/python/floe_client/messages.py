@@ -5,7 +5,7 @@
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from ._proto import scenes_pb2 as pb
@@ -73,8 +73,40 @@ class Tunable:
 
 
 @dataclass(frozen=True)
+class Material:
+    """A material of a scene, in the order of the ``material`` channel's indices."""
+
+    name: str
+    #: "fluid" or "solid".
+    kind: str
+    #: Rest density (kg/m^3).
+    rest_density: float
+    #: How viewers draw it when no channel colours it: "water", "snow", "ice" or "solid".
+    look: str
+
+
+@dataclass(frozen=True)
+class Sizing:
+    """The resolution a server chose for a preset created without a ``particle_spacing``
+    (``floe serve --preset-size auto``): the finest spacing its backend stepped at real
+    time or faster, and the preset's own (full) size."""
+
+    #: The chosen particle spacing (m).
+    spacing: float
+    #: Particles at that spacing.
+    particles: int
+    #: Simulated seconds per wall second measured at that spacing, stepped alone.
+    real_time_factor: float
+    #: The preset's own spacing (m): create it with ``{"particle_spacing": full_spacing}`` for its full size.
+    full_spacing: float
+    #: Particles at the full size.
+    full_particles: int
+
+
+@dataclass(frozen=True, repr=False)
 class SceneInfo:
-    """One scene as the server sees it."""
+    """One scene as the server sees it. Its repr is short (id, name, state, particles,
+    time); ``scene`` holds the whole document."""
 
     scene_id: int
     name: str
@@ -103,6 +135,19 @@ class SceneInfo:
     #: single server. A list gives the other workers' scenes by id, name, state, particles
     #: and worker only: ``get`` gives the rest.
     worker: str = ""
+    #: The resolution the server chose for a preset created without one; None for a
+    #: scene its creator sized (or a server that keeps presets at their own size).
+    sizing: Sizing | None = None
+    #: The scene's materials, in the order of the "material" channel's indices.
+    materials: tuple[Material, ...] = ()
+    #: The user who created it ("local" on a single-user server).
+    owner: str = ""
+
+    def __repr__(self) -> str:
+        return (
+            f"SceneInfo(scene_id={self.scene_id}, name={self.name!r}, state={self.state!r}, "
+            f"particles={self.particles}, sim_time={self.sim_time:.6g})"
+        )
 
     @classmethod
     def from_message(cls, m: pb.SceneInfo) -> SceneInfo:
@@ -134,12 +179,32 @@ class SceneInfo:
                 for t in m.tunables
             ),
             worker=m.worker,
+            sizing=sizing(m.sizing) if m.HasField("sizing") else None,
+            materials=tuple(Material(x.name, x.kind, x.rest_density, x.look) for x in m.materials),
+            owner=m.owner,
         )
 
 
+def sizing(m: pb.Sizing) -> Sizing:
+    return Sizing(m.spacing, m.particles, m.real_time_factor, m.full_spacing, m.full_particles)
+
+
 @dataclass(frozen=True)
+class Measure:
+    """A value a scene's scheme or modules measured at its last step."""
+
+    #: e.g. "fluid.kinetic_energy", "max_density_deviation", "dfsph.mean_iterations".
+    name: str
+    value: float
+    #: SI unit; "" when dimensionless.
+    unit: str
+
+
+@dataclass(frozen=True, repr=False)
 class SceneStats:
-    """Throughput and streaming statistics of a scene."""
+    """Throughput and streaming statistics of a scene, and what its scheme and modules
+    measured at the last step (``measures``: kinetic energy in J, the largest density
+    deviation, solver iterations, ...)."""
 
     scene_id: int
     state: str
@@ -157,6 +222,20 @@ class SceneStats:
     dropped_frames: int
     #: Frames published by the solver.
     frames_published: int
+    #: What the scheme and modules measured at the last step, by name.
+    measures: dict[str, Measure] = field(default_factory=dict)
+    #: The scene's name.
+    name: str = ""
+    #: Encoded frame bytes sent to subscribers so far.
+    frame_bytes: int = 0
+    #: In a cluster, the worker holding the scene; "" on a single server.
+    worker: str = ""
+
+    def __repr__(self) -> str:
+        return (
+            f"SceneStats(scene_id={self.scene_id}, state={self.state!r}, sim_time={self.sim_time:.6g}, "
+            f"steps={self.steps}, particles={self.particles}, steps_per_second={self.steps_per_second:.4g})"
+        )
 
     @classmethod
     def from_message(cls, m: pb.SceneStats) -> SceneStats:
@@ -171,6 +250,10 @@ class SceneStats:
             subscribers=m.subscribers,
             dropped_frames=m.dropped_frames,
             frames_published=m.frames_published,
+            measures={x.name: Measure(x.name, x.value, x.unit) for x in m.measures},
+            name=m.name,
+            frame_bytes=m.frame_bytes,
+            worker=m.worker,
         )
 
 

@@ -59,7 +59,7 @@ class CreateSceneRequest(_message.Message):
     def __init__(self, preset: _Optional[str] = ..., document: _Optional[str] = ..., document_format: _Optional[str] = ..., overrides: _Optional[_Iterable[str]] = ..., backend: _Optional[str] = ...) -> None: ...
 
 class SceneInfo(_message.Message):
-    __slots__ = ("scene_id", "name", "state", "sim_time", "steps", "particles", "bounds_min", "bounds_max", "halt_reason", "scene_json", "backend", "channels", "sets", "tunables", "materials", "owner", "worker")
+    __slots__ = ("scene_id", "name", "state", "sim_time", "steps", "particles", "bounds_min", "bounds_max", "halt_reason", "scene_json", "backend", "channels", "sets", "tunables", "materials", "owner", "worker", "sizing")
     SCENE_ID_FIELD_NUMBER: _ClassVar[int]
     NAME_FIELD_NUMBER: _ClassVar[int]
     STATE_FIELD_NUMBER: _ClassVar[int]
@@ -77,6 +77,7 @@ class SceneInfo(_message.Message):
     MATERIALS_FIELD_NUMBER: _ClassVar[int]
     OWNER_FIELD_NUMBER: _ClassVar[int]
     WORKER_FIELD_NUMBER: _ClassVar[int]
+    SIZING_FIELD_NUMBER: _ClassVar[int]
     scene_id: int
     name: str
     state: SceneState
@@ -94,7 +95,22 @@ class SceneInfo(_message.Message):
     materials: _containers.RepeatedCompositeFieldContainer[MaterialDescription]
     owner: str
     worker: str
-    def __init__(self, scene_id: _Optional[int] = ..., name: _Optional[str] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., bounds_min: _Optional[_Iterable[float]] = ..., bounds_max: _Optional[_Iterable[float]] = ..., halt_reason: _Optional[str] = ..., scene_json: _Optional[str] = ..., backend: _Optional[str] = ..., channels: _Optional[_Iterable[_Union[ChannelDescription, _Mapping]]] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., tunables: _Optional[_Iterable[_Union[Tunable, _Mapping]]] = ..., materials: _Optional[_Iterable[_Union[MaterialDescription, _Mapping]]] = ..., owner: _Optional[str] = ..., worker: _Optional[str] = ...) -> None: ...
+    sizing: Sizing
+    def __init__(self, scene_id: _Optional[int] = ..., name: _Optional[str] = ..., state: _Optional[_Union[SceneState, str]] = ..., sim_time: _Optional[float] = ..., steps: _Optional[int] = ..., particles: _Optional[int] = ..., bounds_min: _Optional[_Iterable[float]] = ..., bounds_max: _Optional[_Iterable[float]] = ..., halt_reason: _Optional[str] = ..., scene_json: _Optional[str] = ..., backend: _Optional[str] = ..., channels: _Optional[_Iterable[_Union[ChannelDescription, _Mapping]]] = ..., sets: _Optional[_Iterable[_Union[ParticleSet, _Mapping]]] = ..., tunables: _Optional[_Iterable[_Union[Tunable, _Mapping]]] = ..., materials: _Optional[_Iterable[_Union[MaterialDescription, _Mapping]]] = ..., owner: _Optional[str] = ..., worker: _Optional[str] = ..., sizing: _Optional[_Union[Sizing, _Mapping]] = ...) -> None: ...
+
+class Sizing(_message.Message):
+    __slots__ = ("spacing", "particles", "real_time_factor", "full_spacing", "full_particles")
+    SPACING_FIELD_NUMBER: _ClassVar[int]
+    PARTICLES_FIELD_NUMBER: _ClassVar[int]
+    REAL_TIME_FACTOR_FIELD_NUMBER: _ClassVar[int]
+    FULL_SPACING_FIELD_NUMBER: _ClassVar[int]
+    FULL_PARTICLES_FIELD_NUMBER: _ClassVar[int]
+    spacing: float
+    particles: int
+    real_time_factor: float
+    full_spacing: float
+    full_particles: int
+    def __init__(self, spacing: _Optional[float] = ..., particles: _Optional[int] = ..., real_time_factor: _Optional[float] = ..., full_spacing: _Optional[float] = ..., full_particles: _Optional[int] = ...) -> None: ...
 
 class ChannelDescription(_message.Message):
     __slots__ = ("name", "tag", "unit", "components", "set", "exact", "about", "module")
