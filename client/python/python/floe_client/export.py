@@ -37,8 +37,15 @@ def to_dataframe(frame: Frame) -> pandas.DataFrame:
     """One row per particle, one column per component (see :func:`columns`); units in
     ``df.attrs["units"]``, the header in ``df.attrs["header"]``. Identity-ordered frames
     are indexed by particle id (row i of the frame; with decimation n, id ``i * n`` is not
-    known to the frame, so the index is the row)."""
-    import pandas
+    known to the frame, so the index is the row). Needs pandas (the ``[pandas]`` extra)."""
+    try:
+        import pandas
+    except ImportError as e:
+        raise ModuleNotFoundError(
+            "to_dataframe needs pandas, which is not installed: pip install 'floe-client[pandas]' "
+            "(or './client/python[pandas]' from Floe's repository)",
+            name="pandas",
+        ) from e
 
     cols = columns(frame)
     df = pandas.DataFrame({name: values for name, (values, _) in cols.items()})

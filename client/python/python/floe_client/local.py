@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import subprocess
 import tempfile
 import time
@@ -44,6 +45,7 @@ class Server:
         Raises RuntimeError with the server's log if it exits first or takes longer than
         ``timeout`` seconds (e.g. ``backend="gpu"`` where no GPU adapter exists).
         """
+        _check_binary(floe)
         # Output goes to files rather than pipes: a pipe nobody reads would block the server.
         self._out = tempfile.TemporaryFile(mode="w+")
         self._log = tempfile.TemporaryFile(mode="w+")
@@ -104,3 +106,19 @@ class Server:
 def _read(f: IO[str]) -> str:
     f.seek(0)
     return f.read()
+
+
+def _check_binary(floe: str | os.PathLike[str]) -> None:
+    """Refuses a ``floe`` that names no program, saying where it looked (a relative path is
+    the current directory's: ``target/release/floe`` exists only from the repository's root)."""
+    name = os.fspath(floe)
+    if os.sep in name or (os.altsep is not None and os.altsep in name):
+        if not os.path.isfile(name):
+            raise FileNotFoundError(
+                f"no floe binary at {name!r} (looked at {os.path.abspath(name)!r}): build it with "
+                "`cargo build --release -p floe-server` and give its path from here, or an absolute path"
+            )
+    elif shutil.which(name) is None:
+        raise FileNotFoundError(
+            f"no {name!r} on PATH: give the binary's path, e.g. Server('/path/to/floe/target/release/floe')"
+        )
