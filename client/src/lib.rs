@@ -215,6 +215,12 @@ impl Client {
         Ok(routed!(self.routes, self.inner, list_scenes, None, true, pb::ListScenesRequest {})?.scenes)
     }
 
+    /// The built-in presets `create_preset` takes, as (name, one line on what it is).
+    pub async fn presets(&mut self) -> Result<Vec<(String, String)>, ClientError> {
+        let list = routed!(self.routes, self.inner, list_presets, None, true, pb::ListPresetsRequest {})?;
+        Ok(list.presets.into_iter().map(|p| (p.name, p.about)).collect())
+    }
+
     /// Deletes a scene.
     pub async fn delete(&mut self, scene_id: u64) -> Result<SceneInfo, ClientError> {
         routed!(self.routes, self.inner, delete_scene, Some(scene_id), false, pb::SceneRef { scene_id })

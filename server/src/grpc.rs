@@ -81,6 +81,15 @@ impl SceneService for Grpc {
         Ok(Response::new(pb::ListScenesResponse { scenes }))
     }
 
+    async fn list_presets(&self, request: Request<pb::ListPresetsRequest>) -> Reply<pb::ListPresetsResponse> {
+        caller(&request)?;
+        let presets = floe_engine::module::presets()
+            .iter()
+            .map(|p| pb::PresetInfo { name: p.name.into(), about: p.about.into() })
+            .collect();
+        Ok(Response::new(pb::ListPresetsResponse { presets }))
+    }
+
     async fn delete_scene(&self, request: Request<pb::SceneRef>) -> Reply<pb::SceneInfo> {
         let who = caller(&request)?;
         let handle = self.registry.delete(&who, request.into_inner().scene_id).await.map_err(status)?;

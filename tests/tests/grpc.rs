@@ -295,3 +295,19 @@ async fn channels_are_named_by_the_scene_and_streamed_by_name() {
     assert_eq!(e.message(), "particle_set: the scene has no set \"flakes\"; it has particles");
     s.shutdown().await;
 }
+
+/// The presets CreateScene takes, each with its line (as `floe presets`), through
+/// the service and the Rust client: the engine's list, in its order.
+#[tokio::test]
+async fn the_presets_are_listed_with_what_they_are() {
+    let mut s = start().await;
+    let listed = s.client.list_presets(pb::ListPresetsRequest {}).await.unwrap().into_inner().presets;
+    let names: Vec<_> = listed.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, floe_engine::scene::presets::names());
+    assert!(listed.iter().all(|p| !p.about.trim().is_empty()), "{listed:?}");
+    let mut client = floe_client::Client::connect(&s.server.grpc_url()).await.unwrap();
+    let by_client = client.presets().await.unwrap();
+    assert_eq!(by_client.len(), listed.len());
+    assert_eq!(by_client[0], (listed[0].name.clone(), listed[0].about.clone()));
+    s.shutdown().await;
+}

@@ -5,13 +5,21 @@ from __future__ import annotations
 
 import json
 import pathlib
+import subprocess
 
 import grpc
 import numpy as np
 import pytest
 
 import floe_client
-from conftest import ROOT, SMALL, SMALL_PARTICLES, frame_at, wait_for
+from conftest import FLOE, ROOT, SMALL, SMALL_PARTICLES, frame_at, wait_for
+
+
+def test_the_presets_are_listed_as_floe_presets_prints_them(client: floe_client.Client) -> None:
+    printed = subprocess.run([FLOE, "presets"], capture_output=True, text=True, check=True).stdout.splitlines()
+    listed = client.presets()
+    assert [p.name for p in listed] == [line.split()[0] for line in printed]
+    assert listed[0] == floe_client.Preset(listed[0].name, printed[0].split(None, 1)[1])
 
 
 def test_create_from_a_preset_a_file_a_document_and_a_dict(client: floe_client.Client, tmp_path: pathlib.Path) -> None:

@@ -27,7 +27,7 @@ from .errors import (
     Unavailable,
 )
 from .frames import FORMAT_VERSION, Channel, DecodeError, Decoder, Frame, Header
-from .messages import Deleted, Event, Halted, ParameterChanged, SceneInfo, SceneStats
+from .messages import Deleted, Event, Halted, ParameterChanged, Preset, SceneInfo, SceneStats
 from .streams import EventStream, FrameStream
 
 __all__ = [
@@ -50,6 +50,7 @@ __all__ = [
     "NotFound",
     "ParameterChanged",
     "PermissionDenied",
+    "Preset",
     "ResourceExhausted",
     "SceneInfo",
     "SceneStats",

@@ -15,7 +15,7 @@ from ._proto import scenes_pb2 as pb
 from ._proto import scenes_pb2_grpc as pb_grpc
 from .errors import Unavailable, from_rpc
 from .frames import Decoder
-from .messages import SceneInfo, SceneStats
+from .messages import Preset, SceneInfo, SceneStats
 from .route import Routes, scene_of
 from .streams import EventStream, FrameStream
 
@@ -149,6 +149,11 @@ class Client:
         """Every scene on the server."""
         return [SceneInfo.from_message(s) for s in self._call("ListScenes", pb.ListScenesRequest()).scenes]
 
+    def presets(self) -> builtins.list[Preset]:
+        """The built-in presets :meth:`create_preset` takes, each with a line on what it is
+        (as ``floe presets`` prints them)."""
+        return [Preset(p.name, p.about) for p in self._call("ListPresets", pb.ListPresetsRequest()).presets]
+
     def delete(self, scene: SceneLike) -> SceneInfo:
         """Deletes a scene; its frame and event streams end after a Deleted event."""
         return SceneInfo.from_message(self._call("DeleteScene", pb.SceneRef(scene_id=_id(scene))))
@@ -254,7 +259,7 @@ class Client:
 
 
 #: Calls that change nothing: sent again while a scene's worker is being found.
-_READS = frozenset({"GetScene", "GetStats", "Snapshot", "ListScenes"})
+_READS = frozenset({"GetScene", "GetStats", "Snapshot", "ListScenes", "ListPresets"})
 
 
 def connect(address: str | None = None, *, token: str | None = None, timeout: float = 10.0) -> Client:

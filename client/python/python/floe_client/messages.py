@@ -73,6 +73,15 @@ class Tunable:
 
 
 @dataclass(frozen=True)
+class Preset:
+    """A built-in preset: its name for :meth:`Client.create_preset`, and what it is."""
+
+    name: str
+    #: One line on what it is and what it reproduces, with its reference.
+    about: str
+
+
+@dataclass(frozen=True)
 class Material:
     """A material of a scene, in the order of the ``material`` channel's indices."""
 

@@ -50,6 +50,11 @@ class SceneServiceStub:
                 request_serializer=floe_dot_v1_dot_scenes__pb2.ListScenesRequest.SerializeToString,
                 response_deserializer=floe_dot_v1_dot_scenes__pb2.ListScenesResponse.FromString,
                 _registered_method=True)
+        self.ListPresets = channel.unary_unary(
+                '/floe.v1.SceneService/ListPresets',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.ListPresetsRequest.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.ListPresetsResponse.FromString,
+                _registered_method=True)
         self.DeleteScene = channel.unary_unary(
                 '/floe.v1.SceneService/DeleteScene',
                 request_serializer=floe_dot_v1_dot_scenes__pb2.SceneRef.SerializeToString,
@@ -128,6 +133,14 @@ class SceneServiceServicer:
 
     def ListScenes(self, request, context):
         """Every scene on the server.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
+    def ListPresets(self, request, context):
+        """The built-in presets CreateScene takes by name, each with a line on what it is (as
+        `floe presets` prints them).
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -230,6 +243,11 @@ def add_SceneServiceServicer_to_server(servicer, server):
                     servicer.ListScenes,
                     request_deserializer=floe_dot_v1_dot_scenes__pb2.ListScenesRequest.FromString,
                     response_serializer=floe_dot_v1_dot_scenes__pb2.ListScenesResponse.SerializeToString,
+            ),
+            'ListPresets': grpc.unary_unary_rpc_method_handler(
+                    servicer.ListPresets,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.ListPresetsRequest.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.ListPresetsResponse.SerializeToString,
             ),
             'DeleteScene': grpc.unary_unary_rpc_method_handler(
                     servicer.DeleteScene,
@@ -369,6 +387,33 @@ class SceneService:
             '/floe.v1.SceneService/ListScenes',
             floe_dot_v1_dot_scenes__pb2.ListScenesRequest.SerializeToString,
             floe_dot_v1_dot_scenes__pb2.ListScenesResponse.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def ListPresets(request,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.unary_unary(
+            request,
+            target,
+            '/floe.v1.SceneService/ListPresets',
+            floe_dot_v1_dot_scenes__pb2.ListPresetsRequest.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.ListPresetsResponse.FromString,
             options,
             channel_credentials,
             insecure,
