@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import pathlib
 import subprocess
+import urllib.request
 
 import grpc
 import numpy as np
@@ -202,3 +203,16 @@ def test_events_report_halts_and_deletion(client: floe_client.Client) -> None:
 def test_connect_fails_clearly_without_a_server() -> None:
     with pytest.raises(floe_client.Unavailable, match="cannot connect to http://127.0.0.1:9"):
         floe_client.connect("http://127.0.0.1:9", timeout=0.5)
+
+
+def test_a_scene_knows_its_viewer_url_when_the_client_knows_the_viewer(
+    server: floe_client.local.Server, scene: floe_client.SceneInfo
+) -> None:
+    with server.connect() as c:
+        info = c.get(scene)
+        assert info.viewer_url == f"{server.http.rstrip('/')}/#scene={scene.scene_id}"
+        # The viewer serves the page the URL names.
+        with urllib.request.urlopen(info.viewer_url.split("#")[0], timeout=10) as page:
+            assert b"<html" in page.read(2048).lower()
+    # A client told only the gRPC address does not know it.
+    assert scene.viewer_url == ""

@@ -71,8 +71,11 @@ class Client:
     field in ``.field``).
     """
 
-    def __init__(self, channel: grpc.Channel, token: str | None = None) -> None:
+    def __init__(self, channel: grpc.Channel, token: str | None = None, viewer: str | None = None) -> None:
         """Wraps an open channel; :func:`connect` is the usual way in."""
+        #: The server's browser viewer (``http://host:port``), when known: scenes then carry
+        #: their ``viewer_url``.
+        self.viewer = (viewer or "").rstrip("/")
         self._channel = channel
         self._stub = pb_grpc.SceneServiceStub(channel)
         self._metadata = (("authorization", f"Bearer {token}"),) if token else ()
@@ -94,6 +97,9 @@ class Client:
             if reply.worker:
                 self._routes.remember(reply.scene_id, reply.worker)
         return reply
+
+    def _info(self, m: pb.SceneInfo) -> SceneInfo:
+        return SceneInfo.from_message(m, self.viewer)
 
     def close(self) -> None:
         """Closes the connection (its streams end)."""
@@ -137,17 +143,17 @@ class Client:
         return self.create_document(json.dumps(scene), "json", overrides, backend=backend)
 
     def _create(self, request: pb.CreateSceneRequest) -> SceneInfo:
-        return SceneInfo.from_message(self._call("CreateScene", request))
+        return self._info(self._call("CreateScene", request))
 
     # Inspecting and deleting.
 
     def get(self, scene: SceneLike) -> SceneInfo:
         """One scene (NotFound if no scene has that id)."""
-        return SceneInfo.from_message(self._call("GetScene", pb.SceneRef(scene_id=_id(scene))))
+        return self._info(self._call("GetScene", pb.SceneRef(scene_id=_id(scene))))
 
     def list(self) -> builtins.list[SceneInfo]:
         """Every scene on the server."""
-        return [SceneInfo.from_message(s) for s in self._call("ListScenes", pb.ListScenesRequest()).scenes]
+        return [self._info(s) for s in self._call("ListScenes", pb.ListScenesRequest()).scenes]
 
     def presets(self) -> builtins.list[Preset]:
         """The built-in presets :meth:`create_preset` takes, each with a line on what it is
@@ -156,7 +162,7 @@ class Client:
 
     def delete(self, scene: SceneLike) -> SceneInfo:
         """Deletes a scene; its frame and event streams end after a Deleted event."""
-        return SceneInfo.from_message(self._call("DeleteScene", pb.SceneRef(scene_id=_id(scene))))
+        return self._info(self._call("DeleteScene", pb.SceneRef(scene_id=_id(scene))))
 
     def stats(self, scene: SceneLike) -> SceneStats:
         """Throughput and streaming statistics."""
@@ -170,28 +176,28 @@ class Client:
         if (steps is None) == (until is None):
             raise ValueError("step: give steps or until (s), not both or neither")
         request = pb.StepRequest(scene_id=_id(scene), steps=steps or 0, until_time=until or 0.0)
-        return SceneInfo.from_message(self._call("Step", request))
+        return self._info(self._call("Step", request))
 
     def run(self, scene: SceneLike, real_time_factor: float = 0.0) -> SceneInfo:
         """Runs continuously at ``real_time_factor`` simulated seconds per wall second
         (0: as fast as the machine allows)."""
         request = pb.RunRequest(scene_id=_id(scene), real_time_factor=real_time_factor)
-        return SceneInfo.from_message(self._call("Run", request))
+        return self._info(self._call("Run", request))
 
     def pause(self, scene: SceneLike) -> SceneInfo:
         """Stops a running scene after its current step."""
-        return SceneInfo.from_message(self._call("Pause", pb.SceneRef(scene_id=_id(scene))))
+        return self._info(self._call("Pause", pb.SceneRef(scene_id=_id(scene))))
 
     def reset(self, scene: SceneLike) -> SceneInfo:
         """Puts a paused or halted scene back at t = 0 with its current settings."""
-        return SceneInfo.from_message(self._call("Reset", pb.SceneRef(scene_id=_id(scene))))
+        return self._info(self._call("Reset", pb.SceneRef(scene_id=_id(scene))))
 
     def set_parameters(self, scene: SceneLike, overrides: Overrides) -> SceneInfo:
         """Changes tunable settings from the next step (gravity, fluids[i].viscosity,
         fluids[i].xsph, solver.time_step, solver.damping, solver.damping_until, guard);
         other fields are InvalidArgument."""
         request = pb.SetParametersRequest(scene_id=_id(scene), overrides=_overrides(overrides))
-        return SceneInfo.from_message(self._call("SetParameters", request))
+        return self._info(self._call("SetParameters", request))
 
     # State.
 
@@ -202,7 +208,7 @@ class Client:
     def restore(self, scene: SceneLike, state: bytes) -> SceneInfo:
         """Replaces a paused scene's state with a :meth:`snapshot` of the same scene; it then
         steps on bit for bit as from where the snapshot was taken."""
-        return SceneInfo.from_message(self._call("Restore", pb.RestoreRequest(scene_id=_id(scene), state=state)))
+        return self._info(self._call("Restore", pb.RestoreRequest(scene_id=_id(scene), state=state)))
 
     # Streams.
 
@@ -262,7 +268,9 @@ class Client:
 _READS = frozenset({"GetScene", "GetStats", "Snapshot", "ListScenes", "ListPresets"})
 
 
-def connect(address: str | None = None, *, token: str | None = None, timeout: float = 10.0) -> Client:
+def connect(
+    address: str | None = None, *, token: str | None = None, timeout: float = 10.0, viewer: str | None = None
+) -> Client:
     """Connects to a Floe server.
 
     Args:
@@ -271,6 +279,8 @@ def connect(address: str | None = None, *, token: str | None = None, timeout: fl
         token: sent as ``authorization: Bearer <token>`` with every call, for a server that
             admits users by token (the lab server).
         timeout: seconds to wait for the connection; then :class:`Unavailable`.
+        viewer: the server's HTTP address (``http://host:8080``, where ``floe serve`` prints
+            "Floe viewer: ..."); scenes then carry their ``viewer_url``.
     """
     address = address or os.environ.get("FLOE_SERVER") or DEFAULT_ADDRESS
     target, tls = _target(address)
@@ -284,4 +294,4 @@ def connect(address: str | None = None, *, token: str | None = None, timeout: fl
     except grpc.FutureTimeoutError:
         channel.close()
         raise Unavailable(grpc.StatusCode.UNAVAILABLE, f"cannot connect to {address} within {timeout} s") from None
-    return Client(channel, token)
+    return Client(channel, token, viewer)

@@ -16,6 +16,8 @@ import time
 from collections.abc import Sequence
 from typing import IO
 
+from .client import Client, connect
+
 # The log line naming the gRPC listener, and the line printed once both listen.
 _GRPC_LINE = re.compile(r"gRPC \(.*\) on (\S+)")
 _READY_LINE = re.compile(r"Floe viewer: (http://\S+?)/?$")
@@ -77,6 +79,10 @@ class Server:
                 raise RuntimeError(f"floe serve exited with {self._process.returncode}:\n{self.log()}")
             time.sleep(0.05)
         raise RuntimeError(f"floe serve did not listen within {timeout} s:\n{self.log()}")
+
+    def connect(self, *, token: str | None = None) -> Client:
+        """A client of this server whose scenes know their ``viewer_url``."""
+        return connect(self.address, token=token, viewer=self.http)
 
     def log(self) -> str:
         """What the server logged so far."""

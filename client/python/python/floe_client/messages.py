@@ -151,6 +151,10 @@ class SceneInfo:
     materials: tuple[Material, ...] = ()
     #: The user who created it ("local" on a single-user server).
     owner: str = ""
+    #: The scene in the server's browser viewer (``<viewer>/#scene=ID``) when the client
+    #: knows the viewer's address (``connect(viewer=...)``, or ``local.Server.connect()``);
+    #: "" otherwise. A server with users asks the viewer for a token.
+    viewer_url: str = field(default="", compare=False)
 
     def __repr__(self) -> str:
         return (
@@ -159,7 +163,8 @@ class SceneInfo:
         )
 
     @classmethod
-    def from_message(cls, m: pb.SceneInfo) -> SceneInfo:
+    def from_message(cls, m: pb.SceneInfo, viewer: str = "") -> SceneInfo:
+        """The scene of a message; ``viewer``: the server's viewer address, for ``viewer_url``."""
         return cls(
             scene_id=m.scene_id,
             name=m.name,
@@ -191,6 +196,7 @@ class SceneInfo:
             sizing=sizing(m.sizing) if m.HasField("sizing") else None,
             materials=tuple(Material(x.name, x.kind, x.rest_density, x.look) for x in m.materials),
             owner=m.owner,
+            viewer_url=f"{viewer.rstrip('/')}/#scene={m.scene_id}" if viewer else "",
         )
 
 
