@@ -39,6 +39,18 @@ pub struct ServerProcess {
     pub log: PathBuf,
 }
 
+/// A server still running when its handle goes (a test that failed or ended without
+/// stopping it) is killed: it would otherwise outlive the test process, holding its
+/// database connections and a core's worth of polling.
+impl Drop for ServerProcess {
+    fn drop(&mut self) {
+        if let Ok(None) = self.child.try_wait() {
+            let _ = self.child.kill();
+            let _ = self.child.wait();
+        }
+    }
+}
+
 /// The `HOST:PORT` after the first " on " of the first logged message starting with
 /// `start` (`gRPC (...) on 127.0.0.1:50051`, `REST ... on http://127.0.0.1:8080/api/v1, ...`).
 fn logged_address(log: &str, start: &str) -> Option<String> {
