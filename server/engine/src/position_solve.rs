@@ -140,11 +140,16 @@ struct Predict;
 
 impl CpuPass for Predict {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        let (x, p) = (cx.attrs.handle::<Vec3>("x"), cx.attrs.handle::<Vec3>("x_predicted"));
-        let mut predicted = cx.attrs.take(p);
-        predicted.copy_from_slice(cx.attrs.get(x));
-        cx.attrs.put(p, predicted);
+        copy(cx, "x", "x_predicted");
     }
+}
+
+/// Copies the positions attribute `from` into `to`.
+fn copy(cx: &mut CpuCx<'_>, from: &str, to: &str) {
+    let (from, to) = (cx.attrs.handle::<Vec3>(from), cx.attrs.handle::<Vec3>(to));
+    let mut out = cx.attrs.take(to);
+    out.copy_from_slice(cx.attrs.get(from));
+    cx.attrs.put(to, out);
 }
 
 #[derive(Debug)]
@@ -184,9 +189,6 @@ struct LookBack;
 
 impl CpuPass for LookBack {
     fn run(&self, cx: &mut CpuCx<'_>) {
-        let (x, start) = (cx.attrs.handle::<Vec3>("x"), cx.attrs.handle::<Vec3>("x_start"));
-        let mut pos = cx.attrs.take(x);
-        pos.copy_from_slice(cx.attrs.get(start));
-        cx.attrs.put(x, pos);
+        copy(cx, "x_start", "x");
     }
 }
