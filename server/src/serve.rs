@@ -12,6 +12,7 @@ use crate::grpc_lab::Lab;
 use crate::service::{PresetSize, Registry, SceneSource};
 use crate::store::Store;
 use crate::store::cluster::WorkerInfo;
+use axum::serve::ListenerExt;
 use floe_proto::pb::lab_service_server::LabServiceServer;
 use floe_proto::pb::scene_service_server::SceneServiceServer;
 use std::future::{Future, IntoFuture};
@@ -20,7 +21,6 @@ use std::sync::Arc;
 use std::time::Duration;
 use tokio::net::TcpListener;
 use tokio::sync::watch;
-use tokio_stream::wrappers::TcpListenerStream;
 
 /// Largest gRPC request accepted (bytes): room for large scene documents, far
 /// below what could hurt the server. Bigger requests get OUT_OF_RANGE.
@@ -83,8 +83,19 @@ pub async fn run(
         .add_service(reflection_v1alpha)
         .add_service(scenes)
         .add_service(lab)
-        .serve_with_incoming_shutdown(TcpListenerStream::new(listeners.grpc), stopped(stop_rx.clone()));
-    let http = axum::serve(listeners.http, app).with_graceful_shutdown(stopped(stop_rx)).into_future();
+        .serve_with_incoming_shutdown(
+            // Answers go out as soon as they are written: with Nagle's algorithm a
+            // reply of more than one segment (a SceneInfo with its scene document)
+            // waited for the client's delayed acknowledgement, 40 ms on Linux.
+            tonic::transport::server::TcpIncoming::from(listeners.grpc).with_nodelay(Some(true)),
+            stopped(stop_rx.clone()),
+        );
+    let http = listeners.http.tap_io(|tcp| {
+        if let Err(e) = tcp.set_nodelay(true) {
+            tracing::debug!("TCP_NODELAY on an HTTP connection: {e}");
+        }
+    });
+    let http = axum::serve(http, app).with_graceful_shutdown(stopped(stop_rx)).into_future();
     let ((), grpc, http) = tokio::join!(stopper, grpc, http);
     grpc?;
     http?;
