@@ -42,6 +42,9 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
     if args.cluster {
         return cluster(&args);
     }
+    if args.step_latency {
+        return step_latency(&args);
+    }
     if args.list {
         println!("| case | module benchmark |\n|---|---|");
         for c in floe_engine::module::bench_cases() {
@@ -381,5 +384,18 @@ fn cluster(args: &BenchArgs) -> anyhow::Result<()> {
     };
     let report = tokio::runtime::Runtime::new()?.block_on(crate::lab_bench::cluster::run(&cfg))?;
     crate::lab_bench::cluster::print(&cfg, &report);
+    Ok(())
+}
+
+/// `floe bench --step-latency`: Step calls' latency (see [`crate::lab_bench::step_latency`]).
+fn step_latency(args: &BenchArgs) -> anyhow::Result<()> {
+    let cfg = crate::lab_bench::step_latency::StepLatency {
+        floe: std::env::current_exe()?,
+        backend: format!("{:?}", args.backend).to_lowercase(),
+        particles: args.particles.clone(),
+        calls: args.steps,
+    };
+    let rows = tokio::runtime::Runtime::new()?.block_on(crate::lab_bench::step_latency::run(&cfg))?;
+    crate::lab_bench::step_latency::print(&cfg, &rows);
     Ok(())
 }

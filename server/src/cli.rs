@@ -216,6 +216,11 @@ pub struct BenchArgs {
     /// (each scripted user's reads alternate between the proxy and its scene's worker).
     #[arg(long, conflicts_with_all = ["codec", "solve", "lab"])]
     pub cluster: bool,
+    /// Step calls instead: this binary serving (SQLite store) a paused dam break of each
+    /// `--particles` count, stepped one step per call `--steps` times; each call's
+    /// latency, and a checkpoint's.
+    #[arg(long, conflicts_with_all = ["codec", "solve", "lab", "cluster"])]
+    pub step_latency: bool,
     /// `--lab`, `--cluster`: seconds under load.
     #[arg(long, default_value = "60", requires = "load")]
     pub seconds: u64,

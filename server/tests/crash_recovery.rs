@@ -42,8 +42,7 @@ async fn crash_and_recover(database: Option<&str>) {
     let server = start(&data, dir.path().join("first.log"));
     let mut c = Client::connect_with_token(&server.grpc, Some(&token)).await.unwrap();
 
-    // A: stepped by hand to 20 (checkpointed before the answer), 50 and 80 (within a
-    // second of the last checkpoint: written by the maintenance loop within a second).
+    // A: stepped by hand to 20, 50 and 80, each call checkpointed before its answer.
     let a = c.create_preset("dam_break", &["particle_spacing=0.05"]).await.unwrap().scene_id;
     c.step(a, 20).await.unwrap();
     let newest = |dir: &Path| Checkpoints::read(&checkpoints(dir, a)[0]).unwrap();

@@ -10,9 +10,11 @@
 //!
 //! - [`process`]: the server process, its users, its memory.
 //! - [`cluster`]: `floe bench --cluster`, a cluster of workers under load through its proxy.
+//! - [`step_latency`]: `floe bench --step-latency`, how long a Step call takes to answer.
 
 pub mod cluster;
 pub mod process;
+pub mod step_latency;
 
 use floe_client::{Client, FrameRequest};
 use process::{Data, ServerProcess};

@@ -112,10 +112,10 @@ impl Registry {
         Ok(status)
     }
 
-    /// Steps a paused scene by hand ([`super::SceneHandle::step`]). A step that
-    /// advanced it is checkpointed before the answer, so a crash right after loses
-    /// nothing the caller was told; within [`super::STEP_CHECKPOINT_GAP`] of the last
-    /// checkpoint the maintenance loop writes it instead, at its first tick after that.
+    /// Steps a paused scene by hand ([`super::SceneHandle::step`]). A call that
+    /// advanced it is checkpointed before its answer, every one: a crash after the
+    /// answer loses nothing the caller was told (`floe bench --step-latency` measures
+    /// what that costs a stepping script; docs/benchmarks.md).
     pub async fn step(&self, caller: &Caller, id: u64, steps: u64, until: Option<f64>) -> Result<Status, ServiceError> {
         let (handle, since) = self.entry(caller, id, Need::Steer, |e| (e.handle.clone(), e.checkpoint.clone()))?;
         self.tenured()?;
@@ -127,12 +127,8 @@ impl Registry {
         let result = handle.step(steps, until).await;
         let advanced = handle.shared.status().steps != before;
         let Some(was) = was else { return Ok(result?) };
-        let due = {
-            let mut s = since.lock().await;
-            s.stepped = was || advanced;
-            advanced && s.written.is_none_or(|w| w.elapsed() >= super::STEP_CHECKPOINT_GAP)
-        };
-        if due {
+        since.lock().await.stepped = was || advanced;
+        if advanced {
             self.write_checkpoint(id).await?;
         }
         Ok(result?)
@@ -201,7 +197,7 @@ impl Registry {
             tracing::error!(scene = id, "checkpoint failed: {e}");
             ServiceError::Unavailable(format!("the checkpoint could not be written: {e}"))
         })?;
-        *since = super::Since { written: Some(Instant::now()), ..Default::default() };
+        *since = super::Since::default();
         tracing::debug!(scene = id, step = meta.step, sequence = meta.sequence, "checkpoint written");
         Ok(meta)
     }

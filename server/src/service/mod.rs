@@ -43,7 +43,7 @@ pub use shared::{Event, Published, Shared, State, Status};
 use std::collections::{BTreeMap, HashMap};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, RwLock};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// A scene another worker of the cluster holds, as the database records it.
 #[derive(Debug, Clone, PartialEq)]
@@ -113,17 +113,10 @@ struct Entry {
 struct Since {
     /// Wall time it has run (a periodic checkpoint is due at `checkpoint_every`).
     running: Duration,
-    /// When the last checkpoint was written, if any was since the scene was loaded.
-    written: Option<Instant>,
-    /// Stepped by hand (or may have been: a step call whose caller left) since.
+    /// Stepped by hand (or may have been: a step call whose caller left) since: the
+    /// maintenance loop writes one at its next tick.
     stepped: bool,
 }
-
-/// The least wall time between two checkpoints of a scene stepped by hand: a step
-/// call that advanced a paused scene is checkpointed before its answer unless the
-/// last checkpoint is younger than this, in which case the maintenance loop (once
-/// a second) writes one at its first tick after this time.
-pub const STEP_CHECKPOINT_GAP: Duration = Duration::from_secs(1);
 
 /// Every scene on a server, shared with the metrics.
 #[derive(Debug, Default)]

@@ -216,8 +216,8 @@ impl Registry {
     }
 
     /// Adds `elapsed` to the running time of every running scene; those that reach
-    /// the checkpoint interval, and those stepped by hand whose last checkpoint is
-    /// [`super::STEP_CHECKPOINT_GAP`] old.
+    /// the checkpoint interval, and those stepped by calls whose callers left before
+    /// their answers (an answered step call checkpoints itself).
     fn due_for_checkpoint(&self, elapsed: Duration) -> Vec<u64> {
         let scenes = self.scenes.0.read().expect("lock");
         scenes
@@ -228,8 +228,7 @@ impl Registry {
                 if e.handle.shared.status().state == State::Running {
                     since.running += elapsed;
                 }
-                let old = since.written.is_none_or(|w| w.elapsed() >= super::STEP_CHECKPOINT_GAP);
-                (since.running >= self.options.checkpoint_every || (since.stepped && old)).then_some(id)
+                (since.running >= self.options.checkpoint_every || since.stepped).then_some(id)
             })
             .collect()
     }
