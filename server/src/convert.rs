@@ -197,6 +197,10 @@ pub fn scene_event(scene_id: u64, e: Event) -> pb::SceneEvent {
         Event::ParameterChanged(overrides) => {
             pb::scene_event::Kind::ParameterChanged(pb::ParameterChanged { overrides })
         }
+        Event::StepAbandoned { left_at, stopped_at } => pb::scene_event::Kind::StepAbandoned(pb::StepAbandoned {
+            left_at_step: left_at,
+            stopped_at_step: stopped_at,
+        }),
         Event::Deleted => pb::scene_event::Kind::Deleted(pb::Deleted {}),
     };
     pb::SceneEvent { scene_id, kind: Some(kind) }

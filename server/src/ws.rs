@@ -112,6 +112,9 @@ fn event_message(e: &Event) -> Message {
         Event::ParameterChanged(o) => {
             json(serde_json::json!({ "type": "event", "event": "parameter_changed", "overrides": o }))
         }
+        Event::StepAbandoned { left_at, stopped_at } => json(serde_json::json!({
+            "type": "event", "event": "step_abandoned", "left_at_step": left_at, "stopped_at_step": stopped_at,
+        })),
         Event::Deleted => json(serde_json::json!({ "type": "event", "event": "deleted" })),
     }
 }

@@ -1,7 +1,9 @@
 //! Stepping and steering a scene as a careless script would, over gRPC and REST:
 //! a step to a time too far ahead is refused naming the limit, a step whose caller
-//! leaves (a cancelled call, a closed connection or socket) stops within a few steps, a refused change of several settings names only the
-//! keys refused and applies nothing, and a scene file without fluids is told so.
+//! leaves (a cancelled call, a closed connection or socket) stops within one step of
+//! the server learning it and says so on the scene's events, a refused change of
+//! several settings names only the keys refused and applies nothing, and a scene
+//! file without fluids is told so.
 
 use floe_proto::pb::scene_service_client::SceneServiceClient;
 use floe_proto::pb::{self, create_scene_request::Source};
@@ -54,33 +56,42 @@ async fn a_step_to_a_time_too_far_ahead_is_refused_naming_the_limit() {
     server.shutdown().await;
 }
 
-/// Steps a scene may take after its caller left: the one under way, and the ones
-/// taken before the server's next look at the connection, which on a busy machine
-/// can come a step or two late. Not stopping would be hundreds of thousands more.
-const LATE_STEPS: u64 = 3;
-
-/// Waits until the scene's step count stays put for 300 ms; returns it. Fails if it
-/// still steps 10 s later.
-async fn settled(client: &mut SceneServiceClient<Channel>, id: u64) -> u64 {
-    let (mut last, t0) = (steps(client, id).await, std::time::Instant::now());
-    loop {
-        assert!(t0.elapsed() < Duration::from_secs(10), "still stepping 10 s after the caller left");
-        tokio::time::sleep(Duration::from_millis(300)).await;
-        let now = steps(client, id).await;
-        if now == last {
-            return now;
+/// Waits (10 s at most) for the scene's next `StepAbandoned` event and checks that
+/// the scene stopped within one step of the server learning the caller had left,
+/// and stays there. Returns the step it stopped at.
+async fn stopped_within_one_step(
+    client: &mut SceneServiceClient<Channel>,
+    events: &mut tonic::Streaming<pb::SceneEvent>,
+    id: u64,
+    how: &str,
+) -> u64 {
+    let abandoned = loop {
+        let event = tokio::time::timeout(Duration::from_secs(10), events.message())
+            .await
+            .unwrap_or_else(|_| panic!("{how}: no StepAbandoned event 10 s after the caller left"))
+            .unwrap()
+            .expect("the event stream ended");
+        if let Some(pb::scene_event::Kind::StepAbandoned(a)) = event.kind {
+            break a;
         }
-        last = now;
-    }
+    };
+    let (left, stopped) = (abandoned.left_at_step, abandoned.stopped_at_step);
+    assert!(left > 0, "{how}: it stepped before the caller left");
+    assert!(stopped <= left + 1, "{how}: the caller left at step {left}, the scene stopped at step {stopped}");
+    // Nothing steps on afterwards.
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    assert_eq!(steps(client, id).await, stopped, "{how}: stepped on after it stopped");
+    stopped
 }
 
 #[tokio::test(flavor = "multi_thread")]
-async fn stepping_stops_within_a_few_steps_when_the_caller_leaves() {
+async fn stepping_stops_within_one_step_when_the_caller_leaves() {
     let server = common::TestServer::start().await;
     let mut client = SceneServiceClient::new(server.channel().await);
-    // About 8,000 particles: a step takes some milliseconds, so "within a few steps"
-    // is a count that can be checked.
+    // About 8,000 particles: a step takes some milliseconds, so "within one step" is
+    // a count that can be checked.
     let id = client.create_scene(preset("dam_break", &["particle_spacing=0.025"])).await.unwrap().into_inner().scene_id;
+    let mut events = client.stream_events(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
 
     // gRPC: a deadline of half a second on a step to t = 1000 s.
     let mut request = tonic::Request::new(pb::StepRequest { scene_id: id, steps: 0, until_time: 1000.0 });
@@ -88,10 +99,7 @@ async fn stepping_stops_within_a_few_steps_when_the_caller_leaves() {
     let e = client.step(request).await.unwrap_err();
     // The client's deadline or the server's (which tonic reports as cancelled), whichever fires first.
     assert!(matches!(e.code(), Code::DeadlineExceeded | Code::Cancelled), "{e:?}");
-    let at_deadline = steps(&mut client, id).await;
-    let stopped = settled(&mut client, id).await;
-    assert!(at_deadline > 0, "it stepped before the deadline");
-    assert!(stopped <= at_deadline + LATE_STEPS, "stepped on after the caller left: {at_deadline} -> {stopped}");
+    let stopped = stopped_within_one_step(&mut client, &mut events, id, "gRPC deadline").await;
     let info = client.get_scene(pb::SceneRef { scene_id: id }).await.unwrap().into_inner();
     assert_eq!(info.state, pb::SceneState::Paused as i32);
 
@@ -106,13 +114,8 @@ async fn stepping_stops_within_a_few_steps_when_the_caller_leaves() {
     tcp.write_all(head.as_bytes()).await.unwrap();
     tokio::time::sleep(Duration::from_millis(500)).await;
     drop(tcp);
-    let at_close = steps(&mut client, id).await;
-    let stopped_again = settled(&mut client, id).await;
-    assert!(at_close > stopped, "it stepped while the connection was open");
-    assert!(
-        stopped_again <= at_close + LATE_STEPS,
-        "stepped on after the connection closed: {at_close} -> {stopped_again}"
-    );
+    let stopped_again = stopped_within_one_step(&mut client, &mut events, id, "REST connection closed").await;
+    assert!(stopped_again > stopped, "it stepped while the connection was open");
 
     // WebSocket: a step sent as a control message, frames flowing meanwhile; the
     // socket dropped half a second in.
@@ -126,16 +129,13 @@ async fn stepping_stops_within_a_few_steps_when_the_caller_leaves() {
         }
     }
     drop(ws);
-    let at_drop = steps(&mut client, id).await;
-    let stopped_ws = settled(&mut client, id).await;
-    assert!(at_drop > stopped_again, "it stepped while the socket was open");
+    let stopped_ws = stopped_within_one_step(&mut client, &mut events, id, "WebSocket dropped").await;
+    assert!(stopped_ws > stopped_again, "it stepped while the socket was open");
     assert!(frames >= 2, "frames kept flowing during the step: {frames}");
-    assert!(stopped_ws <= at_drop + LATE_STEPS, "stepped on after the socket closed: {at_drop} -> {stopped_ws}");
-    let stopped_again = stopped_ws;
 
     // The scene is consistent at a step boundary: it steps on as asked.
     let info = client.step(pb::StepRequest { scene_id: id, steps: 2, until_time: 0.0 }).await.unwrap().into_inner();
-    assert_eq!(info.steps, stopped_again + 2);
+    assert_eq!(info.steps, stopped_ws + 2);
     server.shutdown().await;
 }
 

@@ -262,6 +262,9 @@ function onText(msg) {
     send({ op: 'status' });
     $('param').value = '';
     $('param').placeholder = `applied: ${msg.overrides.join(' ')}`;
+  } else if (msg.type === 'event' && msg.event === 'step_abandoned') {
+    // A step call's caller left; the scene stopped there: show where.
+    send({ op: 'status' });
   } else if (msg.type === 'event' && msg.event === 'deleted') {
     // Deleted by someone, or the server is shutting down: find what is there now.
     reconnect();

@@ -8,7 +8,7 @@ use crate::cluster::Tenure;
 use floe_engine::Simulation;
 use floe_engine::quantize::PositionGrid;
 use floe_engine::simulation::BackendFactory;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
 use tokio::sync::oneshot;
@@ -41,8 +41,9 @@ pub(super) enum Command {
     Step {
         steps: u64,
         until: Option<f64>,
-        /// Set when the caller gave up: the worker stops at the next step.
-        abandoned: Arc<AtomicBool>,
+        /// The steps taken when the caller gave up ([`STILL_HERE`] until then): the
+        /// worker stops at the next step boundary.
+        abandoned: Arc<AtomicU64>,
         reply: oneshot::Sender<Result<Status, CommandError>>,
     },
     Run {
@@ -82,13 +83,20 @@ pub struct Saved {
     pub time: f64,
 }
 
-/// Sets a flag when dropped: a request's future dropped by a transport whose
-/// client went away (a cancelled call, a closed connection) stops its work.
-struct Abandon(Arc<AtomicBool>);
+/// What [`Command::Step`]'s `abandoned` holds while its caller is still there.
+pub(super) const STILL_HERE: u64 = u64::MAX;
+
+/// Records the scene's step count when dropped: a step call's future dropped by a
+/// transport whose client went away (a cancelled call, a deadline, a closed
+/// connection) stops the stepping at the next step boundary.
+struct Abandon {
+    left: Arc<AtomicU64>,
+    shared: Arc<Shared>,
+}
 
 impl Drop for Abandon {
     fn drop(&mut self) {
-        self.0.store(true, Ordering::Relaxed);
+        self.left.store(self.shared.status().steps, Ordering::SeqCst);
     }
 }
 
@@ -137,8 +145,8 @@ impl SceneHandle {
     /// went away: a cancelled call, a closed connection) stops the stepping at the
     /// next step boundary, leaving the scene paused there.
     pub async fn step(&self, steps: u64, until: Option<f64>) -> Result<Status, CommandError> {
-        let abandon = Abandon(Arc::new(AtomicBool::new(false)));
-        let abandoned = abandon.0.clone();
+        let abandon = Abandon { left: Arc::new(AtomicU64::new(STILL_HERE)), shared: self.shared.clone() };
+        let abandoned = abandon.left.clone();
         self.request(|reply| Command::Step { steps, until, abandoned, reply }).await?
     }
 

@@ -73,6 +73,14 @@ pub enum Event {
     Halted(floe_engine::Halted),
     /// Tunable settings changed (the overrides applied).
     ParameterChanged(Vec<String>),
+    /// A step call's caller left: the server learned it at step `left_at` (steps
+    /// taken), finished the step under way and stopped at `stopped_at`.
+    StepAbandoned {
+        /// Steps taken when the server learned the caller had left.
+        left_at: u64,
+        /// Steps taken when the stepping stopped.
+        stopped_at: u64,
+    },
     /// It was deleted.
     Deleted,
 }

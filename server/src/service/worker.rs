@@ -2,13 +2,13 @@
 //! order, steps (by hand or continuously, paced to a real-time factor) and
 //! publishes particle state for frame subscribers.
 
-use super::handle::{Command, CommandError, MAX_STEPS_PER_REQUEST, Saved};
+use super::handle::{Command, CommandError, MAX_STEPS_PER_REQUEST, STILL_HERE, Saved};
 use super::shared::{Event, Published, Shared, State, Status};
 use crate::cluster::Tenure;
 use floe_engine::simulation::BackendFactory;
 use floe_engine::{Halted, Simulation};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
@@ -207,16 +207,29 @@ impl Worker {
     }
 
     /// Steps `steps` times, or until `until` but at most [`MAX_STEPS_PER_REQUEST`]
-    /// steps; stops early when the scene is deleted or the caller is gone.
-    fn step_by_hand(&mut self, steps: u64, until: Option<f64>, abandoned: &AtomicBool) {
+    /// steps; stops early when the scene is deleted or the caller is gone. A step is
+    /// not interrupted half-way (its passes update the state in place: a state between
+    /// two of them is none a frame, a snapshot or the next step could start from), so
+    /// a caller who leaves gets the step under way finished and no other started; the
+    /// scene's watchers are told ([`Event::StepAbandoned`]).
+    fn step_by_hand(&mut self, steps: u64, until: Option<f64>, abandoned: &AtomicU64) {
         let mut taken = 0;
         loop {
             let done = match until {
                 Some(t) => self.sim.time() >= t || taken >= MAX_STEPS_PER_REQUEST,
                 None => taken >= steps,
             };
-            let stop =
-                self.shared.cancel.load(Ordering::Relaxed) || abandoned.load(Ordering::Relaxed) || !self.tenure.holds();
+            let left_at = abandoned.load(Ordering::SeqCst);
+            if left_at != STILL_HERE {
+                let stopped_at = self.sim.steps();
+                tracing::info!(
+                    scene = self.shared.id,
+                    "a step call's caller left at step {left_at}; stopped at step {stopped_at}"
+                );
+                let _ = self.shared.events.send(Event::StepAbandoned { left_at, stopped_at });
+                break;
+            }
+            let stop = self.shared.cancel.load(Ordering::Relaxed) || !self.tenure.holds();
             if done || stop || !self.step_once() {
                 break;
             }

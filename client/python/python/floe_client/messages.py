@@ -272,6 +272,20 @@ class SceneStats:
         )
 
 
+@dataclass(frozen=True, repr=False)
+class ShareLink:
+    """A read-only share link of a scene (``Client.share``)."""
+
+    scene_id: int
+    #: Names the link, to list and revoke it.
+    share_id: str
+    #: The credential a viewer presents; shown only once.
+    token: str
+
+    def __repr__(self) -> str:
+        return f"ShareLink(scene_id={self.scene_id}, share_id={self.share_id!r}, token=...)"
+
+
 @dataclass(frozen=True)
 class Halted:
     """The stability guard stopped the scene."""
@@ -295,13 +309,24 @@ class ParameterChanged:
 
 
 @dataclass(frozen=True)
+class StepAbandoned:
+    """A step call's caller left (a cancelled call, a closed connection): the server
+    learned it at ``left_at_step``, finished the step under way and left the scene
+    paused at ``stopped_at_step`` (at most one step more)."""
+
+    scene_id: int
+    left_at_step: int
+    stopped_at_step: int
+
+
+@dataclass(frozen=True)
 class Deleted:
     """The scene was deleted (or the server is shutting down); its streams end."""
 
     scene_id: int
 
 
-Event = Halted | ParameterChanged | Deleted
+Event = Halted | ParameterChanged | StepAbandoned | Deleted
 
 
 def event(m: pb.SceneEvent) -> Event | None:
@@ -313,6 +338,9 @@ def event(m: pb.SceneEvent) -> Event | None:
         return Halted(m.scene_id, h.step, h.sim_time, h.reason, particle)
     if kind == "parameter_changed":
         return ParameterChanged(m.scene_id, tuple(m.parameter_changed.overrides))
+    if kind == "step_abandoned":
+        s = m.step_abandoned
+        return StepAbandoned(m.scene_id, s.left_at_step, s.stopped_at_step)
     if kind == "deleted":
         return Deleted(m.scene_id)
     return None

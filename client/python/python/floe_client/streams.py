@@ -114,7 +114,7 @@ class FrameStream(_Stream[Frame]):
 
 
 class EventStream(_Stream[messages.Event]):
-    """Events of one scene (``Client.events``): Halted, ParameterChanged, Deleted."""
+    """Events of one scene (``Client.events``): Halted, ParameterChanged, StepAbandoned, Deleted."""
 
     def __next__(self) -> messages.Event:
         while True:

@@ -325,16 +325,26 @@ class Frame(_message.Message):
     def __init__(self, data: _Optional[bytes] = ..., sequence: _Optional[int] = ..., skipped: _Optional[int] = ...) -> None: ...
 
 class SceneEvent(_message.Message):
-    __slots__ = ("scene_id", "halted", "deleted", "parameter_changed")
+    __slots__ = ("scene_id", "halted", "deleted", "parameter_changed", "step_abandoned")
     SCENE_ID_FIELD_NUMBER: _ClassVar[int]
     HALTED_FIELD_NUMBER: _ClassVar[int]
     DELETED_FIELD_NUMBER: _ClassVar[int]
     PARAMETER_CHANGED_FIELD_NUMBER: _ClassVar[int]
+    STEP_ABANDONED_FIELD_NUMBER: _ClassVar[int]
     scene_id: int
     halted: Halted
     deleted: Deleted
     parameter_changed: ParameterChanged
-    def __init__(self, scene_id: _Optional[int] = ..., halted: _Optional[_Union[Halted, _Mapping]] = ..., deleted: _Optional[_Union[Deleted, _Mapping]] = ..., parameter_changed: _Optional[_Union[ParameterChanged, _Mapping]] = ...) -> None: ...
+    step_abandoned: StepAbandoned
+    def __init__(self, scene_id: _Optional[int] = ..., halted: _Optional[_Union[Halted, _Mapping]] = ..., deleted: _Optional[_Union[Deleted, _Mapping]] = ..., parameter_changed: _Optional[_Union[ParameterChanged, _Mapping]] = ..., step_abandoned: _Optional[_Union[StepAbandoned, _Mapping]] = ...) -> None: ...
+
+class StepAbandoned(_message.Message):
+    __slots__ = ("left_at_step", "stopped_at_step")
+    LEFT_AT_STEP_FIELD_NUMBER: _ClassVar[int]
+    STOPPED_AT_STEP_FIELD_NUMBER: _ClassVar[int]
+    left_at_step: int
+    stopped_at_step: int
+    def __init__(self, left_at_step: _Optional[int] = ..., stopped_at_step: _Optional[int] = ...) -> None: ...
 
 class ParameterChanged(_message.Message):
     __slots__ = ("overrides",)
