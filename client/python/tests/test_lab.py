@@ -56,3 +56,51 @@ def test_a_call_without_a_token_is_unauthenticated(lab: tuple[floe_client.local.
         with pytest.raises(floe_client.Unauthenticated) as e:
             wrong.list()
         assert isinstance(e.value, PermissionError)
+
+
+def test_show_displays_the_live_viewer_on_a_read_only_share_link(
+    lab: tuple[floe_client.local.Server, str, str],
+) -> None:
+    import urllib.error
+    import urllib.parse
+    import urllib.request
+
+    from IPython.display import IFrame
+
+    server, ada, _ = lab
+    with server.connect(token=ada) as a:
+        scene = a.create_preset("dam_break", SMALL)
+        shown = a.show(scene, height=400)
+        assert isinstance(shown, IFrame) and shown.height == 400
+        page, fragment = shown.src.split("/#")
+        assert page == server.http
+        params = urllib.parse.parse_qs(fragment)
+        assert params["scene"] == [str(scene.scene_id)]
+        token = params["token"][0]
+        assert token != ada
+        assert "<iframe" in shown._repr_html_() and token in shown._repr_html_()
+
+        def call(method: str, path: str, body: bytes | None = None) -> int:
+            request = urllib.request.Request(
+                f"{page}{path}",
+                data=body,
+                method=method,
+                headers={"authorization": f"Bearer {token}", "content-type": "application/json"},
+            )
+            try:
+                with urllib.request.urlopen(request) as r:
+                    return r.status
+            except urllib.error.HTTPError as e:
+                return e.code
+
+        # The link watches the scene (the viewer's page, the scene, its frames' socket)...
+        with urllib.request.urlopen(page + "/") as r:
+            assert r.status == 200 and b"<canvas" in r.read()
+        assert call("GET", f"/api/v1/scenes/{scene.scene_id}") == 200
+        # ...and cannot steer it, over REST or gRPC.
+        assert call("POST", f"/api/v1/scenes/{scene.scene_id}/step", b'{"steps": 1}') == 403
+        with floe_client.connect(server.address, token=token) as watcher:
+            assert watcher.get(scene).steps == 0
+            with pytest.raises(floe_client.PermissionDenied):
+                watcher.step(scene, steps=1)
+        a.delete(scene)

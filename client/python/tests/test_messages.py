@@ -1,10 +1,12 @@
 """What a scene's info and stats carry from the server's messages, and reprs short enough
-to print in a notebook (the whole document stays in ``SceneInfo.scene``)."""
+to print in a notebook (the whole document stays in ``SceneInfo.scene``), and every kind
+of event."""
 
 from __future__ import annotations
 
+import floe_client
 from floe_client._proto import scenes_pb2 as pb
-from floe_client.messages import Material, Measure, SceneInfo, SceneStats, Sizing
+from floe_client.messages import Material, Measure, SceneInfo, SceneStats, Sizing, event
 
 
 def test_scene_info_carries_sizing_materials_and_owner_and_prints_short() -> None:
@@ -44,3 +46,19 @@ def test_scene_stats_carry_the_measures_by_name_and_print_short() -> None:
     assert (stats.name, stats.frame_bytes) == ("bunny", 1234)
     assert repr(stats).startswith("SceneStats(scene_id=3, state=")
     assert "measures" not in repr(stats)
+
+
+def test_every_event_kind_converts() -> None:
+    events = [
+        pb.SceneEvent(scene_id=3, halted=pb.Halted(step=7, sim_time=0.5, reason="too fast", particle=11)),
+        pb.SceneEvent(scene_id=3, parameter_changed=pb.ParameterChanged(overrides=["gravity=[0,-1,0]"])),
+        pb.SceneEvent(scene_id=3, step_abandoned=pb.StepAbandoned(left_at_step=40, stopped_at_step=41)),
+        pb.SceneEvent(scene_id=3, deleted=pb.Deleted()),
+    ]
+    assert [event(m) for m in events] == [
+        floe_client.Halted(3, 7, 0.5, "too fast", 11),
+        floe_client.ParameterChanged(3, ("gravity=[0,-1,0]",)),
+        floe_client.StepAbandoned(3, 40, 41),
+        floe_client.Deleted(3),
+    ]
+    assert event(pb.SceneEvent(scene_id=3)) is None

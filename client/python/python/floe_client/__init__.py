@@ -14,7 +14,7 @@ Calls mirror the Rust client (floe-client); frames are decoded by floe-proto, th
 server encodes with, into numpy arrays. Units are SI.
 """
 
-from . import export, local, recording
+from . import export, local, notebook, recording
 from .client import DEFAULT_ADDRESS, Client, connect
 from .errors import (
     FailedPrecondition,
@@ -27,7 +27,17 @@ from .errors import (
     Unavailable,
 )
 from .frames import FORMAT_VERSION, Channel, DecodeError, Decoder, Frame, Header
-from .messages import Deleted, Event, Halted, ParameterChanged, Preset, SceneInfo, SceneStats
+from .messages import (
+    Deleted,
+    Event,
+    Halted,
+    ParameterChanged,
+    Preset,
+    SceneInfo,
+    SceneStats,
+    ShareLink,
+    StepAbandoned,
+)
 from .streams import EventStream, FrameStream
 
 __all__ = [
@@ -54,10 +64,13 @@ __all__ = [
     "ResourceExhausted",
     "SceneInfo",
     "SceneStats",
+    "ShareLink",
+    "StepAbandoned",
     "Unauthenticated",
     "Unavailable",
     "connect",
     "export",
     "local",
+    "notebook",
     "recording",
 ]

@@ -15,7 +15,7 @@ from ._proto import scenes_pb2 as pb
 from ._proto import scenes_pb2_grpc as pb_grpc
 from .errors import Unavailable, from_rpc
 from .frames import Decoder
-from .messages import Preset, SceneInfo, SceneStats
+from .messages import Preset, SceneInfo, SceneStats, ShareLink
 from .route import Routes, scene_of
 from .streams import EventStream, FrameStream
 
@@ -78,13 +78,14 @@ class Client:
         self.viewer = (viewer or "").rstrip("/")
         self._channel = channel
         self._stub = pb_grpc.SceneServiceStub(channel)
+        self._lab = pb_grpc.LabServiceStub(channel)
         self._metadata = (("authorization", f"Bearer {token}"),) if token else ()
         # In a cluster, each scene's worker (floe_client.route).
         self._routes = Routes()
 
-    def _call(self, method: str, request: Any) -> Any:
+    def _call(self, method: str, request: Any, service: Any = None) -> Any:
         target = scene_of(request)
-        stub = getattr(self._stub, method)
+        stub = getattr(service or self._stub, method)
         try:
             reply = self._routes.call(
                 target, method in _READS, lambda extra: stub(request, metadata=self._metadata + extra)
@@ -248,8 +249,21 @@ class Client:
             self._stream("StreamFrames", request), Decoder(scene=info), reopen=lambda: self._reopen(request)
         )
 
+    def share(self, scene: SceneLike) -> ShareLink:
+        """A new read-only share link of a scene: its token lets a viewer watch the scene
+        (frames, events, stats) but not steer it; the token is shown only here."""
+        m = self._call("ShareScene", pb.SceneRef(scene_id=_id(scene)), self._lab)
+        return ShareLink(m.scene_id, m.share_id, m.token)
+
+    def show(self, scene: SceneLike, *, width: str | int = "100%", height: int = 480) -> Any:
+        """The live viewer of a scene in a notebook cell, on a new read-only share link (see
+        :func:`floe_client.notebook.show`); needs the viewer's address (``connect(viewer=...)``)."""
+        from .notebook import show
+
+        return show(self, scene, width=width, height=height)
+
     def events(self, scene: SceneLike) -> EventStream:
-        """Events of a scene: Halted (with the reason), ParameterChanged, Deleted."""
+        """Events of a scene: Halted (with the reason), ParameterChanged, StepAbandoned, Deleted."""
         return EventStream(self._stream("StreamEvents", pb.SceneRef(scene_id=_id(scene))))
 
     def _stream(self, method: str, request: Any) -> Any:

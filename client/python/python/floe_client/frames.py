@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -104,6 +104,13 @@ class Frame:
         from .export import to_dataframe
 
         return to_dataframe(self)
+
+    def plot(self, channel: str | None = None, **options: Any) -> Any:
+        """A still picture of the frame with matplotlib, coloured by ``channel`` (see
+        :func:`floe_client.notebook.plot_frame` for the options). Returns the axes."""
+        from .notebook import plot_frame
+
+        return plot_frame(self, channel, **options)
 
     def write_vtk(self, path: str | os.PathLike[str]) -> None:
         """Writes the frame as a legacy VTK file (see :func:`floe_client.export.write_vtk`)."""
