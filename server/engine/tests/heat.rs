@@ -1,4 +1,4 @@
-//! The heat module on the CPU: conduction against the erf solution (VALIDATION.md
+//! The heat module on the CPU: conduction against the erf solution (docs/validation/cases.md
 //! §5), heat conserved in an insulated box, a wall's heat flux, walls held at a
 //! temperature (on their surface), the
 //! temperature guard, and the section's validation.

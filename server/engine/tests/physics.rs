@@ -1,5 +1,5 @@
 //! Physics checks of the CPU backend against analytic and experimental
-//! references (VALIDATION.md cases 1 and 2) and conservation laws.
+//! references (docs/validation/cases.md cases 1 and 2) and conservation laws.
 
 use floe_engine::Simulation;
 use floe_engine::modules::fluid::presets::DAM_BREAK_A;

@@ -1,5 +1,5 @@
 //! Whole runs on the GPU backend: the same references as the CPU backend
-//! (VALIDATION.md cases 1 and 2), agreement between the backends, halts,
+//! (docs/validation/cases.md cases 1 and 2), agreement between the backends, halts,
 //! snapshots and live parameters.
 
 mod common;

@@ -1,4 +1,4 @@
-//! `floe validate`: every supported case of VALIDATION.md at several resolutions
+//! `floe validate`: every supported case of docs/validation/cases.md at several resolutions
 //! and solver variants, plus the stability battery; writes `report.md`,
 //! `report.json` and SVG plots, and fails when a stated bound is not met.
 

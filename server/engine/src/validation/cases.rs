@@ -23,7 +23,7 @@ pub struct Case {
     pub name: &'static str,
     /// The module that declares it.
     pub module: &'static str,
-    /// What it is compared with: paper, equation, or VALIDATION.md section.
+    /// What it is compared with: paper, equation, or docs/validation/cases.md section.
     pub reference: &'static str,
     /// The preset it runs (with `particle_spacing` and the variant's overrides).
     pub preset: &'static str,

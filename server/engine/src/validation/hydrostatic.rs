@@ -1,4 +1,4 @@
-//! Hydrostatic column (VALIDATION.md case 1; Adami, Hu & Adams 2012, J. Comput.
+//! Hydrostatic column (docs/validation/cases.md case 1; Adami, Hu & Adams 2012, J. Comput.
 //! Phys. 231): at rest, `p(y) = rho0 g (H - y)` and `rho = rho0`.
 
 use crate::backend::Particles;

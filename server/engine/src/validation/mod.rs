@@ -1,5 +1,5 @@
-//! Validation cases with their references (VALIDATION.md in the shared reference
-//! set): the measurements a test, a benchmark or `floe validate` needs.
+//! Validation cases with their references (docs/validation/cases.md): the
+//! measurements a test, a benchmark or `floe validate` needs.
 //!
 //! - [`dam_break`], [`hydrostatic`], [`poiseuille`], [`taylor_green`]: reference solutions and error measures.
 //! - [`cases`]: each case run at one resolution and option, timed, with its errors.

@@ -1,4 +1,4 @@
-//! Poiseuille flow between plates (VALIDATION.md case 3; Morris, Fox & Zhu 1997,
+//! Poiseuille flow between plates (docs/validation/cases.md case 3; Morris, Fox & Zhu 1997,
 //! J. Comput. Phys. 136, eq. 21): fluid at rest between plates at `y = 0` and
 //! `y = L`, periodic along the plates, driven from t = 0 by a body force `F` along x.
 

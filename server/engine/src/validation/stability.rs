@@ -1,4 +1,4 @@
-//! The stability battery (VALIDATION.md, last section): stiff and extreme
+//! The stability battery (docs/validation/cases.md, last section): stiff and extreme
 //! scenes that must either run to the end staying finite and physical, or stop
 //! with a clear error. A scene that goes non-finite without halting is a failure.
 //!

@@ -1,4 +1,4 @@
-//! The Taylor-Green vortex (VALIDATION.md case 4; Taylor & Green 1937): in a box
+//! The Taylor-Green vortex (docs/validation/cases.md case 4; Taylor & Green 1937): in a box
 //! periodic along x and y with side L, the field `u = -U e^{bt} cos(kx) sin(ky)`,
 //! `v = U e^{bt} sin(kx) cos(ky)`, `k = 2 pi / L`, solves the Navier-Stokes
 //! equations with `b = -2 k^2 nu = -8 pi^2 nu / L^2`.
@@ -8,7 +8,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// The Taylor-Green vortex field in the x-y plane (Taylor & Green 1937; the 2D
-/// solution of VALIDATION.md §4): `u = -U cos(2 pi x / L) sin(2 pi y / L)`,
+/// solution of docs/validation/cases.md §4): `u = -U cos(2 pi x / L) sin(2 pi y / L)`,
 /// `v = U sin(2 pi x / L) cos(2 pi y / L)`, x and y from the block's lower corner.
 /// It is divergence free and, in a periodic box of side L, decays as `exp(-8 pi^2
 /// nu t / L^2)`.

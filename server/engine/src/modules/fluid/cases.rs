@@ -1,5 +1,5 @@
-//! The fluid module's validation cases (VALIDATION.md §1 and §2) and its stability
-//! battery (VALIDATION.md, last section): the dam break made stiff or extreme.
+//! The fluid module's validation cases (docs/validation/cases.md §1 and §2) and its stability
+//! battery (docs/validation/cases.md, last section): the dam break made stiff or extreme.
 
 use crate::Simulation;
 use crate::modules::fluid::presets::DAM_BREAK_A;
@@ -58,7 +58,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "hydrostatic",
         module: "fluid",
-        reference: "VALIDATION.md §1: a column at rest, p = rho0 g (H - y) (Adami, Hu & Adams 2012)",
+        reference: "docs/validation/cases.md §1: a column at rest, p = rho0 g (H - y) (Adami, Hu & Adams 2012)",
         preset: "hydrostatic",
         primary_error: "pressure_l2",
         spacings: (&[0.05, 0.0375, 0.025], &[0.05, 0.0375, 0.025, 0.01875]),
@@ -70,7 +70,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "dam_break",
         module: "fluid",
-        reference: "VALIDATION.md §2: surge front against Koshizuka & Oka (1996) and Martin & Moyce (1952)",
+        reference: "docs/validation/cases.md §2: surge front against Koshizuka & Oka (1996) and Martin & Moyce (1952)",
         preset: "dam_break",
         primary_error: "front_rms",
         spacings: (&[A / 8.0, A / 12.0, A / 16.0], &[A / 12.0, A / 16.0, A / 22.0, A / 28.0]),
@@ -82,7 +82,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "poiseuille",
         module: "fluid",
-        reference: "VALIDATION.md §3: start-up flow between plates, periodic along them (Morris, Fox & Zhu 1997)",
+        reference: "docs/validation/cases.md §3: start-up flow between plates, periodic along them (Morris, Fox & Zhu 1997)",
         preset: "poiseuille",
         primary_error: "velocity_l2_steady",
         spacings: (&[0.1, 1.0 / 15.0, 0.05], &[0.1, 1.0 / 15.0, 0.05, 1.0 / 30.0]),
@@ -97,7 +97,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "taylor_green",
         module: "fluid",
-        reference: "VALIDATION.md §4: Taylor-Green vortices at Re = 100, decaying as exp(-8 pi^2 t / Re)",
+        reference: "docs/validation/cases.md §4: Taylor-Green vortices at Re = 100, decaying as exp(-8 pi^2 t / Re)",
         preset: "taylor_green",
         primary_error: "decay_rate_error",
         spacings: (&[1.0 / 40.0], &[1.0 / 40.0, 1.0 / 60.0, 1.0 / 80.0]),

@@ -37,7 +37,7 @@ pub const PRESETS: &[Preset] = &[
 pub const POISEUILLE: (f32, f32, f32) = (1.0, 1.0, 0.1);
 
 /// Wavelength L (m), peak speed U (m/s) and kinematic viscosity (m^2/s) of the
-/// Taylor-Green preset: Re = U L / nu = 100 (VALIDATION.md §4).
+/// Taylor-Green preset: Re = U L / nu = 100 (docs/validation/cases.md §4).
 pub const TAYLOR_GREEN: (f32, f32, f32) = (1.0, 1.0, 0.01);
 
 /// The Taylor-Green vortex on WCSPH (the preset until 2026-12-06): the transport

@@ -1,4 +1,4 @@
-//! The heat module's validation cases (conduction against VALIDATION.md §5, the
+//! The heat module's validation cases (conduction against docs/validation/cases.md §5, the
 //! two-layer rest state at density ratios of 10 and 100, de Vahl Davis' heated
 //! cavity at Ra = 1e4 and, in `--full`, 1e5, and the channel whose viscosity follows
 //! its temperature) and its stability battery (temperature jumps, a very conductive
@@ -24,7 +24,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "conduction",
         module: "heat",
-        reference: "VALIDATION.md §5: two half-spaces in contact, T = (T1 + T2)/2 + (T2 - T1)/2 erf(x / (2 sqrt(alpha t)))",
+        reference: "docs/validation/cases.md §5: two half-spaces in contact, T = (T1 + T2)/2 + (T2 - T1)/2 erf(x / (2 sqrt(alpha t)))",
         preset: "conduction",
         primary_error: "temperature_l2",
         spacings: (&[0.002, 0.0016, 0.001], &[0.002, 0.0016, 0.001, 0.0008]),
@@ -39,7 +39,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "stefan",
         module: "heat",
-        reference: "VALIDATION.md §7: one-phase Stefan problem, melt front s(t) = 2 lambda sqrt(alpha t), lambda exp(lambda^2) erf(lambda) = St / sqrt(pi), St = 0.5; energy balance: heat in through the wall = sensible + latent heat stored",
+        reference: "docs/validation/cases.md §7: one-phase Stefan problem, melt front s(t) = 2 lambda sqrt(alpha t), lambda exp(lambda^2) erf(lambda) = St / sqrt(pi), St = 0.5; energy balance: heat in through the wall = sensible + latent heat stored",
         preset: "stefan",
         primary_error: "front_error",
         spacings: (&[0.002, 0.0013333, 0.001], &[0.002, 0.0013333, 0.001, 0.0005]),

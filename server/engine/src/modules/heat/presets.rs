@@ -10,7 +10,7 @@ use serde_json::{Value, json};
 pub const PRESETS: &[Preset] = &[
     Preset {
         name: "conduction",
-        about: "Two half-spaces at 280 K and 320 K in contact, at rest, periodic (VALIDATION.md §5): 4,096 particles.",
+        about: "Two half-spaces at 280 K and 320 K in contact, at rest, periodic (docs/validation/cases.md §5): 4,096 particles.",
         scene: conduction,
     },
     Preset {
@@ -35,7 +35,7 @@ pub const PRESETS: &[Preset] = &[
     },
     Preset {
         name: "stefan",
-        about: "The one-phase Stefan problem (VALIDATION.md §7): a slab of solid at its melting point melts from a wall 10 K warmer (Stefan number 0.5), 320 particles.",
+        about: "The one-phase Stefan problem (docs/validation/cases.md §7): a slab of solid at its melting point melts from a wall 10 K warmer (Stefan number 0.5), 320 particles.",
         scene: super::stefan::stefan,
     },
     Preset {

@@ -1,4 +1,4 @@
-//! The one-phase Stefan problem (VALIDATION.md section 7): a solid at its
+//! The one-phase Stefan problem (docs/validation/cases.md section 7): a solid at its
 //! melting point fills `x > 0`, the wall at `x = 0` is held at `T_w > T_m` from
 //! `t = 0`, and the melt front advances as `s(t) = 2 lambda sqrt(alpha t)`, where
 //! `lambda exp(lambda^2) erf(lambda) = St / sqrt(pi)` and `St = c (T_w - T_m) / L`

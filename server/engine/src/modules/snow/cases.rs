@@ -1,4 +1,4 @@
-//! The snow module's validation cases (VALIDATION.md §6) and stability battery.
+//! The snow module's validation cases (docs/validation/cases.md §6) and stability battery.
 
 use super::SnowConsts;
 use super::channel::{self, l2_error};
@@ -26,7 +26,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "power_law_channel",
         module: "snow",
-        reference: "VALIDATION.md §6: steady power-law channel flow, closed form",
+        reference: "docs/validation/cases.md §6: steady power-law channel flow, closed form",
         preset: "power_law_channel",
         primary_error: "velocity_l2",
         spacings: SPACINGS,
@@ -38,7 +38,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "bingham_channel",
         module: "snow",
-        reference: "VALIDATION.md §6: steady Bingham channel flow with its plug, closed form",
+        reference: "docs/validation/cases.md §6: steady Bingham channel flow with its plug, closed form",
         preset: "bingham_channel",
         primary_error: "velocity_l2",
         spacings: SPACINGS,
@@ -50,7 +50,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "cross_channel",
         module: "snow",
-        reference: "VALIDATION.md §6: steady Cross-model channel flow against the 1D grid solution of the same ODE",
+        reference: "docs/validation/cases.md §6: steady Cross-model channel flow against the 1D grid solution of the same ODE",
         preset: "cross_channel",
         primary_error: "velocity_l2",
         spacings: SPACINGS,

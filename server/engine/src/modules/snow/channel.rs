@@ -1,4 +1,4 @@
-//! Reference velocity profiles of the channel flows (VALIDATION.md §6): plates at
+//! Reference velocity profiles of the channel flows (docs/validation/cases.md §6): plates at
 //! `y = 0` and `y = L`, a body force F along them, steady state. With `s` the
 //! distance from the centre line and `H = L / 2`, the shear stress is `rho F s`
 //! whatever the fluid (force balance), so:

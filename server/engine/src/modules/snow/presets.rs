@@ -1,5 +1,5 @@
 //! The snow module's built-in scenes: the avalanche, and three channel flows of
-//! VALIDATION.md §6 (non-Newtonian Poiseuille flow between plates 1 m apart,
+//! docs/validation/cases.md §6 (non-Newtonian Poiseuille flow between plates 1 m apart,
 //! periodic along them, the fluid preset `poiseuille` with another rheology). The
 //! channels' viscosities are about 1000 Pa s at the walls (kinematic 1 m^2/s, as
 //! the Newtonian preset's), so each settles within a second and is bound by the
@@ -21,12 +21,12 @@ pub const PRESETS: &[Preset] = &[
     },
     Preset {
         name: "power_law_channel",
-        about: "Shear-thickening power-law fluid (n = 1.5) driven between plates (VALIDATION.md §6).",
+        about: "Shear-thickening power-law fluid (n = 1.5) driven between plates (docs/validation/cases.md §6).",
         scene: power_law_channel,
     },
     Preset {
         name: "bingham_channel",
-        about: "Bingham plastic between plates: an unsheared plug 0.3 m wide in the middle (VALIDATION.md §6).",
+        about: "Bingham plastic between plates: an unsheared plug 0.3 m wide in the middle (docs/validation/cases.md §6).",
         scene: bingham_channel,
     },
     Preset {

@@ -1,4 +1,4 @@
-//! The snowfall's validation cases (VALIDATION.md §9), on the preset `snow_roof`:
+//! The snowfall's validation cases (docs/validation/cases.md §9), on the preset `snow_roof`:
 //! flat ground under a roof 2 to 2.1 m up, x from 6 to 8 m, across the whole area.
 
 use super::presets::ROOF;
@@ -14,7 +14,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "snowfall_open",
         module: "snowfall",
-        reference: "VALIDATION.md §9: emitted = airborne + landed + left exactly; deposition on open flat ground = the emitted flux within 1 %, and the depth there grows at depth_per_hour; no deposit under a roof without wind",
+        reference: "docs/validation/cases.md §9: emitted = airborne + landed + left exactly; deposition on open flat ground = the emitted flux within 1 %, and the depth there grows at depth_per_hour; no deposit under a roof without wind",
         preset: "snow_roof",
         primary_error: "open_flux_error",
         spacings: (&[0.5, 0.25], &[0.5, 0.25, 0.125]),
@@ -33,7 +33,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "snowfall_shelter",
         module: "snowfall",
-        reference: "VALIDATION.md §9: with wind W and terminal speed v_t the bare patch behind a roof h up shifts downwind by h W / v_t (h = 2.05 m, the roof's mid-height) within one grid cell; emitted = airborne + landed + left exactly",
+        reference: "docs/validation/cases.md §9: with wind W and terminal speed v_t the bare patch behind a roof h up shifts downwind by h W / v_t (h = 2.05 m, the roof's mid-height) within one grid cell; emitted = airborne + landed + left exactly",
         preset: "snow_roof",
         primary_error: "shelter_shift_error_cells",
         spacings: (&[0.5, 0.25], &[0.5, 0.25, 0.125]),
@@ -48,7 +48,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "snowfall_coverage",
         module: "snowfall",
-        reference: "VALIDATION.md §9, the snow thesis's eqs. 2.1-2.2: coverage 0 inside the objects standing on the ground (occluded from every direction), 1 on open flat ground, cos(inclination) on the open mountain side (the terrain's own normal)",
+        reference: "docs/validation/cases.md §9, the snow thesis's eqs. 2.1-2.2: coverage 0 inside the objects standing on the ground (occluded from every direction), 1 on open flat ground, cos(inclination) on the open mountain side (the terrain's own normal)",
         preset: "snowfall",
         primary_error: "slope_coverage_error",
         spacings: (&[0.5, 0.25], &[0.5, 0.25, 0.125]),
@@ -60,7 +60,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "snowfall_release",
         module: "snowfall",
-        reference: "VALIDATION.md §9, the release (issue: snowfall then avalanche): the snow that reached the ground is the cover left plus the released particles' mass, to 1e-6 relative; the steep cells keep less than a particle's snow; emitted = airborne + landed + left + released exactly",
+        reference: "docs/validation/cases.md §9, the release (issue: snowfall then avalanche): the snow that reached the ground is the cover left plus the released particles' mass, to 1e-6 relative; the steep cells keep less than a particle's snow; emitted = airborne + landed + left + released exactly",
         preset: "snowfall_then_avalanche",
         primary_error: "release_mass_error",
         spacings: (&[0.1], &[0.1, 0.05]),

@@ -1,5 +1,5 @@
 //! The snowfall module's built-in scenes: a valley under heavy snow, and the roof
-//! of VALIDATION.md §9 that its cases run.
+//! of docs/validation/cases.md §9 that its cases run.
 
 use super::spec::{Area, Intensity, Object, Release, Snowfall};
 use crate::module::Preset;
@@ -21,7 +21,7 @@ pub const PRESETS: &[Preset] = &[
     },
     Preset {
         name: "snow_roof",
-        about: "Snow falling on a roof 2 m above flat ground (VALIDATION.md §9: flux, shelter, accounting).",
+        about: "Snow falling on a roof 2 m above flat ground (docs/validation/cases.md §9: flux, shelter, accounting).",
         scene: snow_roof,
     },
 ];

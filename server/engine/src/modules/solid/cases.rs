@@ -1,4 +1,4 @@
-//! The solid module's validation cases (VALIDATION.md section 8), on the preset
+//! The solid module's validation cases (docs/validation/cases.md section 8), on the preset
 //! `elastic_drop`'s jelly cube (0.2 m), a bar of it, or the preset `bunny`: the
 //! rest shape, free rigid motion, drop volume, solver and stiffness tables,
 //! weighted against uniform averaging, and orientation.
@@ -14,7 +14,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "solid_rest",
         module: "solid",
-        reference: "VALIDATION.md section 8, rest: an unforced solid keeps its rest shape; after 1000 steps the largest distance of a particle from the best rigid transform of its rest shape, relative to the body's size (the reference asks 1e-6)",
+        reference: "docs/validation/cases.md section 8, rest: an unforced solid keeps its rest shape; after 1000 steps the largest distance of a particle from the best rigid transform of its rest shape, relative to the body's size (the reference asks 1e-6)",
         preset: "elastic_drop",
         primary_error: "shape_error",
         spacings: (&[0.04, 0.02], &[0.04, 0.02, 0.01]),
@@ -27,7 +27,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "solid_rigid",
         module: "solid",
-        reference: "VALIDATION.md section 8, free rigid motion: alpha = 1, no gravity, the jelly spinning at 2 rad/s about its vertical axis for 10 s (clear of the walls); the drift of its linear momentum relative to the sum of its particles' momenta |m v|, of its angular momentum about its centre relative to its start, and its shape error at the end relative to its size (the reference asks 1e-6, 1e-3 and the rest's)",
+        reference: "docs/validation/cases.md section 8, free rigid motion: alpha = 1, no gravity, the jelly spinning at 2 rad/s about its vertical axis for 10 s (clear of the walls); the drift of its linear momentum relative to the sum of its particles' momenta |m v|, of its angular momentum about its centre relative to its start, and its shape error at the end relative to its size (the reference asks 1e-6, 1e-3 and the rest's)",
         preset: "elastic_drop",
         primary_error: "angular_momentum",
         spacings: (&[0.04], &[0.04, 0.02]),
@@ -56,7 +56,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "solid_drop",
         module: "solid",
-        reference: "VALIDATION.md section 8, drop: the jelly cube dropped 0.3 m on the floor with alpha = 1 settles with its volume within 1 % of its rest volume; the volume ratio is det F of the whole body's best affine map F = A_pq A_qq^-1 from its rest shape (Mueller et al. 2005, eq. 6), at 2 s",
+        reference: "docs/validation/cases.md section 8, drop: the jelly cube dropped 0.3 m on the floor with alpha = 1 settles with its volume within 1 % of its rest volume; the volume ratio is det F of the whole body's best affine map F = A_pq A_qq^-1 from its rest shape (Mueller et al. 2005, eq. 6), at 2 s",
         preset: "elastic_drop",
         primary_error: "volume_error",
         spacings: (&[0.04, 0.02], &[0.04, 0.02, 0.01]),
@@ -72,7 +72,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "solid_solvers",
         module: "solid",
-        reference: "VALIDATION.md section 8, solver table (the first thesis compares its solvers on the Stanford bunny at 6525, 2106 and 889 particles): the preset bunny (894, 2100 and 6537 particles at 1.96, 1.46 and 1 cm) stretched by 10 % along x, alpha = 1, each solver iterated on it until the largest way to a particle's goals is at most 1e-4 of the particle spacing (at most 5000 iterations); the iterations and the wall time they took, per solver and resolution",
+        reference: "docs/validation/cases.md section 8, solver table (the first thesis compares its solvers on the Stanford bunny at 6525, 2106 and 889 particles): the preset bunny (894, 2100 and 6537 particles at 1.96, 1.46 and 1 cm) stretched by 10 % along x, alpha = 1, each solver iterated on it until the largest way to a particle's goals is at most 1e-4 of the particle spacing (at most 5000 iterations); the iterations and the wall time they took, per solver and resolution",
         preset: "bunny",
         primary_error: "residual",
         spacings: (&[0.0196, 0.0146], &[0.0196, 0.0146, 0.01]),
@@ -95,7 +95,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "solid_weighting",
         module: "solid",
-        reference: "VALIDATION.md section 8, weighted against uniform averaging (the first thesis's comparison over 140 steps): the preset bunny landing on the floor at 1.4 m/s (as dropped from 10 cm), alpha = 0.5, three iterations a step, for 140 steps with uniform (jacobi) and distance-weighted (weighted_jacobi, eqs. 2.33-2.35) averaging of the goals; the mean over the steps of the largest way left after the step's solve and the largest shape error over the steps (both in particle spacings)",
+        reference: "docs/validation/cases.md section 8, weighted against uniform averaging (the first thesis's comparison over 140 steps): the preset bunny landing on the floor at 1.4 m/s (as dropped from 10 cm), alpha = 0.5, three iterations a step, for 140 steps with uniform (jacobi) and distance-weighted (weighted_jacobi, eqs. 2.33-2.35) averaging of the goals; the mean over the steps of the largest way left after the step's solve and the largest shape error over the steps (both in particle spacings)",
         preset: "bunny",
         primary_error: "mean_residual",
         spacings: (&[0.0196, 0.0146], &[0.0196, 0.0146, 0.01]),
@@ -124,7 +124,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "solid_orientation",
         module: "solid",
-        reference: "VALIDATION.md section 8, orientation: oriented particles (Mueller and Chentanez 2011) of the jelly spinning freely at 2 rad/s for 1 s, alpha = 1: the largest departure of a quaternion's length from 1, the largest angle between a particle's orientation and the body's rotation (its best rigid fit), and the largest angle between the QLERP and the ExpMap blends of the same clusters' rotations at the end (the reference asks 1e-6 and 1e-3 rad)",
+        reference: "docs/validation/cases.md section 8, orientation: oriented particles (Mueller and Chentanez 2011) of the jelly spinning freely at 2 rad/s for 1 s, alpha = 1: the largest departure of a quaternion's length from 1, the largest angle between a particle's orientation and the body's rotation (its best rigid fit), and the largest angle between the QLERP and the ExpMap blends of the same clusters' rotations at the end (the reference asks 1e-6 and 1e-3 rad)",
         preset: "elastic_drop",
         primary_error: "blend_difference",
         spacings: (&[0.04, 0.02], &[0.04, 0.02, 0.01]),
@@ -157,7 +157,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "solid_stiffness",
         module: "solid",
-        reference: "VALIDATION.md section 8, stiffness table: a bar 0.4 x 0.08 x 0.08 m stretched by 10 % along its length and released without gravity, for 2 s; the period (s) of its length's oscillation and the ratio of two successive peaks of its stretch (0 where it does not swing back: overdamped), for alpha 0.1, 0.5 and 1, a step capped at 2e-4 s, and each solver; the stretch left at the end relative to the initial one (checked: the bar comes back)",
+        reference: "docs/validation/cases.md section 8, stiffness table: a bar 0.4 x 0.08 x 0.08 m stretched by 10 % along its length and released without gravity, for 2 s; the period (s) of its length's oscillation and the ratio of two successive peaks of its stretch (0 where it does not swing back: overdamped), for alpha 0.1, 0.5 and 1, a step capped at 2e-4 s, and each solver; the stretch left at the end relative to the initial one (checked: the bar comes back)",
         preset: "elastic_drop",
         primary_error: "stretch_left",
         spacings: (&[0.02], &[0.02, 0.01]),
@@ -400,7 +400,7 @@ fn angle_between(a: Quat, b: Quat) -> f64 {
     2.0 * f64::from(Vec3::new(r.x, r.y, r.z).length()).atan2(f64::from(r.w))
 }
 
-/// 1 s of free spin with oriented particles, then the checks of VALIDATION.md's
+/// 1 s of free spin with oriented particles, then the checks of docs/validation/cases.md's
 /// orientation case.
 fn orientation_case(sim: &mut Simulation, _spacing: f64) -> Measured {
     let x0 = by_id(sim);

@@ -3,7 +3,7 @@
 
 use crate::validation::stability::{Expect, StabilityCase};
 
-/// The stability battery (VALIDATION.md's stiff and extreme cases for solids):
+/// The stability battery (docs/validation/cases.md's stiff and extreme cases for solids):
 /// each must finish, or halt naming why.
 pub const STABILITY: &[StabilityCase] = &[
     StabilityCase {
