@@ -8,6 +8,7 @@
 use crate::pass::{GpuPass, always};
 use crate::passes::particle_kernel;
 use crate::program::Access::{Read as R, ReadWrite as W, Uniform as U};
+use bytemuck::{Pod, Zeroable};
 use floe_engine::attrs::PARTICLES;
 use floe_engine::model::Model;
 use floe_engine::modules::solid::{
@@ -412,7 +413,29 @@ pub static ORIENT_UPDATE: GpuPass = GpuPass {
     when: always,
 };
 
-/// The uniform's bytes (`Solid` in solid.wgsl), when the scene has elastic bodies.
+/// The `solid` uniform (`Solid` in solid.wgsl; each field's meaning there).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct SolidParams {
+    /// Stiffness alpha; the ellipsoid moment (a^2, b^2, c^2) / 5 (m^2).
+    settings: [f32; 4],
+    /// Clusters, memberships, rotation method, iterations of the iterative one.
+    sizes: [u32; 4],
+    /// Solver, colours, blend, the weight of a cluster of another colour.
+    solver: [u32; 4],
+    /// The room's lower corner (m).
+    low: [f32; 4],
+    /// The room's upper corner (m).
+    high: [f32; 4],
+    /// The cluster radius (m, as f32 bits), the elastic materials' bits, MIN_MEMBERS, melting.
+    melt: [u32; 4],
+    /// The damping toward the rigid motions; 1 under conserving shares, else 0.
+    rigid: [f32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<SolidParams>() == 112);
+
+/// The uniform's bytes, when the scene has elastic bodies.
 pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     let c = model.has_module("solid").then(|| model.consts::<SolidConsts>())?;
     let method = match c.rotation {
@@ -428,35 +451,20 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         Blend::Qlerp => 0,
         Blend::ExpMap => 1,
     };
-    let words = [
-        c.stiffness.to_bits(),
-        c.ellipsoid.x.to_bits(),
-        c.ellipsoid.y.to_bits(),
-        c.ellipsoid.z.to_bits(),
-        model.layout.count(CLUSTERS.segments) as u32,
-        model.layout.count(CLUSTERS.name) as u32,
-        method,
-        POLAR_ITERATIONS,
-        solver,
-        c.sweeps,
-        blend,
-        c.idle_weight() as u32,
-        c.room.0.x.to_bits(),
-        c.room.0.y.to_bits(),
-        c.room.0.z.to_bits(),
-        0,
-        c.room.1.x.to_bits(),
-        c.room.1.y.to_bits(),
-        c.room.1.z.to_bits(),
-        0,
-        c.radius.to_bits(),
-        c.elastic,
-        MIN_MEMBERS,
-        u32::from(c.melting),
-        c.damping.to_bits(),
-        f32::from(u8::from(c.conserving())).to_bits(),
-        0,
-        0,
-    ];
-    Some(words.iter().flat_map(|w| w.to_le_bytes()).collect())
+    let (low, high) = c.room;
+    let u = SolidParams {
+        settings: [c.stiffness, c.ellipsoid.x, c.ellipsoid.y, c.ellipsoid.z],
+        sizes: [
+            model.layout.count(CLUSTERS.segments) as u32,
+            model.layout.count(CLUSTERS.name) as u32,
+            method,
+            POLAR_ITERATIONS,
+        ],
+        solver: [solver, c.sweeps, blend, c.idle_weight() as u32],
+        low: [low.x, low.y, low.z, 0.0],
+        high: [high.x, high.y, high.z, 0.0],
+        melt: [c.radius.to_bits(), c.elastic, MIN_MEMBERS, u32::from(c.melting)],
+        rigid: [c.damping, f32::from(u8::from(c.conserving())), 0.0, 0.0],
+    };
+    Some(bytemuck::bytes_of(&u).to_vec())
 }
