@@ -180,18 +180,22 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     // Recorded when ice came to melt.
     ("stefan", &[], 0x932e82fea25ad891),
     ("ice_cube_in_glass", &["particle_spacing=0.01", WCSPH, MEAN_SHARES, NO_DAMPING], 0x3a090f0234c896c0),
-    ("ice_melting", &["particle_spacing=0.0196", WCSPH, MEAN_SHARES, NO_DAMPING], 0x146f9b1cb932e666),
+    ("ice_melting", &["particle_spacing=0.0196", WCSPH, MEAN_SHARES, NO_DAMPING, ALL_CENTRES], 0x146f9b1cb932e666),
     // Recorded when the solid presets moved to DFSPH, their shape matching before
     // the density solve (which moved ice_cube_in_glass, on DFSPH before), with
     // conserving shares and the damping.
     ("ice_cube_in_glass", &["particle_spacing=0.01"], 0x40121240969031a1),
-    ("ice_melting", &["particle_spacing=0.0196"], 0x29b212a7d81d7db2),
+    ("ice_melting", &["particle_spacing=0.0196", ALL_CENTRES], 0x29b212a7d81d7db2),
+    // Recorded when the ice bunny's cluster centres came to be sampled.
+    ("ice_melting", &["particle_spacing=0.0196"], 0xd20361faad44e7cf),
 ];
 
 /// The solid's Jacobi as it was before conserving shares, and no damping toward
 /// the clusters' rigid motions.
 const MEAN_SHARES: &str = "solid.shares=\"mean\"";
 const NO_DAMPING: &str = "solid.damping=0";
+/// The solid's clusters as they were before centres were sampled: one per particle.
+const ALL_CENTRES: &str = "solid.centre_spacing=null";
 
 /// State attributes added (or made state) after the checksums were recorded,
 /// which no preset changes in its first steps: left out of the checksums, and

@@ -82,6 +82,7 @@ fn solid_passes_and_steps_match_the_cpu() {
         &["particle_spacing=0.04"][..],
         &["particle_spacing=0.04", "solid.rotation=\"iterative\"", "solid.solver=\"weighted_jacobi\""],
         &["particle_spacing=0.04", "solid.shares=\"mean\"", "solid.damping=0.5"],
+        &["particle_spacing=0.04", "solid.centre_spacing=1.5"],
         &["particle_spacing=0.04", "solid.solver=\"gauss_seidel\""],
         &["particle_spacing=0.04", "solid.solver=\"hybrid\"", "solid.colours=3"],
         &["particle_spacing=0.04", "solid.oriented={}", "solid.bodies[0].angular_velocity=[0,3,1]"],

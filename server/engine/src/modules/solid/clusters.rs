@@ -1,7 +1,8 @@
-//! The clusters of shape matching (the first thesis's eq. 2.10): one per particle
-//! of an elastic fluid, its neighbours of the same material within the cluster
-//! radius at rest, itself included; the rest offsets `x0 - x0_cm` of each
-//! membership. Found on a grid of cells one radius wide.
+//! The clusters of shape matching (the first thesis's eq. 2.10): one per centre
+//! (every particle of an elastic fluid, or the centres [`centres`] samples), its
+//! neighbours of the same material within the cluster radius at rest, itself
+//! included; the rest offsets `x0 - x0_cm` of each membership. Found on a grid of
+//! cells one radius wide.
 
 use crate::math::Vec3;
 use std::collections::HashMap;
@@ -16,19 +17,20 @@ pub struct Clusters {
     pub rest: Vec<Vec3>,
 }
 
-/// The clusters of the particles `ids` (at `x`, of material `material`) within
-/// `radius` (m) of each other and of one material; each cluster's rest offsets sum
-/// to zero to the rounding of the offsets themselves.
-pub fn build(ids: &[u32], x: &[Vec3], material: &[u32], radius: f32) -> Clusters {
+/// The clusters centred on the particles `centres`, each of the particles `ids`
+/// (at `x`, of material `material`) within `radius` (m) of its centre and of its
+/// material; each cluster's rest offsets sum to zero to the rounding of the offsets
+/// themselves.
+pub fn build(centres: &[u32], ids: &[u32], x: &[Vec3], material: &[u32], radius: f32) -> Clusters {
     let key = |p: Vec3| (p / radius).floor().as_ivec3();
     let mut grid: HashMap<glam::IVec3, Vec<u32>> = HashMap::new();
     for &id in ids {
         grid.entry(key(x[id as usize])).or_default().push(id);
     }
     let r2 = radius * radius;
-    let mut lists = Vec::with_capacity(ids.len());
+    let mut lists = Vec::with_capacity(centres.len());
     let mut rest = Vec::new();
-    for &id in ids {
+    for &id in centres {
         let (p, m) = (x[id as usize], material[id as usize]);
         let c = key(p);
         let mut members: Vec<u32> = Vec::new();
@@ -52,6 +54,54 @@ pub fn build(ids: &[u32], x: &[Vec3], material: &[u32], radius: f32) -> Clusters
         lists.push(members);
     }
     Clusters { lists, rest }
+}
+
+/// Cluster centres among the particles `ids` (at `x`, of material `material`) by
+/// Poisson-disk sampling (the first thesis's section 2.3.4): no two centres of one
+/// material closer than `distance` (m), and every particle closer than `distance` to
+/// a centre of its material (a maximal sample: a particle is left out only for a
+/// centre within `distance`). The candidates are taken in an order scrambled from
+/// their ids, so the sample does not follow the lattice's rows, and the same ids
+/// give the same centres. Returned in ascending id order.
+pub fn centres(ids: &[u32], x: &[Vec3], material: &[u32], distance: f32) -> Vec<u32> {
+    let key = |id: u32| {
+        let c = (x[id as usize] / distance).floor().as_ivec3();
+        (material[id as usize], c)
+    };
+    let mut order = ids.to_vec();
+    order.sort_unstable_by_key(|&id| (scramble(id), id));
+    let mut taken: HashMap<(u32, glam::IVec3), Vec<u32>> = HashMap::new();
+    let d2 = distance * distance;
+    let mut out = Vec::new();
+    for id in order {
+        let (m, c) = key(id);
+        let p = x[id as usize];
+        let near = (-1..=1).any(|dz| {
+            (-1..=1).any(|dy| {
+                (-1..=1).any(|dx| {
+                    taken
+                        .get(&(m, c + glam::IVec3::new(dx, dy, dz)))
+                        .is_some_and(|cell| cell.iter().any(|&j| x[j as usize].distance_squared(p) < d2))
+                })
+            })
+        });
+        if !near {
+            taken.entry((m, c)).or_default().push(id);
+            out.push(id);
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
+/// A bijective scramble of a 32-bit id (the finaliser of MurmurHash3).
+fn scramble(id: u32) -> u32 {
+    let mut h = id;
+    h ^= h >> 16;
+    h = h.wrapping_mul(0x85eb_ca6b);
+    h ^= h >> 13;
+    h = h.wrapping_mul(0xc2b2_ae35);
+    h ^ (h >> 16)
 }
 
 /// A colour per cluster such that no two clusters of a colour share a member

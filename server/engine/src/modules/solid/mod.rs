@@ -30,7 +30,7 @@
 //! Particles are addressed by id through the map, so a scene with elastic bodies
 //! cannot also have births or deaths (the map needs `slot_of`).
 //!
-//! Validation ([`cases`]): VALIDATION.md section 8's rest shape, free rigid
+//! Validation ([`cases`]): docs/validation/cases.md section 8's rest shape, free rigid
 //! motion, drop volume, stiffness and solver tables, and orientation.
 //!
 //! Oriented particles ([`orient`]) are optional.
@@ -315,18 +315,22 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     };
     let ids: Vec<u32> = (0..x.len() as u32).filter(|&i| elastic.iter().any(|e| e.0 == material[i as usize])).collect();
     let radius = s.cluster_radius * scene.particle_spacing * RADIUS_SLACK;
-    let found = clusters::build(&ids, &x, &material, radius);
+    let centres = match s.centre_spacing {
+        Some(d) => clusters::centres(&ids, &x, &material, d * scene.particle_spacing),
+        None => ids.clone(),
+    };
+    let found = clusters::build(&centres, &ids, &x, &material, radius);
     if let Some(k) = found.lists.iter().position(|l| l.len() < 2) {
         return Err(BuildError::Setting(format!(
             "solid.cluster_radius: particle {} has no neighbour within {} spacings; make it larger",
-            ids[k], s.cluster_radius
+            centres[k], s.cluster_radius
         )));
     }
     let (colour, colours) = clusters::colours(&found.lists);
     spin(b, &x, &material, &elastic);
     b.map(&CLUSTERS, &found.lists);
     b.attr(&REST, Column::Vec3(found.rest));
-    b.attr(&OWNER, Column::U32(ids));
+    b.attr(&OWNER, Column::U32(centres));
     b.attr(&COLOUR, Column::U32(colour));
     b.attr(&SHARE, Column::F32(shares(&found.lists, x.len())));
     for spec in [

@@ -16,6 +16,14 @@ pub struct Solid {
     /// on the lattice). Larger clusters overlap more and make the body stiffer.
     #[serde(default = "default_cluster_radius")]
     pub cluster_radius: f32,
+    /// Cluster centres sampled by Poisson disk (the first thesis's section 2.3.4,
+    /// figs. 2.7-2.9): the least distance between two centres, in particle spacings,
+    /// 1 to `cluster_radius`. Every particle stays in the body, a member of each
+    /// cluster whose centre is within `cluster_radius`; fewer clusters cost less a
+    /// step (the matching is O(s m) for s clusters of m members) and, at the same
+    /// iterations, hold the body less stiffly. Absent: every particle is a centre.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub centre_spacing: Option<f32>,
     /// Stiffness alpha of the shape matching, 0 (none) to 1 (rigid within a step;
     /// default 0.5). Live.
     #[serde(default = "default_stiffness")]

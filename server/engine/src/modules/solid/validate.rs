@@ -14,6 +14,10 @@ pub(super) fn validate(scene: &Scene, c: &mut Checker) {
         c.vector(&format!("solid.bodies[{i}].angular_velocity"), &b.angular_velocity);
     }
     c.within("solid.cluster_radius", s.cluster_radius, 1.0, 4.0);
+    if let Some(d) = s.centre_spacing {
+        // A particle left out of every centre's reach would belong to no cluster.
+        c.within("solid.centre_spacing", d, 1.0, s.cluster_radius);
+    }
     c.within("solid.stiffness", s.stiffness, 0.0, 1.0);
     c.within("solid.damping", s.damping, 0.0, 1.0);
     if !(1..=MAX_ITERATIONS).contains(&s.iterations) {
