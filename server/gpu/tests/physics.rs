@@ -84,7 +84,7 @@ fn an_unstable_scene_halts_with_a_reason_on_the_gpu() {
 fn a_gpu_snapshot_steps_on_bit_for_bit() {
     let Some(gpu) = common::gpu("a_gpu_snapshot_steps_on_bit_for_bit") else { return };
     let make = |model| -> Result<Box<dyn Backend>, _> { Ok(Box::new(GpuBackend::new(gpu, model)?)) };
-    let mut sim = on_gpu(gpu, "dam_break", &["particle_spacing=0.05", "solver.integrator=\"leapfrog\""]);
+    let mut sim = on_gpu(gpu, "dam_break", &["particle_spacing=0.05", WCSPH, "solver.integrator=\"leapfrog\""]);
     for _ in 0..30 {
         sim.step().unwrap();
     }

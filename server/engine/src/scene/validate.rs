@@ -336,6 +336,10 @@ mod tests {
              solver.delta_sph: works with solver.method = \"wcsph\" only"
         );
         assert_eq!(
+            errors(&["solver.integrator=\"leapfrog\"", "solver.method=\"dfsph\""]),
+            "solver.integrator: works with solver.method = \"wcsph\" only"
+        );
+        assert_eq!(
             errors(&["solver.dfsph.compact_gradients=true", "solver.kernel=\"mueller\""]),
             "solver.dfsph.compact_gradients: needs solver.kernel = \"cubic_spline\" or \"wendland_c2\" \
              (the spiky gradient over r is unbounded near r = 0)"

@@ -183,6 +183,11 @@ fn validate(scene: &Scene, chosen: bool, c: &mut crate::scene::validate::Checker
         c.within("solver.delta_sph.delta", d.delta, 0.0, 1.0);
         only(c, DELTA_SPH);
     }
+    // The other schemes' steps are their own (DFSPH's: its solves between a kick and
+    // a drift); leap-frog there would be silently ignored.
+    if scene.solver.integrator == crate::scene::Integrator::Leapfrog {
+        only(c, "integrator");
+    }
 }
 
 /// The scene's δ-SPH settings, if its density is integrated.
