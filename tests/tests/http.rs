@@ -46,6 +46,7 @@ async fn rest_mirrors_the_control_calls() {
                 "stefan",
                 "layers",
                 "avalanche",
+                "avalanche_thesis",
                 "power_law_channel",
                 "bingham_channel",
                 "cross_channel",

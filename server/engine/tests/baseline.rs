@@ -145,6 +145,8 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     ("avalanche", &["particle_spacing=0.05", WCSPH], 0x8c7f110239ad93db),
     // Recorded when the preset moved to DFSPH.
     ("avalanche", &["particle_spacing=0.05"], 0xcc050736ae7db871),
+    // Recorded when the snow thesis's configuration was added.
+    ("avalanche_thesis", &["particle_spacing=0.05"], 0x1508be25b508a373),
     ("power_law_channel", &["particle_spacing=0.1"], 0x3b9b872526dd0493),
     ("bingham_channel", &["particle_spacing=0.1"], 0x35026c9cb52d54b6),
     ("cross_channel", &["particle_spacing=0.1"], 0x3ceb18dbc831a1f1),

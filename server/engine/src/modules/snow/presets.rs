@@ -20,6 +20,11 @@ pub const PRESETS: &[Preset] = &[
         scene: avalanche,
     },
     Preset {
+        name: "avalanche_thesis",
+        about: "The avalanche in the snow thesis's configuration: its Cross law as printed (viscosity rising with shear), XSPH 0.5, leap-frog on WCSPH.",
+        scene: avalanche_thesis,
+    },
+    Preset {
         name: "power_law_channel",
         about: "Shear-thickening power-law fluid (n = 1.5) driven between plates (docs/validation/cases.md §6).",
         scene: power_law_channel,
@@ -131,6 +136,25 @@ pub fn avalanche() -> Scene {
         walls: WallShear::Slip,
         solver: ViscousSolver::default(),
     };
+    s.sections.set(super::SECTION, &snow);
+    s
+}
+
+/// The [`avalanche`] in the configuration of the snow thesis (the seeds' `004`,
+/// section 3): its Cross law with the parameters of its fig. 3.9 as printed,
+/// `mu_inf = 200`, `mu_0 = 1` Pa s, `K = 300` s, `n = 1` (eq. 3.29), so the viscosity
+/// rises from 1 Pa s at rest to 200 as the snow is sheared, where Floe's thins from 200
+/// to 5; XSPH with epsilon 0.5 (its eq. 3.62); leap-frog time integration on WCSPH, the
+/// scheme of its real-time solver. Everything else (ground, walls, the snow's block and
+/// density, the clamp at 200 Pa s) is [`avalanche`]'s, so the two compare
+/// (docs/snow.md, "The snow thesis's avalanche").
+pub fn avalanche_thesis() -> Scene {
+    let mut s = avalanche().with("fluids[0].xsph", json!(0.5));
+    s.name = "avalanche_thesis".into();
+    s.solver.method = "wcsph".into();
+    s.solver.integrator = crate::scene::Integrator::Leapfrog;
+    let mut snow: Snow = s.section(super::SECTION).expect("the avalanche's snow");
+    snow.fluids = vec![Rheology::Cross { mu_0: 1.0, mu_inf: 200.0, k: 300.0, n: 1.0 }];
     s.sections.set(super::SECTION, &snow);
     s
 }
