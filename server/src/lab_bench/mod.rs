@@ -89,12 +89,7 @@ pub async fn run(cfg: &LoadConfig) -> anyhow::Result<LoadReport> {
     for k in 0..cfg.scripts {
         script_tokens.push(process::add_user(&cfg.floe, &data, &format!("script{k}"))?);
     }
-    let server = ServerProcess::start(
-        &cfg.floe,
-        &data,
-        &["--scene", "none", "--backend", &cfg.backend],
-        dir.path().join("server.log"),
-    )?;
+    let server = ServerProcess::start_empty(&cfg.floe, &data, &cfg.backend, dir.path())?;
     let result = load(cfg, &server, &solver_token, &script_tokens).await;
     let clean_shutdown = server.terminate()?;
     let mut report = result?;

@@ -95,6 +95,12 @@ impl ServerProcess {
         }
     }
 
+    /// `floe serve --scene none --backend BACKEND` (no scene at start) on `data`,
+    /// logging to `dir/server.log`: the server a benchmark fills itself.
+    pub fn start_empty(floe: &Path, data: &Data, backend: &str, dir: &Path) -> anyhow::Result<Self> {
+        Self::start(floe, data, &["--scene", "none", "--backend", backend], dir.join("server.log"))
+    }
+
     /// kill -9; returns the log.
     pub fn kill(mut self) -> anyhow::Result<String> {
         self.child.kill()?;

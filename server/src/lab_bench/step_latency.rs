@@ -39,12 +39,7 @@ pub struct Row {
 pub async fn run(cfg: &StepLatency) -> anyhow::Result<Vec<Row>> {
     let dir = tempfile::tempdir()?;
     let data = Data { dir: dir.path().join("data"), database: None };
-    let server = ServerProcess::start(
-        &cfg.floe,
-        &data,
-        &["--scene", "none", "--backend", &cfg.backend],
-        dir.path().join("server.log"),
-    )?;
+    let server = ServerProcess::start_empty(&cfg.floe, &data, &cfg.backend, dir.path())?;
     let mut c = Client::connect(&server.grpc).await?;
     let mut rows = Vec::new();
     for &particles in &cfg.particles {
