@@ -110,6 +110,9 @@ pub enum Command {
         /// Most frames per second.
         #[arg(long, default_value = "30")]
         fps: f64,
+        /// The particle set to record (`floectl get ID` lists them: `solid`, `flakes`, ...).
+        #[arg(long, default_value = "particles")]
+        set: String,
     },
     /// Export frames of a live scene, or of a recording, as VTK or CSV files.
     Export {
@@ -127,6 +130,9 @@ pub enum Command {
         /// Frames to take from a live scene.
         #[arg(long, default_value = "1")]
         frames: u64,
+        /// The particle set to export from a live scene (a recording holds one).
+        #[arg(long, default_value = "particles", conflicts_with = "recording")]
+        set: String,
     },
     /// Save a scene's full state to a file.
     Snapshot {
@@ -295,14 +301,14 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
                 }
             }
         }
-        Command::Record { id, out, frames, fps } => {
+        Command::Record { id, out, frames, fps, set } => {
             let file = std::fs::File::create(&out).with_context(|| format!("cannot create {}", out.display()))?;
             let mut rec = Recorder::new(std::io::BufWriter::new(file))?;
             let info = floe.get(id).await?;
             if info.state != floe_proto::pb::SceneState::Running as i32 {
                 eprintln!("scene {id} is not running: one frame now, more only as it steps (`floectl run {id}`)");
             }
-            let mut stream = floe.frames(id, FrameRequest { max_fps: fps, ..FrameRequest::default() }).await?;
+            let mut stream = floe.frames(id, FrameRequest { max_fps: fps, set, ..FrameRequest::default() }).await?;
             let mut n = 0;
             // Ctrl-C ends the recording with the frames so far, a file that reads back whole.
             let interrupt = tokio::signal::ctrl_c();
@@ -319,10 +325,18 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
             rec.finish()?;
             eprintln!("recorded {n} frames to {}", out.display());
         }
-        Command::Export { id, out, format, frames, .. } => {
+        Command::Export { id, out, format, frames, set, .. } => {
             let Some(id) = id else { anyhow::bail!("give a scene id or --recording FILE") };
-            let channels = floe.get(id).await?.channels.into_iter().map(|c| c.name).collect();
-            let mut stream = floe.frames(id, FrameRequest { channels, ..FrameRequest::default() }).await?;
+            // Every channel of the set (a part of the SPH particles offers theirs); a set
+            // the scene lacks is refused by the server, naming those it has.
+            let info = floe.get(id).await?;
+            let offers = info
+                .sets
+                .iter()
+                .find(|s| s.name == set)
+                .map_or(set.as_str(), |s| if s.part_of.is_empty() { s.name.as_str() } else { s.part_of.as_str() });
+            let channels = info.channels.iter().filter(|c| c.set == offers).map(|c| c.name.clone()).collect();
+            let mut stream = floe.frames(id, FrameRequest { channels, set, ..FrameRequest::default() }).await?;
             let mut decoded = Vec::new();
             while (decoded.len() as u64) < frames {
                 let Some(f) = stream.next().await? else { break };
@@ -391,7 +405,8 @@ pub async fn execute(cli: Cli) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes each frame (particles and the time) to `out/frame_NNNNN.vtk` (or `.csv`).
+/// Writes each frame (particles and the time) to `out/frame_NNNNN.vtk` (or `.csv`;
+/// another set than the SPH particles' as `out/SET_NNNNN.vtk`).
 fn export_frames(frames: Vec<(Particles, f64)>, out: &Path, format: ExportFormat) -> anyhow::Result<()> {
     let format = match format {
         ExportFormat::Vtk => Format::Vtk,
@@ -400,7 +415,7 @@ fn export_frames(frames: Vec<(Particles, f64)>, out: &Path, format: ExportFormat
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let count = frames.len();
     for (k, (particles, time)) in frames.into_iter().enumerate() {
-        let path = out.join(format!("frame_{k:05}.{}", format.extension()));
+        let path = out.join(export::file_name(&particles.set, k, format));
         export::write(&path, format, &particles, time).with_context(|| format!("cannot write {}", path.display()))?;
     }
     eprintln!("wrote {count} frames to {}", out.display());

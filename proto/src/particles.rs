@@ -25,6 +25,11 @@ pub struct Particles {
 }
 
 impl Particles {
+    /// The stable id of particle `i` (`i` itself where the set sends no ids).
+    pub fn id(&self, i: usize) -> u32 {
+        self.ids.as_ref().map_or(i as u32, |ids| ids[i])
+    }
+
     /// The values of channel `name`, if present.
     pub fn channel(&self, name: &str) -> Option<&Values> {
         self.channels.iter().find(|(n, _)| n == name).map(|(_, v)| v)

@@ -125,6 +125,7 @@ fn sets(shared: &Shared) -> Vec<pb::ParticleSet> {
         look: s.look.unwrap_or_default().into(),
         surface: s.surface.unwrap_or_default().into(),
         shade: s.shade.unwrap_or_default().into(),
+        part_of: s.part_of.unwrap_or_default().into(),
     };
     shared.sets.iter().enumerate().map(set).collect()
 }

@@ -34,13 +34,19 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     if let Some(dir) = &args.export {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create export directory {}", dir.display()))?;
     }
-    let mut frame = 0u32;
+    let mut frame = 0;
+    // Every particle set in a series of its own: the SPH particles' `frame_NNNNN`,
+    // another set's (a solid's part of them, snowflakes) named after it. Grids
+    // are not exported.
     let mut write_frame = |sim: &Simulation| -> anyhow::Result<()> {
         if let Some(dir) = &args.export {
-            let path = dir.join(format!("frame_{frame:05}.{}", format.extension()));
-            let all: Vec<&str> = sim.channels().iter().map(|c| c.name).collect();
-            export::write(&path, format, &sim.read(&all), sim.time())
-                .with_context(|| format!("cannot write {}", path.display()))?;
+            for set in sim.model().sets.iter().filter(|s| s.grid.is_none()) {
+                let path = dir.join(export::file_name(set.name, frame, format));
+                let channels = sim.channels();
+                let all: Vec<&str> = channels.iter().filter(|c| c.set == set.channel_set()).map(|c| c.name).collect();
+                export::write(&path, format, &sim.read_set(set, &all), sim.time())
+                    .with_context(|| format!("cannot write {}", path.display()))?;
+            }
             frame += 1;
         }
         Ok(())

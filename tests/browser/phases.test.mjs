@@ -4,7 +4,7 @@
 // ice as spheres over the water's surface) and in the spheres view, and as it melts without a
 // page error. A colour map chosen for it is not kept for the next scene opened, which starts on
 // none again (the floating blocks: their ice-look bodies told from the water by the material
-// alone), and the bunny, all ice, is an ice surface. Leaves screenshots in target/viewer-phases*.png. Needs a server with the heat and
+// alone; drawn alone when the "Particles" menu picks the set `solid`), and the bunny, all ice, is an ice surface. Leaves screenshots in target/viewer-phases*.png. Needs a server with the heat and
 // solid modules (FLOE_BIN, or a current target/debug/floe).
 
 import { test } from 'node:test';
@@ -90,6 +90,22 @@ test('ice is drawn as ice and water as water', { timeout: 90_000 }, async () => 
     const floating = await hues(page);
     await page.screenshot({ path: path.join(root, 'target/viewer-phases-blocks.png') });
     assert.ok(floating.bright > 1000 && floating.blue > 1000, `floating blocks: ice ${floating.bright} pixels, water ${floating.blue}`);
+    // The solid's particles alone: the "Particles" menu streams the set `solid`, and the water goes.
+    assert.equal(await page.isVisible('#part-section'), true);
+    assert.deepEqual(await page.$$eval('#part option', (o) => o.map((x) => x.value)), ['particles', 'solid', 'fluid']);
+    const solidSet = blocks.sets.find((s) => s.name === 'solid');
+    assert.equal(solidSet.part_of, 'particles');
+    const parts = [];
+    page.on('websocket', (ws) => parts.push(new URL(ws.url()).searchParams.get('set')));
+    await page.selectOption('#part', 'solid');
+    await page.waitForFunction((n) => Number(/particles\s+([\d.]+)/.exec(document.querySelector('#stats').textContent)?.[1]) === n,
+      solidSet.count, { timeout: 20_000 });
+    assert.ok(parts.includes('solid'), `streams opened: ${parts}`);
+    await page.waitForTimeout(800);
+    const bodies = await hues(page);
+    assert.ok(bodies.bright > 300 && bodies.blue < bodies.bright / 10, `the solid set: ice ${bodies.bright} pixels, water ${bodies.blue}`);
+    await page.selectOption('#part', 'particles');
+    await statAtLeast(page, 'particles', blocks.particles, 20_000);
 
     // A body all of ice is an ice surface, not water.
     await page.selectOption('#scenes', String(bunny.scene_id));

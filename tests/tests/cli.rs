@@ -72,6 +72,32 @@ fn run_exports_frames_and_a_summary() {
     assert!(s["halted"].is_null());
 }
 
+/// A scene with a solid exports its particles and each of their parts, one file per
+/// set and frame, ids the particles': the solid's and the fluid's rows split the
+/// particles' rows.
+#[test]
+fn run_exports_one_file_per_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("frames");
+    let args = ["run", "ice_melting", "--set", "particle_spacing=0.02", "--until", "0.01", "--format", "csv"];
+    floe(&[&args[..], &["--export", out.to_str().unwrap(), "--every", "0.01", "--quiet"]].concat()).unwrap();
+    let mut files: Vec<String> =
+        std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    files.sort();
+    assert_eq!(files[..3], ["fluid_00000.csv", "fluid_00001.csv", "frame_00000.csv"], "{files:?}");
+    assert_eq!(files.len(), 6, "{files:?}");
+    let rows = |name: &str| -> Vec<(u32, String)> {
+        let csv = std::fs::read_to_string(out.join(name)).unwrap();
+        let mut lines = csv.lines();
+        assert!(lines.next().unwrap().starts_with("id,x,y,z,velocity_x"), "{name}");
+        lines.map(|l| (l.split(',').next().unwrap().parse().unwrap(), l.to_string())).collect()
+    };
+    let mut parts = [rows("solid_00001.csv"), rows("fluid_00001.csv")].concat();
+    assert!(parts.len() > 1000, "{} rows", parts.len());
+    parts.sort_by_key(|(id, _)| *id);
+    assert_eq!(parts, rows("frame_00001.csv"));
+}
+
 #[test]
 fn a_dfsph_run_summary_lists_its_solves() {
     let dir = tempfile::tempdir().unwrap();

@@ -78,6 +78,39 @@ async fn floectl_drives_a_scene_through_every_command() {
     }
 }
 
+/// A solid's particles export and record as their own set (`--set solid`), in a series
+/// of their own; a set the scene lacks is refused naming those it has.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn floectl_exports_and_records_one_set() {
+    let server = TestServer::start().await;
+    let url = server.grpc_url();
+    let dir = tempfile::tempdir().unwrap();
+    floectl(&url, &["create", "floating_blocks", "--set", "particle_spacing=0.04"]).await.unwrap();
+    let info = Client::connect(&url).await.unwrap().list().await.unwrap().pop().expect("one scene");
+    let id = info.scene_id.to_string();
+    let solid = info.sets.iter().find(|s| s.name == "solid").expect("a solid set").count as usize;
+    assert!(solid > 0 && solid < info.particles as usize, "{solid} of {}", info.particles);
+
+    let live = dir.path().join("live");
+    floectl(&url, &["export", &id, "--set", "solid", "--out", text(&live), "--format", "csv"]).await.unwrap();
+    assert_eq!(files(&live), [live.join("solid_00000.csv")]);
+    let csv = std::fs::read_to_string(live.join("solid_00000.csv")).unwrap();
+    assert!(csv.starts_with("id,x,y,z,velocity_x"), "{}", &csv[..40]);
+    assert_eq!(csv.lines().count(), solid + 1, "a header and one row per solid particle");
+
+    let recording = dir.path().join("solid.floe");
+    floectl(&url, &["record", &id, "--set", "solid", "--out", text(&recording), "--frames", "1"]).await.unwrap();
+    let replay = dir.path().join("replay");
+    floectl(&url, &["export", "--recording", text(&recording), "--out", text(&replay)]).await.unwrap();
+    let vtk = std::fs::read(&files(&replay)[0]).unwrap();
+    let points = format!("POINTS {solid} float");
+    assert!(vtk.windows(points.len()).any(|w| w == points.as_bytes()), "no '{points}'");
+
+    let e = error_chain(&floectl(&url, &["export", &id, "--set", "ice", "--out", text(&live)]).await.unwrap_err());
+    assert!(e.contains("no set \"ice\"") && e.contains("particles, solid, fluid"), "{e}");
+    server.shutdown().await;
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn floectl_errors_name_what_was_wrong() {
     let server = TestServer::start().await;

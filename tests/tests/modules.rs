@@ -2,6 +2,8 @@
 //! - a module that lives in these tests (`tracer/`), registered with one line, adds
 //!   attributes, passes, channels and a second particle set, and its channels
 //!   stream to a client as any other;
+//! - a solid's particles are a set of their own, and melting moves them to the
+//!   fluid's (`modules/parts.rs`);
 //! - for every preset on both backends, nothing is allocated or run for a module
 //!   the scene does not use, and the memory a module's attribute adds is exactly
 //!   what the attribute declares.
@@ -9,6 +11,8 @@
 mod common;
 // Births, deaths, phase changes: a folder beside this file (tests/ builds every file
 // at its top as a test of its own).
+#[path = "modules/parts.rs"]
+mod parts;
 #[path = "modules/population.rs"]
 mod population;
 mod tracer;

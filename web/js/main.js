@@ -81,6 +81,19 @@ function showColourModes(channels, keep) {
 }
 
 /**
+ * Fills the "Particles" menu: all of them, or one part (the scene's sets that are parts of its
+ * particles: a solid's, the fluid's, by material); hidden where the scene has no parts. The
+ * scene shown, opened again (`keep`), keeps the choice if it is still there.
+ */
+function showParts(scene, keep) {
+  const sel = $('part'), was = sel.value;
+  const parts = (scene.sets ?? []).filter((s) => s.part_of === 'particles');
+  sel.replaceChildren(new Option('all', 'particles'), ...parts.map((s) => new Option(s.name, s.name)));
+  sel.value = keep && [...sel.options].some((o) => o.value === was) ? was : 'particles';
+  $('part-section').hidden = parts.length === 0;
+}
+
+/**
  * Offers a scene the server sized for this machine at its full size (sizing.js); hidden for any
  * other scene, or none.
  */
@@ -148,6 +161,7 @@ function open(scene) {
   state.wantOpen = true;
   banner(scene.halt_reason ? `Halted: ${scene.halt_reason}` : null);
   showColourModes(scene.channels ?? DEFAULT_CHANNELS, !other);
+  showParts(scene, !other);
   showSizing(scene);
   renderer.setLooks(sceneLooks(scene.materials).map((name) => LOOKS[name]));
   // Oriented particles (an elastic solid's `solid.oriented`) are drawn as ellipsoids.
@@ -213,7 +227,9 @@ function connect() {
   // melting scene's liquid fractions).
   const channels = [...streamedChannels(channel, state.scene.channels),
     ...lookChannels(channel, state.scene.channels, state.scene.materials)];
-  url.search = new URLSearchParams({ channels: channels.join(','), max_fps: '60' });
+  // All the particles, or the part chosen (the solid's, the fluid's).
+  const part = $('part').value || 'particles';
+  url.search = new URLSearchParams({ channels: channels.join(','), max_fps: '60', ...(part === 'particles' ? {} : { set: part }) });
   const ws = new WebSocket(url, credentials.protocols());
   ws.binaryType = 'arraybuffer';
   state.socket = ws;
@@ -361,6 +377,7 @@ $('colour').onchange = () => {
   if (replay.active) replay.redraw();
   else if (state.scene) open(state.scene);
 };
+$('part').onchange = () => { if (!replay.active && state.scene) open(state.scene); };
 $('scenes').onchange = () => refreshScenes(Number($('scenes').value));
 $('apply').onclick = () => {
   const text = $('param').value.trim();

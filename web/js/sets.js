@@ -1,5 +1,5 @@
-// The scene's sets besides its SPH particles (`SceneInfo.sets`): a module's own particles (the
-// tracer's probes, snowflakes) and its grids (a field on regular cells, sent as grid frames).
+// The scene's sets besides its SPH particles and their parts (`SceneInfo.sets`): a module's own
+// particles (the tracer's probes, snowflakes) and its grids (a field on regular cells, sent as grid frames).
 // Each streams on a WebSocket of its own with its set's first channel (and a grid's surface
 // channel, the cells' heights, where the set names one), decoded here on the page, and is drawn
 // by the renderer (others.js) with the scene's particles, in the set's look where it has one.
@@ -25,7 +25,8 @@ export class OtherSets {
   open(scene, url, protocols) {
     this.close();
     for (const set of scene.sets ?? []) {
-      if (set.index === 0) continue;
+      // The particles and their parts (a solid's, the fluid's) are the main stream's.
+      if (set.index === 0 || set.part_of) continue;
       const surface = set.surface || '', shade = set.shade || '';
       const channel = (scene.channels ?? []).find((c) => c.set === set.name && c.name !== surface && c.name !== shade)?.name ?? '';
       const socket = new WebSocket(url(set.name, [channel, surface, shade].filter(Boolean).join(',')), protocols);

@@ -17,7 +17,7 @@ pub fn write_csv(out: &mut impl Write, p: &Particles) -> Result<()> {
     }
     writeln!(out, "{header}")?;
     for (i, x) in p.positions.iter().enumerate() {
-        write!(out, "{i},{},{},{}", x[0], x[1], x[2])?;
+        write!(out, "{},{},{},{}", p.id(i), x[0], x[1], x[2])?;
         for (_, values) in &p.channels {
             match values {
                 Values::Exact(v) => write!(out, ",{}", v[i])?,

@@ -28,6 +28,18 @@ impl Format {
     }
 }
 
+/// The file of frame `k` of set `set` in a series of exported frames: the SPH
+/// particles' `frame_00007.vtk`, another set's named after it (`solid_00007.vtk`,
+/// any character but a letter, digit, `-` or `_` written `_`), so each set is a
+/// series of its own in ParaView.
+pub fn file_name(set: &str, k: usize, format: Format) -> String {
+    let series: String = match set {
+        "particles" => "frame".into(),
+        _ => set.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect(),
+    };
+    format!("{series}_{k:05}.{}", format.extension())
+}
+
 /// Writes `particles` in `format` to `path`; `time` (s) goes in the VTK title.
 pub fn write(path: &std::path::Path, format: Format, particles: &Particles, time: f64) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);

@@ -27,8 +27,8 @@ pub fn write_vtk(out: &mut impl Write, p: &Particles, time: f64) -> Result<()> {
     }
     writeln!(out)?;
     writeln!(out, "POINT_DATA {n}\nSCALARS id int 1\nLOOKUP_TABLE default")?;
-    for i in 0..n as u32 {
-        out.write_all(&i.to_be_bytes())?;
+    for i in 0..n {
+        out.write_all(&p.id(i).to_be_bytes())?;
     }
     writeln!(out)?;
     for (name, values) in &p.channels {

@@ -107,11 +107,17 @@ pub fn read<B: Backend + ?Sized>(
     let specs: Vec<_> = channels
         .iter()
         .map(|&c| {
-            model.channels.iter().find(|s| s.name == c && s.set == set.name).unwrap_or_else(|| panic!("no channel {c}"))
+            (model.channels.iter())
+                .find(|s| s.name == c && s.set == set.channel_set())
+                .unwrap_or_else(|| panic!("no channel {c}"))
         })
         .collect();
-    // Every attribute needed, once: ids, positions, each channel's sources.
+    // Every attribute needed, once: ids, positions, materials for a part, each
+    // channel's sources.
     let mut names: Vec<&str> = set.id.into_iter().collect();
+    if set.kind.is_some() && has_material {
+        names.push("material");
+    }
     if positions.is_none() && set.grid.is_none() {
         names.push(set.position);
     }
@@ -141,9 +147,9 @@ pub fn read<B: Backend + ?Sized>(
     });
     // The slot of each particle in id order: the inverse of the ids where they are
     // 0 .. n (a scene whose particles are never born nor die), else the slots sorted
-    // by id.
+    // by id; for a part, only its members'.
     let mut sparse = false;
-    let by_id: Option<Vec<usize>> = ids.map(|ids| {
+    let mut by_id: Option<Vec<usize>> = ids.map(|ids| {
         let n = ids.len();
         let mut by = vec![usize::MAX; n];
         for (k, &id) in ids.iter().enumerate() {
@@ -159,6 +165,15 @@ pub fn read<B: Backend + ?Sized>(
         }
         by
     });
+    if let (Some(kind), Some(by_id)) = (set.kind, by_id.as_mut()) {
+        let materials = has_material.then(|| match column("material") {
+            Column::U32(m) => m.as_slice(),
+            _ => panic!("materials are u32"),
+        });
+        let member = |k: usize| model.materials.get(materials.map_or(0, |m| m[k]) as usize).kind == kind;
+        by_id.retain(|&k| member(k));
+        sparse = true;
+    }
     let order = |values: Vec<f32>, components: usize| -> Vec<f32> {
         match &by_id {
             None => values,

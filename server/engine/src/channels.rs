@@ -5,6 +5,7 @@
 //! server assigns and lists in the scene's info.
 
 use crate::attrs::Column;
+use crate::materials::MaterialKind;
 use crate::model::Model;
 
 /// Where a channel's values come from.
@@ -74,18 +75,44 @@ pub struct SetSpec {
     /// For a grid in a look: the channel (0 to 1) by which viewers scale how much
     /// of the look they draw over each cell (`None`: all of it).
     pub shade: Option<&'static str>,
+    /// For a part of the SPH particles: the kind of material of its particles (the
+    /// solid's, the fluid's). Its members change as particles change phase (ice
+    /// melting into water leaves `solid` for `fluid`), keeping their ids, so its
+    /// frames carry ids; it offers the SPH particles' channels. `None`: every
+    /// element of its space.
+    pub kind: Option<MaterialKind>,
 }
 
 impl SetSpec {
     /// A grid set: the cells `grid` of space `space` (one element per cell, x
     /// fastest, then y, then z).
     pub fn grid(name: &'static str, space: &'static str, grid: floe_proto::GridInfo) -> Self {
-        Self { name, space, position: "", id: None, grid: Some(grid), look: None, surface: None, shade: None }
+        Self {
+            name,
+            space,
+            position: "",
+            id: None,
+            grid: Some(grid),
+            look: None,
+            surface: None,
+            shade: None,
+            kind: None,
+        }
     }
 
     /// A set of a module's own particles, positions in `position`, its slots fixed.
     pub const fn points(name: &'static str, space: &'static str, position: &'static str) -> Self {
-        Self { name, space, position, id: None, grid: None, look: None, surface: None, shade: None }
+        Self { name, space, position, id: None, grid: None, look: None, surface: None, shade: None, kind: None }
+    }
+
+    /// The SPH particles whose material is of kind `kind`, named as the kind.
+    pub const fn part(kind: MaterialKind) -> Self {
+        Self { name: kind.name(), kind: Some(kind), ..PARTICLE_SET }
+    }
+
+    /// The set whose channels it offers: [`PARTICLES`] for a part of them, else its own.
+    pub fn channel_set(&self) -> &'static str {
+        if self.kind.is_some() { PARTICLES } else { self.name }
     }
 }
 
@@ -102,6 +129,7 @@ pub const PARTICLE_SET: SetSpec = SetSpec {
     look: None,
     surface: None,
     shade: None,
+    kind: None,
 };
 
 /// Velocity (core: every particle set that moves has one).

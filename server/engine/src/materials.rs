@@ -43,7 +43,7 @@ pub enum MaterialKind {
 
 impl MaterialKind {
     /// `fluid` or `solid`.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             MaterialKind::Fluid => "fluid",
             MaterialKind::Solid => "solid",

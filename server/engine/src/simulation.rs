@@ -195,9 +195,14 @@ impl Simulation {
         self.model().channels.clone()
     }
 
-    /// The scene's particle sets with their counts.
+    /// The scene's particle sets with their counts (a part's members now: this reads
+    /// the particles' materials back).
     pub fn sets(&self) -> Vec<(SetSpec, usize)> {
-        self.model().sets.iter().map(|s| (*s, self.model().layout.count(s.space))).collect()
+        let count = |s: &SetSpec| match s.kind {
+            Some(_) => self.read_set(s, &[]).positions.len(),
+            None => self.model().layout.count(s.space),
+        };
+        self.model().sets.iter().map(|s| (*s, count(s))).collect()
     }
 
     /// Why the scene stopped, if it did.

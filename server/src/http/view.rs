@@ -123,6 +123,10 @@ pub struct SetView {
     /// For a grid in a look: the channel (0 to 1) scaling how much of the look viewers draw.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shade: Option<&'static str>,
+    /// For a part of another set (`solid`, `fluid` of `particles`): that set, whose
+    /// channels it offers; its members change as particles change phase, keeping ids.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub part_of: Option<&'static str>,
 }
 
 /// A material of a scene.
@@ -214,6 +218,7 @@ impl SceneView {
                     look: s.look,
                     surface: s.surface,
                     shade: s.shade,
+                    part_of: s.part_of,
                 })
                 .collect(),
             materials: shared

@@ -57,15 +57,16 @@ impl FrameRequest {
             let names: Vec<&str> = scene.sets.iter().map(|s| s.name).collect();
             return bad(format!("particle_set: the scene has no set {set_name:?}; it has {}", names.join(", ")));
         };
+        let offers = scene.sets[set].channel_set();
         let mut channels = Vec::new();
         for name in self.channels.iter().map(|c| c.trim()).filter(|c| !c.is_empty()) {
-            let found = scene.channels.iter().find(|c| c.spec.name == name && c.spec.set == set_name);
+            let found = scene.channels.iter().find(|c| c.spec.name == name && c.spec.set == offers);
             match found {
                 Some(c) if !channels.contains(&c.spec.name) => channels.push(c.spec.name),
                 Some(_) => {}
                 None => {
                     let has: Vec<&str> =
-                        scene.channels.iter().filter(|c| c.spec.set == set_name).map(|c| c.spec.name).collect();
+                        scene.channels.iter().filter(|c| c.spec.set == offers).map(|c| c.spec.name).collect();
                     return bad(format!(
                         "channels: the scene has no channel {:?} in set {set_name}; it has {}",
                         crate::echo::cap(name),

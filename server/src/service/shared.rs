@@ -179,6 +179,7 @@ impl Shared {
                     look: spec.look.map(|l| l.name()),
                     surface: spec.surface,
                     shade: spec.shade,
+                    part_of: spec.kind.map(|_| spec.channel_set()),
                 })
                 .collect(),
             tunables: floe_engine::module::tunables(sim.scene()),
@@ -330,6 +331,16 @@ pub struct SceneSet {
     pub surface: Option<&'static str>,
     /// For a grid in a look: the channel (0 to 1) scaling how much of the look is drawn.
     pub shade: Option<&'static str>,
+    /// For a part of the SPH particles (the solid's, the fluid's): the set it is part
+    /// of, whose channels it offers.
+    pub part_of: Option<&'static str>,
+}
+
+impl SceneSet {
+    /// The set whose channels it offers: the one it is part of, else its own.
+    pub fn channel_set(&self) -> &'static str {
+        self.part_of.unwrap_or(self.name)
+    }
 }
 
 /// The wire tags of a scene's channels: the table's tag where `proto/channels.json`

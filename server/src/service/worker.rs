@@ -328,12 +328,12 @@ impl Worker {
             return;
         }
         let wanted = self.shared.wanted();
-        let sets = self.sim.sets();
+        let sets = self.sim.model().sets.clone();
         let read = self.guarded(|sim| {
             wanted
                 .iter()
                 .filter_map(|w| {
-                    let (spec, _) = sets.get(usize::from(w.set))?;
+                    let spec = sets.get(usize::from(w.set))?;
                     let p = match w.grid {
                         Some(grid) => sim.read_on_grid(spec, &w.channels, &grid),
                         None => sim.read_set(spec, &w.channels),

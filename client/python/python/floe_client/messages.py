@@ -55,6 +55,10 @@ class ParticleSet:
     surface: str = ""
     #: For a grid in a look: the channel (0 to 1) scaling how much of the look viewers draw; empty when none.
     shade: str = ""
+    #: For a part of another set ("solid" and "fluid" of "particles"): that set, whose channels it
+    #: offers; its particles move between parts as they change phase (ice melting), keeping their
+    #: ids, which its identity-ordered frames carry. Empty for a set of its own.
+    part_of: str = ""
 
 
 @dataclass(frozen=True)
@@ -180,7 +184,7 @@ class SceneInfo:
             channels=tuple(
                 ChannelInfo(c.name, c.tag, c.unit, c.components, c.set, c.exact, c.about, c.module) for c in m.channels
             ),
-            sets=tuple(ParticleSet(s.name, s.count, s.index, s.grid, s.look, s.surface, s.shade) for s in m.sets),
+            sets=tuple(ParticleSet(s.name, s.count, s.index, s.grid, s.look, s.surface, s.shade, s.part_of) for s in m.sets),
             tunables=tuple(
                 Tunable(
                     t.path,

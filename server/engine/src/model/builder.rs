@@ -117,6 +117,13 @@ impl<'s> ModelBuilder<'s> {
         (self.materials.len() - 1) as u32
     }
 
+    /// Makes material `material` a solid's (the particles of a solid module's
+    /// bodies): they stream as the scene's `solid` set (`SetSpec::part`), and a
+    /// phase declared like a fluid (what ice melts into) stays fluid.
+    pub fn solidify(&mut self, material: u32) {
+        self.materials[material as usize].kind = crate::materials::MaterialKind::Solid;
+    }
+
     /// Adds particles of material `material` at `positions` with `velocities`, sampled
     /// from `bounds` (for the default domain and the fall height of the sound speed).
     /// Those a terrain buries are dropped.
@@ -358,6 +365,8 @@ impl<'s> ModelBuilder<'s> {
         for m in &modules {
             (m.build)(scene, &mut self)?;
         }
+        // A solid module's build makes its materials solid.
+        self.parts();
         // The shared quantities' passes act on what the modules wrote.
         if let Some(how) = self.quantities.integration() {
             let scaled = self.quantities.scaled();
@@ -412,6 +421,18 @@ impl<'s> ModelBuilder<'s> {
             sets: self.sets,
             consts: self.consts,
         })
+    }
+
+    /// Where the SPH particles include a solid's: the solid's particles as a set of
+    /// their own, and the fluid's where there are fluid materials (a melting solid's
+    /// phases are), after the SPH set, whose parts they are.
+    fn parts(&mut self) {
+        use crate::materials::MaterialKind::{Fluid, Solid};
+        let has = |k| self.materials.iter().any(|m| m.kind == k);
+        if has(Solid) {
+            let parts = [Solid, Fluid].into_iter().filter(|&k| has(k)).map(crate::channels::SetSpec::part);
+            self.sets.splice(1..1, parts);
+        }
     }
 
     /// A scene whose particles are born or die, of `n` particles at first: its

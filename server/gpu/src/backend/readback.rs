@@ -13,9 +13,10 @@ use wgpu::Buffer;
 impl GpuBackend {
     /// A set's channels with the particles' positions quantised on `grid` by the
     /// GPU (6 bytes a particle read back instead of 16), where the backend has the
-    /// quantiser; other sets are read whole.
+    /// quantiser; other sets, and the parts of the SPH particles, are read whole.
     pub(super) fn read_quantized(&self, set: &SetSpec, channels: &[&str], grid: &PositionGrid) -> Particles {
-        let Some(quantize) = self.core.quantize.as_ref().filter(|_| set.space == PARTICLES) else {
+        let Some(quantize) = self.core.quantize.as_ref().filter(|_| set.space == PARTICLES && set.kind.is_none())
+        else {
             return self.read_set(set, channels);
         };
         let b = &self.buffers;

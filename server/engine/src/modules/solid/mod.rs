@@ -305,6 +305,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
             )));
         };
         elastic.push((m as u32, body.angular_velocity));
+        b.solidify(m as u32);
     }
     let Some(Column::Vec3(x)) = b.column("x") else { unreachable!("the core allocates positions first") };
     let x = x.clone();
