@@ -158,3 +158,26 @@ def test_recordings_need_their_header(tmp_path: pathlib.Path) -> None:
     cut.write_bytes(floe_client.recording.MAGIC + (100).to_bytes(4, "little") + b"short")
     with pytest.raises(ValueError, match="frame 0 is cut short"):
         list(floe_client.recording.read(cut))
+
+
+def test_a_solid_streams_as_its_own_set(client: floe_client.Client) -> None:
+    """The floating blocks' two elastic cubes are the set ``solid``, the water ``fluid``:
+    parts of ``particles`` whose frames carry the particles' ids, together all of them."""
+    scene = client.create_preset("floating_blocks", ["particle_spacing=0.04"])
+    try:
+        sets = {s.name: s for s in scene.sets}
+        assert (sets["solid"].part_of, sets["fluid"].part_of, sets["particles"].part_of) == ("particles", "particles", "")
+        ids = {}
+        for name in ("particles", "solid", "fluid"):
+            with client.frames(scene, channels=["velocity"], particle_set=name) as frames:
+                frame = next(frames)
+            assert frame.header.particle_set == name
+            ids[name] = frame.ids if frame.ids is not None else np.arange(frame.header.particle_count)
+            assert frame["velocity"].shape == (len(ids[name]), 3)
+            if name == "solid":
+                df = frame.to_dataframe()
+                assert list(df.index) == list(frame.ids) and "ids" not in df.columns
+        assert len(ids["solid"]) == sets["solid"].count > 0
+        np.testing.assert_array_equal(np.sort(np.concatenate([ids["solid"], ids["fluid"]])), ids["particles"])
+    finally:
+        client.delete(scene)

@@ -24,6 +24,8 @@ def columns(frame: Frame) -> dict[str, tuple[np.ndarray, str]]:
     names the columns of a CSV)."""
     out: dict[str, tuple[np.ndarray, str]] = {}
     for ch in frame.channels.values():
+        if ch.name == "ids":
+            continue
         if ch.values.ndim == 1:
             out[ch.name] = (ch.values, ch.unit)
             continue
@@ -36,8 +38,9 @@ def columns(frame: Frame) -> dict[str, tuple[np.ndarray, str]]:
 def to_dataframe(frame: Frame) -> pandas.DataFrame:
     """One row per particle, one column per component (see :func:`columns`); units in
     ``df.attrs["units"]``, the header in ``df.attrs["header"]``. Identity-ordered frames
-    are indexed by particle id (row i of the frame; with decimation n, id ``i * n`` is not
-    known to the frame, so the index is the row). Needs pandas (the ``[pandas]`` extra)."""
+    are indexed by particle id: the frame's ids where it carries them (``Frame.ids``: a
+    part such as the solid's particles), else the row (with decimation n, id ``i * n`` is
+    not known to the frame, so the index is the row). Needs pandas (the ``[pandas]`` extra)."""
     try:
         import pandas
     except ImportError as e:
@@ -49,7 +52,9 @@ def to_dataframe(frame: Frame) -> pandas.DataFrame:
 
     cols = columns(frame)
     df = pandas.DataFrame({name: values for name, (values, _) in cols.items()})
-    if frame.header.mode == "identity":
+    if frame.ids is not None:
+        df.index = pandas.Index(frame.ids, name="id")
+    elif frame.header.mode == "identity":
         df.index.name = "id"
     df.attrs["units"] = {name: unit for name, (_, unit) in cols.items()}
     df.attrs["header"] = frame.header
@@ -59,8 +64,9 @@ def to_dataframe(frame: Frame) -> pandas.DataFrame:
 def write_vtk(frame: Frame, path: str | os.PathLike[str]) -> None:
     """Writes the frame as legacy VTK (version 3.0) binary polydata, the layout of
     ``floe run --export`` and ``floectl export``: one vertex per particle, ``id`` (identity
-    frames only) and every channel as point data (three components as VECTORS, others as
-    SCALARS, exact channels as unsigned_char); the set and the time in the title."""
+    frames only; the frame's ids where it carries them) and every channel as point data
+    (three components as VECTORS, others as SCALARS, exact channels as unsigned_char); the
+    set and the time in the title."""
     n = frame.header.particle_count
     be_f32 = np.dtype(">f4")
     be_u32 = np.dtype(">u4")
@@ -76,10 +82,11 @@ def write_vtk(frame: Frame, path: str | os.PathLike[str]) -> None:
         out.write(vertices.tobytes() + b"\n")
         out.write(f"POINT_DATA {n}\n".encode())
         if frame.header.mode == "identity":
+            ids = frame.ids if frame.ids is not None else np.arange(n)
             out.write(b"SCALARS id int 1\nLOOKUP_TABLE default\n")
-            out.write(np.arange(n, dtype=">i4").tobytes() + b"\n")
+            out.write(ids.astype(">i4").tobytes() + b"\n")
         for ch in frame.channels.values():
-            if ch.name == "position":
+            if ch.name in ("position", "ids"):
                 continue
             name = ch.name.replace(" ", "_")
             if ch.values.dtype == np.uint8:

@@ -92,6 +92,15 @@ class Frame:
         """Positions (m), ``(N, 3)`` float32."""
         return self.channels["position"].values
 
+    @property
+    def ids(self) -> np.ndarray | None:
+        """The particles' stable ids, ``(N,)`` uint32 ascending, where the frame carries them:
+        identity-ordered frames of a part of the particles (``ParticleSet.part_of``: a solid's
+        particles, which melting moves to the fluid's) or of a set whose particles are born
+        and die. None otherwise (row i of an identity frame is then particle i)."""
+        ids = self.channels.get("ids")
+        return None if ids is None else ids.values
+
     def __getitem__(self, name: str) -> np.ndarray:
         """The values of channel ``name``; KeyError naming the channels present if absent."""
         try:

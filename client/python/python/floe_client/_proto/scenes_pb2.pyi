@@ -133,7 +133,7 @@ class ChannelDescription(_message.Message):
     def __init__(self, name: _Optional[str] = ..., tag: _Optional[int] = ..., unit: _Optional[str] = ..., components: _Optional[int] = ..., set: _Optional[str] = ..., exact: _Optional[bool] = ..., about: _Optional[str] = ..., module: _Optional[str] = ...) -> None: ...
 
 class ParticleSet(_message.Message):
-    __slots__ = ("name", "count", "index", "grid", "look", "surface", "shade")
+    __slots__ = ("name", "count", "index", "grid", "look", "surface", "shade", "part_of")
     NAME_FIELD_NUMBER: _ClassVar[int]
     COUNT_FIELD_NUMBER: _ClassVar[int]
     INDEX_FIELD_NUMBER: _ClassVar[int]
@@ -141,6 +141,7 @@ class ParticleSet(_message.Message):
     LOOK_FIELD_NUMBER: _ClassVar[int]
     SURFACE_FIELD_NUMBER: _ClassVar[int]
     SHADE_FIELD_NUMBER: _ClassVar[int]
+    PART_OF_FIELD_NUMBER: _ClassVar[int]
     name: str
     count: int
     index: int
@@ -148,7 +149,8 @@ class ParticleSet(_message.Message):
     look: str
     surface: str
     shade: str
-    def __init__(self, name: _Optional[str] = ..., count: _Optional[int] = ..., index: _Optional[int] = ..., grid: _Optional[bool] = ..., look: _Optional[str] = ..., surface: _Optional[str] = ..., shade: _Optional[str] = ...) -> None: ...
+    part_of: str
+    def __init__(self, name: _Optional[str] = ..., count: _Optional[int] = ..., index: _Optional[int] = ..., grid: _Optional[bool] = ..., look: _Optional[str] = ..., surface: _Optional[str] = ..., shade: _Optional[str] = ..., part_of: _Optional[str] = ...) -> None: ...
 
 class MaterialDescription(_message.Message):
     __slots__ = ("name", "kind", "rest_density", "look")
