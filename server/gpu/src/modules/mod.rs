@@ -37,6 +37,8 @@ pub static PASSES: &[&GpuPass] = &[
     &solid::MOMENT_SUM,
     &solid::ROTATE,
     &solid::WAY,
+    &solid::DEFORMATION_SUM,
+    &solid::WEIGH,
     &solid::WAY_SUM,
     &solid::WEIGHT_SUM,
     &solid::PROJECT,

@@ -96,7 +96,7 @@ fn solid_passes_and_steps_match_the_cpu() {
         let passes: Vec<&'static PassSpec> =
             cpu.model().plan.passes().iter().copied().filter(|p| p.module == "solid").collect();
         let oriented = o.iter().any(|s| s.starts_with("solid.oriented"));
-        assert_eq!(passes.len(), if oriented { 23 } else { 18 });
+        assert_eq!(passes.len(), if oriented { 25 } else { 20 });
         for pass in passes {
             let (mut c, mut g) = pair(gpu, "elastic_drop", o, 20);
             check_pass(&mut c, &mut g, pass, &format!("{o:?}"));

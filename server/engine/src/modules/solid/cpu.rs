@@ -5,8 +5,9 @@
 
 use super::{
     CENTRE, CLUSTER_INERTIA, CLUSTER_LIVE, CLUSTER_MOMENT, CLUSTER_SPIN, CLUSTER_SUM, CLUSTER_V, CLUSTERS, COLOUR,
-    MEMBER_INERTIA, MEMBER_MOMENT, MEMBER_SPIN, MEMBER_V, MEMBER_WAY, MEMBER_WEIGHT, MEMBER_X, MIN_MEMBERS, NONRIGID,
-    OMEGA, OWNER, RESIDUAL, REST, REST_CENTRE, ROTATION, SHARE, SolidConsts, V_MEAN, WAY_SUM, WEIGHT_SUM,
+    DEFORMATION, MEMBER_INERTIA, MEMBER_MOMENT, MEMBER_SPIN, MEMBER_V, MEMBER_WAY, MEMBER_WEIGHT, MEMBER_X,
+    MIN_MEMBERS, NONRIGID, OMEGA, OWNER, RESIDUAL, REST, REST_CENTRE, ROTATION, SHARE, SolidConsts, V_MEAN, WAY_SUM,
+    WEIGHT_SUM,
     spec::{ClusterSolver, Rotation},
 };
 use crate::cpu::{CpuCx, CpuPass};
@@ -200,8 +201,9 @@ impl CpuPass for Rotate {
 
 /// Per membership: the way to its goal, `g_k - x_k = R q_k + c - x_k` (the
 /// thesis's eq. 2.19, all relative to the cluster's own particle), times its
-/// weight: 1 (Jacobi, and the clusters of this sweep's colour), `|g_k - x_k|`
-/// (weighted Jacobi, eq. 2.34); a cluster of another colour has no way and
+/// weight, 1 (Jacobi, and the clusters of this sweep's colour); under weighted
+/// Jacobi the way alone and its length, which [`Weigh`] turns into the cluster's
+/// weight. A cluster of another colour has no way and
 /// [`SolidConsts::idle_weight`]. Under conserving shares the way is also scaled
 /// by its cluster's share (`w` of its centre).
 #[derive(Debug)]
@@ -227,7 +229,31 @@ impl CpuPass for Way {
             let origin = Vec4::from(centre[s]);
             let to_goal = rotation[s] * rest[k] - (x[k] - origin.truncate());
             *w = if c.solver == ClusterSolver::WeightedJacobi { to_goal.length() } else { 1.0 };
-            *d = if conserving { to_goal * origin.w } else { to_goal * *w };
+            *d = if conserving { to_goal * origin.w } else { to_goal };
+        });
+        a.put(hw, way);
+        a.put(hk, weight);
+    }
+}
+
+/// Weighted Jacobi (the first thesis's eqs. 2.33-2.35): each membership's way and
+/// weight by its cluster's deformation `d_i` (the summed distance of its members
+/// from their goals, `solid.deformation_sum`), so a particle moves by
+/// `sum_i d_i (g_i - x) / sum_i d_i` over its clusters: the clusters that deform
+/// more have more say, and every goal of one cluster the same.
+#[derive(Debug)]
+pub struct Weigh;
+
+impl CpuPass for Weigh {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let a = &mut *cx.attrs;
+        let (hw, hk) = (a.handle::<Vec3>(MEMBER_WAY.name), a.handle::<f32>(MEMBER_WEIGHT.name));
+        let (mut way, mut weight) = (a.take(hw), a.take(hk));
+        let deformation = a.get(a.handle::<f32>(DEFORMATION.name));
+        let segment = a.get(a.handle::<u32>(CLUSTERS.segment.name));
+        way.par_iter_mut().zip(weight.par_iter_mut()).enumerate().with_min_len(4096).for_each(|(k, (d, w))| {
+            let cluster = deformation[segment[k] as usize];
+            (*d, *w) = (*d * cluster, cluster);
         });
         a.put(hw, way);
         a.put(hk, weight);

@@ -93,6 +93,8 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("solid.moment_sum", &SegmentSum::<Mat3>::new(&CLUSTERS, "solid_clusters_moment", "cluster_moment")),
         ("solid.rotate", &cpu::Rotate),
         ("solid.way", &cpu::Way),
+        ("solid.deformation_sum", &SegmentSum::<Real>::new(&CLUSTERS, "solid_clusters_weight", "cluster_deformation")),
+        ("solid.weigh", &cpu::Weigh),
         ("solid.way_sum", &MemberSum::<Vec3>::new(&CLUSTERS, "solid_clusters_way", "solid_way_sum")),
         ("solid.weight_sum", &MemberSum::<Real>::new(&CLUSTERS, "solid_clusters_weight", "solid_weight_sum")),
         ("solid.project", &cpu::Project),
@@ -249,7 +251,12 @@ fn shape_solve(iterations: u32, c: &SolidConsts) -> Iterate {
             (false, true) => START_MELTING,
             (false, false) => START,
         },
-        iteration: if c.oriented { ITERATION_ORIENTED } else { ITERATION },
+        iteration: match (c.oriented, c.solver == spec::ClusterSolver::WeightedJacobi) {
+            (false, false) => ITERATION,
+            (false, true) => ITERATION_WEIGHTED,
+            (true, false) => ITERATION_ORIENTED,
+            (true, true) => ITERATION_ORIENTED_WEIGHTED,
+        },
         residual: Reduction { attr: "solid_residual", op: ReduceOp::Max },
         tolerance: f64::INFINITY,
         min: iterations,
@@ -341,6 +348,7 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         &MEMBER_MOMENT,
         &MEMBER_WAY,
         &MEMBER_WEIGHT,
+        &DEFORMATION,
         &CLUSTER_SUM,
         &CLUSTER_MOMENT,
         &CENTRE,
@@ -373,8 +381,9 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         b.pass(&REJOIN);
     }
     let project = if melting { &PROJECT_BLENDED } else { &PROJECT };
-    for pass in
-        [&LIVE, &GATHER, &CENTRE_SUM, &MOMENT, &MOMENT_SUM, &ROTATE, &WAY, &WAY_SUM_PASS, &WEIGHT_SUM_PASS, project]
+    for pass in [&LIVE, &GATHER, &CENTRE_SUM, &MOMENT, &MOMENT_SUM, &ROTATE, &WAY, &DEFORMATION_SUM, &WEIGH]
+        .into_iter()
+        .chain([&WAY_SUM_PASS, &WEIGHT_SUM_PASS, project])
     {
         b.pass(pass);
     }

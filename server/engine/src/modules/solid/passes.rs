@@ -51,6 +51,10 @@ pub static CLUSTER_LIVE: AttrSpec = attr("cluster_live", Elem::U32, "", Role::De
 /// member is live in a body that does not melt (the offsets are centred at
 /// build); the goals are taken about it.
 pub static REST_CENTRE: AttrSpec = attr("cluster_rest_centre", Elem::Vec3, "m", Role::Derived, "solid_cluster");
+/// Each cluster's deformation, the summed distance of its live members from their
+/// goals, `d_i = sum_j |g_j - x_j|` (m; the first thesis's eq. 2.33): the weight of
+/// its goals in its members' means under weighted Jacobi (eq. 2.34).
+pub static DEFORMATION: AttrSpec = attr("cluster_deformation", Elem::F32, "m", Role::Derived, "solid_cluster");
 /// Each particle's sum of its weighted ways (m).
 pub static WAY_SUM: AttrSpec = attr("solid_way_sum", Elem::Vec3, "m", Role::Derived, PARTICLES);
 /// Each particle's sum of its ways' weights.
@@ -181,6 +185,20 @@ pub(super) static WAY: PassSpec = PassSpec {
         &[],
     )
 };
+pub(super) static DEFORMATION_SUM: PassSpec = solve(
+    "solid.deformation_sum",
+    &["solid_clusters_start", "solid_clusters_len", "solid_clusters_live", "solid_clusters_weight"],
+    &["cluster_deformation"],
+    &[],
+);
+/// Weighted Jacobi's weights: each membership's way and weight by its cluster's
+/// deformation.
+pub(super) static WEIGH: PassSpec = solve(
+    "solid.weigh",
+    &["cluster_deformation", "solid_clusters_segment"],
+    &[],
+    &["solid_clusters_way", "solid_clusters_weight"],
+);
 pub(super) static WAY_SUM_PASS: PassSpec = solve(
     "solid.way_sum",
     &[
@@ -305,6 +323,21 @@ pub(super) const ITERATION: &[Op] = &[
     Op::Pass("solid.project"),
 ];
 
+/// The same under weighted Jacobi: each cluster's goals weighted by its deformation.
+pub(super) const ITERATION_WEIGHTED: &[Op] = &[
+    Op::Pass("solid.gather"),
+    Op::Pass("solid.centre_sum"),
+    Op::Pass("solid.moment"),
+    Op::Pass("solid.moment_sum"),
+    Op::Pass("solid.rotate"),
+    Op::Pass("solid.way"),
+    Op::Pass("solid.deformation_sum"),
+    Op::Pass("solid.weigh"),
+    Op::Pass("solid.way_sum"),
+    Op::Pass("solid.weight_sum"),
+    Op::Pass("solid.project"),
+];
+
 /// The same with oriented particles: the members' ellipsoids join the moments.
 pub(super) const ITERATION_ORIENTED: &[Op] = &[
     Op::Pass("solid.gather"),
@@ -314,6 +347,22 @@ pub(super) const ITERATION_ORIENTED: &[Op] = &[
     Op::Pass("solid.ellipsoid"),
     Op::Pass("solid.rotate"),
     Op::Pass("solid.way"),
+    Op::Pass("solid.way_sum"),
+    Op::Pass("solid.weight_sum"),
+    Op::Pass("solid.project"),
+];
+
+/// Oriented particles under weighted Jacobi.
+pub(super) const ITERATION_ORIENTED_WEIGHTED: &[Op] = &[
+    Op::Pass("solid.gather"),
+    Op::Pass("solid.centre_sum"),
+    Op::Pass("solid.moment"),
+    Op::Pass("solid.moment_sum"),
+    Op::Pass("solid.ellipsoid"),
+    Op::Pass("solid.rotate"),
+    Op::Pass("solid.way"),
+    Op::Pass("solid.deformation_sum"),
+    Op::Pass("solid.weigh"),
     Op::Pass("solid.way_sum"),
     Op::Pass("solid.weight_sum"),
     Op::Pass("solid.project"),

@@ -94,9 +94,10 @@ pub enum ClusterSolver {
     /// its goals (eq. 2.31). The default: one sweep an iteration.
     #[default]
     Jacobi,
-    /// As `jacobi`, each goal weighted by its distance from the particle,
-    /// `w_j = |g_j - x| / sum_k |g_k - x|` (eqs. 2.33-2.35): the farther goals
-    /// count more.
+    /// As `jacobi`, each cluster's goals weighted by the cluster's deformation,
+    /// the summed distance of its members from their goals, `d_i = sum_j |g_j -
+    /// x_j|`, with `w_i = d_i / sum_k d_k` over the particle's clusters (the first
+    /// thesis's eqs. 2.33-2.35): the clusters that deform more count more.
     WeightedJacobi,
     /// Gauss-Seidel (eq. 2.32) as a coloured sweep: the clusters are coloured so
     /// that no two of a colour share a particle, and each colour's clusters match

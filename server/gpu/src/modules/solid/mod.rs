@@ -1,7 +1,7 @@
 //! The solid module on the GPU: the core's generic map kernels sum over the
-//! clusters; five kernels of the module's own (a thread per membership, per
+//! clusters; six kernels of the module's own (a thread per membership, per
 //! cluster or per particle, no atomics) do the relative gather, the moments, the
-//! rotations, the ways and the projection, four more for oriented particles (the
+//! rotations, the ways, weighted Jacobi's weights and the projection, four more for oriented particles (the
 //! prediction, the ellipsoids, the turns and the blend); the uniform `solid` holds
 //! [`SolidConsts`] and the counts, the core's `sweep` uniform the colour swept.
 
@@ -20,6 +20,8 @@ use floe_engine::modules::solid::{
 pub static CENTRE_SUM: GpuPass = crate::map_pass!(segment_sum "solid.centre_sum", map "solid_clusters", segments "solid_cluster", words 4, from "solid_clusters_x" into "cluster_x_sum");
 /// Each cluster's moment matrix.
 pub static MOMENT_SUM: GpuPass = crate::map_pass!(segment_sum "solid.moment_sum", map "solid_clusters", segments "solid_cluster", words 12, from "solid_clusters_moment" into "cluster_moment");
+/// Each cluster's deformation: its memberships' distances from their goals, summed.
+pub static DEFORMATION_SUM: GpuPass = crate::map_pass!(segment_sum "solid.deformation_sum", map "solid_clusters", segments "solid_cluster", words 1, from "solid_clusters_weight" into "cluster_deformation");
 /// Each particle's sum of its weighted ways.
 pub static WAY_SUM: GpuPass = crate::map_pass!(member_sum "solid.way_sum", map "solid_clusters", members "particles", words 4, from "solid_clusters_way" into "solid_way_sum");
 /// Each particle's sum of its ways' weights.
@@ -168,6 +170,23 @@ pub static WAY: GpuPass = GpuPass {
         (R, "solid_clusters_segment"),
         (R, "solid_clusters_rest"),
         (R, "solid_clusters_x"),
+        (W, "solid_clusters_way"),
+        (W, "solid_clusters_weight"),
+    ],
+    space: "solid_clusters",
+    when: always,
+};
+
+/// Weighted Jacobi's weights: each membership's way and weight by its cluster's deformation.
+pub static WEIGH: GpuPass = GpuPass {
+    name: "solid.weigh",
+    source: particle_kernel!("solid.wgsl", "weigh.wgsl"),
+    entry: "main",
+    bindings: &[
+        (U, "params"),
+        (U, "solid"),
+        (R, "cluster_deformation"),
+        (R, "solid_clusters_segment"),
         (W, "solid_clusters_way"),
         (W, "solid_clusters_weight"),
     ],

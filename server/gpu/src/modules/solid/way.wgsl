@@ -1,6 +1,7 @@
-// Per membership: the way to its goal, R q_k + c - x_k, times its weight (times
-// its cluster's share, w of its centre, under conserving shares); a cluster of
-// another colour has none and the idle weight (floe-engine `solid::cpu::Way`).
+// Per membership: the way to its goal, R q_k + c - x_k, and its weight (1; its
+// length under weighted Jacobi; the way times its cluster's share, w of its
+// centre, under conserving shares); a cluster of another colour has none and the
+// idle weight (floe-engine `solid::cpu::Way`).
 
 @group(0) @binding(2) var<uniform> sweep: vec4<u32>;
 @group(0) @binding(3) var<storage, read> rotation: array<vec4<f32>>;
@@ -25,11 +26,13 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
         return;
     }
     let to_goal = quat_rotate(rotation[s], rest[k].xyz) - (relative[k].xyz - centre[s].xyz);
+    // Weighted Jacobi: the way alone and its length, which solid.weigh turns into
+    // its cluster's deformation.
     var w = 1.0;
     if (solid.solver.x == SOLVER_WEIGHTED) {
         w = length(to_goal);
     }
-    var scale = w;
+    var scale = 1.0;
     if (solid.rigid.y != 0.0) {
         scale = centre[s].w;
     }
