@@ -42,6 +42,7 @@ pub static PASSES: &[&GpuPass] = &[
     &solid::WAY_SUM,
     &solid::WEIGHT_SUM,
     &solid::PROJECT,
+    &solid::STIFFEN,
     &solid::PROJECT_BLENDED,
     &solid::ORIENT_PREDICT,
     &solid::ELLIPSOID,

@@ -82,6 +82,7 @@ fn solid_passes_and_steps_match_the_cpu() {
         &["particle_spacing=0.04"][..],
         &["particle_spacing=0.04", "solid.rotation=\"iterative\"", "solid.solver=\"weighted_jacobi\""],
         &["particle_spacing=0.04", "solid.shares=\"mean\"", "solid.damping=0.5"],
+        &["particle_spacing=0.04", "solid.stiffness_applied=\"once_per_step\""],
         &["particle_spacing=0.04", "solid.centre_spacing=1.5"],
         &["particle_spacing=0.04", "solid.solver=\"gauss_seidel\""],
         &["particle_spacing=0.04", "solid.solver=\"hybrid\"", "solid.colours=3"],
@@ -96,7 +97,8 @@ fn solid_passes_and_steps_match_the_cpu() {
         let passes: Vec<&'static PassSpec> =
             cpu.model().plan.passes().iter().copied().filter(|p| p.module == "solid").collect();
         let oriented = o.iter().any(|s| s.starts_with("solid.oriented"));
-        assert_eq!(passes.len(), if oriented { 25 } else { 20 });
+        let once = o.iter().any(|s| s.starts_with("solid.stiffness_applied"));
+        assert_eq!(passes.len(), if oriented { 25 } else { 20 } + usize::from(once));
         for pass in passes {
             let (mut c, mut g) = pair(gpu, "elastic_drop", o, 20);
             check_pass(&mut c, &mut g, pass, &format!("{o:?}"));

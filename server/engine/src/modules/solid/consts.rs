@@ -10,6 +10,8 @@ use crate::scene::Scene;
 pub struct SolidConsts {
     /// alpha.
     pub stiffness: Real,
+    /// When alpha applies.
+    pub stiffness_applied: spec::StiffnessApplied,
     /// How rotations are extracted.
     pub rotation: spec::Rotation,
     /// How the goals move the particles.
@@ -54,6 +56,15 @@ impl SolidConsts {
         self.solver == spec::ClusterSolver::Jacobi && self.shares == spec::Shares::Conserving
     }
 
+    /// The share of its way an iteration moves a particle by: alpha, or all of
+    /// it where alpha is applied once per step.
+    pub fn iteration_alpha(&self) -> Real {
+        match self.stiffness_applied {
+            spec::StiffnessApplied::EachIteration => self.stiffness,
+            spec::StiffnessApplied::OncePerStep => 1.0,
+        }
+    }
+
     /// Whether each sweep matches only the clusters of its colour.
     pub fn coloured(&self) -> bool {
         matches!(self.solver, spec::ClusterSolver::GaussSeidel | spec::ClusterSolver::Hybrid)
@@ -86,6 +97,7 @@ pub(super) fn consts(scene: &Scene, colours: u32, elastic: u32, melting: bool) -
     let radii = s.oriented.as_ref().map_or([0.0; 3], |o| o.radii);
     SolidConsts {
         stiffness: s.stiffness,
+        stiffness_applied: s.stiffness_applied,
         rotation: s.rotation,
         solver: s.solver,
         shares: s.shares,

@@ -275,7 +275,7 @@ pub struct Project;
 impl CpuPass for Project {
     fn run(&self, cx: &mut CpuCx<'_>) {
         let c = cx.model.consts::<SolidConsts>();
-        let (alpha, (low, high), first, conserving) = (c.stiffness, c.room, cx.sweep == 0, c.conserving());
+        let (alpha, (low, high), first, conserving) = (c.iteration_alpha(), c.room, cx.sweep == 0, c.conserving());
         let a = &mut *cx.attrs;
         let (hx, hr) = (a.handle::<Vec3>("x"), a.handle::<f32>(RESIDUAL.name));
         let (mut x, mut residual) = (a.take(hx), a.take(hr));
@@ -294,6 +294,31 @@ impl CpuPass for Project {
         });
         a.put(hx, x);
         a.put(hr, residual);
+    }
+}
+
+/// Alpha once per step (the first thesis's eq. 2.23): each elastic particle's move
+/// over the step's shape solve, which took it to its goals, scaled by alpha,
+/// `x = x_predicted + alpha (x - x_predicted)`. (A particle of another material
+/// did not move in the solve; a melting one moved by `1 - beta` of its way.)
+#[derive(Debug)]
+pub struct Stiffen;
+
+impl CpuPass for Stiffen {
+    fn run(&self, cx: &mut CpuCx<'_>) {
+        let c = cx.model.consts::<SolidConsts>();
+        let a = &mut *cx.attrs;
+        let hx = a.handle::<Vec3>("x");
+        let mut x = a.take(hx);
+        let from = a.get(a.handle::<Vec3>("x_predicted"));
+        let material = a.find::<u32>("material").map(|h| a.get(h));
+        let alpha = c.stiffness;
+        x.par_iter_mut().enumerate().with_min_len(4096).for_each(|(i, x)| {
+            if c.elastic >> material.map_or(0, |m| m[i]) & 1 == 1 {
+                *x = from[i] + (*x - from[i]) * alpha;
+            }
+        });
+        a.put(hx, x);
     }
 }
 

@@ -67,7 +67,7 @@ use crate::module::{BenchCase, BenchKind, BenchSize, ModuleDef, Section};
 use crate::scene::Scene;
 use crate::scene::sections::SectionDef;
 use crate::scene::tunable::Tunable;
-use crate::scheme::{Iterate, ReduceOp, Reduction};
+use crate::scheme::{Iterate, Op, ReduceOp, Reduction};
 
 /// The module's definition.
 pub static MODULE: ModuleDef = ModuleDef {
@@ -95,6 +95,7 @@ pub static MODULE: ModuleDef = ModuleDef {
         ("solid.way", &cpu::Way),
         ("solid.deformation_sum", &SegmentSum::<Real>::new(&CLUSTERS, "solid_clusters_weight", "cluster_deformation")),
         ("solid.weigh", &cpu::Weigh),
+        ("solid.stiffen", &cpu::Stiffen),
         ("solid.way_sum", &MemberSum::<Vec3>::new(&CLUSTERS, "solid_clusters_way", "solid_way_sum")),
         ("solid.weight_sum", &MemberSum::<Real>::new(&CLUSTERS, "solid_clusters_weight", "solid_weight_sum")),
         ("solid.project", &cpu::Project),
@@ -267,6 +268,23 @@ fn shape_solve(iterations: u32, c: &SolidConsts) -> Iterate {
     }
 }
 
+/// Alpha once per step, after the shape solve (no iterations: its residual is the
+/// shape solve's).
+fn stiffness_solve() -> Iterate {
+    Iterate {
+        name: "solid.stiffness",
+        start: &[Op::Pass("solid.stiffen")],
+        iteration: &[],
+        residual: Reduction { attr: "solid_residual", op: ReduceOp::Max },
+        tolerance: f64::INFINITY,
+        min: 0,
+        max: 0,
+        check_every: 1,
+        sweeps: 1,
+        max_sweeps: 1,
+    }
+}
+
 /// Once after each step's solve, the velocities damped toward the clusters' rigid
 /// motions (its residual: the largest speed relative to them, m/s).
 fn rigidity_solve() -> Iterate {
@@ -393,6 +411,10 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
         orient_particles(b, &material, &elastic);
     }
     b.position_solve(shape_solve(s.iterations, &c));
+    if c.stiffness_applied == spec::StiffnessApplied::OncePerStep {
+        b.pass(&STIFFEN);
+        b.position_solve(stiffness_solve());
+    }
     let damp = if melting { &DAMP_BLENDED } else { &DAMP };
     for pass in [&MOTION, &VELOCITY_SUM, &SPIN, &SPIN_SUM, &INERTIA_SUM, &RIGID, &RIGID_WAY, damp] {
         b.pass(pass);

@@ -199,6 +199,9 @@ pub(super) static WEIGH: PassSpec = solve(
     &[],
     &["solid_clusters_way", "solid_clusters_weight"],
 );
+/// Alpha once per step: each elastic particle's move over the shape solve scaled
+/// by alpha.
+pub(super) static STIFFEN: PassSpec = solve("solid.stiffen", &["x_predicted"], &[], &["x"]);
 pub(super) static WAY_SUM_PASS: PassSpec = solve(
     "solid.way_sum",
     &[

@@ -28,6 +28,13 @@ pub struct Solid {
     /// default 0.5). Live.
     #[serde(default = "default_stiffness")]
     pub stiffness: f32,
+    /// When the stiffness applies: each iteration moves the particles by alpha of
+    /// their way to their goals (`each_iteration`, the default), or the
+    /// iterations move them all the way and alpha is applied once, to the step's
+    /// whole move (`once_per_step`: the first thesis's eq. 2.23, `v += alpha (g -
+    /// x) / dt`).
+    #[serde(default, skip_serializing_if = "StiffnessApplied::is_each_iteration")]
+    pub stiffness_applied: StiffnessApplied,
     /// Iterations of the cluster solve per step (default 3). Live.
     #[serde(default = "default_iterations")]
     pub iterations: u32,
@@ -55,6 +62,25 @@ pub struct Solid {
     /// absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub oriented: Option<Oriented>,
+}
+
+/// When the shape matching's stiffness alpha applies.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum StiffnessApplied {
+    /// Each iteration moves the particles by alpha of their way to their goals.
+    #[default]
+    EachIteration,
+    /// The iterations move the particles to their goals, and the step's whole
+    /// move is scaled by alpha once (the first thesis's eq. 2.23).
+    OncePerStep,
+}
+
+impl StiffnessApplied {
+    /// Whether it is the default (scene files may leave it out).
+    pub fn is_each_iteration(&self) -> bool {
+        *self == StiffnessApplied::EachIteration
+    }
 }
 
 /// The oriented particles' settings.

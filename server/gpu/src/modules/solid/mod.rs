@@ -194,6 +194,16 @@ pub static WEIGH: GpuPass = GpuPass {
     when: always,
 };
 
+/// Alpha once per step: each elastic particle's move over the shape solve scaled by alpha.
+pub static STIFFEN: GpuPass = GpuPass {
+    name: "solid.stiffen",
+    source: particle_kernel!("solid.wgsl", "stiffen.wgsl"),
+    entry: "main",
+    bindings: &[(U, "params"), (U, "solid"), (R, "x_predicted"), (W, "x")],
+    space: PARTICLES,
+    when: always,
+};
+
 /// Each particle's move by the weighted mean of its ways.
 pub static PROJECT: GpuPass = GpuPass {
     name: "solid.project",
@@ -472,7 +482,7 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
     };
     let (low, high) = c.room;
     let u = SolidParams {
-        settings: [c.stiffness, c.ellipsoid.x, c.ellipsoid.y, c.ellipsoid.z],
+        settings: [c.iteration_alpha(), c.ellipsoid.x, c.ellipsoid.y, c.ellipsoid.z],
         sizes: [
             model.layout.count(CLUSTERS.segments) as u32,
             model.layout.count(CLUSTERS.name) as u32,
@@ -483,7 +493,7 @@ pub fn uniform(model: &Model) -> Option<Vec<u8>> {
         low: [low.x, low.y, low.z, 0.0],
         high: [high.x, high.y, high.z, 0.0],
         melt: [c.radius.to_bits(), c.elastic, MIN_MEMBERS, u32::from(c.melting)],
-        rigid: [c.damping, f32::from(u8::from(c.conserving())), 0.0, 0.0],
+        rigid: [c.damping, f32::from(u8::from(c.conserving())), c.stiffness, 0.0],
     };
     Some(bytemuck::bytes_of(&u).to_vec())
 }

@@ -2,7 +2,8 @@
 // decompositions of floe-engine `modules::solid::polar`, line for line.
 
 struct Solid {
-    // Stiffness alpha, then the oriented particles' ellipsoid moment (a^2, b^2, c^2) / 5 (m^2).
+    // The share of its way an iteration moves a particle by (alpha, or 1 where alpha
+    // applies once per step), then the oriented particles' ellipsoid moment (a^2, b^2, c^2) / 5 (m^2).
     settings: vec4<f32>,
     // Clusters, memberships, rotation method (0 iterative, 1 eigen), iterations of the iterative one.
     sizes: vec4<u32>,
@@ -16,7 +17,7 @@ struct Solid {
     // fewest members a cluster keeps (MIN_MEMBERS) in z, 1 in w where bodies melt.
     melt: vec4<u32>,
     // The damping toward the clusters' rigid motions in x, 1 in y under conserving
-    // shares (SolidConsts::conserving), else 0.
+    // shares (SolidConsts::conserving), else 0, alpha in z.
     rigid: vec4<f32>,
 }
 
