@@ -163,7 +163,8 @@ fn solid_passes_on_dfsph_match_the_cpu() {
 /// CPU's, then 20 whole steps on both, whose phases agree exactly and whose
 /// positions and liquid fractions agree closely. On WCSPH: the preset's DFSPH
 /// iterates its solves to a tolerance, which the backends may reach an iteration
-/// apart, and its own passes have their own oracle test.
+/// apart, and its own passes have their own oracle test. The same with oriented
+/// particles.
 #[test]
 fn melting_passes_and_steps_match_the_cpu() {
     let Some(gpu) = common::gpu("melting_passes_and_steps_match_the_cpu") else { return };
@@ -175,20 +176,28 @@ fn melting_passes_and_steps_match_the_cpu() {
         "fluids[1].blocks[0].min=[0.03,0.08,0.03]",
         "fluids[1].blocks[0].max=[0.07,0.12,0.07]",
     ];
-    let (cpu, _) = pair(gpu, "ice_cube_in_glass", &o, 500);
+    // Shape matching, and oriented particles (their orientations blended by ExpMap).
+    let oriented = [&o[..], &["solid.oriented={\"blend\":\"exp_map\"}"]].concat();
+    for o in [&o[..], &oriented[..]] {
+        melting_matches(gpu, o);
+    }
+}
+
+fn melting_matches(gpu: &floe_gpu::GpuContext, o: &[&str]) {
+    let (cpu, _) = pair(gpu, "ice_cube_in_glass", o, 500);
     let column = |s: &Simulation, name: &str| s.backend().download(&[name]).remove(0);
     let Column::F32(beta) = column(&cpu, "liquid_fraction") else { panic!("a liquid fraction") };
-    assert!(beta.iter().any(|&b| b > 0.0 && b < 1.0) && beta.contains(&1.0), "melting and melted");
+    assert!(beta.iter().any(|&b| b > 0.0 && b < 1.0) && beta.contains(&1.0), "{o:?}: melting and melted");
     let passes: Vec<&'static PassSpec> =
         cpu.model().plan.passes().iter().copied().filter(|p| p.module != "core").collect();
     for name in ["heat.melt", "solid.leave", "solid.live", "solid.project"] {
         assert!(passes.iter().any(|p| p.name == name), "{name} in the plan");
     }
     for pass in passes.into_iter().filter(|p| p.module == "heat" || p.module == "solid") {
-        let (mut c, mut g) = pair(gpu, "ice_cube_in_glass", &o, 500);
-        check_pass(&mut c, &mut g, pass, "melting");
+        let (mut c, mut g) = pair(gpu, "ice_cube_in_glass", o, 500);
+        check_pass(&mut c, &mut g, pass, &format!("melting {o:?}"));
     }
-    let (mut c, mut g) = pair(gpu, "ice_cube_in_glass", &o, 500);
+    let (mut c, mut g) = pair(gpu, "ice_cube_in_glass", o, 500);
     for _ in 0..20 {
         c.step().unwrap();
         g.step().unwrap();
@@ -207,10 +216,13 @@ fn melting_passes_and_steps_match_the_cpu() {
         out
     };
     let (a, b) = (by_id(&c), by_id(&g));
-    assert!(a.iter().zip(&b).all(|(p, q)| p.1 == q.1), "the phases differ after 20 steps");
+    assert!(a.iter().zip(&b).all(|(p, q)| p.1 == q.1), "{o:?}: the phases differ after 20 steps");
     let worst = a.iter().zip(&b).map(|(p, q)| p.0.distance(q.0)).fold(0.0f32, f32::max);
     let fraction = a.iter().zip(&b).map(|(p, q)| (p.2 - q.2).abs()).fold(0.0f32, f32::max);
-    assert!(worst < 1e-5 && fraction < 1e-3, "positions {worst} m, liquid fractions {fraction} apart after 20 steps");
+    assert!(
+        worst < 1e-5 && fraction < 1e-3,
+        "{o:?}: positions {worst} m, liquid fractions {fraction} apart after 20 steps"
+    );
 }
 
 /// The Stefan slab (2 mm) 200 steps in, melting from its warm wall: heat's passes

@@ -396,10 +396,9 @@ mod tests {
             errors(&["heat.fluids[1].melting.latent_heat=-1"]),
             "heat.fluids[1].melting.latent_heat: must be between 1 and 100000000, got -1"
         );
-        // Oriented particles that melt are refused when the scene is built.
+        // Oriented particles melt too (solid/tests.rs).
         let oriented = crate::scene::load::from_preset("ice_cube_in_glass", &["solid.oriented={}".into()]).unwrap();
-        let e = crate::model::Model::build(&oriented).unwrap_err().to_string();
-        assert!(e.contains("solid.oriented: oriented particles do not melt yet"), "{e}");
+        crate::model::Model::build(&oriented).unwrap();
     }
 
     #[test]

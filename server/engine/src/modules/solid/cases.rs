@@ -142,7 +142,7 @@ pub const CASES: &[Case] = &[
     Case {
         name: "ice_insulated",
         module: "solid",
-        reference: "conservation: the ice cube of ice_cube_in_glass at its melting point melting in water at 293 K in an insulated glass for 1 s: the total heat (sensible and latent) to 1e-6 relative, the solid's mass only falling, solid and melt together the cube's mass",
+        reference: "conservation: the ice cube of ice_cube_in_glass at its melting point melting in water at 293 K in an insulated glass for 1 s: the total heat (sensible and latent) to 1e-6 relative, the solid's mass only falling, solid and melt together the cube's mass; on DFSPH, on WCSPH, and in the first thesis's two configurations (shape matching, oriented particles, each with weighted Jacobi)",
         preset: "ice_cube_in_glass",
         primary_error: "heat_drift",
         spacings: (&[0.01, 0.0075], &[0.01, 0.0075, 0.005]),
@@ -151,6 +151,20 @@ pub const CASES: &[Case] = &[
         variants: &[
             Variant { name: "default", overrides: &["heat.fluids[1].temperature=273.15"] },
             Variant { name: "wcsph", overrides: &["heat.fluids[1].temperature=273.15", "solver.method=\"wcsph\""] },
+            // The first thesis's two configurations: shape matching and oriented
+            // particles, each with its weighted Jacobi.
+            Variant {
+                name: "sm_weighted_jacobi",
+                overrides: &["heat.fluids[1].temperature=273.15", "solid.solver=\"weighted_jacobi\""],
+            },
+            Variant {
+                name: "op_weighted_jacobi",
+                overrides: &[
+                    "heat.fluids[1].temperature=273.15",
+                    "solid.solver=\"weighted_jacobi\"",
+                    "solid.oriented={}",
+                ],
+            },
         ],
         measure: super::melting::insulated_case,
     },

@@ -248,7 +248,8 @@ fn shape_solve(iterations: u32, c: &SolidConsts) -> Iterate {
     Iterate {
         name: "solid.shape",
         start: match (c.oriented, c.melting) {
-            (true, _) => START_ORIENTED,
+            (true, true) => START_ORIENTED_MELTING,
+            (true, false) => START_ORIENTED,
             (false, true) => START_MELTING,
             (false, false) => START,
         },
@@ -388,12 +389,6 @@ fn build(scene: &Scene, b: &mut ModelBuilder) -> Result<(), BuildError> {
     let clusters = found.lists.len();
     b.attr(&ROTATION, Column::Quat(vec![Quat::IDENTITY; clusters]));
     let melting = b.column(crate::quantities::LIQUID_FRACTION.name).is_some();
-    if melting && s.oriented.is_some() {
-        return Err(BuildError::Setting(
-            "solid.oriented: oriented particles do not melt yet; a scene whose bodies melt (heat.fluids[i].melting) has none"
-                .into(),
-        ));
-    }
     if melting {
         b.pass(&LEAVE);
         b.pass(&REJOIN);

@@ -220,7 +220,8 @@ impl CpuPass for Ellipsoid {
 
 /// Per membership: its cluster's rotation with the sign that puts it on the
 /// member's previous orientation's side (eq. 2.37), or (ExpMap) the logarithm of
-/// its turn from that orientation, taken the short way (w = 0).
+/// its turn from that orientation, taken the short way, with w = 1 (summed over a
+/// particle's live memberships, the count its mean divides by).
 #[derive(Debug)]
 pub struct Turn;
 
@@ -239,9 +240,10 @@ impl CpuPass for Turn {
             let (r, b) = (rotation[segment[k] as usize], before[slot[member[k] as usize] as usize]);
             *t = match blend {
                 Blend::Qlerp => signed(r, b),
+                // The w of 1 counts the live memberships in the particle's sum.
                 Blend::ExpMap => {
                     let v = log_turn(r, b);
-                    Quat::from_xyzw(v.x, v.y, v.z, 0.0)
+                    Quat::from_xyzw(v.x, v.y, v.z, 1.0)
                 }
             };
         });
@@ -249,8 +251,10 @@ impl CpuPass for Turn {
     }
 }
 
-/// Per particle of a body: the blend of its turns is its orientation, and the
-/// turn from the one before its angular velocity.
+/// Per particle of a body: the blend of its turns over its live clusters is its
+/// orientation (ExpMap's mean divides by their number, the sum's w), and the turn
+/// from the one before its angular velocity; a particle in no live cluster (melted)
+/// keeps its orientation and stops turning.
 #[derive(Debug)]
 pub struct Update;
 
@@ -265,14 +269,22 @@ impl CpuPass for Update {
         let id = a.get(a.handle::<u32>("id"));
         let count = a.get(a.handle::<u32>(CLUSTERS.count.name));
         q.par_iter_mut().zip(w.par_iter_mut()).enumerate().with_min_len(4096).for_each(|(i, (q, w))| {
-            let n = count.get(id[i] as usize).copied().unwrap_or(0);
-            if n == 0 {
+            if count.get(id[i] as usize).copied().unwrap_or(0) == 0 {
                 return;
             }
+            // A melted particle, in no live cluster, stops turning.
             let s = sum[i];
+            let live = match blend {
+                Blend::Qlerp => s.length_squared() > 0.0,
+                Blend::ExpMap => s.w > 0.0,
+            };
+            if !live {
+                *w = Vec3::ZERO;
+                return;
+            }
             let blended = match blend {
                 Blend::Qlerp => s.normalize(),
-                Blend::ExpMap => (exp(Vec3::new(s.x, s.y, s.z) / n as f32) * before[i]).normalize(),
+                Blend::ExpMap => (exp(Vec3::new(s.x, s.y, s.z) / s.w) * before[i]).normalize(),
             };
             *w = spin(blended, before[i], dt);
             *q = blended;

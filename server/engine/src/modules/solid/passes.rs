@@ -312,6 +312,8 @@ pub(super) const RIGIDITY: &[Op] = &[
 pub(super) const START: &[Op] = &[Op::Pass("solid.live")];
 pub(super) const START_MELTING: &[Op] = &[Op::Pass("solid.leave"), Op::Pass("solid.rejoin"), Op::Pass("solid.live")];
 pub(super) const START_ORIENTED: &[Op] = &[Op::Pass("solid.orient_predict"), Op::Pass("solid.live")];
+pub(super) const START_ORIENTED_MELTING: &[Op] =
+    &[Op::Pass("solid.orient_predict"), Op::Pass("solid.leave"), Op::Pass("solid.rejoin"), Op::Pass("solid.live")];
 
 /// The passes of one iteration's sweep, in order.
 pub(super) const ITERATION: &[Op] = &[

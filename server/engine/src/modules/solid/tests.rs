@@ -193,6 +193,51 @@ fn the_solver_changes_while_the_scene_runs() {
     sim.step().unwrap();
 }
 
+/// Oriented ice that melts (QLERP and ExpMap): the cube 10 K above its melting
+/// point melts in its first steps; every melted particle leaves its clusters,
+/// keeps a unit orientation and stops turning; frozen again by a heat sink, its
+/// members rejoin and turn with their clusters.
+#[test]
+fn oriented_ice_melts_and_freezes_again() {
+    for blend in ["qlerp", "exp_map"] {
+        let o: Vec<String> = [
+            "particle_spacing=0.01",
+            "gravity=[0,0,0]",
+            "fluids[0].blocks=[]",
+            "heat.fluids[1].temperature=283.15",
+            r#"heat.sources=[{"min":[0,0,0],"max":[1,1,1],"power":-2e9}]"#,
+            &format!(r#"solid.oriented={{"blend":"{blend}"}}"#),
+            "solid.bodies[0].angular_velocity=[0,2,0]",
+        ]
+        .map(String::from)
+        .to_vec();
+        let mut sim = crate::Simulation::new_cpu(from_preset("ice_cube_in_glass", &o).unwrap()).unwrap();
+        let columns = |sim: &crate::Simulation| {
+            let c = sim.backend().download(&["material", orient::ORIENTATION.name, orient::SPIN.name]);
+            match (&c[0], &c[1], &c[2]) {
+                (Column::U32(m), Column::Quat(q), Column::Vec3(w)) => (m.clone(), q.clone(), w.clone()),
+                _ => unreachable!("materials, orientations, spins"),
+            }
+        };
+        sim.step().unwrap();
+        sim.step().unwrap();
+        let (m, q, w) = columns(&sim);
+        assert!(m.iter().all(|&m| m == 2), "{blend}: all melted");
+        assert!(q.iter().all(|q| (q.length() - 1.0).abs() < 1e-5), "{blend}: orientations of unit length");
+        assert!(w.iter().all(|w| *w == Vec3::ZERO), "{blend}: melted particles stop turning");
+        while columns(&sim).0.iter().any(|&m| m != 1) {
+            assert!(sim.time() < 1.0, "{blend}: not frozen by {} s", sim.time());
+            sim.step().unwrap();
+        }
+        for _ in 0..3 {
+            sim.step().unwrap();
+        }
+        let (_, q, w) = columns(&sim);
+        assert!(q.iter().all(|q| q.is_finite() && (q.length() - 1.0).abs() < 1e-5), "{blend}: after freezing");
+        assert!(w.iter().filter(|w| w.length() > 0.0).count() > w.len() / 2, "{blend}: the refrozen body turns again");
+    }
+}
+
 /// A body outside the walls, or overlapping another, is refused naming its block
 /// before anything is built; the presets pass.
 #[test]

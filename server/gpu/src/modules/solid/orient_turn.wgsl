@@ -1,6 +1,7 @@
 // Per membership: its cluster's rotation signed towards the member's previous
-// orientation (QLERP), or the logarithm of its turn from it (ExpMap)
-// (floe-engine `solid::orient::Turn`).
+// orientation (QLERP), or the logarithm of its turn from it with w = 1, which
+// counts the live memberships in the particle's sum (ExpMap) (floe-engine
+// `solid::orient::Turn`).
 
 @group(0) @binding(2) var<storage, read> rotation: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> segment: array<u32>;
@@ -20,6 +21,6 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     if (solid.solver.z == 0u) {
         turn[k] = select(r, -r, dot(r, b) < 0.0);
     } else {
-        turn[k] = vec4<f32>(quat_log(quat_short(quat_mul(r, quat_conj(b)))), 0.0);
+        turn[k] = vec4<f32>(quat_log(quat_short(quat_mul(r, quat_conj(b)))), 1.0);
     }
 }

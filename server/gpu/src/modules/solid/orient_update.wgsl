@@ -1,5 +1,6 @@
-// Per particle of a body: the blend of its turns is its orientation, and the
-// turn from the one before its angular velocity (floe-engine
+// Per particle of a body: the blend of its turns over its live clusters is its
+// orientation, and the turn from the one before its angular velocity; a melted
+// particle keeps its orientation and stops turning (floe-engine
 // `solid::orient::Update`).
 
 @group(0) @binding(2) var<uniform> dt: vec4<f32>;
@@ -24,12 +25,21 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
     if (n == 0u) {
         return;
     }
+    // A melted particle, in no live cluster, stops turning.
     let s = turn_sum[i];
+    var live = s.w > 0.0;
+    if (solid.solver.z == 0u) {
+        live = dot(s, s) > 0.0;
+    }
+    if (!live) {
+        spin[i] = vec4<f32>(0.0);
+        return;
+    }
     var blended: vec4<f32>;
     if (solid.solver.z == 0u) {
         blended = normalize(s);
     } else {
-        blended = normalize(quat_mul(quat_exp(s.xyz / f32(n)), before[i]));
+        blended = normalize(quat_mul(quat_exp(s.xyz / s.w), before[i]));
     }
     spin[i] = vec4<f32>(quat_spin(blended, before[i], dt.x), 0.0);
     orientation[i] = blended;
