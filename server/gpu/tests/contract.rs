@@ -30,6 +30,7 @@ fn scenes() -> Vec<(String, Model)> {
         ("hydrostatic", &["particle_spacing=0.05", "solver.method=\"wcsph\"", "solver.delta_sph={\"delta\":0.1}"]),
         ("cross_channel", &["particle_spacing=0.1", r#"snow.solver={"method":"explicit"}"#]),
         ("elastic_drop", &["particle_spacing=0.04", "solid.oriented={}"]),
+        ("elastic_drop", &["particle_spacing=0.04", "solid.stiffness_applied=\"once_per_step\""]),
         (
             "heated_channel",
             &[
