@@ -166,7 +166,11 @@ def test_a_solid_streams_as_its_own_set(client: floe_client.Client) -> None:
     scene = client.create_preset("floating_blocks", ["particle_spacing=0.04"])
     try:
         sets = {s.name: s for s in scene.sets}
-        assert (sets["solid"].part_of, sets["fluid"].part_of, sets["particles"].part_of) == ("particles", "particles", "")
+        assert (sets["solid"].part_of, sets["fluid"].part_of, sets["particles"].part_of) == (
+            "particles",
+            "particles",
+            "",
+        )
         ids = {}
         for name in ("particles", "solid", "fluid"):
             with client.frames(scene, channels=["velocity"], particle_set=name) as frames:

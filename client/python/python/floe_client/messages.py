@@ -184,7 +184,9 @@ class SceneInfo:
             channels=tuple(
                 ChannelInfo(c.name, c.tag, c.unit, c.components, c.set, c.exact, c.about, c.module) for c in m.channels
             ),
-            sets=tuple(ParticleSet(s.name, s.count, s.index, s.grid, s.look, s.surface, s.shade, s.part_of) for s in m.sets),
+            sets=tuple(
+                ParticleSet(s.name, s.count, s.index, s.grid, s.look, s.surface, s.shade, s.part_of) for s in m.sets
+            ),
             tunables=tuple(
                 Tunable(
                     t.path,
