@@ -269,31 +269,24 @@ fn shape_solve(iterations: u32, c: &SolidConsts) -> Iterate {
     }
 }
 
-/// Alpha once per step, after the shape solve (no iterations: its residual is the
-/// shape solve's).
+/// Alpha once per step, after the shape solve (its residual is the shape solve's).
 fn stiffness_solve() -> Iterate {
-    Iterate {
-        name: "solid.stiffness",
-        start: &[Op::Pass("solid.stiffen")],
-        iteration: &[],
-        residual: Reduction { attr: "solid_residual", op: ReduceOp::Max },
-        tolerance: f64::INFINITY,
-        min: 0,
-        max: 0,
-        check_every: 1,
-        sweeps: 1,
-        max_sweeps: 1,
-    }
+    once("solid.stiffness", &[Op::Pass("solid.stiffen")], "solid_residual")
 }
 
 /// Once after each step's solve, the velocities damped toward the clusters' rigid
 /// motions (its residual: the largest speed relative to them, m/s).
 fn rigidity_solve() -> Iterate {
+    once("solid.rigidity", RIGIDITY, "solid_nonrigid")
+}
+
+/// A solve of no iterations: `start` once, its residual the largest of `residual`.
+fn once(name: &'static str, start: &'static [Op], residual: &'static str) -> Iterate {
     Iterate {
-        name: "solid.rigidity",
-        start: RIGIDITY,
+        name,
+        start,
         iteration: &[],
-        residual: Reduction { attr: "solid_nonrigid", op: ReduceOp::Max },
+        residual: Reduction { attr: residual, op: ReduceOp::Max },
         tolerance: f64::INFINITY,
         min: 0,
         max: 0,

@@ -315,60 +315,33 @@ pub(super) const START_ORIENTED: &[Op] = &[Op::Pass("solid.orient_predict"), Op:
 pub(super) const START_ORIENTED_MELTING: &[Op] =
     &[Op::Pass("solid.orient_predict"), Op::Pass("solid.leave"), Op::Pass("solid.rejoin"), Op::Pass("solid.live")];
 
-/// The passes of one iteration's sweep, in order.
-pub(super) const ITERATION: &[Op] = &[
-    Op::Pass("solid.gather"),
-    Op::Pass("solid.centre_sum"),
-    Op::Pass("solid.moment"),
-    Op::Pass("solid.moment_sum"),
-    Op::Pass("solid.rotate"),
-    Op::Pass("solid.way"),
-    Op::Pass("solid.way_sum"),
-    Op::Pass("solid.weight_sum"),
-    Op::Pass("solid.project"),
-];
+/// The passes of one iteration's sweep, in order, with `$moments` after the
+/// moments' sum (the oriented particles' ellipsoids) and `$weights` after the ways
+/// (weighted Jacobi's cluster weights).
+macro_rules! iteration {
+    ([$($moments:literal),*], [$($weights:literal),*]) => {
+        &[
+            Op::Pass("solid.gather"),
+            Op::Pass("solid.centre_sum"),
+            Op::Pass("solid.moment"),
+            Op::Pass("solid.moment_sum"),
+            $(Op::Pass($moments),)*
+            Op::Pass("solid.rotate"),
+            Op::Pass("solid.way"),
+            $(Op::Pass($weights),)*
+            Op::Pass("solid.way_sum"),
+            Op::Pass("solid.weight_sum"),
+            Op::Pass("solid.project"),
+        ]
+    };
+}
 
-/// The same under weighted Jacobi: each cluster's goals weighted by its deformation.
-pub(super) const ITERATION_WEIGHTED: &[Op] = &[
-    Op::Pass("solid.gather"),
-    Op::Pass("solid.centre_sum"),
-    Op::Pass("solid.moment"),
-    Op::Pass("solid.moment_sum"),
-    Op::Pass("solid.rotate"),
-    Op::Pass("solid.way"),
-    Op::Pass("solid.deformation_sum"),
-    Op::Pass("solid.weigh"),
-    Op::Pass("solid.way_sum"),
-    Op::Pass("solid.weight_sum"),
-    Op::Pass("solid.project"),
-];
-
-/// The same with oriented particles: the members' ellipsoids join the moments.
-pub(super) const ITERATION_ORIENTED: &[Op] = &[
-    Op::Pass("solid.gather"),
-    Op::Pass("solid.centre_sum"),
-    Op::Pass("solid.moment"),
-    Op::Pass("solid.moment_sum"),
-    Op::Pass("solid.ellipsoid"),
-    Op::Pass("solid.rotate"),
-    Op::Pass("solid.way"),
-    Op::Pass("solid.way_sum"),
-    Op::Pass("solid.weight_sum"),
-    Op::Pass("solid.project"),
-];
-
+/// One iteration's sweep.
+pub(super) const ITERATION: &[Op] = iteration!([], []);
+/// Under weighted Jacobi: each cluster's goals weighted by its deformation.
+pub(super) const ITERATION_WEIGHTED: &[Op] = iteration!([], ["solid.deformation_sum", "solid.weigh"]);
+/// With oriented particles: the members' ellipsoids join the moments.
+pub(super) const ITERATION_ORIENTED: &[Op] = iteration!(["solid.ellipsoid"], []);
 /// Oriented particles under weighted Jacobi.
-pub(super) const ITERATION_ORIENTED_WEIGHTED: &[Op] = &[
-    Op::Pass("solid.gather"),
-    Op::Pass("solid.centre_sum"),
-    Op::Pass("solid.moment"),
-    Op::Pass("solid.moment_sum"),
-    Op::Pass("solid.ellipsoid"),
-    Op::Pass("solid.rotate"),
-    Op::Pass("solid.way"),
-    Op::Pass("solid.deformation_sum"),
-    Op::Pass("solid.weigh"),
-    Op::Pass("solid.way_sum"),
-    Op::Pass("solid.weight_sum"),
-    Op::Pass("solid.project"),
-];
+pub(super) const ITERATION_ORIENTED_WEIGHTED: &[Op] =
+    iteration!(["solid.ellipsoid"], ["solid.deformation_sum", "solid.weigh"]);

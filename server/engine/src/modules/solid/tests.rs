@@ -200,17 +200,9 @@ fn the_solver_changes_while_the_scene_runs() {
 #[test]
 fn oriented_ice_melts_and_freezes_again() {
     for blend in ["qlerp", "exp_map"] {
-        let o: Vec<String> = [
-            "particle_spacing=0.01",
-            "gravity=[0,0,0]",
-            "fluids[0].blocks=[]",
-            "heat.fluids[1].temperature=283.15",
-            r#"heat.sources=[{"min":[0,0,0],"max":[1,1,1],"power":-2e9}]"#,
-            &format!(r#"solid.oriented={{"blend":"{blend}"}}"#),
-            "solid.bodies[0].angular_velocity=[0,2,0]",
-        ]
-        .map(String::from)
-        .to_vec();
+        let oriented =
+            [&format!(r#"solid.oriented={{"blend":"{blend}"}}"#), "solid.bodies[0].angular_velocity=[0,2,0]"];
+        let o: Vec<String> = MELTING_CUBE.iter().copied().chain(oriented).map(String::from).collect();
         let mut sim = crate::Simulation::new_cpu(from_preset("ice_cube_in_glass", &o).unwrap()).unwrap();
         let columns = |sim: &crate::Simulation| {
             let c = sim.backend().download(&["material", orient::ORIENTATION.name, orient::SPIN.name]);
@@ -261,6 +253,16 @@ fn bodies_outside_the_walls_or_overlapping_are_refused() {
     assert!(err.contains("fluids[0].blocks[0]: its box holds 194488320 lattice points"), "{err}");
 }
 
+/// The ice cube of `ice_cube_in_glass` at 1 cm, alone, without gravity, 10 K
+/// above its melting point, in a heat sink that freezes it again.
+const MELTING_CUBE: [&str; 5] = [
+    "particle_spacing=0.01",
+    "gravity=[0,0,0]",
+    "fluids[0].blocks=[]",
+    "heat.fluids[1].temperature=283.15",
+    r#"heat.sources=[{"min":[0,0,0],"max":[1,1,1],"power":-2e9}]"#,
+];
+
 /// Ice that melts: a cube 10 K above its melting point, without gravity, melts in
 /// its first step (the superheat outlasts the sink's first step of 5 ms on the
 /// preset's DFSPH; 1 K did only in WCSPH's steps of 0.5 ms) (every member leaves, every cluster dissolves); a heat sink
@@ -269,15 +271,7 @@ fn bodies_outside_the_walls_or_overlapping_are_refused() {
 /// which then hold its shape as before.
 #[test]
 fn melted_ice_leaves_its_clusters_and_rejoins_them_when_it_freezes() {
-    let o: Vec<String> = [
-        "particle_spacing=0.01",
-        "gravity=[0,0,0]",
-        "fluids[0].blocks=[]",
-        "heat.fluids[1].temperature=283.15",
-        r#"heat.sources=[{"min":[0,0,0],"max":[1,1,1],"power":-2e9}]"#,
-    ]
-    .map(String::from)
-    .to_vec();
+    let o: Vec<String> = MELTING_CUBE.map(String::from).to_vec();
     let mut sim = crate::Simulation::new_cpu(from_preset("ice_cube_in_glass", &o).unwrap()).unwrap();
     let live = |sim: &crate::Simulation| match &sim.backend().download(&[CLUSTERS.live.name])[0] {
         Column::U32(l) => (l.iter().sum::<u32>(), l.len() as u32),
