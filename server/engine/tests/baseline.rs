@@ -22,6 +22,10 @@ use floe_engine::modules::fluid::presets::TAYLOR_GREEN_WCSPH;
 use floe_engine::scene::load::from_preset;
 
 const WCSPH: &str = "solver.method=\"wcsph\"";
+/// The heated cavity's speed of sound (m/s) and transport background (Pa) before
+/// 2026-12-07.
+const CAVITY_C_2: &str = "solver.speed_of_sound=2";
+const CAVITY_BACKGROUND_2: &str = r#"solver.transport_velocity={"background":4000}"#;
 
 fn fnv(hash: &mut u64, bits: u32) {
     for b in bits.to_le_bytes() {
@@ -139,7 +143,10 @@ const PRESETS: &[(&str, &[&str], u64)] = &[
     ("conduction", &[], 0xb4e11d2cb1f76950),
     ("convection", &["particle_spacing=0.01"], 0x2e404b95d2c212ee),
     ("two_fluids", &["particle_spacing=0.01"], 0x432f249734b193c7),
-    ("heated_cavity", &["particle_spacing=0.005"], 0x24edb4e42f7103eb),
+    ("heated_cavity", &["particle_spacing=0.005", CAVITY_C_2, CAVITY_BACKGROUND_2], 0x24edb4e42f7103eb),
+    // Recorded when the preset's speed of sound fell from 2 to 1 m/s (the row above
+    // is the preset before, set back by its overrides).
+    ("heated_cavity", &["particle_spacing=0.005"], 0x71fc8d05d5c759c9),
     ("heated_channel", &["particle_spacing=0.1"], 0xd6240c1624ee9c54),
     ("layers", &["particle_spacing=0.0125"], 0xb31e089e512d0c20),
     ("avalanche", &["particle_spacing=0.05", WCSPH], 0x8c7f110239ad93db),
