@@ -35,10 +35,12 @@ fn fronts(sim: &mut Simulation, a: f64, d: f64) -> Vec<f64> {
     out
 }
 
+/// WCSPH's dam break at a/12 (1,728 particles, as the DFSPH one below): the fronts of
+/// the two backends within 0.1 a of each other at T = 1 and 2.
 #[test]
 fn dam_break_agrees_with_the_cpu_backend() {
     let Some(gpu) = common::gpu("dam_break_agrees_with_the_cpu_backend") else { return };
-    let n = 16.0;
+    let n = 12.0;
     let spacing = format!("particle_spacing={}", DAM_BREAK_A / n);
     let (a, d) = (DAM_BREAK_A as f64, DAM_BREAK_A as f64 / n as f64);
     let mut g = on_gpu(gpu, "dam_break", &[&spacing]);
