@@ -226,10 +226,10 @@ pub fn heated_cavity() -> Scene {
 }
 
 /// Speed of sound (m/s) of the `heated_cavity`: 20 times the flow's largest speed
-/// at Ra = 1e4 (Mach 0.05), chosen by measurement. At 2 m/s (Mach 0.025) the step
-/// was half as long and the errors no smaller: Nu, u_max and v_max within 4.6, 1.4
-/// and 1.0 % at 20 particles across (19,825 steps), against 3.0, 2.8 and 2.0 % at
-/// 1 m/s (10,171 steps; docs/heat.md).
+/// at Ra = 1e4 (Mach 0.05), chosen by measurement: half the steps of 2 m/s, with Nu,
+/// u_max and v_max within 3.0, 2.8 and 2.0 % at 20 particles across, against 4.6,
+/// 1.4 and 1.0 % at 2 m/s (the speeds a little further off, the Nusselt number
+/// closer, all within the case's 5 %; docs/heat.md).
 pub const CAVITY_C: f32 = 1.0;
 
 /// A tank 0.2 x 0.2 x 0.04 m: a light fluid (100 kg/m^3) on a heavy one
