@@ -87,6 +87,8 @@ pub struct FrameRequest {
     pub identity: bool,
     /// Send every n-th particle; 1 sends all.
     pub decimation: u32,
+    /// A region of interest and a particle budget per frame (`None`: every particle).
+    pub view: Option<pb::FrameView>,
 }
 
 impl Default for FrameRequest {
@@ -98,6 +100,7 @@ impl Default for FrameRequest {
             position_bits: 16,
             identity: true,
             decimation: 1,
+            view: None,
         }
     }
 }
@@ -298,23 +301,72 @@ impl Client {
     /// In a cluster the stream follows the scene when it moves to another worker.
     pub async fn frames(&mut self, scene_id: u64, r: FrameRequest) -> Result<Frames, ClientError> {
         let scene = self.get(scene_id).await?;
-        let request = pb::StreamFramesRequest {
-            scene_id,
-            channels: Vec::new(),
-            max_fps: r.max_fps,
-            position_bits: r.position_bits,
-            mode: if r.identity { pb::FrameMode::Identity } else { pb::FrameMode::Unordered } as i32,
-            decimation: r.decimation,
-            channel_names: r.channels,
-            particle_set: r.set,
-        };
+        let request = stream_request(scene_id, r);
         let stream = routed!(self.routes, self.inner, stream_frames, Some(scene_id), true, request.clone())?;
-        Ok(Frames { stream, decoder: Decoder::new(Limits::default()), scene, client: self.clone(), request })
+        Ok(Frames {
+            stream,
+            decoder: Decoder::new(Limits::default()),
+            scene,
+            client: self.clone(),
+            request,
+            views: None,
+        })
+    }
+
+    /// As [`Client::frames`], on a stream whose view ([`FrameRequest::view`]) changes
+    /// while it is open ([`Frames::set_view`]): a viewer whose camera moves.
+    pub async fn watch_frames(&mut self, scene_id: u64, r: FrameRequest) -> Result<Frames, ClientError> {
+        let scene = self.get(scene_id).await?;
+        let request = stream_request(scene_id, r);
+        let (stream, views) = self.watch(&request).await?;
+        let views = Some(views);
+        Ok(Frames { stream, decoder: Decoder::new(Limits::default()), scene, client: self.clone(), request, views })
+    }
+
+    /// Opens `WatchFrames` with `request` as its start, on the scene's worker.
+    async fn watch(
+        &mut self,
+        request: &pb::StreamFramesRequest,
+    ) -> Result<(tonic::Streaming<pb::Frame>, ViewSender), ClientError> {
+        let target = Some(request.scene_id);
+        let mut attempt = route::Routes::attempt(target, true);
+        loop {
+            let (tx, rx) = tokio::sync::mpsc::channel(4);
+            let start = pb::WatchFramesRequest { kind: Some(pb::watch_frames_request::Kind::Start(request.clone())) };
+            tx.send(start).await.expect("the receiver is held here");
+            let outbound = tokio_stream::wrappers::ReceiverStream::new(rx);
+            match self.inner.watch_frames(self.routes.request(target, outbound)).await {
+                Ok(response) => return Ok((response.into_inner(), tx)),
+                Err(status) => {
+                    if !self.routes.again(&mut attempt, &status).await {
+                        return Err(ClientError::Status(status));
+                    }
+                }
+            }
+        }
     }
 
     /// The scene's events (halted, deleted).
     pub async fn events(&mut self, scene_id: u64) -> Result<tonic::Streaming<pb::SceneEvent>, ClientError> {
         routed!(self.routes, self.inner, stream_events, Some(scene_id), true, pb::SceneRef { scene_id })
+    }
+}
+
+/// Sends a watched stream's later requests.
+type ViewSender = tokio::sync::mpsc::Sender<pb::WatchFramesRequest>;
+
+/// The request of a frame stream.
+fn stream_request(scene_id: u64, r: FrameRequest) -> pb::StreamFramesRequest {
+    pb::StreamFramesRequest {
+        scene_id,
+        channels: Vec::new(),
+        max_fps: r.max_fps,
+        position_bits: r.position_bits,
+        mode: if r.identity { pb::FrameMode::Identity } else { pb::FrameMode::Unordered } as i32,
+        decimation: r.decimation,
+        channel_names: r.channels,
+        particle_set: r.set,
+        view: r.view,
     }
 }
 
@@ -328,6 +380,8 @@ pub struct Frames {
     /// To subscribe again when the scene moves to another worker.
     client: Client,
     request: pb::StreamFramesRequest,
+    /// A watched stream's later requests ([`Client::watch_frames`]).
+    views: Option<ViewSender>,
 }
 
 impl Frames {
@@ -357,10 +411,32 @@ impl Frames {
                 Err(e) => return Err(lost.map_or(e, ClientError::Status)),
             }
             let client = &mut self.client;
-            self.stream =
-                routed!(client.routes, client.inner, stream_frames, Some(scene_id), true, self.request.clone())?;
+            if self.views.is_some() {
+                let (stream, views) = client.watch(&self.request).await?;
+                (self.stream, self.views) = (stream, Some(views));
+            } else {
+                self.stream =
+                    routed!(client.routes, client.inner, stream_frames, Some(scene_id), true, self.request.clone())?;
+            }
             self.decoder = Decoder::new(Limits::default());
         }
+    }
+
+    /// Changes a watched stream's view from the next frame on (`None`: every particle
+    /// again). A bad view ends the stream with INVALID_ARGUMENT naming the field, read
+    /// at the next [`Frames::next`]. Only for [`Client::watch_frames`] streams.
+    pub async fn set_view(&mut self, view: Option<pb::FrameView>) -> Result<(), ClientError> {
+        let Some(views) = &self.views else {
+            return Err(ClientError::Status(tonic::Status::failed_precondition(
+                "set_view: this stream's view is fixed; open it with watch_frames",
+            )));
+        };
+        let message = view.clone().unwrap_or_default();
+        let request = pb::WatchFramesRequest { kind: Some(pb::watch_frames_request::Kind::View(message)) };
+        // A stream whose call ended has no reader: the next frame read says why.
+        let _ = views.send(request).await;
+        self.request.view = view;
+        Ok(())
     }
 
     /// `frame`'s positions and channels under the scene's names.

@@ -107,6 +107,18 @@ impl Values {
             Values::Exact(v) => Values::Exact(v.iter().step_by(k).copied().collect()),
         }
     }
+
+    /// The values of the particles `indices` (in that order).
+    pub fn pick(&self, indices: &[u32]) -> Values {
+        match self {
+            Values::Float { components, data } => {
+                let c = usize::from(*components);
+                let data = indices.iter().flat_map(|&i| &data[c * i as usize..c * (i as usize + 1)]).copied().collect();
+                Values::Float { components: *components, data }
+            }
+            Values::Exact(v) => Values::Exact(indices.iter().map(|&i| v[i as usize]).collect()),
+        }
+    }
 }
 
 /// [`Values`] borrowed from the caller.

@@ -50,4 +50,20 @@ impl Particles {
             ids: self.ids.as_ref().map(|ids| ids.iter().step_by(k).copied().collect()),
         }
     }
+
+    /// The particles `indices` (ascending), with their ids: a subset such as a region
+    /// of interest, which identity-ordered frames name particle by particle. A grid is
+    /// always whole.
+    pub fn pick(&self, indices: &[u32]) -> Particles {
+        if self.grid.is_some() {
+            return self.clone();
+        }
+        Particles {
+            set: self.set.clone(),
+            positions: indices.iter().map(|&i| self.positions[i as usize]).collect(),
+            channels: self.channels.iter().map(|(n, v)| (n.clone(), v.pick(indices))).collect(),
+            grid: None,
+            ids: Some(indices.iter().map(|&i| self.id(i as usize)).collect()),
+        }
+    }
 }

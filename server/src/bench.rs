@@ -52,6 +52,9 @@ pub fn bench(args: BenchArgs) -> anyhow::Result<()> {
         }
         return Ok(());
     }
+    if let Some(share) = args.view {
+        return crate::codec_bench::view_bench(args.particles[0], share);
+    }
     if let Some(frames) = args.codec {
         return crate::codec_bench::codec_bench(args.particles[0], frames);
     }

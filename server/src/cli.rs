@@ -190,6 +190,11 @@ pub struct BenchArgs {
     /// this many dam-break frames at the first particle count.
     #[arg(long, value_name = "FRAMES", conflicts_with = "solve")]
     pub codec: Option<usize>,
+    /// Views instead: bytes per frame and encode time (with the cull) of a dam break of
+    /// the first particle count, whole and through views (a box, a budget, a camera)
+    /// holding this share of it (0 to 1, e.g. 0.05).
+    #[arg(long, value_name = "SHARE", conflicts_with_all = ["codec", "solve", "case"])]
+    pub view: Option<f64>,
     /// A module's benchmark (`floe bench --list` names them): one that runs beside the
     /// dam break times each size twice, side by side; one that runs a preset simulates
     /// it for `--until` seconds at about the first particle count.

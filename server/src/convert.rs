@@ -3,6 +3,7 @@
 
 use crate::service::ServiceError;
 use crate::service::options::FrameRequest;
+use crate::service::view::{BoxRequest, CameraRequest, ViewRequest};
 use crate::service::{Event, Shared, State};
 use floe_engine::scene::load::Format;
 use floe_proto::pb;
@@ -183,7 +184,31 @@ pub fn frame_request(r: &pb::StreamFramesRequest) -> Result<FrameRequest, Status
         mode: Some(mode.into()),
         decimation: set(r.decimation),
         set: Some(r.particle_set.clone()),
+        view: r.view.as_ref().map(view_request).transpose()?.unwrap_or_default(),
     })
+}
+
+/// The view a `FrameView` states (checked by the service); a vector of the wrong
+/// length is refused naming the field.
+pub fn view_request(v: &pb::FrameView) -> Result<ViewRequest, Status> {
+    let three = |name: &str, x: &[f64]| -> Result<[f64; 3], Status> {
+        <[f64; 3]>::try_from(x)
+            .map_err(|_| Status::invalid_argument(format!("{name}: must have 3 values, got {}", x.len())))
+    };
+    let bounds = match &v.r#box {
+        None => None,
+        Some(b) => Some(BoxRequest { min: three("view.box.min", &b.min)?, max: three("view.box.max", &b.max)? }),
+    };
+    let camera = match &v.camera {
+        None => None,
+        Some(c) => Some(CameraRequest {
+            position: three("view.camera.position", &c.position)?,
+            direction: three("view.camera.direction", &c.direction)?,
+            fov_deg: (c.fov_deg != 0.0).then_some(c.fov_deg),
+            far: (c.far != 0.0).then_some(c.far),
+        }),
+    };
+    Ok(ViewRequest { bounds, camera, budget: (v.budget != 0).then_some(v.budget) })
 }
 
 /// A scene event as a message.

@@ -182,12 +182,60 @@ impl SceneService for Grpc {
         let r = request.into_inner();
         let request = convert::frame_request(&r)?;
         let feed = self.registry.subscribe(&who, r.scene_id, &request).map_err(status)?;
-        let frames = feed.spawn(|frame| {
-            frame
-                .map(|f| pb::Frame { data: f.data.as_ref().clone(), sequence: f.sequence, skipped: f.skipped })
-                .map_err(|e| Status::internal(e.to_string()))
-        });
+        let frames = feed.spawn(frame_message);
         Ok(Response::new(Box::pin(ReceiverStream::new(frames))))
+    }
+
+    type WatchFramesStream = Streamed<pb::Frame>;
+
+    async fn watch_frames(
+        &self,
+        request: Request<tonic::Streaming<pb::WatchFramesRequest>>,
+    ) -> Reply<Self::WatchFramesStream> {
+        use pb::watch_frames_request::Kind;
+        let who = caller(&request)?;
+        let mut inbound = request.into_inner();
+        let start = match inbound.message().await? {
+            Some(pb::WatchFramesRequest { kind: Some(Kind::Start(r)) }) => r,
+            _ => return Err(Status::invalid_argument("start: the first request of WatchFrames must be a start")),
+        };
+        let feed = self.registry.subscribe(&who, start.scene_id, &convert::frame_request(&start)?).map_err(status)?;
+        let control = feed.view_control();
+        let mut frames = feed.spawn(frame_message);
+        let (tx, rx) = tokio::sync::mpsc::channel(1);
+        tokio::spawn(async move {
+            let mut open = true;
+            loop {
+                let change = tokio::select! {
+                    frame = frames.recv() => {
+                        let Some(f) = frame else { break };
+                        if tx.send(f).await.is_err() {
+                            break;
+                        }
+                        continue;
+                    }
+                    m = inbound.message(), if open => m,
+                };
+                let refused = match change {
+                    Ok(Some(pb::WatchFramesRequest { kind: Some(Kind::View(v)) })) => {
+                        convert::view_request(&v).and_then(|r| control.set(&r).map_err(status)).err()
+                    }
+                    Ok(Some(_)) => {
+                        Some(Status::invalid_argument("view: a later request of WatchFrames must be a view"))
+                    }
+                    // The client closed its side (or the call broke): no more views.
+                    Ok(None) | Err(_) => {
+                        open = false;
+                        None
+                    }
+                };
+                if let Some(e) = refused {
+                    let _ = tx.send(Err(e)).await;
+                    break;
+                }
+            }
+        });
+        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
     }
 
     type StreamEventsStream = Streamed<pb::SceneEvent>;
@@ -199,6 +247,15 @@ impl SceneService for Grpc {
         let events = feed.spawn(move |e| Ok(convert::scene_event(id, e)));
         Ok(Response::new(Box::pin(ReceiverStream::new(events))))
     }
+}
+
+/// A frame as its message.
+fn frame_message(
+    frame: Result<crate::service::frames::EncodedFrame, floe_proto::EncodeError>,
+) -> Result<pb::Frame, Status> {
+    frame
+        .map(|f| pb::Frame { data: f.data.as_ref().clone(), sequence: f.sequence, skipped: f.skipped })
+        .map_err(|e| Status::internal(e.to_string()))
 }
 
 impl Grpc {

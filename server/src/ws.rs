@@ -1,4 +1,4 @@
-//! The WebSocket of a scene (`/api/v1/scenes/{id}/ws?channels=velocity&max_fps=30&bits=16&mode=unordered&decimation=1&set=particles`):
+//! The WebSocket of a scene (`/api/v1/scenes/{id}/ws?channels=velocity&max_fps=30&bits=16&mode=unordered&decimation=1&set=particles&view={...}`):
 //! binary messages carry encoded frames (latest-frame semantics, as over gRPC);
 //! text messages are JSON both ways.
 //!
@@ -10,7 +10,12 @@
 //! Client to server: `{"op": "run", "real_time_factor": 1}`, `{"op": "pause"}`,
 //! `{"op": "step", "steps": 1}` (or `"until_time"`), `{"op": "set", "overrides": ["gravity=[0,-1,0]"]}`,
 //! `{"op": "reset"}`, `{"op": "status"}`; the fields are those of the REST bodies and,
-//! as there, unknown fields are refused. Each counts against the request rate.
+//! as there, unknown fields are refused. `{"op": "view", "box": {"min": [..], "max":
+//! [..]}, "camera": {"position": [..], "direction": [..], "fov_deg": 60, "far": 100},
+//! "budget": 200000}` changes the stream's region of interest and particle budget from
+//! the next frame on (each part optional; none: every particle again;
+//! [`crate::service::view`]); the query's `view` sets the first one, as JSON of the
+//! same fields. Each counts against the request rate.
 //! Server to client: `{"type": "status", "scene": {...}}` after each op,
 //! `{"type": "event", "event": "halted", "reason": "...", "step": n, "sim_time": t}`,
 //! `{"type": "event", "event": "deleted"}` (then the socket closes), and
@@ -20,8 +25,9 @@
 
 use crate::auth::{Caller, WS_PROTOCOL, origin};
 use crate::http::{ApiError, ParametersBody, Params, RunBody, SceneId, SceneView, StepBody, Who};
-use crate::service::frames::EncodedFrame;
+use crate::service::frames::{EncodedFrame, ViewControl};
 use crate::service::options::FrameRequest;
+use crate::service::view::ViewRequest;
 use crate::service::{Event, Need, Registry, SceneHandle, ServiceError};
 use axum::extract::State;
 use axum::extract::ws::{CloseFrame, Message, WebSocket, WebSocketUpgrade, close_code};
@@ -56,19 +62,28 @@ pub struct WsQuery {
     decimation: Option<u32>,
     /// The particle set (default `particles`).
     set: Option<String>,
+    /// The region of interest and budget, as JSON (`{"box": ..., "camera": ..., "budget": n}`).
+    view: Option<String>,
 }
 
 impl WsQuery {
     /// The frame options the query states (checked against the scene by the service).
-    fn request(&self) -> FrameRequest {
-        FrameRequest {
+    fn request(&self) -> Result<FrameRequest, ApiError> {
+        let view = match self.view.as_deref().filter(|v| !v.trim().is_empty()) {
+            None => ViewRequest::default(),
+            Some(v) => serde_json::from_str(v).map_err(|e| {
+                ApiError::new(StatusCode::BAD_REQUEST, format!("view: {}", crate::echo::bounded(&e.to_string())))
+            })?,
+        };
+        Ok(FrameRequest {
             channels: self.channels.split(',').map(str::to_string).collect(),
             max_fps: self.max_fps,
             position_bits: self.bits.map(u32::from),
             mode: self.mode.clone(),
             decimation: self.decimation,
             set: self.set.clone(),
-        }
+            view,
+        })
     }
 }
 
@@ -90,9 +105,11 @@ pub async fn upgrade(
         ));
     }
     let handle = registry.get(&who, id, Need::Watch)?;
-    let frames = registry.subscribe(&who, id, &q.request())?.spawn(|frame| frame);
+    let feed = registry.subscribe(&who, id, &q.request()?)?;
+    let view = feed.view_control();
+    let frames = feed.spawn(|frame| frame);
     let ws = ws.max_message_size(MAX_MESSAGE_BYTES).protocols([WS_PROTOCOL]);
-    Ok(ws.on_upgrade(move |socket| session(socket, registry, who, handle, frames)))
+    Ok(ws.on_upgrade(move |socket| session(socket, registry, who, handle, Stream { frames, view })))
 }
 
 fn json(value: serde_json::Value) -> Message {
@@ -128,10 +145,11 @@ pub(crate) enum Control {
     Set(ParametersBody),
     Reset,
     Status,
+    View(ViewRequest),
 }
 
 /// Ops and whether they take fields (the REST body of the same call).
-const OPS: &str = "run, pause, step, set, reset, status";
+const OPS: &str = "run, pause, step, set, reset, status, view";
 
 /// Reads a control message: `op` names the call, the other fields are its REST
 /// body's, checked the same way (unknown fields refused).
@@ -154,6 +172,7 @@ pub(crate) fn parse_control(text: &str) -> Result<(Control, &'static str), Strin
         "run" => Ok((Control::Run(body("run", fields)?), "run")),
         "step" => Ok((Control::Step(body("step", fields)?), "step")),
         "set" => Ok((Control::Set(body("set", fields)?), "set")),
+        "view" => Ok((Control::View(body("view", fields)?), "view")),
         "pause" => bare(Control::Pause, "pause"),
         "reset" => bare(Control::Reset, "reset"),
         "status" => bare(Control::Status, "status"),
@@ -166,6 +185,7 @@ async fn control(
     registry: &Registry,
     who: &Caller,
     handle: &SceneHandle,
+    view: &ViewControl,
     text: &str,
 ) -> (Message, &'static str, String) {
     let (op, name) = match parse_control(text) {
@@ -194,6 +214,7 @@ async fn control(
                 registry.reset(who, id).await?;
             }
             Control::Status => {}
+            Control::View(v) => view.set(&v)?,
         }
         Ok(())
     }
@@ -236,6 +257,7 @@ struct Session {
     who: Caller,
     handle: Arc<SceneHandle>,
     frames: mpsc::Receiver<Result<EncodedFrame, floe_proto::EncodeError>>,
+    view: ViewControl,
     /// Messages that arrived while a control call ran, in order.
     waiting: std::collections::VecDeque<Message>,
     heard: Instant,
@@ -260,8 +282,9 @@ impl Session {
     /// meanwhile wait their turn.
     async fn call(&mut self, text: &str) -> Next {
         let t0 = Instant::now();
-        let (registry, who, handle) = (self.registry.clone(), self.who.clone(), self.handle.clone());
-        let call = control(&registry, &who, &handle, text);
+        let (registry, who, handle, view) =
+            (self.registry.clone(), self.who.clone(), self.handle.clone(), self.view.clone());
+        let call = control(&registry, &who, &handle, &view, text);
         tokio::pin!(call);
         let (reply, op, code) = loop {
             tokio::select! {
@@ -304,20 +327,21 @@ impl Session {
     }
 }
 
-async fn session(
-    socket: WebSocket,
-    registry: Arc<Registry>,
-    who: Caller,
-    handle: Arc<SceneHandle>,
+/// A socket's frames and what changes their view.
+struct Stream {
     frames: mpsc::Receiver<Result<EncodedFrame, floe_proto::EncodeError>>,
-) {
+    view: ViewControl,
+}
+
+async fn session(socket: WebSocket, registry: Arc<Registry>, who: Caller, handle: Arc<SceneHandle>, stream: Stream) {
     let mut events = handle.shared.events.subscribe();
     let mut s = Session {
         socket,
         registry,
         who,
         handle,
-        frames,
+        frames: stream.frames,
+        view: stream.view,
         waiting: std::collections::VecDeque::new(),
         heard: Instant::now(),
     };

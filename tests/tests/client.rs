@@ -25,6 +25,16 @@ async fn the_client_drives_a_scene_and_records_it() {
     assert_eq!(decimated.positions.len(), 100);
     assert_eq!(decimated.positions[3], first.positions[30]);
     drop(tenth);
+    // A watched stream: a budget of 50 first, then the whole scene again.
+    let budget = floe_proto::pb::FrameView { budget: 50, ..Default::default() };
+    let request = FrameRequest { view: Some(budget), ..FrameRequest::default() };
+    let mut watched = floe.watch_frames(id, request).await.unwrap();
+    assert_eq!(watched.next().await.unwrap().expect("a frame").positions.len(), 50);
+    watched.set_view(None).await.unwrap();
+    floe.step(id, 1).await.unwrap();
+    assert_eq!(watched.next().await.unwrap().expect("a frame").positions.len(), 1000);
+    assert!(frames.set_view(None).await.is_err(), "a StreamFrames stream's view is fixed");
+    drop(watched);
     drop(frames);
     // A recording starts on a fresh stream, whose first frame is a keyframe.
     let mut frames = floe.frames(id, FrameRequest::default()).await.unwrap();

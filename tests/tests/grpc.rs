@@ -311,3 +311,100 @@ async fn the_presets_are_listed_with_what_they_are() {
     assert_eq!(by_client[0], (listed[0].name.clone(), listed[0].about.clone()));
     s.shutdown().await;
 }
+
+/// A region of interest and a budget: the server sends the particles inside the box
+/// (with their ids) or exactly the budget, the same ones each frame; WatchFrames
+/// changes the view on the open stream; bad views are refused naming the field.
+#[tokio::test]
+async fn views_cull_and_thin_frames_and_change_on_an_open_stream() {
+    let mut s = start().await;
+    let info = s.client.create_scene(preset("dam_break", &["particle_spacing=0.05"])).await.unwrap().into_inner();
+    let id = info.scene_id;
+    let identity = |view: Option<pb::FrameView>| pb::StreamFramesRequest {
+        scene_id: id,
+        mode: pb::FrameMode::Identity as i32,
+        view,
+        ..Default::default()
+    };
+    let first = |mut frames: tonic::Streaming<pb::Frame>| async move {
+        let f = frames.message().await.unwrap().expect("a frame");
+        Decoder::new(Limits::default()).decode(&f.data).unwrap()
+    };
+    let all = first(s.client.stream_frames(identity(None)).await.unwrap().into_inner()).await;
+    assert_eq!(all.positions.len(), 1000);
+    // The box x <= 0.2 m: the column's first four layers (0.025 .. 0.175 m).
+    let inside: Vec<u32> = (0..1000u32).filter(|&i| all.positions[i as usize][0] <= 0.2).collect();
+    assert!(all.positions.iter().all(|p| (p[0] - 0.2).abs() > 1e-3), "no particle on the box's face");
+    let boxed = pb::FrameView {
+        r#box: Some(pb::ViewBox { min: vec![-1.0, -1.0, -1.0], max: vec![0.2, 5.0, 5.0] }),
+        ..Default::default()
+    };
+    let got = first(s.client.stream_frames(identity(Some(boxed.clone()))).await.unwrap().into_inner()).await;
+    assert_eq!(got.ids.as_deref(), Some(inside.as_slice()), "the particles inside, named by id");
+    for (k, &i) in inside.iter().enumerate() {
+        assert_eq!(got.positions[k], all.positions[i as usize]);
+    }
+
+    // WatchFrames: the box first, then a budget of 40 (the same 40 in every frame).
+    let (tx, rx) = tokio::sync::mpsc::channel(4);
+    let start = |r| pb::WatchFramesRequest { kind: Some(pb::watch_frames_request::Kind::Start(r)) };
+    let view = |v| pb::WatchFramesRequest { kind: Some(pb::watch_frames_request::Kind::View(v)) };
+    tx.send(start(identity(Some(boxed)))).await.unwrap();
+    let mut frames = s.client.watch_frames(tokio_stream::wrappers::ReceiverStream::new(rx)).await.unwrap().into_inner();
+    let mut decoder = Decoder::new(Limits::default());
+    let f = decoder.decode(&frames.message().await.unwrap().unwrap().data).unwrap();
+    assert_eq!(f.positions.len(), inside.len());
+    tx.send(view(pb::FrameView { budget: 40, ..Default::default() })).await.unwrap();
+    // The scene is paused: its state comes again as the new view shows it.
+    let again = decoder.decode(&frames.message().await.unwrap().unwrap().data).unwrap();
+    assert_eq!((again.positions.len(), again.header.step), (40, f.header.step));
+    let mut kept = again.ids.unwrap();
+    for _ in 0..3 {
+        // Frames follow a state published after the change.
+        s.client.step(pb::StepRequest { scene_id: id, steps: 1, until_time: 0.0 }).await.unwrap();
+        let f = decoder.decode(&frames.message().await.unwrap().unwrap().data).unwrap();
+        assert_eq!(f.positions.len(), 40);
+        let ids = f.ids.unwrap();
+        assert_eq!(kept, ids, "the same particles in every frame");
+        kept = ids;
+    }
+    // A view changed while the stream waits for the paused scene's next state: the same
+    // state again, at once.
+    tx.send(view(pb::FrameView { budget: 20, ..Default::default() })).await.unwrap();
+    let waited = tokio::time::timeout(std::time::Duration::from_secs(10), frames.message()).await;
+    let f = decoder.decode(&waited.expect("a frame without a step").unwrap().unwrap().data).unwrap();
+    assert_eq!(f.positions.len(), 20);
+    // A bad view ends the stream with the field named.
+    let bad = pb::FrameView {
+        camera: Some(pb::ViewCamera { position: vec![0.0; 3], direction: vec![0.0; 3], ..Default::default() }),
+        ..Default::default()
+    };
+    tx.send(view(bad)).await.unwrap();
+    s.client.step(pb::StepRequest { scene_id: id, steps: 1, until_time: 0.0 }).await.unwrap();
+    let e = loop {
+        match frames.message().await {
+            Ok(Some(_)) => continue,
+            Ok(None) => panic!("the stream ended without the reason"),
+            Err(e) => break e,
+        }
+    };
+    assert_eq!((e.code(), e.message()), (Code::InvalidArgument, "view.camera.direction: must not be zero"));
+
+    // A first request that is not a start, a view with decimation, a view of two values.
+    let (tx, rx) = tokio::sync::mpsc::channel(1);
+    tx.send(view(pb::FrameView::default())).await.unwrap();
+    let e = s.client.watch_frames(tokio_stream::wrappers::ReceiverStream::new(rx)).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert!(e.message().starts_with("start:"), "{}", e.message());
+    let decimated =
+        pb::StreamFramesRequest { decimation: 2, ..identity(Some(pb::FrameView { budget: 10, ..Default::default() })) };
+    let e = s.client.stream_frames(decimated).await.unwrap_err();
+    assert_eq!(e.message(), "view: a region or budget replaces decimation; ask for decimation 1, got 2");
+    let short = pb::FrameView {
+        r#box: Some(pb::ViewBox { min: vec![0.0, 0.0], max: vec![1.0, 1.0, 1.0] }),
+        ..Default::default()
+    };
+    let e = s.client.stream_frames(identity(Some(short))).await.unwrap_err();
+    assert_eq!((e.code(), e.message()), (Code::InvalidArgument, "view.box.min: must have 3 values, got 2"));
+    s.shutdown().await;
+}

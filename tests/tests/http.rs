@@ -231,6 +231,64 @@ async fn websocket_streams_frames_and_survives_garbage() {
     server.stopped().await;
 }
 
+/// The socket's view: the query's first, then `view` messages; a bad one is an error
+/// message naming the field and the socket stays open.
+#[tokio::test]
+async fn a_websocket_view_culls_frames_and_changes_with_a_message() {
+    let mut server = common::TestServer::start().await;
+    let preset = floe_server::service::SceneSource::Preset("dam_break".into());
+    let local = floe_server::auth::Caller::local();
+    let scene = server.registry.create(&local, preset, vec!["particle_spacing=0.05".into()]).await.unwrap();
+    let id = scene.shared.id;
+    let url = format!("ws://{}/api/v1/scenes/{id}/ws?mode=identity&view=%7B%22budget%22%3A25%7D", server.http);
+    let (mut ws, _) = tokio_tungstenite::connect_async(url).await.unwrap();
+    let mut decoder = Decoder::new(Limits::default());
+    let f = decoder.decode(&next_binary(&mut ws).await).unwrap();
+    assert_eq!(f.positions.len(), 25, "the query's budget");
+    assert_eq!(f.ids.as_ref().map(Vec::len), Some(25));
+    // A box: the column's first four layers, x <= 0.2 m.
+    let text = r#"{"op": "view", "box": {"min": [-1, -1, -1], "max": [0.2, 5, 5]}}"#;
+    ws.send(Message::Text(text.into())).await.unwrap();
+    assert_eq!(next_text(&mut ws).await["type"], "status");
+    ws.send(Message::Text(r#"{"op": "step", "steps": 1}"#.into())).await.unwrap();
+    let f = loop {
+        let f = decoder.decode(&next_binary(&mut ws).await).unwrap();
+        if f.header.step >= 1 {
+            break f;
+        }
+    };
+    assert_eq!(f.positions.len(), 4 * 20 * 5, "four layers of the 10 x 20 x 5 column");
+    assert!(f.positions.iter().all(|p| p[0] <= 0.2));
+    for bad in [r#"{"op": "view", "budget": 0}"#, r#"{"op": "view", "box": {"min": [1, 1, 1]}}"#] {
+        ws.send(Message::Text(bad.into())).await.unwrap();
+        let reply = next_text(&mut ws).await;
+        assert_eq!(reply["type"], "error", "{reply}");
+        let message = reply["message"].as_str().unwrap();
+        assert!(message.contains("view.budget: must be 1 to") || message.contains("missing field `max`"), "{message}");
+    }
+    // A bad query view is refused at the handshake.
+    let url = format!("ws://{}/api/v1/scenes/{id}/ws?view=%7B%22budget%22%3A-1%7D", server.http);
+    match tokio_tungstenite::connect_async(url).await {
+        Err(tokio_tungstenite::tungstenite::Error::Http(response)) => {
+            assert_eq!(response.status(), StatusCode::BAD_REQUEST)
+        }
+        other => panic!("expected a refused handshake, got {:?}", other.map(|_| ())),
+    }
+    server.stop();
+    server.stopped().await;
+}
+
+/// The next frame's bytes, skipping text messages.
+async fn next_binary(
+    ws: &mut tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<tokio::net::TcpStream>>,
+) -> Vec<u8> {
+    loop {
+        if let Message::Binary(b) = ws.next().await.unwrap().unwrap() {
+            return b.to_vec();
+        }
+    }
+}
+
 /// The next text message, skipping frames.
 async fn next_text(
     ws: &mut tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<tokio::net::TcpStream>>,

@@ -18,6 +18,7 @@ import { Routes } from './route.js';
 import { FPS as OTHER_FPS, OtherSets } from './sets.js';
 import { SettingsPanel } from './settings.js';
 import { fullSizeLabel, fullSizeRequest } from './sizing.js';
+import { BUDGET, ViewSync } from './view.js';
 
 const $ = (id) => document.getElementById(id);
 const credentials = new Credentials(sessionStorage);
@@ -43,6 +44,10 @@ const others = new OtherSets((sets) => renderer.setOthers(sets.drawable()));
 const motionFps = Number(new URLSearchParams(location.search).get('fps') ?? NaN);
 if (motionFps >= 0) renderer.resolution.target = motionFps;
 const camera = new OrbitCamera(canvas);
+// `?budget=N`: the most particles a frame of a large scene carries (js/view.js).
+const budget = Number(new URLSearchParams(location.search).get('budget')) > 0
+  ? Math.round(Number(new URLSearchParams(location.search).get('budget'))) : BUDGET;
+const viewSync = new ViewSync((op) => send(op));
 const worker = new Worker(new URL('./codec/worker.js', import.meta.url), { type: 'module' });
 const plots = new PlotPanel($('plots'));
 
@@ -229,7 +234,13 @@ function connect() {
     ...lookChannels(channel, state.scene.channels, state.scene.materials)];
   // All the particles, or the part chosen (the solid's, the fluid's).
   const part = $('part').value || 'particles';
-  url.search = new URLSearchParams({ channels: channels.join(','), max_fps: '60', ...(part === 'particles' ? {} : { set: part }) });
+  // A scene larger than the budget: the part the camera sees (js/view.js).
+  const aspect = canvas.clientWidth / Math.max(canvas.clientHeight, 1);
+  const view = viewSync.start(state.scene.particles, budget, camera, aspect);
+  url.search = new URLSearchParams({
+    channels: channels.join(','), max_fps: '60', ...(part === 'particles' ? {} : { set: part }),
+    ...(view ? { view: JSON.stringify(view) } : {}),
+  });
   const ws = new WebSocket(url, credentials.protocols());
   ws.binaryType = 'arraybuffer';
   state.socket = ws;
@@ -504,6 +515,7 @@ function frame(now) {
   // Panels opened or closed, or the window resized: frame again unless the user moved the camera.
   if (!camera.moved && state.framedFor !== [left, right, h].join()) frameCamera();
   const shift = (left + right) / w - 1;
+  if (!replay.active) viewSync.update(camera, w / h, now);
   if (renderer.draw(camera.projection(w / h, shift), camera.view(), camera.distance, now)) fpsFrames += 1;
   // The scene's status twice a second, for the plots and the overlay.
   if (now - lastPoll > 500) {
@@ -521,6 +533,7 @@ function frame(now) {
     $('stats').textContent = statsText({
       renderer, status: s, replay: replay.active ? replay.describe() : null, realTime: rt, stream: state,
       others: others.summary(), sizing: replay.active ? null : state.scene?.sizing,
+      inView: replay.active || viewSync.budget === null ? null : state.scene?.particles,
     });
   }
   requestAnimationFrame(frame);

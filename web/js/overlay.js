@@ -33,12 +33,14 @@ function resolutionNote(renderer) {
  * @param {{renderFps: number, frames: number, skipped: number, lastBytes: number, decodeMs: number}} o.stream
  * @param {string[]} o.others the other particle sets' lines (sets.js)
  * @param {object|null} [o.sizing] the live scene's `sizing` (sizing.js), if the server sized it
+ * @param {number|null} [o.inView] the scene's particles where frames carry the camera's view of
+ *   them (view.js), null where they carry all
  */
-export function statsText({ renderer, status: s, replay, realTime: rt, stream, others, sizing = null }) {
+export function statsText({ renderer, status: s, replay, realTime: rt, stream, others, sizing = null, inView = null }) {
   const sized = sizingText(sizing);
   return [
     stream.renderFps > 0 ? `render     ${stream.renderFps.toFixed(0)} fps (${renderer.view})${resolutionNote(renderer)}` : `render     idle (${renderer.view})`,
-    `particles  ${renderer.count}${s ? ` on ${s.backend}` : ''}${renderer.drawnCount < renderer.count ? ` (${renderer.drawnCount} drawn)` : ''}`,
+    `particles  ${renderer.count}${inView !== null ? ` of ${inView} (the camera's view)` : ''}${s ? ` on ${s.backend}` : ''}${renderer.drawnCount < renderer.count ? ` (${renderer.drawnCount} drawn)` : ''}`,
     sized ? `size       ${sized}` : '',
     renderer.oriented ? `oriented   ellipsoids ${renderer.radii.map((r) => (1000 * r).toPrecision(2)).join(' x ')} mm${renderer.view === 'spheres' ? '' : ' (spheres view)'}` : '',
     ...(replay ?? []),

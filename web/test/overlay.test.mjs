@@ -36,6 +36,8 @@ test('the overlay says what is drawn, live or replayed', () => {
     'sim time   0.250 s (running)',
     'real time  0.95; sized for 1.1',
   ]);
+  const viewed = statsText({ renderer, status, replay: null, realTime: { text: '0.95' }, stream, others: [], inView: 4000000 });
+  assert.equal(viewed.split('\n')[1], "particles  1000 of 4000000 (the camera's view) on cpu (800 drawn)");
   const replayed = statsText({ renderer: { ...renderer, drawnCount: 1000, resolution: { moving: 1 } }, status: null,
     replay: ['replay     frame 3 of 9'], realTime: { text: '' }, stream: { ...stream, renderFps: 0 }, others: ['ice'] });
   assert.deepEqual(replayed.split('\n'), ['render     idle (spheres)', 'particles  1000', 'replay     frame 3 of 9', 'decode     1.23 ms']);

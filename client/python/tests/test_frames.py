@@ -81,6 +81,35 @@ def test_unordered_and_decimated_frames_hold_the_same_particles(
     np.testing.assert_allclose(coarse.positions, full.positions, rtol=0, atol=max(err10) + max(err16))
 
 
+def test_a_view_culls_frames_and_a_watched_stream_changes_it(
+    client: floe_client.Client, scene: floe_client.SceneInfo
+) -> None:
+    client.step(scene, 2)
+    with client.frames(scene) as identity:
+        full = frame_at(identity, 2)
+    # The column's first four layers (x <= 0.2 m of 0.025 .. 0.475 m), by id.
+    box = floe_client.View(box=((-1, -1, -1), (0.2, 5, 5)))
+    with client.frames(scene, view=box) as boxed:
+        inside = frame_at(boxed, 2)
+    expected = np.flatnonzero(full.positions[:, 0] <= 0.2)
+    np.testing.assert_array_equal(inside.ids, expected)
+    np.testing.assert_array_equal(inside.positions, full.positions[expected])
+
+    with client.watch_frames(scene, view=floe_client.View(budget=30)) as watched:
+        assert len(frame_at(watched, 2).positions) == 30
+        watched.set_view(floe_client.View(camera=floe_client.Camera((-1, 0.5, 0.125), (1, 0, 0), 60), budget=100))
+        client.step(scene, 1)
+        near = frame_at(watched, 3)
+        assert len(near.positions) == 100
+        watched.set_view(floe_client.View(budget=0, camera=floe_client.Camera((0, 0, 0), (0, 0, 0))))
+        client.step(scene, 1)
+        with pytest.raises(floe_client.InvalidArgument) as e:
+            frame_at(watched, 4)
+        assert e.value.field == "view.camera.direction"
+    with client.frames(scene) as fixed, pytest.raises(floe_client.FailedPrecondition):
+        fixed.set_view(None)
+
+
 def test_bad_stream_options_name_the_field(client: floe_client.Client, scene: floe_client.SceneInfo) -> None:
     with pytest.raises(floe_client.InvalidArgument) as e:
         next(client.frames(scene, bits=20))

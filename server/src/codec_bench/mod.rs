@@ -6,6 +6,9 @@
 //! table ([`intervals`]) gives identity-ordered sizes against the time between frames.
 
 mod intervals;
+mod view;
+
+pub use view::view_bench;
 
 use anyhow::Context;
 use floe_engine::Simulation;

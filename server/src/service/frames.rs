@@ -8,9 +8,11 @@
 //! identity-ordered stream predicts from the frames its own subscriber received,
 //! so it has an encoder of its own.
 
+use super::ServiceError;
 use super::handle::SceneHandle;
 use super::options::FrameOptions;
 use super::shared::{Published, Shared, State};
+use super::view::{View, ViewRequest};
 use floe_engine::quantize::PositionGrid;
 use floe_proto::{Bounds, EncodeError, Encoder, EncoderConfig, FrameInput, Mode, Particles};
 use std::sync::atomic::Ordering;
@@ -71,11 +73,20 @@ fn input<'a>(shared: &Shared, p: &'a Particles, o: &FrameOptions) -> FrameInput<
     FrameInput { positions: &p.positions, grid: p.grid, set: o.set, channels, ids }
 }
 
-/// Encodes published state `s` with `o`'s set, channels and decimation (`s` holds
-/// the set: a subscription waits for a state read after it subscribed).
-fn encode(encoder: &mut Encoder, shared: &Shared, s: &Published, o: &FrameOptions) -> Result<Vec<u8>, EncodeError> {
+/// Encodes published state `s` with `o`'s set, channels and decimation, or the
+/// particles `view` keeps (`s` holds the set: a subscription waits for a state read
+/// after it subscribed).
+fn encode(
+    encoder: &mut Encoder,
+    shared: &Shared,
+    s: &Published,
+    o: &FrameOptions,
+    view: Option<&View>,
+) -> Result<Vec<u8>, EncodeError> {
     let particles = s.particles(o.set).expect("published states hold the subscribers' sets");
-    if o.decimation > 1 {
+    if let Some(v) = view {
+        encoder.encode(s.step, s.time, &input(shared, &v.apply(particles), o))
+    } else if o.decimation > 1 {
         encoder.encode(s.step, s.time, &input(shared, &particles.every(o.decimation as usize), o))
     } else {
         encoder.encode(s.step, s.time, &input(shared, particles, o))
@@ -103,7 +114,7 @@ impl FrameCache {
         {
             return Ok(data.clone());
         }
-        let data = Arc::new(encode(&mut e.encoder, shared, s, options)?);
+        let data = Arc::new(encode(&mut e.encoder, shared, s, options, None)?);
         e.last = Some((s.sequence, data.clone()));
         Ok(data)
     }
@@ -119,6 +130,9 @@ pub struct Subscription {
     /// The grid this stream's encoder quantises positions to.
     grid: PositionGrid,
     own: Option<Encoder>,
+    /// The region of interest and budget, which the stream's client may change.
+    view: watch::Receiver<Option<View>>,
+    view_control: ViewControl,
     last_sequence: Option<u64>,
     /// `last_sequence` shared with the scene's dropped-frame count.
     delivered: Arc<std::sync::atomic::AtomicU64>,
@@ -127,7 +141,11 @@ pub struct Subscription {
 
 impl Subscription {
     /// Subscribes to `scene`'s frames.
-    pub fn new(scene: Arc<SceneHandle>, cache: Arc<FrameCache>, options: FrameOptions) -> Result<Self, EncodeError> {
+    pub fn new(
+        scene: Arc<SceneHandle>,
+        cache: Arc<FrameCache>,
+        mut options: FrameOptions,
+    ) -> Result<Self, EncodeError> {
         let own = match options.mode {
             Mode::IdentityOrdered => Some(Encoder::new(config(&scene.shared, &options))?),
             Mode::Unordered | Mode::Grid => {
@@ -145,7 +163,15 @@ impl Subscription {
         scene.shared.track(&delivered);
         let grid = position_grid(&config(&scene.shared, &options));
         scene.subscribe(options.set, &options.channels, grid);
-        Ok(Self { scene, cache, rx, options, grid, own, last_sequence, delivered, last_sent: None })
+        let (tx, view) = watch::channel(options.view.take());
+        let view_control =
+            ViewControl { tx: Arc::new(tx), options: options.clone(), set: set_name(&scene.shared, &options) };
+        Ok(Self { scene, cache, rx, options, grid, own, view, view_control, last_sequence, delivered, last_sent: None })
+    }
+
+    /// What changes this stream's region of interest while it is open.
+    pub fn view_control(&self) -> ViewControl {
+        self.view_control.clone()
     }
 
     /// The next frame; `None` once the scene is gone.
@@ -154,20 +180,35 @@ impl Subscription {
             let gap = Duration::from_secs_f64(1.0 / self.options.max_fps);
             tokio::time::sleep_until((t + gap).into()).await;
         }
+        // Whether the view changed since the last frame: the state sent last then comes again
+        // as the new view shows it (a paused scene's camera moved). Before the first frame
+        // there is nothing to send again: the first is of the latest view anyway.
+        let mut moved = false;
         loop {
             if self.scene.shared.status().state == State::Deleted {
                 return None;
             }
             let fresh = self.rx.borrow_and_update().clone();
+            moved |= self.view.has_changed().unwrap_or(false);
+            if moved && self.last_sent.is_none() {
+                self.view.borrow_and_update();
+                moved = false;
+            }
             match fresh {
                 Some(s)
-                    if self.last_sequence.is_none_or(|l| s.sequence > l) && s.particles(self.options.set).is_some() =>
+                    if (moved || self.last_sequence.is_none_or(|l| s.sequence > l))
+                        && s.particles(self.options.set).is_some() =>
                 {
                     return Some(self.encode(s).await);
                 }
                 _ => {
-                    if self.rx.changed().await.is_err() {
-                        return None;
+                    tokio::select! {
+                        changed = self.rx.changed() => if changed.is_err() {
+                            return None;
+                        },
+                        // (The sender is this subscription's own, `view_control`: never gone.
+                        // `changed` marks the view seen, hence the flag.)
+                        _ = self.view.changed() => moved = true,
                     }
                 }
             }
@@ -175,7 +216,8 @@ impl Subscription {
     }
 
     async fn encode(&mut self, s: Arc<Published>) -> Result<EncodedFrame, EncodeError> {
-        let skipped = self.last_sequence.map_or(0, |l| s.sequence - l - 1);
+        // (A state sent again for a new view skipped nothing.)
+        let skipped = self.last_sequence.map_or(0, |l| s.sequence.saturating_sub(l + 1));
         // The first frame's predecessor was never sent to this subscriber.
         let skipped = if self.last_sent.is_none() { 0 } else { skipped };
         self.scene.shared.add_dropped(skipped);
@@ -183,12 +225,20 @@ impl Subscription {
         self.delivered.store(s.sequence, Ordering::Relaxed);
         self.last_sent = Some(Instant::now());
         let sequence = s.sequence;
+        let view = self.view.borrow_and_update().clone();
+        // A view is this subscriber's own: its frames have an encoder of their own.
+        if view.is_some() && self.own.is_none() {
+            self.own = Some(Encoder::new(config(&self.scene.shared, &self.options))?);
+        }
+        if view.is_none() && self.options.mode != Mode::IdentityOrdered {
+            self.own = None;
+        }
         // Encoding a large frame takes milliseconds: keep it off the async workers.
         let data = match self.own.take() {
             Some(mut enc) => {
                 let (options, scene) = (self.options.clone(), self.scene.clone());
                 let (enc, data) = tokio::task::spawn_blocking(move || {
-                    let data = encode(&mut enc, &scene.shared, &s, &options);
+                    let data = encode(&mut enc, &scene.shared, &s, &options, view.as_ref());
                     (enc, data)
                 })
                 .await
@@ -204,6 +254,30 @@ impl Subscription {
             }
         };
         Ok(EncodedFrame { data, sequence, skipped })
+    }
+}
+
+/// The name of the set `o` streams.
+fn set_name(shared: &Shared, o: &FrameOptions) -> String {
+    shared.sets.get(usize::from(o.set)).map_or_else(String::new, |s| s.name.to_string())
+}
+
+/// Changes a stream's region of interest and budget while it is open (a WebSocket's
+/// `view` message, a gRPC stream's next request): the next frame is of the new view.
+#[derive(Debug, Clone)]
+pub struct ViewControl {
+    tx: Arc<watch::Sender<Option<View>>>,
+    options: FrameOptions,
+    set: String,
+}
+
+impl ViewControl {
+    /// Checks `request` against the stream's options and makes it the stream's view
+    /// (an empty request: every particle again).
+    pub fn set(&self, request: &ViewRequest) -> Result<(), ServiceError> {
+        let view = self.options.check_view(request, &self.set)?;
+        self.tx.send_replace(view);
+        Ok(())
     }
 }
 

@@ -22,6 +22,7 @@ mod persist;
 pub mod pump;
 mod setup;
 pub mod shared;
+pub mod view;
 mod worker;
 
 use crate::auth::{Access, Caller};

@@ -5,6 +5,7 @@
 
 use super::ServiceError;
 use super::shared::Shared;
+use super::view::{View, ViewRequest};
 use floe_proto::Mode;
 
 /// Most frames per second a subscriber may ask for.
@@ -28,6 +29,8 @@ pub struct FrameRequest {
     pub decimation: Option<u32>,
     /// The particle set (default `particles`).
     pub set: Option<String>,
+    /// A region of interest and a particle budget (default: every particle).
+    pub view: super::view::ViewRequest,
 }
 
 /// Checked frame options.
@@ -45,6 +48,9 @@ pub struct FrameOptions {
     pub decimation: u32,
     /// Index of the particle set in the scene's sets (the frames' set byte).
     pub set: u8,
+    /// The region of interest and budget asked for at the start (a stream may change
+    /// it later: [`super::frames::ViewControl`]).
+    pub view: Option<View>,
 }
 
 impl FrameRequest {
@@ -103,6 +109,37 @@ impl FrameRequest {
                 return bad(format!("decimation: set {set_name} is a grid, sent whole; ask for 1, got {decimation}"));
             }
         };
-        Ok(FrameOptions { channels, max_fps, position_bits: position_bits as u8, mode, decimation, set: set as u8 })
+        let mut options = FrameOptions {
+            channels,
+            max_fps,
+            position_bits: position_bits as u8,
+            mode,
+            decimation,
+            set: set as u8,
+            view: None,
+        };
+        options.view = options.check_view(&self.view, set_name)?;
+        Ok(options)
+    }
+}
+
+impl FrameOptions {
+    /// The checked view of `request` for a stream with these options (None for an
+    /// empty request); `set_name` for messages.
+    pub fn check_view(&self, request: &ViewRequest, set_name: &str) -> Result<Option<View>, ServiceError> {
+        if request.is_empty() {
+            return Ok(None);
+        }
+        let bad = |m: String| Err(ServiceError::InvalidArgument(m));
+        if self.mode == Mode::Grid {
+            return bad(format!("view: set {set_name} is a grid, sent whole; ask for no region or budget"));
+        }
+        if self.decimation > 1 {
+            return bad(format!(
+                "view: a region or budget replaces decimation; ask for decimation 1, got {}",
+                self.decimation
+            ));
+        }
+        request.check().map(Some)
     }
 }

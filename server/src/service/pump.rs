@@ -23,6 +23,11 @@ pub struct FrameFeed {
 }
 
 impl FrameFeed {
+    /// What changes the stream's region of interest while it is open.
+    pub fn view_control(&self) -> super::frames::ViewControl {
+        self.subscription.view_control()
+    }
+
     /// Starts moving frames, each made into a `T` by `map`. Capacity 1: a frame waits
     /// for the reader only while the next one is made, so a slow reader skips
     /// frames instead of queueing them. Frame bytes handed over count as sent.

@@ -39,10 +39,12 @@ from .messages import (
     StepAbandoned,
 )
 from .streams import EventStream, FrameStream
+from .view import Camera, View
 
 __all__ = [
     "DEFAULT_ADDRESS",
     "FORMAT_VERSION",
+    "Camera",
     "Channel",
     "Client",
     "DecodeError",
@@ -68,6 +70,7 @@ __all__ = [
     "StepAbandoned",
     "Unauthenticated",
     "Unavailable",
+    "View",
     "connect",
     "export",
     "local",

@@ -6,7 +6,8 @@ import builtins
 import json
 import os
 import pathlib
-from collections.abc import Iterable, Mapping, Sequence
+import queue
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
 import grpc
@@ -18,6 +19,7 @@ from .frames import Decoder
 from .messages import Preset, SceneInfo, SceneStats, ShareLink
 from .route import Routes, scene_of
 from .streams import EventStream, FrameStream
+from .view import View
 
 #: Where :func:`connect` goes without an address: ``FLOE_SERVER`` or this (as floectl).
 DEFAULT_ADDRESS = "http://127.0.0.1:50051"
@@ -223,6 +225,7 @@ class Client:
         decimation: int = 1,
         mode: str = "identity",
         particle_set: str = "",
+        view: View | None = None,
     ) -> FrameStream:
         """Decoded frames of a scene as it steps, channels under the scene's names.
 
@@ -234,19 +237,33 @@ class Client:
             decimation: send every n-th particle (particles 0, n, 2n, ...), 1 to 1000.
             mode: "identity" (particle i at index i) or "unordered" (smallest, spatial order).
             particle_set: the set to stream (``SceneInfo.sets``); "" for the SPH particles.
+            view: a region of interest and a particle budget (:class:`View`); None sends every
+                particle. Not with decimation above 1.
         """
         info = self.get(scene)
-        request = pb.StreamFramesRequest(
-            scene_id=_id(scene),
-            channel_names=list(channels),
-            max_fps=fps,
-            position_bits=bits,
-            mode=_enum_name(pb.FrameMode, "FRAME_MODE_", mode, "mode"),
-            decimation=decimation,
-            particle_set=particle_set,
-        )
+        request = _frames_request(scene, channels, fps, bits, decimation, mode, particle_set, view)
         return FrameStream(
             self._stream("StreamFrames", request), Decoder(scene=info), reopen=lambda: self._reopen(request)
+        )
+
+    def watch_frames(
+        self,
+        scene: SceneLike,
+        *,
+        channels: Iterable[str] = (),
+        fps: float = 30.0,
+        bits: int = 16,
+        mode: str = "identity",
+        particle_set: str = "",
+        view: View | None = None,
+    ) -> FrameStream:
+        """As :meth:`frames`, on a stream whose view changes while it is open
+        (:meth:`FrameStream.set_view`): a camera that moves through a large scene."""
+        info = self.get(scene)
+        request = _frames_request(scene, channels, fps, bits, 1, mode, particle_set, view)
+        views: queue.Queue[Any] = queue.Queue()
+        return FrameStream(
+            self._watch(request, views), Decoder(scene=info), reopen=lambda: self._rewatch(request, views), views=views
         )
 
     def share(self, scene: SceneLike) -> ShareLink:
@@ -276,6 +293,51 @@ class Client:
         it moved); raises NotFound if the scene is gone."""
         self.get(request.scene_id)
         return self._stream("StreamFrames", request)
+
+    def _watch(self, request: pb.StreamFramesRequest, views: queue.Queue[Any]) -> Any:
+        """A WatchFrames call started with ``request``, its later requests taken from
+        ``views`` (None ends them)."""
+
+        def requests() -> Iterator[pb.WatchFramesRequest]:
+            yield pb.WatchFramesRequest(start=request)
+            while (view := views.get()) is not None:
+                yield pb.WatchFramesRequest(view=view)
+
+        metadata = self._metadata + self._routes.metadata(request.scene_id)
+        return self._stub.WatchFrames(requests(), metadata=metadata)
+
+    def _rewatch(self, request: pb.StreamFramesRequest, views: queue.Queue[Any]) -> Any:
+        """A watched stream opened again where the scene is now, with its latest view."""
+        self.get(request.scene_id)
+        views.put(None)
+        while not views.empty():
+            views.get_nowait()
+        return self._watch(request, views)
+
+
+def _frames_request(
+    scene: SceneLike,
+    channels: Iterable[str],
+    fps: float,
+    bits: int,
+    decimation: int,
+    mode: str,
+    particle_set: str,
+    view: View | None,
+) -> pb.StreamFramesRequest:
+    """The request of a frame stream."""
+    request = pb.StreamFramesRequest(
+        scene_id=_id(scene),
+        channel_names=list(channels),
+        max_fps=fps,
+        position_bits=bits,
+        mode=_enum_name(pb.FrameMode, "FRAME_MODE_", mode, "mode"),
+        decimation=decimation,
+        particle_set=particle_set,
+    )
+    if view is not None:
+        request.view.CopyFrom(view.to_message())
+    return request
 
 
 #: Calls that change nothing: sent again while a scene's worker is being found.

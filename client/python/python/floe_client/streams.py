@@ -5,14 +5,17 @@ a context manager that closes it.
 
 from __future__ import annotations
 
+import queue
 from collections.abc import Callable, Iterator
 from typing import Any, Generic, TypeVar
 
 import grpc
 
 from . import messages
-from .errors import FloeError, NotFound, from_rpc
+from ._proto import scenes_pb2 as pb
+from .errors import FailedPrecondition, FloeError, NotFound, from_rpc
 from .frames import Decoder, Frame
+from .view import View
 
 T = TypeVar("T")
 
@@ -71,12 +74,33 @@ class FrameStream(_Stream[Frame]):
     :attr:`skipped`, and never slows the solver.
     """
 
-    def __init__(self, call: Any, decoder: Decoder, reopen: Callable[[], Any] | None = None) -> None:
+    def __init__(
+        self,
+        call: Any,
+        decoder: Decoder,
+        reopen: Callable[[], Any] | None = None,
+        views: queue.Queue[Any] | None = None,
+    ) -> None:
         super().__init__(call)
         self._decoder = decoder
         self._reopen = reopen
+        self._views = views
         #: Frames skipped so far because this reader was slower than the scene.
         self.skipped = 0
+
+    def set_view(self, view: View | None) -> None:
+        """Changes the view of a stream from ``Client.watch_frames`` from the next frame on
+        (None: every particle again). A bad view ends the stream: the next read raises
+        :class:`InvalidArgument` naming the field."""
+        if self._views is None:
+            message = "set_view: this stream's view is fixed; open it with watch_frames"
+            raise FailedPrecondition(grpc.StatusCode.FAILED_PRECONDITION, message)
+        self._views.put(view.to_message() if view is not None else pb.FrameView())
+
+    def close(self) -> None:
+        if self._views is not None:
+            self._views.put(None)
+        super().close()
 
     def __next__(self) -> Frame:
         return self._decoder.decode(self.next_raw())

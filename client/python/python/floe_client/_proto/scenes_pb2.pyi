@@ -297,7 +297,7 @@ class Measure(_message.Message):
     def __init__(self, name: _Optional[str] = ..., value: _Optional[float] = ..., unit: _Optional[str] = ...) -> None: ...
 
 class StreamFramesRequest(_message.Message):
-    __slots__ = ("scene_id", "channels", "max_fps", "position_bits", "mode", "decimation", "channel_names", "particle_set")
+    __slots__ = ("scene_id", "channels", "max_fps", "position_bits", "mode", "decimation", "channel_names", "particle_set", "view")
     SCENE_ID_FIELD_NUMBER: _ClassVar[int]
     CHANNELS_FIELD_NUMBER: _ClassVar[int]
     MAX_FPS_FIELD_NUMBER: _ClassVar[int]
@@ -306,6 +306,7 @@ class StreamFramesRequest(_message.Message):
     DECIMATION_FIELD_NUMBER: _ClassVar[int]
     CHANNEL_NAMES_FIELD_NUMBER: _ClassVar[int]
     PARTICLE_SET_FIELD_NUMBER: _ClassVar[int]
+    VIEW_FIELD_NUMBER: _ClassVar[int]
     scene_id: int
     channels: _containers.RepeatedScalarFieldContainer[Channel]
     max_fps: float
@@ -314,7 +315,46 @@ class StreamFramesRequest(_message.Message):
     decimation: int
     channel_names: _containers.RepeatedScalarFieldContainer[str]
     particle_set: str
-    def __init__(self, scene_id: _Optional[int] = ..., channels: _Optional[_Iterable[_Union[Channel, str]]] = ..., max_fps: _Optional[float] = ..., position_bits: _Optional[int] = ..., mode: _Optional[_Union[FrameMode, str]] = ..., decimation: _Optional[int] = ..., channel_names: _Optional[_Iterable[str]] = ..., particle_set: _Optional[str] = ...) -> None: ...
+    view: FrameView
+    def __init__(self, scene_id: _Optional[int] = ..., channels: _Optional[_Iterable[_Union[Channel, str]]] = ..., max_fps: _Optional[float] = ..., position_bits: _Optional[int] = ..., mode: _Optional[_Union[FrameMode, str]] = ..., decimation: _Optional[int] = ..., channel_names: _Optional[_Iterable[str]] = ..., particle_set: _Optional[str] = ..., view: _Optional[_Union[FrameView, _Mapping]] = ...) -> None: ...
+
+class FrameView(_message.Message):
+    __slots__ = ("box", "camera", "budget")
+    BOX_FIELD_NUMBER: _ClassVar[int]
+    CAMERA_FIELD_NUMBER: _ClassVar[int]
+    BUDGET_FIELD_NUMBER: _ClassVar[int]
+    box: ViewBox
+    camera: ViewCamera
+    budget: int
+    def __init__(self, box: _Optional[_Union[ViewBox, _Mapping]] = ..., camera: _Optional[_Union[ViewCamera, _Mapping]] = ..., budget: _Optional[int] = ...) -> None: ...
+
+class ViewBox(_message.Message):
+    __slots__ = ("min", "max")
+    MIN_FIELD_NUMBER: _ClassVar[int]
+    MAX_FIELD_NUMBER: _ClassVar[int]
+    min: _containers.RepeatedScalarFieldContainer[float]
+    max: _containers.RepeatedScalarFieldContainer[float]
+    def __init__(self, min: _Optional[_Iterable[float]] = ..., max: _Optional[_Iterable[float]] = ...) -> None: ...
+
+class ViewCamera(_message.Message):
+    __slots__ = ("position", "direction", "fov_deg", "far")
+    POSITION_FIELD_NUMBER: _ClassVar[int]
+    DIRECTION_FIELD_NUMBER: _ClassVar[int]
+    FOV_DEG_FIELD_NUMBER: _ClassVar[int]
+    FAR_FIELD_NUMBER: _ClassVar[int]
+    position: _containers.RepeatedScalarFieldContainer[float]
+    direction: _containers.RepeatedScalarFieldContainer[float]
+    fov_deg: float
+    far: float
+    def __init__(self, position: _Optional[_Iterable[float]] = ..., direction: _Optional[_Iterable[float]] = ..., fov_deg: _Optional[float] = ..., far: _Optional[float] = ...) -> None: ...
+
+class WatchFramesRequest(_message.Message):
+    __slots__ = ("start", "view")
+    START_FIELD_NUMBER: _ClassVar[int]
+    VIEW_FIELD_NUMBER: _ClassVar[int]
+    start: StreamFramesRequest
+    view: FrameView
+    def __init__(self, start: _Optional[_Union[StreamFramesRequest, _Mapping]] = ..., view: _Optional[_Union[FrameView, _Mapping]] = ...) -> None: ...
 
 class Frame(_message.Message):
     __slots__ = ("data", "sequence", "skipped")

@@ -105,6 +105,11 @@ class SceneServiceStub:
                 request_serializer=floe_dot_v1_dot_scenes__pb2.StreamFramesRequest.SerializeToString,
                 response_deserializer=floe_dot_v1_dot_scenes__pb2.Frame.FromString,
                 _registered_method=True)
+        self.WatchFrames = channel.stream_stream(
+                '/floe.v1.SceneService/WatchFrames',
+                request_serializer=floe_dot_v1_dot_scenes__pb2.WatchFramesRequest.SerializeToString,
+                response_deserializer=floe_dot_v1_dot_scenes__pb2.Frame.FromString,
+                _registered_method=True)
         self.StreamEvents = channel.unary_stream(
                 '/floe.v1.SceneService/StreamEvents',
                 request_serializer=floe_dot_v1_dot_scenes__pb2.SceneRef.SerializeToString,
@@ -219,6 +224,18 @@ class SceneServiceServicer:
         context.set_details('Method not implemented!')
         raise NotImplementedError('Method not implemented!')
 
+    def WatchFrames(self, request_iterator, context):
+        """Frames as StreamFrames sends them, on a stream whose region of interest the client
+        changes as it goes: the first request's `start` opens it (a request without one
+        first is INVALID_ARGUMENT), each later request's `view` replaces the view (an empty
+        view: every particle again) from the next frame on; a bad view is INVALID_ARGUMENT
+        and ends the stream. A client that closes its side keeps its view and its frames;
+        cancelling the call ends it.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
     def StreamEvents(self, request, context):
         """Scene events: halted (with the reason), parameter changed, deleted.
         """
@@ -297,6 +314,11 @@ def add_SceneServiceServicer_to_server(servicer, server):
             'StreamFrames': grpc.unary_stream_rpc_method_handler(
                     servicer.StreamFrames,
                     request_deserializer=floe_dot_v1_dot_scenes__pb2.StreamFramesRequest.FromString,
+                    response_serializer=floe_dot_v1_dot_scenes__pb2.Frame.SerializeToString,
+            ),
+            'WatchFrames': grpc.stream_stream_rpc_method_handler(
+                    servicer.WatchFrames,
+                    request_deserializer=floe_dot_v1_dot_scenes__pb2.WatchFramesRequest.FromString,
                     response_serializer=floe_dot_v1_dot_scenes__pb2.Frame.SerializeToString,
             ),
             'StreamEvents': grpc.unary_stream_rpc_method_handler(
@@ -683,6 +705,33 @@ class SceneService:
             target,
             '/floe.v1.SceneService/StreamFrames',
             floe_dot_v1_dot_scenes__pb2.StreamFramesRequest.SerializeToString,
+            floe_dot_v1_dot_scenes__pb2.Frame.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def WatchFrames(request_iterator,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.stream_stream(
+            request_iterator,
+            target,
+            '/floe.v1.SceneService/WatchFrames',
+            floe_dot_v1_dot_scenes__pb2.WatchFramesRequest.SerializeToString,
             floe_dot_v1_dot_scenes__pb2.Frame.FromString,
             options,
             channel_credentials,
