@@ -6,7 +6,6 @@ import builtins
 import json
 import os
 import pathlib
-import queue
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
@@ -18,7 +17,7 @@ from .errors import Unavailable, from_rpc
 from .frames import Decoder
 from .messages import Preset, SceneInfo, SceneStats, ShareLink
 from .route import Routes, scene_of
-from .streams import EventStream, FrameStream
+from .streams import EventStream, FrameStream, Views
 from .view import View
 
 #: Where :func:`connect` goes without an address: ``FLOE_SERVER`` or this (as floectl).
@@ -261,10 +260,8 @@ class Client:
         (:meth:`FrameStream.set_view`): a camera that moves through a large scene."""
         info = self.get(scene)
         request = _frames_request(scene, channels, fps, bits, 1, mode, particle_set, view)
-        views: queue.Queue[Any] = queue.Queue()
-        return FrameStream(
-            self._watch(request, views), Decoder(scene=info), reopen=lambda: self._rewatch(request, views), views=views
-        )
+        views = Views(request)
+        return FrameStream(self._watch(views), Decoder(scene=info), reopen=lambda: self._rewatch(views), views=views)
 
     def share(self, scene: SceneLike) -> ShareLink:
         """A new read-only share link of a scene: its token lets a viewer watch the scene
@@ -294,25 +291,24 @@ class Client:
         self.get(request.scene_id)
         return self._stream("StreamFrames", request)
 
-    def _watch(self, request: pb.StreamFramesRequest, views: queue.Queue[Any]) -> Any:
-        """A WatchFrames call started with ``request``, its later requests taken from
-        ``views`` (None ends them)."""
+    def _watch(self, views: Views) -> Any:
+        """A WatchFrames call started with the stream's request, its later requests the
+        views ``views`` is sent."""
+        requests, start = views.queue, pb.WatchFramesRequest(start=views.request)
 
-        def requests() -> Iterator[pb.WatchFramesRequest]:
-            yield pb.WatchFramesRequest(start=request)
-            while (view := views.get()) is not None:
+        def messages() -> Iterator[pb.WatchFramesRequest]:
+            yield start
+            while (view := requests.get()) is not None:
                 yield pb.WatchFramesRequest(view=view)
 
-        metadata = self._metadata + self._routes.metadata(request.scene_id)
-        return self._stub.WatchFrames(requests(), metadata=metadata)
+        metadata = self._metadata + self._routes.metadata(views.request.scene_id)
+        return self._stub.WatchFrames(messages(), metadata=metadata)
 
-    def _rewatch(self, request: pb.StreamFramesRequest, views: queue.Queue[Any]) -> Any:
+    def _rewatch(self, views: Views) -> Any:
         """A watched stream opened again where the scene is now, with its latest view."""
-        self.get(request.scene_id)
-        views.put(None)
-        while not views.empty():
-            views.get_nowait()
-        return self._watch(request, views)
+        self.get(views.request.scene_id)
+        views.restart()
+        return self._watch(views)
 
 
 def _frames_request(

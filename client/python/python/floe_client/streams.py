@@ -79,7 +79,7 @@ class FrameStream(_Stream[Frame]):
         call: Any,
         decoder: Decoder,
         reopen: Callable[[], Any] | None = None,
-        views: queue.Queue[Any] | None = None,
+        views: Views | None = None,
     ) -> None:
         super().__init__(call)
         self._decoder = decoder
@@ -95,11 +95,11 @@ class FrameStream(_Stream[Frame]):
         if self._views is None:
             message = "set_view: this stream's view is fixed; open it with watch_frames"
             raise FailedPrecondition(grpc.StatusCode.FAILED_PRECONDITION, message)
-        self._views.put(view.to_message() if view is not None else pb.FrameView())
+        self._views.send(view.to_message() if view is not None else pb.FrameView())
 
     def close(self) -> None:
         if self._views is not None:
-            self._views.put(None)
+            self._views.end()
         super().close()
 
     def __next__(self) -> Frame:
@@ -135,6 +135,31 @@ class FrameStream(_Stream[Frame]):
             return False
         self._decoder.reset()
         return True
+
+
+class Views:
+    """A watched stream's views (``Client.watch_frames``): its request, whose view is the one in
+    force (a stream opened again starts with it), and the queue its call's later requests are
+    read from (None ends them)."""
+
+    def __init__(self, request: pb.StreamFramesRequest) -> None:
+        self.request = request
+        self.queue: queue.Queue[pb.FrameView | None] = queue.Queue()
+
+    def send(self, view: pb.FrameView) -> None:
+        """Sends ``view`` on the call and keeps it for a call opened again."""
+        self.request.view.CopyFrom(view)
+        self.queue.put(view)
+
+    def end(self) -> None:
+        """Ends the call's requests."""
+        self.queue.put(None)
+
+    def restart(self) -> None:
+        """Ends the call's requests and starts a fresh queue for the next call (the old call's
+        reader may still be waiting on the old one)."""
+        self.end()
+        self.queue = queue.Queue()
 
 
 class EventStream(_Stream[messages.Event]):
