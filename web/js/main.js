@@ -31,7 +31,7 @@ const api = (path, init) => routes.fetch(fetch, path, {
   const body = await r.json().catch(() => ({}));
   const why = body.error ?? `${r.status} ${r.statusText}`;
   if (r.status === 401) throw new Error(`${why} Open this page as ${location.origin}/#token=YOUR_TOKEN`);
-  if (!r.ok) throw new Error(why);
+  if (!r.ok) throw Object.assign(new Error(why), { status: r.status });
   return body;
 });
 const post = (path, body) => api(path, { method: 'POST', body: JSON.stringify(body ?? {}) });
@@ -122,7 +122,7 @@ async function refreshScenes(select, reopen = false) {
   // answer carries, for the stream); one that does not exist or is not the user's is said
   // so, and the list's first opens instead.
   if (select != null && !scenes.some((s) => s.scene_id === select)) {
-    const asked = await api(`/scenes/${select}`).catch((e) => {
+    const asked = await askFor(select).catch((e) => {
       showError('view-error', `scene ${select}: ${e.message}`);
       return null;
     });
@@ -146,6 +146,22 @@ async function refreshScenes(select, reopen = false) {
     close();
     state.scene = null;
     showSizing(null);
+  }
+}
+
+/**
+ * Scene `id`'s answer. In a cluster a worker that has not yet heard of a scene another worker
+ * has just created answers 503 ("not known to this worker yet; retry"): its next tick (about a
+ * second) tells where the scene is, so the page asks again, for up to 5 s.
+ */
+async function askFor(id) {
+  for (let attempt = 1; ; attempt += 1) {
+    try {
+      return await api(`/scenes/${id}`);
+    } catch (e) {
+      if (e.status !== 503 || attempt >= 10) throw e;
+      await new Promise((done) => setTimeout(done, 500));
+    }
   }
 }
 

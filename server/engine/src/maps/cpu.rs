@@ -7,7 +7,12 @@ use super::MapSpec;
 use crate::attrs::{Attrs, Element};
 use crate::cpu::{CpuCx, CpuPass};
 use crate::math::{Mat3, Quat, Real, Vec3};
+use rayon::prelude::*;
 use std::marker::PhantomData;
+
+/// Fewest segments or members a thread takes in the sums: below it the split costs more
+/// than it saves.
+const PARALLEL_MIN: usize = 1024;
 
 /// An element type that sums (componentwise, in f32).
 pub trait Summable: Element + std::ops::Add<Output = Self> {
@@ -114,7 +119,7 @@ impl<T> SegmentSum<T> {
     }
 }
 
-impl<T: Summable> CpuPass for SegmentSum<T> {
+impl<T: Summable + Send + Sync> CpuPass for SegmentSum<T> {
     fn run(&self, cx: &mut CpuCx<'_>) {
         let a = &mut *cx.attrs;
         let into = a.handle::<T>(self.into);
@@ -122,10 +127,11 @@ impl<T: Summable> CpuPass for SegmentSum<T> {
         let m = self.map;
         let (start, len, live) = (u32s(a, m.start.name), u32s(a, m.len.name), u32s(a, m.live.name));
         let values = a.get(a.handle::<T>(self.values));
-        for (s, o) in out.iter_mut().enumerate() {
+        // Each segment's sum in membership order, segments in parallel: the same sums.
+        out.par_iter_mut().enumerate().with_min_len(PARALLEL_MIN).for_each(|(s, o)| {
             let k0 = start[s] as usize;
             *o = (k0..k0 + len[s] as usize).filter(|&k| live[k] != 0).fold(T::ZERO, |acc, k| acc + values[k]);
-        }
+        });
         a.put(into, out);
     }
 }
@@ -149,7 +155,7 @@ impl<T> MemberSum<T> {
     }
 }
 
-impl<T: Summable> CpuPass for MemberSum<T> {
+impl<T: Summable + Send + Sync> CpuPass for MemberSum<T> {
     fn run(&self, cx: &mut CpuCx<'_>) {
         let a = &mut *cx.attrs;
         let into = a.handle::<T>(self.into);
@@ -159,12 +165,13 @@ impl<T: Summable> CpuPass for MemberSum<T> {
         let (order, live) = (u32s(a, m.order.name), u32s(a, m.live.name));
         let ids = m.sorted().then(|| u32s(a, "id"));
         let values = a.get(a.handle::<T>(self.values));
-        for (i, o) in out.iter_mut().enumerate() {
+        // Each member's sum in membership order, members in parallel: the same sums.
+        out.par_iter_mut().enumerate().with_min_len(PARALLEL_MIN).for_each(|(i, o)| {
             let id = ids.map_or(i, |ids| ids[i] as usize);
             let e0 = first[id] as usize;
             let entries = order[e0..e0 + count[id] as usize].iter().map(|&k| k as usize);
             *o = entries.filter(|&k| live[k] != 0).fold(T::ZERO, |acc, k| acc + values[k]);
-        }
+        });
         a.put(into, out);
     }
 }
