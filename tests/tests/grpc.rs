@@ -374,6 +374,12 @@ async fn views_cull_and_thin_frames_and_change_on_an_open_stream() {
     let waited = tokio::time::timeout(std::time::Duration::from_secs(10), frames.message()).await;
     let f = decoder.decode(&waited.expect("a frame without a step").unwrap().unwrap().data).unwrap();
     assert_eq!(f.positions.len(), 20);
+    // The same view again: the same state and particles, sent again as a frame of its own
+    // (a delta on the one before, which the decoder takes).
+    tx.send(view(pb::FrameView { budget: 20, ..Default::default() })).await.unwrap();
+    let same = decoder.decode(&frames.message().await.unwrap().unwrap().data).unwrap();
+    assert_eq!((&same.ids, same.header.step, same.positions.clone()), (&f.ids, f.header.step, f.positions.clone()));
+    assert!(same.header.sequence > f.header.sequence && !same.header.keyframe);
     // A bad view ends the stream with the field named.
     let bad = pb::FrameView {
         camera: Some(pb::ViewCamera { position: vec![0.0; 3], direction: vec![0.0; 3], ..Default::default() }),
